@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# FHR bench driver (./run bench BUILD_DIR): one line per mesh and stage, then the goals.
+set -euo pipefail
+build=$1
+root=$(cd "$(dirname "$0")/.." && pwd)
+meshes=${FHR_CGAL_MESHES:-$root/out/cgal-data/data/meshes}
+shared=${FHR_SHARED_MESHES:-$root/../shared/meshes}
+
+echo "== stage: read + validate (src/io, src/core/build), median of 7 runs"
+for m in "$shared/horse.off" "$meshes/refined_elephant.off" "$meshes/fandisk.off"; do
+    if [ -f "$m" ]; then
+        "$build/bench/bench_io" "$m" 7
+    else
+        echo "$(basename "$m"): not present here, skipped (horse.off lives in ../shared/meshes)"
+    fi
+done | tee "$build/bench-io.txt"
+
+horse=$(grep '^horse.off' "$build/bench-io.txt" || true)
+if [ -n "$horse" ]; then
+    ms=$(sed -E 's/.*median +([0-9.]+) ms.*/\1/' <<<"$horse")
+    bpf=$(sed -E 's/.*\(([0-9]+) B\/face\).*/\1/' <<<"$horse")
+    awk -v ms="$ms" -v bpf="$bpf" 'BEGIN {
+        printf "goal: horse read+validate <= 60 ms: measured %.2f ms: %s\n", ms, (ms <= 60 ? "met" : "NOT met");
+        printf "goal: peak memory <= 300 bytes/triangle: measured %d: %s\n", bpf, (bpf <= 300 ? "met" : "NOT met");
+    }'
+fi

@@ -1,0 +1,211 @@
+// The `fhr` command end to end (spec/cli.md): every bad-input class of spec/mesh.md and
+// spec/formats.md gives one line `fhr: error: FILE[:LINE]: ...`, exit code 2, in under a second,
+// and leaves no output file behind; `fhr info` reports the right topology for real meshes.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "support/test_support.hpp"
+
+using fhr::test::run_fhr;
+using fhr::test::temp_path;
+using fhr::test::write_temp;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct BadInput {
+    const char* name;      // the class of bad input
+    const char* file;      // file name (its extension picks the reader)
+    std::string content;
+    const char* expect;    // a phrase the message must contain
+};
+
+const std::string tet_v = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+const std::string tet_f = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+
+std::string off(const std::string& counts, const std::string& body) { return "OFF\n" + counts + "\n" + body; }
+
+std::string binary_ply_truncated() {
+    std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+    s += std::string(20, '\0');  // 4 vertices need 48 bytes
+    return s;
+}
+
+int count_lines(const std::string& s) {
+    int n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+const std::vector<BadInput>& bad_inputs() {
+    static const std::vector<BadInput> cases{
+        {"empty file", "empty.off", "", "empty"},
+        {"header only", "header.off", "OFF\n", "count"},
+        {"unknown format", "mesh.xyz", "OFF\n4 4 0\n" + tet_v + tet_f, "unknown format"},
+        {"truncated text", "trunc.off", off("4 4 0", "0 0 0\n1 0 0\n"), "vertex"},
+        {"truncated binary", "trunc.ply", binary_ply_truncated(), "truncated"},
+        {"negative index", "neg.off", off("4 4 0", tet_v + "3 0 2 -1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"), "-1"},
+        {"OBJ index 0", "zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 0 2 3\nf 1 2 4\nf 1 4 3\nf 2 3 4\n", "1-based"},
+        {"index out of range", "range.off", off("4 4 0", tet_v + "3 0 2 7\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"), "7"},
+        {"overflowing index", "overflow.off", off("4 4 0", tet_v + "3 0 2 99999999999999999999\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"), "range"},
+        {"non-numeric", "word.off", off("4 4 0", "0 0 zero\n1 0 0\n0 1 0\n0 0 1\n" + tet_f), "zero"},
+        {"number out of range", "huge.off", off("4 4 0", "0 0 1e400\n1 0 0\n0 1 0\n0 0 1\n" + tet_f), "range"},
+        {"NaN coordinate", "nan.off", off("4 4 0", "0 0 nan\n1 0 0\n0 1 0\n0 0 1\n" + tet_f), "NaN"},
+        {"Inf coordinate", "inf.off", off("4 4 0", "0 0 inf\n1 0 0\n0 1 0\n0 0 1\n" + tet_f), "inf"},
+        {"absurd counts", "absurd.off", off("1000000000 2000000000 0", tet_v + tet_f), "count"},
+        {"face with 2 vertices", "two.off", off("4 5 0", tet_v + tet_f + "2 0 1\n"), "2 vertices"},
+        {"repeated vertex", "repeat.off", off("4 5 0", tet_v + tet_f + "3 0 1 1\n"), "repeats vertex 1"},
+        {"polygon", "quad.off", off("4 4 0", tet_v + "4 0 2 1 3\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"), "--triangulate"},
+        {"duplicate faces", "dup.off", off("4 5 0", tet_v + tet_f + "3 3 2 1\n"), "duplicates"},
+        {"degenerate triangle", "degen.off", off("4 4 0", "0 0 0\n1 0 0\n0 1 0\n0.5 0 0\n" + tet_f), "degenerate"},
+        {"non-manifold edge", "nmedge.off", off("5 5 0", tet_v + "1 1 1\n" + tet_f + "3 1 2 4\n"), "non-manifold edge"},
+        {"non-manifold vertex", "bowtie.off",
+         off("7 8 0", tet_v + "-1 0 0\n0 -1 0\n0 0 -1\n" + tet_f + "3 0 4 5\n3 0 6 4\n3 0 5 6\n3 4 6 5\n"),
+         "non-manifold vertex 0"},
+        {"non-orientable", "moebius.off",
+         off("6 6 0", "1 0 -0.2\n1.3 0 0.2\n-0.5 0.866 -0.15\n-0.65 1.1258 0.27\n-0.5 -0.866 -0.1\n-0.65 -1.1258 0.34\n"
+                      "3 0 2 1\n3 1 2 3\n3 2 4 3\n3 3 4 5\n3 4 1 5\n3 5 1 0\n"),
+         "not orientable"},
+        {"boundary", "open.off", off("4 3 0", tet_v + "3 0 2 1\n3 0 1 3\n3 0 3 2\n"), "boundary"},
+        {"two components", "two.obj",
+         "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 5 0 0\nv 6 0 0\nv 5 1 0\nv 5 0 1\n"
+         "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n",
+         "2 connected components"},
+        {"coordinates that overflow lengths", "big.off", off("4 4 0", "0 0 0\n1e200 0 0\n0 1 0\n0 0 1\n" + tet_f), "overflow"},
+        {"missing file", "does-not-exist.off", "", "cannot open"},
+    };
+    return cases;
+}
+
+}  // namespace
+
+TEST_CASE("CLI-ERR-1: every bad-input class gives one line, exit code 2, in under a second", "[cli]") {
+    for (const BadInput& c : bad_inputs()) {
+        DYNAMIC_SECTION(c.name) {
+            const std::string path = std::string(c.name) == "missing file" ? temp_path(c.file) : write_temp(c.file, c.content);
+            const auto r = run_fhr({"info", path});
+            INFO(r.err);
+            CHECK(r.exit_code == 2);
+            CHECK(r.seconds < 1.0);
+            CHECK(count_lines(r.err) == 1);
+            CHECK(r.err.rfind("fhr: error: " + path, 0) == 0);
+            CHECK_THAT(r.err, Catch::Contains(c.expect, Catch::CaseSensitive::No));
+        }
+    }
+}
+
+TEST_CASE("CLI-ERR-2: a failed command leaves no output file behind", "[cli]") {
+    for (const BadInput& c : bad_inputs()) {
+        DYNAMIC_SECTION(c.name) {
+            const std::string path = std::string(c.name) == "missing file" ? temp_path(c.file) : write_temp(c.file, c.content);
+            const fs::path dir = fs::path(temp_path("out-" + std::string(c.file)));
+            fs::create_directories(dir);
+            const auto r = run_fhr({"convert", path, "--out", (dir / "result.off").string()});
+            CHECK(r.exit_code == 2);
+            CHECK(fs::is_empty(dir));
+        }
+    }
+}
+
+TEST_CASE("CLI-ERR-3: usage errors name the problem and exit with 2", "[cli]") {
+    CHECK(run_fhr({}).exit_code == 2);
+    const auto unknown = run_fhr({"frobnicate"});
+    CHECK(unknown.exit_code == 2);
+    CHECK_THAT(unknown.err, Catch::Contains("unknown command 'frobnicate'"));
+    const auto option = run_fhr({"info", "--bogus", "x.off"});
+    CHECK(option.exit_code == 2);
+    CHECK_THAT(option.err, Catch::Contains("unknown option --bogus"));
+    const auto faces = run_fhr({"generate", "--faces", "lots", "--out", temp_path("g.off")});
+    CHECK(faces.exit_code == 2);
+    CHECK_THAT(faces.err, Catch::Contains("--faces needs an integer"));
+    CHECK(run_fhr({"help"}).exit_code == 0);
+}
+
+TEST_CASE("CLI-INFO-1: warnings for repaired input, exit code 0", "[cli]") {
+    // An isolated vertex and one face turned the wrong way round.
+    const std::string path = write_temp("repair.off", off("5 4 0", tet_v + "7 7 7\n3 0 1 2\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"));
+    const auto r = run_fhr({"info", "--json", path});
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.err, Catch::Contains("fhr: warning:") && Catch::Contains("dropped 1 isolated vertices") &&
+                          Catch::Contains("re-oriented 1 faces"));
+    CHECK_THAT(r.out, Catch::Contains("\"vertices\": 4") && Catch::Contains("\"genus\": 0") &&
+                          Catch::Contains("\"valid\": true"));
+}
+
+TEST_CASE("CLI-INFO-2: an invalid mesh still gets its counts and the reason", "[cli]") {
+    const std::string path = write_temp("open2.off", off("4 3 0", tet_v + "3 0 2 1\n3 0 1 3\n3 0 3 2\n"));
+    const auto r = run_fhr({"info", "--json", path});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.out, Catch::Contains("\"boundary_loops\": 1") && Catch::Contains("\"faces\": 3") &&
+                          Catch::Contains("\"valid\": false") && Catch::Contains("closed surface"));
+}
+
+namespace {
+
+struct RealMesh {
+    const char* name;
+    bool shared;  // ../shared/meshes (workplace only) rather than libcgal-demo's data
+    long vertices, faces, genus;
+};
+
+}  // namespace
+
+TEST_CASE("CLI-INFO-3: fhr info reports the right topology for the paper's and CGAL's meshes", "[cli][real]") {
+    const std::vector<RealMesh> meshes{
+        {"fandisk.off", false, 6475, 12946, 0},   // paper §6, Fig. 6
+        {"elephant.off", false, 2775, 5558, 3},   // counts from its OFF header; genus 3
+        {"horse.off", true, 48485, 96966, 0},     // paper §6
+        {"rocker.off", true, 9397, 18794, 1},
+    };
+    for (const RealMesh& m : meshes) {
+        DYNAMIC_SECTION(m.name) {
+            const auto path = m.shared ? fhr::test::shared_mesh(m.name) : fhr::test::cgal_mesh(m.name);
+            if (!path) {
+                WARN(std::string(m.name) + " is not present here: run ./run test (it extracts libcgal-demo's "
+                     "meshes) or provide ../shared/meshes; skipped");
+                continue;
+            }
+            const auto r = run_fhr({"info", "--json", *path});
+            INFO(r.err);
+            CHECK(r.exit_code == 0);
+            CHECK_THAT(r.out, Catch::Contains("\"genus\": " + std::to_string(m.genus)));
+            CHECK_THAT(r.out, Catch::Contains("\"vertices\": " + std::to_string(m.vertices)));
+            CHECK_THAT(r.out, Catch::Contains("\"faces\": " + std::to_string(m.faces)));
+        }
+    }
+}
+
+TEST_CASE("CLI-GEN-1: fhr generate writes meshes that fhr info accepts, with the requested genus", "[cli]") {
+    for (int g : {0, 1, 2, 3, 4}) {
+        DYNAMIC_SECTION("genus " << g) {
+            const std::string out = temp_path("gen" + std::to_string(g) + ".ply");
+            const auto gen = run_fhr({"generate", "--genus", std::to_string(g), "--faces", "2000", "--seed",
+                                      std::to_string(17 + g), "--noise", "0.1", "--out", out});
+            INFO(gen.err);
+            REQUIRE(gen.exit_code == 0);
+            const auto r = run_fhr({"info", "--json", out});
+            INFO(r.err);
+            CHECK(r.exit_code == 0);
+            CHECK(r.err.empty());
+            CHECK_THAT(r.out, Catch::Contains("\"genus\": " + std::to_string(g)) &&
+                                  Catch::Contains("\"faces\": 2000") && Catch::Contains("\"valid\": true"));
+        }
+    }
+}
+
+TEST_CASE("CLI-CONVERT-1: convert round-trips every writable format", "[cli]") {
+    const std::string src = write_temp("conv.off", off("4 4 0", tet_v + tet_f));
+    for (const char* ext : {"off", "obj", "ply"}) {
+        DYNAMIC_SECTION(ext) {
+            const std::string out = temp_path(std::string("conv.") + ext);
+            REQUIRE(run_fhr({"convert", src, "--out", out}).exit_code == 0);
+            const auto r = run_fhr({"info", "--json", out});
+            CHECK(r.exit_code == 0);
+            CHECK_THAT(r.out, Catch::Contains("\"vertices\": 4") && Catch::Contains("\"faces\": 4"));
+        }
+    }
+}

@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""Runs every test registered in meson (meson introspect --tests) and prints one closing line,
+`N passed, N failed`, counting Catch2 test cases (each suite writes Catch2's XML report) and
+counting any other test as one case judged by its exit code. Two suites run at a time (2 cores).
+Usage: run_suites.py BUILD_DIR"""
+import concurrent.futures
+import json
+import os
+import subprocess
+import sys
+import time
+import xml.etree.ElementTree as ET
+
+build = os.path.abspath(sys.argv[1])
+tests = json.loads(subprocess.run(["meson", "introspect", build, "--tests"], check=True,
+                                  capture_output=True, text=True).stdout)
+results_dir = os.path.join(build, "test-results")
+os.makedirs(results_dir, exist_ok=True)
+
+
+def run(test):
+    name, cmd = test["name"], list(test["cmd"])
+    env = dict(os.environ, **(test.get("env") or {}))
+    is_catch = os.path.basename(cmd[0]).startswith("test_")
+    xml = os.path.join(results_dir, name + ".xml")
+    if is_catch:
+        cmd += ["-r", "xml", "-o", xml]
+    start = time.monotonic()
+    try:
+        proc = subprocess.run(cmd, env=env, cwd=test.get("workdir") or build, capture_output=True,
+                              text=True, errors="replace", timeout=test.get("timeout") or 600)
+        code, output = proc.returncode, proc.stdout + proc.stderr
+    except subprocess.TimeoutExpired:
+        code, output = -1, "timed out"
+    seconds = time.monotonic() - start
+    if not is_catch:
+        ok = code == 0
+        return name, seconds, int(ok), int(not ok), [] if ok else [(name, output[-4000:])]
+    try:
+        root = ET.parse(xml).getroot()
+    except (ET.ParseError, FileNotFoundError):
+        return name, seconds, 0, 1, [(name, "no Catch2 report (exit %d)\n%s" % (code, output[-4000:]))]
+    failures = []
+    for case in root.iter("TestCase"):
+        result = case.find("OverallResult")
+        if result is not None and result.get("success") != "true":
+            details = []
+            for expr in case.iter("Expression"):
+                if expr.get("success") == "false":
+                    orig = (expr.findtext("Original") or "").strip()
+                    exp = (expr.findtext("Expanded") or "").strip()
+                    details.append("%s:%s  %s  (%s)" % (expr.get("filename"), expr.get("line"), orig, exp))
+            for tag in ("Exception", "FatalErrorCondition", "Failure"):
+                for el in case.iter(tag):
+                    details.append("%s:%s  %s: %s" % (el.get("filename"), el.get("line"), tag, (el.text or "").strip()))
+            failures.append((name + ": " + case.get("name"), "\n".join(details[:10])))
+    totals = root.find("OverallResultsCases")
+    passed = int(totals.get("successes")) if totals is not None else 0
+    failed = int(totals.get("failures")) if totals is not None else 1
+    if code != 0 and failed == 0:  # crashed after the report, or failed outside any test case
+        failed, failures = 1, [(name, "exit %d\n%s" % (code, output[-4000:]))]
+    return name, seconds, passed, failed, failures
+
+
+passed = failed = 0
+all_failures = []
+with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+    for name, seconds, p, f, fails in pool.map(run, tests):
+        print("%-20s %4d passed, %d failed  (%.1f s)" % (name, p, f, seconds), flush=True)
+        passed, failed = passed + p, failed + f
+        all_failures += fails
+for title, details in all_failures:
+    print("\nFAILED %s\n%s" % (title, details))
+print("%d passed, %d failed" % (passed, failed))
+sys.exit(1 if failed else 0)

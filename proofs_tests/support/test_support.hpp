@@ -1,0 +1,40 @@
+// Shared helpers of the test suites: temporary files, the real meshes, running the fhr command.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fhr::test {
+
+/// A fresh path inside this process's temporary directory (removed at exit).
+std::string temp_path(std::string_view file_name);
+
+/// Writes `bytes` to temp_path(file_name) and returns the path.
+std::string write_temp(std::string_view file_name, std::string_view bytes);
+
+/// Reads a whole file (throws std::runtime_error if it cannot).
+std::string read_file(const std::string& path);
+
+/// Path of a mesh from libcgal-demo's data/meshes (extracted by ./run into out/cgal-data, or the
+/// folder named by $FHR_CGAL_MESHES), or nullopt when it is not there.
+std::optional<std::string> cgal_mesh(std::string_view name);
+
+/// Path of a workplace-only mesh in ../shared/meshes (or $FHR_SHARED_MESHES), or nullopt.
+std::optional<std::string> shared_mesh(std::string_view name);
+
+/// The folder of committed test files, proofs_tests/data.
+std::string data_path(std::string_view name);
+
+struct RunResult {
+    int exit_code;       ///< the process's exit status, or 128+signal when it was killed
+    std::string out;     ///< everything it wrote to stdout
+    std::string err;     ///< everything it wrote to stderr
+    double seconds;      ///< wall-clock time
+};
+
+/// Runs the built `fhr` executable with `args` (no shell involved) and collects its output.
+RunResult run_fhr(const std::vector<std::string>& args);
+
+}  // namespace fhr::test

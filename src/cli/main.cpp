@@ -1,0 +1,55 @@
+// FHR cli — the `fhr` command. Subcommands follow the paper's pipeline (§2–§6); this file only
+// dispatches and maps the error taxonomy (src/core/errors.hpp) to exit codes (spec/cli.md):
+// 0 success, 2 invalid input or usage, 3 partition failure, 4 numerical failure, 70 internal error.
+#include <cstdio>
+#include <exception>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "cli/common.hpp"
+#include "core/errors.hpp"
+
+namespace {
+
+constexpr const char* usage = R"(fhr — Floater, Hormann & Reimers (2001), Parameterization of Manifold Triangulations
+
+usage:
+  fhr info MESH [--json] [--triangulate]
+      vertices, edges, faces, genus, components, boundary loops, bounding box, edge lengths,
+      and whether MESH is a valid input (closed, connected, orientable manifold; spec/mesh.md)
+  fhr generate --genus G --faces N [--seed S] [--noise X] --out MESH
+      a random closed orientable manifold mesh of genus G with exactly N faces (N even)
+  fhr convert MESH --out MESH2 [--triangulate]
+      validate MESH and write it as .off, .obj or .ply
+  fhr help
+
+MESH files: .off/.coff, .obj, .ply (ascii or binary), .stl (ascii or binary).
+exit codes: 0 ok, 2 invalid input or usage, 3 partition failure, 4 numerical failure, 70 bug.
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const std::vector<std::string> args(argv + (argc > 1 ? 2 : argc), argv + argc);
+    const std::string command = argc > 1 ? argv[1] : "";
+    try {
+        if (command == "info") return fhr::cli::run_info(args);
+        if (command == "generate") return fhr::cli::run_generate(args);
+        if (command == "convert") return fhr::cli::run_convert(args);
+        if (command == "help" || command == "--help" || command == "-h") {
+            std::fputs(usage, stdout);
+            return 0;
+        }
+        fhr::cli::usage_error(command.empty() ? "no command given" : "unknown command '" + command + "'");
+    } catch (const fhr::Error& e) {
+        std::fprintf(stderr, "fhr: error: %s\n", e.what());
+        return e.exit_code();
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "fhr: error: out of memory\n");
+        return 70;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "fhr: internal error (a bug, please report it): %s\n", e.what());
+        return 70;
+    }
+}

@@ -1,0 +1,32 @@
+// FHR io — strict mesh readers. The paper (§1) takes a manifold triangulation T as given; these
+// readers make sure that what reaches the algorithms is exactly what the file says, or refuse it
+// with a one-line InvalidInput naming file, line and element (spec/formats.md, spec/mesh.md).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "core/polygon_soup.hpp"
+
+namespace fhr::io {
+
+enum class Format { off, obj, ply, stl };
+
+/// The format of `path`, from its extension (case-insensitive: .off .coff .obj .ply .stl).
+/// \throws InvalidInput "unknown format" for any other extension.
+Format format_from_extension(const std::string& path);
+
+/// Reads a whole file and parses it with the reader for its extension.
+/// \throws InvalidInput (unreadable file, empty file, any syntax error of spec/formats.md).
+PolygonSoup read_soup(const std::string& path);
+
+/// Parsers over bytes already in memory; `name` is used in messages. These are what the fuzz
+/// harnesses call. \post every point is finite, every index < points.size(), every polygon has
+/// at least one index; polygons may still be degenerate (build_trimesh decides).
+PolygonSoup parse_off(std::string_view bytes, const std::string& name);
+PolygonSoup parse_obj(std::string_view bytes, const std::string& name);
+PolygonSoup parse_ply(std::string_view bytes, const std::string& name);
+PolygonSoup parse_stl(std::string_view bytes, const std::string& name);
+PolygonSoup parse(Format format, std::string_view bytes, const std::string& name);
+
+}  // namespace fhr::io

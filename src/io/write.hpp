@@ -1,0 +1,28 @@
+// FHR io — mesh writers. Every writer is atomic (temporary file, then rename; spec/formats.md
+// FMT-WRITE-1) and exact: reading a written file back gives bit-identical coordinates
+// (FMT-WRITE-2; text formats use the shortest round-trip decimal form).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "core/polygon_soup.hpp"
+
+namespace fhr::io {
+
+using Triangle = std::array<std::uint32_t, 3>;
+using Vec2 = Eigen::Vector2d;
+
+void write_off(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles);
+
+/// OBJ; when `corner_uv` is non-empty it holds 3 texture coordinates per triangle (per corner,
+/// in the triangle's order) written as `vt` lines and `f a/ta b/tb c/tc`.
+void write_obj(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles,
+               std::span<const Vec2> corner_uv = {});
+
+/// Binary little-endian PLY with double vertex coordinates and uint32 face indices.
+void write_ply(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles);
+
+}  // namespace fhr::io
