@@ -46,7 +46,7 @@ const std::vector<BadInput>& bad_inputs() {
         {"empty file", "empty.off", "", "empty"},
         {"header only", "header.off", "OFF\n", "count"},
         {"unknown format", "mesh.xyz", "OFF\n4 4 0\n" + tet_v + tet_f, "unknown format"},
-        {"truncated text", "trunc.off", off("4 4 0", "0 0 0\n1 0 0\n"), "vertex"},
+        {"truncated text", "trunc.off", off("4 4 0", "0 0 0\n1 0 0\n"), "truncated"},
         {"truncated binary", "trunc.ply", binary_ply_truncated(), "truncated"},
         {"negative index", "neg.off", off("4 4 0", tet_v + "3 0 2 -1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"), "-1"},
         {"OBJ index 0", "zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 0 2 3\nf 1 2 4\nf 1 4 3\nf 2 3 4\n", "1-based"},

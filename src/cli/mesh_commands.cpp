@@ -12,7 +12,7 @@ int run_generate(const std::vector<std::string>& argv) {
     options.genus = static_cast<int>(args.integer("genus", 0, 0, 1000));
     options.faces = static_cast<std::size_t>(args.integer("faces", 1000, 4, 100'000'000));
     options.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, INT64_MAX));
-    options.noise = args.real("noise", 0.0, 0.0, 1.0);
+    options.noise = args.real("noise", 0.0, 0.0, 0.5);  // the generator refuses 0.5 itself
     const std::string out = args.require("out");
     save_mesh(out, generate::random_closed_mesh(options));
     return 0;

@@ -41,9 +41,9 @@ public:
         check_duplicates();
         drop_isolated_vertices();
         if (options_.refuse_degenerate) check_degenerate();
-        const detail::EdgeTable table = detail::build_edge_table(positions_.size(), tris_);
+        detail::EdgeTable table = detail::build_edge_table(positions_.size(), tris_);
         check_edge_manifold(table);
-        orient(table);
+        if (orient(table)) table = detail::build_edge_table(positions_.size(), tris_);  // corners moved
         if (const std::uint32_t v = detail::first_non_manifold_vertex(positions_.size(), tris_, table);
             v != UINT32_MAX)
             fail_vertex(v, "non-manifold vertex " + vname(v) + ": its faces form more than one fan");
@@ -173,7 +173,8 @@ private:
     // INV-IN-7, INV-IN-8: give every face of a component the orientation of its lowest face
     // (breadth-first over shared edges); a contradiction means the surface is not orientable.
     // A closed component with negative volume is then turned inside out, so normals face outward.
-    void orient(const detail::EdgeTable& table) {
+    // Returns whether any face was turned.
+    bool orient(const detail::EdgeTable& table) {
         const std::size_t nf = tris_.size();
         std::vector<std::int8_t> flip(nf, -1);
         std::vector<std::uint32_t> queue, component_faces;
@@ -220,6 +221,7 @@ private:
                                     " faces to a consistent outward orientation (first: face " +
                                     std::to_string(tri_polygon_[first_changed]) + ")");
         }
+        return changed > 0;
     }
 
     double component_volume(const std::vector<std::uint32_t>& faces, const std::vector<std::int8_t>& flip) const {

@@ -40,9 +40,10 @@ public:
 private:
     static std::string compose(const std::string& file, std::uint64_t line, const std::string& what) {
         std::string s = file;
-        if (line != 0) s += ":" + std::to_string(line);
-        if (!s.empty()) s += ": ";
-        return s + what;
+        if (line != 0) s.append(":").append(std::to_string(line));
+        if (!s.empty()) s.append(": ");
+        s.append(what);
+        return s;
     }
     std::string file_;
     std::uint64_t line_;

@@ -167,11 +167,8 @@ VertexId TriMesh::split_edge(EdgeId e, const Vec3& p) {
     const HalfedgeId o = halfedge(e, 1), o1 = next(o), o2 = next(o1);
     const VertexId b = to(h), c = to(h1), d = to(o1);
     const FaceId f0 = face(h), f1 = face(o);
-    const VertexId m(static_cast<VertexId::Index>(n_vertices()));
-    pos_.push_back(p);
-    out_.push_back(HalfedgeId());
-    const FaceId f2(static_cast<FaceId::Index>(n_faces())), f3(f2.idx() + 1);
-    fh_.resize(fh_.size() + 2);
+    const VertexId m = new_vertex(p);
+    const FaceId f2 = new_face(), f3 = new_face();
     const HalfedgeId x = halfedge(new_edge(m, b), 0), y = halfedge(new_edge(m, c), 0), z = halfedge(new_edge(m, d), 0);
     to_[h.idx()] = m;  // h: a -> m, o: m -> a
     set_face_loop(f0, h, y, h2);          // (a, m, c)
@@ -204,15 +201,8 @@ void TriMesh::collapse(HalfedgeId h) {
     // Everything that pointed at v0 now points at v1.
     for_each_outgoing(v0, [&](HalfedgeId g) { to_[twin(g).idx()] = v1; });
     // h1 (v1 -> va) takes the place of t2 (v1 -> va) in t2's face; o2 (vb -> v1) that of s1.
-    auto replace = [&](HalfedgeId keep, HalfedgeId gone) {
-        const HalfedgeId gp = prev(gone);
-        next_[gp.idx()] = keep;
-        next_[keep.idx()] = next(gone);
-        face_[keep.idx()] = face(gone);
-        fh_[face(gone).idx()] = keep;
-    };
-    replace(h1, t2);
-    replace(o2, s1);
+    take_place(h1, t2);
+    take_place(o2, s1);
     out_[v1.idx()] = h1;
     out_[va.idx()] = twin(h1);
     out_[vb.idx()] = o2;
@@ -225,6 +215,60 @@ void TriMesh::collapse(HalfedgeId h) {
         face_[g.idx()] = FaceId();
         next_[g.idx()] = HalfedgeId();
     }
+}
+
+void TriMesh::take_place(HalfedgeId keep, HalfedgeId gone) {
+    next_[prev(gone).idx()] = keep;
+    next_[keep.idx()] = next(gone);
+    face_[keep.idx()] = face(gone);
+    fh_[face(gone).idx()] = keep;
+}
+
+VertexId TriMesh::new_vertex(const Vec3& p) {
+    pos_.push_back(p);
+    out_.push_back(HalfedgeId());
+    return VertexId(static_cast<VertexId::Index>(n_vertices() - 1));
+}
+
+FaceId TriMesh::new_face() {
+    fh_.push_back(HalfedgeId());
+    return FaceId(static_cast<FaceId::Index>(n_faces() - 1));
+}
+
+VertexId TriMesh::split_vertex(VertexId v1, VertexId va, VertexId vb, const Vec3& p) {
+    const HalfedgeId ha = find_halfedge(v1, va), hb = find_halfedge(v1, vb);
+    if (!ha.valid() || !hb.valid() || va == vb)
+        broken("split_vertex: vertices " + std::to_string(va.idx()) + " and " + std::to_string(vb.idx()) +
+               " are not two neighbours of " + vname(v1));
+    const VertexId v0 = new_vertex(p);
+    // Outgoing halfedges of v1 strictly inside the wedge (ha, hb) now leave v0.
+    for (HalfedgeId g = ccw_rotated(ha); g != hb; g = ccw_rotated(g)) to_[twin(g).idx()] = v0;
+    const HalfedgeId h = halfedge(new_edge(v0, v1), 0);    // h: v0 -> v1, twin: v1 -> v0
+    const HalfedgeId na = halfedge(new_edge(v0, va), 0);   // v0 -> va
+    const HalfedgeId nb = halfedge(new_edge(v0, vb), 0);   // v0 -> vb
+    // In the wedge, v0 -> va replaces v1 -> va, and vb -> v0 replaces vb -> v1.
+    const HalfedgeId hb_twin = twin(hb);
+    take_place(na, ha);
+    take_place(twin(nb), hb_twin);
+    set_face_loop(new_face(), h, ha, twin(na));            // (v0, v1, va)
+    set_face_loop(new_face(), twin(h), nb, hb_twin);       // (v1, v0, vb)
+    out_[v0.idx()] = na;
+    out_[v1.idx()] = ha;
+    out_[vb.idx()] = hb_twin;
+    return v0;
+}
+
+VertexId TriMesh::split_face(FaceId f, const Vec3& p) {
+    const HalfedgeId a = halfedge(f), b = next(a), c = next(b);
+    const VertexId va = from(a), vb = from(b), vc = from(c);
+    const VertexId m = new_vertex(p);
+    const HalfedgeId ma = halfedge(new_edge(m, va), 0), mb = halfedge(new_edge(m, vb), 0),
+                     mc = halfedge(new_edge(m, vc), 0);
+    set_face_loop(f, a, twin(mb), ma);               // (va, vb, m)
+    set_face_loop(new_face(), b, twin(mc), mb);      // (vb, vc, m)
+    set_face_loop(new_face(), c, twin(ma), mc);      // (vc, va, m)
+    out_[m.idx()] = ma;
+    return m;
 }
 
 void TriMesh::compact() {

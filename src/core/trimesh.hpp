@@ -110,6 +110,15 @@ public:
     /// Removes from(h) by moving its edges to to(h) (half-edge collapse, paper §2), removing the
     /// two faces at h. Removed elements become garbage until compact(). \pre is_collapse_ok(h).
     void collapse(HalfedgeId h);
+    /// The inverse of collapse(): splits v1 into v1 and a new vertex v0 at `p`, joined by an edge,
+    /// with the new triangles (v0, v1, va) and (v1, v0, vb). The faces of v1 strictly inside the
+    /// counter-clockwise wedge from va to vb move to v0. Undoing collapse(h) is
+    /// split_vertex(to(h), to(next(h)), to(next(twin(h))), old position of from(h)).
+    /// \pre va and vb are distinct neighbours of v1. \return v0 (a new, last vertex).
+    VertexId split_vertex(VertexId v1, VertexId va, VertexId vb, const Vec3& p);
+    /// Inserts a vertex at `p` inside face f, splitting it into three triangles (paper §3, Fig. 4).
+    /// \return the new vertex.
+    VertexId split_face(FaceId f, const Vec3& p);
     bool has_garbage() const { return deleted_vertices_ != 0; }
     bool is_deleted(VertexId v) const { return !out_[v.idx()].valid(); }
     bool is_deleted(FaceId f) const { return !fh_[f.idx()].valid(); }
@@ -131,6 +140,9 @@ private:
     std::size_t deleted_vertices_ = 0;  ///< garbage left by collapse() until compact()
 
     void set_face_loop(FaceId f, HalfedgeId a, HalfedgeId b, HalfedgeId c);
+    void take_place(HalfedgeId keep, HalfedgeId gone);
+    VertexId new_vertex(const Vec3& p);
+    FaceId new_face();
     EdgeId new_edge(VertexId a, VertexId b);
 };
 

@@ -1,0 +1,540 @@
+// FHR tests — TriMesh (src/core/trimesh.hpp), the halfedge triangulation T of the paper (§1):
+// construction, navigation, boundary, the edits the decimation of §2 is built from (flip,
+// split, half-edge collapse with the link condition), compaction, and the invariant checker
+// (spec/mesh.md INV-MESH-0..8). Property tests run random edit sequences on random meshes of
+// genus 0..4 (support/gen_mesh.hpp).
+#include <catch2/catch.hpp>
+#include <rapidcheck/catch.h>
+
+#include <algorithm>
+#include <iterator>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/geometry.hpp"
+#include "core/topology.hpp"
+#include "core/trimesh.hpp"
+#include "support/gen_mesh.hpp"
+
+using fhr::EdgeId;
+using fhr::FaceId;
+using fhr::HalfedgeId;
+using fhr::Triangle;
+using fhr::TriMesh;
+using fhr::Vec3;
+using fhr::VertexId;
+using Catch::Matchers::Contains;
+
+namespace {
+
+TriMesh tetrahedron() {
+    const std::vector<Triangle> t{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    return TriMesh::from_triangles({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}, t);
+}
+
+// Vertices +x, −x, +y, −y, +z, −z.
+const std::vector<Triangle> octahedron_triangles{{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                                 {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+std::vector<Vec3> octahedron_positions() {
+    return {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)};
+}
+TriMesh octahedron() { return TriMesh::from_triangles(octahedron_positions(), octahedron_triangles); }
+
+// Unit cube, vertex x + 2y + 4z, each square (a, b, c, d) counter-clockwise from outside.
+TriMesh cube() {
+    std::vector<Vec3> p;
+    for (int i = 0; i < 8; ++i) p.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+    const std::uint32_t squares[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    std::vector<Triangle> t;
+    for (const auto& s : squares) {
+        t.push_back({s[0], s[1], s[2]});
+        t.push_back({s[0], s[2], s[3]});
+    }
+    return TriMesh::from_triangles(std::move(p), t);
+}
+
+// Hexagonal disk: centre 0, ring 1..6.
+TriMesh hexagon() {
+    std::vector<Vec3> p{Vec3(0, 0, 0)};
+    const double c = 0.5, s = 0.8660254037844386;
+    for (const auto& [x, y] : std::vector<std::pair<double, double>>{{1, 0}, {c, s}, {-c, s}, {-1, 0}, {-c, -s}, {c, -s}})
+        p.emplace_back(x, y, 0);
+    std::vector<Triangle> t;
+    for (std::uint32_t i = 1; i <= 6; ++i) t.push_back({0, i, i % 6 + 1});
+    return TriMesh::from_triangles(std::move(p), t);
+}
+
+// The octahedron with face (0, 2, 4) replaced by a tetrahedral cap over new vertex 6 (valence 3).
+TriMesh capped_octahedron() {
+    std::vector<Vec3> p = octahedron_positions();
+    p.emplace_back(0.6, 0.6, 0.6);
+    std::vector<Triangle> t(octahedron_triangles.begin() + 1, octahedron_triangles.end());
+    t.push_back({0, 2, 6});
+    t.push_back({2, 4, 6});
+    t.push_back({4, 0, 6});
+    return TriMesh::from_triangles(std::move(p), t);
+}
+
+/// The oriented triangles, each rotated to start at its smallest vertex, sorted: equal iff the
+/// two meshes have the same faces with the same orientations.
+std::vector<Triangle> canonical(std::vector<Triangle> t) {
+    for (Triangle& f : t) std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+    std::sort(t.begin(), t.end());
+    return t;
+}
+
+std::set<std::uint32_t> neighbours(const TriMesh& m, VertexId v) {
+    std::set<std::uint32_t> n;
+    m.for_each_outgoing(v, [&](HalfedgeId h) { n.insert(m.to(h).idx()); });
+    return n;
+}
+
+/// Neighbour sets computed from the triangle list alone (independent of the halfedge links).
+std::vector<std::set<std::uint32_t>> neighbours_from_triangles(const TriMesh& m) {
+    std::vector<std::set<std::uint32_t>> n(m.n_vertices());
+    for (const Triangle& t : m.triangles())
+        for (int k = 0; k < 3; ++k) {
+            n[t[k]].insert(t[(k + 1) % 3]);
+            n[t[(k + 1) % 3]].insert(t[k]);
+        }
+    return n;
+}
+
+void check_counts(const TriMesh& m, std::size_t v, std::size_t e, std::size_t f) {
+    CHECK(m.n_vertices() == v);
+    CHECK(m.n_edges() == e);
+    CHECK(m.n_faces() == f);
+}
+
+}  // namespace
+
+// --- construction ---------------------------------------------------------------------------
+
+TEST_CASE("closed polyhedra: counts, Euler characteristic, orientation (INV-MESH-1..8)", "[unit]") {
+    const TriMesh tet = tetrahedron(), oct = octahedron(), box = cube();
+    check_counts(tet, 4, 6, 4);
+    check_counts(oct, 6, 12, 8);
+    check_counts(box, 8, 18, 12);
+    for (const TriMesh* m : {&tet, &oct, &box}) {
+        CHECK_NOTHROW(m->validate());
+        CHECK(m->is_closed());
+        CHECK(fhr::euler_characteristic(*m) == 2);
+        CHECK(fhr::genus(*m) == 0);
+        CHECK(fhr::boundary_loops(*m).empty());
+    }
+    CHECK(fhr::signed_volume(tet) == Approx(1.0 / 6));
+    CHECK(fhr::signed_volume(oct) == Approx(4.0 / 3));
+    CHECK(fhr::signed_volume(box) == Approx(1.0));
+}
+
+TEST_CASE("triangles() returns the input faces in order and orientation", "[unit]") {
+    const TriMesh m = octahedron();
+    CHECK(m.triangles() == octahedron_triangles);
+    for (FaceId f : m.faces()) {
+        const auto v = m.face_vertices(f);
+        const Triangle& t = octahedron_triangles[f.idx()];
+        CHECK((v[0].idx() == t[0] && v[1].idx() == t[1] && v[2].idx() == t[2]));
+    }
+}
+
+// --- navigation -----------------------------------------------------------------------------
+
+TEST_CASE("halfedge navigation identities (INV-MESH-3, 4, 6)", "[unit]") {
+    for (const TriMesh& m : {tetrahedron(), octahedron(), cube()}) {
+        for (HalfedgeId h : m.halfedges()) {
+            CHECK(TriMesh::twin(TriMesh::twin(h)) == h);
+            CHECK(TriMesh::edge(h) == TriMesh::edge(TriMesh::twin(h)));
+            CHECK(m.from(TriMesh::twin(h)) == m.to(h));
+            CHECK(m.from(m.next(h)) == m.to(h));
+            CHECK(m.next(m.next(m.next(h))) == h);
+            CHECK(m.prev(m.next(h)) == h);
+            CHECK(m.face(m.next(h)) == m.face(h));
+            CHECK(m.ccw_rotated(m.cw_rotated(h)) == h);
+            CHECK(m.from(m.cw_rotated(h)) == m.from(h));
+            CHECK(m.find_halfedge(m.from(h), m.to(h)) == h);
+        }
+        for (VertexId v : m.vertices()) CHECK(m.from(m.out(v)) == v);
+        for (FaceId f : m.faces()) CHECK(m.face(m.halfedge(f)) == f);
+    }
+}
+
+TEST_CASE("valences", "[unit]") {
+    const TriMesh tet = tetrahedron(), oct = octahedron(), box = cube();
+    for (VertexId v : tet.vertices()) CHECK(tet.valence(v) == 3);
+    for (VertexId v : oct.vertices()) CHECK(oct.valence(v) == 4);
+    std::size_t sum = 0;  // handshake: Σ valence = 2E
+    for (VertexId v : box.vertices()) {
+        CHECK(box.valence(v) >= 3);
+        CHECK(box.valence(v) <= 6);
+        sum += box.valence(v);
+    }
+    CHECK(sum == 2 * box.n_edges());
+}
+
+TEST_CASE("find_halfedge returns an invalid id for non-adjacent vertices", "[unit]") {
+    const TriMesh oct = octahedron();
+    CHECK_FALSE(oct.find_halfedge(VertexId(0), VertexId(1)).valid());  // +x, −x
+    CHECK_FALSE(oct.find_halfedge(VertexId(4), VertexId(5)).valid());  // +z, −z
+    const HalfedgeId h = oct.find_halfedge(VertexId(0), VertexId(2));
+    REQUIRE(h.valid());
+    CHECK(oct.from(h) == VertexId(0));
+    CHECK(oct.to(h) == VertexId(2));
+}
+
+TEST_CASE("for_each_outgoing turns clockwise seen from outside, starting at out(v)", "[unit]") {
+    const TriMesh oct = octahedron();
+    // Seen from above (+z) the neighbours of +z (vertex 4) are +x, +y, −x, −y counter-clockwise,
+    // so clockwise they come as 0, 3, 1, 2 (cyclically).
+    std::vector<std::uint32_t> order;
+    oct.for_each_outgoing(VertexId(4), [&](HalfedgeId h) { order.push_back(oct.to(h).idx()); });
+    REQUIRE(order.size() == 4);
+    CHECK(oct.from(oct.out(VertexId(4))) == VertexId(4));
+    CHECK(order.front() == oct.to(oct.out(VertexId(4))).idx());
+    std::rotate(order.begin(), std::find(order.begin(), order.end(), 0u), order.end());
+    CHECK(order == std::vector<std::uint32_t>{0, 3, 1, 2});
+}
+
+// --- boundary -------------------------------------------------------------------------------
+
+TEST_CASE("a single triangle: one boundary loop of three halfedges", "[unit]") {
+    const std::vector<Triangle> t{{0, 1, 2}};
+    const TriMesh m = TriMesh::from_triangles({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, t);
+    CHECK_NOTHROW(m.validate());
+    check_counts(m, 3, 3, 1);
+    CHECK_FALSE(m.is_closed());
+    CHECK(fhr::euler_characteristic(m) == 1);
+    CHECK(fhr::genus(m) == 0);
+    const auto loops = fhr::boundary_loops(m);
+    REQUIRE(loops.size() == 1);
+    std::size_t length = 0;
+    HalfedgeId h = loops.front();
+    do {
+        CHECK(m.is_boundary(h));
+        CHECK_FALSE(m.is_boundary(TriMesh::twin(h)));
+        CHECK(m.prev(m.next(h)) == h);  // prev walks the boundary loop
+        h = m.next(h);
+        ++length;
+    } while (h != loops.front() && length <= 3);
+    CHECK(length == 3);
+    for (VertexId v : m.vertices()) {
+        CHECK(m.is_boundary(v));
+        CHECK(m.is_boundary(m.out(v)));  // INV-MESH-7: out() of a boundary vertex is its boundary halfedge
+        CHECK(m.valence(v) == 2);
+    }
+    for (EdgeId e : m.edges()) {
+        CHECK(m.is_boundary(e));
+        CHECK_FALSE(m.is_flip_ok(e));
+        CHECK_FALSE(m.is_collapse_ok(TriMesh::halfedge(e, 0)));
+        CHECK_THROWS_AS(TriMesh(m).split_edge(e, Vec3(0.5, 0.5, 0)), std::logic_error);
+    }
+}
+
+TEST_CASE("a hexagonal disk: interior centre, boundary ring", "[unit]") {
+    const TriMesh m = hexagon();
+    CHECK_NOTHROW(m.validate());
+    check_counts(m, 7, 12, 6);
+    CHECK(fhr::euler_characteristic(m) == 1);
+    CHECK(fhr::genus(m) == 0);
+    REQUIRE(fhr::boundary_loops(m).size() == 1);
+    CHECK_FALSE(m.is_boundary(VertexId(0)));
+    CHECK(m.valence(VertexId(0)) == 6);
+    CHECK(fhr::angle_sum(m, VertexId(0)) == Approx(2 * 3.141592653589793));
+    for (std::uint32_t i = 1; i <= 6; ++i) {
+        CHECK(m.is_boundary(VertexId(i)));
+        CHECK(m.valence(VertexId(i)) == 3);
+        // The boundary loop runs ring vertex i -> i−1 (the faces' inner side is counter-clockwise).
+        const HalfedgeId b = m.out(VertexId(i));
+        CHECK(m.is_boundary(b));
+        CHECK(m.to(b).idx() == (i + 4) % 6 + 1);
+    }
+    for (EdgeId e : m.edges()) {  // the rim edges are exactly those not touching the centre
+        const HalfedgeId h = TriMesh::halfedge(e, 0);
+        CHECK(m.is_boundary(e) == (m.from(h) != VertexId(0) && m.to(h) != VertexId(0)));
+        // Rim edges are boundary; a spoke ends at a ring vertex of valence 3, which must keep 3.
+        CHECK_FALSE(m.is_flip_ok(e));
+    }
+}
+
+TEST_CASE("an annulus has two boundary loops and χ = 0", "[unit]") {
+    std::vector<Vec3> p;
+    for (double r : {1.0, 2.0})
+        for (const auto& [x, y] : std::vector<std::pair<double, double>>{{1, 0}, {0, 1}, {-1, 0}, {0, -1}})
+            p.emplace_back(r * x, r * y, 0);
+    std::vector<Triangle> t;
+    for (std::uint32_t i = 0; i < 4; ++i) {
+        const std::uint32_t j = (i + 1) % 4;
+        t.push_back({i, i + 4, j + 4});
+        t.push_back({i, j + 4, j});
+    }
+    const TriMesh m = TriMesh::from_triangles(std::move(p), t);
+    CHECK_NOTHROW(m.validate());
+    CHECK(fhr::boundary_loops(m).size() == 2);
+    CHECK(fhr::euler_characteristic(m) == 0);
+    CHECK(fhr::genus(m) == 0);
+}
+
+// --- edits ----------------------------------------------------------------------------------
+
+TEST_CASE("flip on the octahedron replaces edge (+x, +y) by (+z, −z)", "[unit]") {
+    TriMesh m = octahedron();
+    const HalfedgeId h = m.find_halfedge(VertexId(0), VertexId(2));  // in face (0, 2, 4); twin in (2, 0, 5)
+    const EdgeId e = TriMesh::edge(h);
+    REQUIRE(m.is_flip_ok(e));
+    m.flip(e);
+    CHECK_NOTHROW(m.validate());
+    check_counts(m, 6, 12, 8);
+    CHECK_FALSE(m.find_halfedge(VertexId(0), VertexId(2)).valid());
+    CHECK(m.find_halfedge(VertexId(4), VertexId(5)).valid());
+    // (a, b, c) = (0, 2, 4) and (b, a, d) = (2, 0, 5) became (a, d, c) = (0, 5, 4) and (d, b, c) = (5, 2, 4).
+    std::vector<Triangle> expected(octahedron_triangles.begin() + 1, octahedron_triangles.end());
+    expected.erase(expected.begin() + 3);  // (2, 0, 5)
+    expected.push_back({0, 5, 4});
+    expected.push_back({5, 2, 4});
+    CHECK(canonical(m.triangles()) == canonical(expected));
+    CHECK(m.valence(VertexId(0)) == 3);
+    CHECK(m.valence(VertexId(2)) == 3);
+    CHECK(m.valence(VertexId(4)) == 5);
+    CHECK(m.valence(VertexId(5)) == 5);
+    // A vertex of valence 3 cannot lose an edge.
+    CHECK_FALSE(m.is_flip_ok(TriMesh::edge(m.find_halfedge(VertexId(0), VertexId(4)))));
+    // Flipping the same edge again restores the octahedron.
+    REQUIRE(m.is_flip_ok(e));
+    m.flip(e);
+    CHECK(canonical(m.triangles()) == canonical(octahedron_triangles));
+}
+
+TEST_CASE("no flip is possible on a tetrahedron", "[unit]") {
+    const TriMesh m = tetrahedron();
+    for (EdgeId e : m.edges()) CHECK_FALSE(m.is_flip_ok(e));
+}
+
+TEST_CASE("split_edge on the tetrahedron", "[unit]") {
+    TriMesh m = tetrahedron();
+    const HalfedgeId h = m.find_halfedge(VertexId(0), VertexId(1));
+    const EdgeId e = TriMesh::edge(h);
+    const VertexId b = m.to(TriMesh::halfedge(e, 0));
+    const VertexId n = m.split_edge(e, Vec3(0.5, 0, 0));
+    CHECK(n == VertexId(4));
+    CHECK_NOTHROW(m.validate());
+    check_counts(m, 5, 9, 6);
+    CHECK(m.position(n) == Vec3(0.5, 0, 0));
+    CHECK(m.to(m.out(n)) == b);
+    CHECK(neighbours(m, n) == std::set<std::uint32_t>{0, 1, 2, 3});
+    CHECK_FALSE(m.find_halfedge(VertexId(0), VertexId(1)).valid());
+    CHECK(canonical(m.triangles()) == canonical({{0, 2, 4}, {4, 2, 1}, {0, 4, 3}, {4, 1, 3}, {0, 3, 2}, {1, 2, 3}}));
+    CHECK(fhr::signed_volume(m) == Approx(1.0 / 6));
+}
+
+TEST_CASE("collapse on the octahedron, then compact", "[unit]") {
+    TriMesh m = octahedron();
+    const HalfedgeId h = m.find_halfedge(VertexId(4), VertexId(0));  // +z onto +x
+    REQUIRE(m.is_collapse_ok(h));
+    m.collapse(h);
+    CHECK(m.has_garbage());
+    CHECK(m.is_deleted(VertexId(4)));
+    CHECK_FALSE(m.is_deleted(VertexId(5)));
+    // INV-MESH-0: garbage is reported until compact().
+    CHECK_THROWS_WITH(m.validate(), Contains("INV-MESH-0"));
+    m.compact();
+    CHECK_FALSE(m.has_garbage());
+    CHECK_NOTHROW(m.validate());
+    check_counts(m, 5, 9, 6);
+    CHECK(fhr::euler_characteristic(m) == 2);
+    // Survivors keep their relative order: old 5 (−z) is now 4.
+    CHECK(m.position(VertexId(4)) == Vec3(0, 0, -1));
+    CHECK(m.position(VertexId(3)) == Vec3(0, -1, 0));
+    // The faces (0, 2, 4), (3, 0, 4) at the collapsed edge vanish, 4 becomes 0 elsewhere.
+    CHECK(canonical(m.triangles()) ==
+          canonical({{2, 1, 0}, {1, 3, 0}, {2, 0, 4}, {1, 2, 4}, {3, 1, 4}, {0, 3, 4}}));
+}
+
+TEST_CASE("compact without garbage changes nothing", "[unit]") {
+    TriMesh m = cube();
+    const auto before = m.triangles();
+    m.compact();
+    CHECK(m.triangles() == before);
+    CHECK_NOTHROW(m.validate());
+}
+
+TEST_CASE("is_collapse_ok refuses link-condition violations", "[unit]") {
+    SECTION("a tetrahedron cannot lose a vertex") {
+        const TriMesh m = tetrahedron();
+        for (HalfedgeId h : m.halfedges()) CHECK_FALSE(m.is_collapse_ok(h));
+    }
+    SECTION("a valence-3 neighbour of both ends (it would be left with valence 2)") {
+        const TriMesh m = capped_octahedron();
+        REQUIRE_NOTHROW(m.validate());
+        REQUIRE(m.valence(VertexId(6)) == 3);
+        // 0 and 2 share 4, 5 and 6: 4 is a third common neighbour, the link condition fails.
+        CHECK_FALSE(m.is_collapse_ok(m.find_halfedge(VertexId(0), VertexId(2))));
+        CHECK_FALSE(m.is_collapse_ok(m.find_halfedge(VertexId(2), VertexId(0))));
+        CHECK_FALSE(m.is_collapse_ok(m.find_halfedge(VertexId(0), VertexId(4))));
+    }
+    SECTION("removing the valence-3 vertex itself is allowed and restores the octahedron") {
+        TriMesh m = capped_octahedron();
+        const HalfedgeId h = m.find_halfedge(VertexId(6), VertexId(0));
+        REQUIRE(m.is_collapse_ok(h));
+        m.collapse(h);
+        m.compact();
+        CHECK_NOTHROW(m.validate());
+        CHECK(canonical(m.triangles()) == canonical(octahedron_triangles));
+    }
+}
+
+// --- refused construction (the only way to build a broken structure from outside) -----------
+
+TEST_CASE("from_triangles refuses input that would break the invariants", "[unit]") {
+    const std::vector<Vec3> p{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(1, 1, 0)};
+    auto refused = [&](const std::vector<Triangle>& t, const std::string& part) {
+        try {
+            TriMesh::from_triangles(p, t);
+            FAIL("accepted " << t.size() << " triangles");
+        } catch (const std::logic_error& e) {
+            CHECK_THAT(e.what(), Contains(part));
+        }
+    };
+    refused({{0, 1, 5}}, "face 0 has index out of range");                       // INV-MESH-1
+    refused({{0, 1, 2}, {2, 1, 1}}, "face 1 repeats a vertex");                  // INV-MESH-2
+    refused({{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}, "edge in more than two faces");   // INV-MESH-4
+    refused({{0, 1, 2}, {0, 1, 3}}, "faces 0 and 1 are inconsistently oriented"); // INV-MESH-4
+    refused({{0, 1, 2}, {0, 3, 4}}, "vertex 0 has more than one fan");           // INV-MESH-7 (bow-tie)
+    refused({{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}}, "vertex 4 is in no face");  // INV-MESH-6
+}
+
+// --- properties on random meshes -----------------------------------------------------------
+
+TEST_CASE("random edit sequences keep every invariant, χ and the genus", "[property]") {
+    rc::prop("flip / split / collapse", [] {
+        TriMesh m = *fhr::test::gen_closed_mesh(0, 4, 600);
+        const long chi = fhr::euler_characteristic(m), g = fhr::genus(m);
+        std::size_t faces = m.n_faces();
+        const int steps = *rc::gen::inRange(1, 60);
+        for (int s = 0; s < steps; ++s) {
+            const auto kind = *rc::gen::inRange(0, 3);
+            const HalfedgeId h(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(m.n_halfedges())));
+            const EdgeId e = TriMesh::edge(h);
+            if (kind == 0 && m.is_flip_ok(e)) {
+                m.flip(e);
+            } else if (kind == 1) {
+                const Vec3 mid = 0.5 * (m.position(m.from(h)) + m.position(m.to(h)));
+                m.split_edge(e, mid);
+                faces += 2;
+            } else if (kind == 2 && m.is_collapse_ok(h)) {
+                m.collapse(h);
+                m.compact();
+                faces -= 2;
+            }
+            m.validate();
+            RC_ASSERT(m.n_faces() == faces);
+            RC_ASSERT(fhr::euler_characteristic(m) == chi);
+        }
+        RC_ASSERT(fhr::genus(m) == g);
+        RC_ASSERT(fhr::connected_components(m).count == 1u);
+        RC_ASSERT(m.is_closed());
+    });
+}
+
+TEST_CASE("is_collapse_ok is exactly the link condition", "[property]") {
+    rc::prop("against neighbour sets of the triangle list", [] {
+        const TriMesh m = *fhr::test::gen_closed_mesh(0, 3, 400);
+        const auto n = neighbours_from_triangles(m);
+        for (HalfedgeId h : m.halfedges()) {
+            const std::uint32_t v0 = m.from(h).idx(), v1 = m.to(h).idx();
+            const std::set<std::uint32_t> opposite{m.to(m.next(h)).idx(), m.to(m.next(TriMesh::twin(h))).idx()};
+            std::set<std::uint32_t> common;
+            std::set_intersection(n[v0].begin(), n[v0].end(), n[v1].begin(), n[v1].end(),
+                                  std::inserter(common, common.begin()));
+            RC_ASSERT(m.is_collapse_ok(h) == (common == opposite && opposite.size() == 2 && m.n_vertices() > 4));
+        }
+    });
+}
+
+TEST_CASE("is_flip_ok: new diagonal absent and both ends keep valence >= 3", "[property]") {
+    rc::prop("against neighbour sets of the triangle list", [] {
+        const TriMesh m = *fhr::test::gen_closed_mesh(0, 3, 400);
+        const auto n = neighbours_from_triangles(m);
+        for (EdgeId e : m.edges()) {
+            const HalfedgeId h = TriMesh::halfedge(e, 0);
+            const std::uint32_t a = m.from(h).idx(), b = m.to(h).idx();
+            const std::uint32_t c = m.to(m.next(h)).idx(), d = m.to(m.next(TriMesh::twin(h))).idx();
+            const bool expected = c != d && !n[c].count(d) && n[a].size() > 3 && n[b].size() > 3;
+            RC_ASSERT(m.is_flip_ok(e) == expected);
+        }
+    });
+}
+
+TEST_CASE("a flip done twice, and a split undone by collapsing the new vertex, restore the faces", "[property]") {
+    rc::prop("edit inverses", [] {
+        TriMesh m = *fhr::test::gen_closed_mesh(0, 3, 400);
+        const auto original = canonical(m.triangles());
+        const EdgeId e(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(m.n_edges())));
+        if (m.is_flip_ok(e)) {
+            m.flip(e);
+            RC_ASSERT(canonical(m.triangles()) != original);
+            RC_ASSERT(m.is_flip_ok(e));
+            m.flip(e);
+            RC_ASSERT(canonical(m.triangles()) == original);
+        }
+        // The generator's fallback (src/generate): collapsing the new vertex onto to(out(new)).
+        const HalfedgeId h = TriMesh::halfedge(e, 0);
+        const VertexId added = m.split_edge(e, 0.5 * (m.position(m.from(h)) + m.position(m.to(h))));
+        RC_ASSERT(m.is_collapse_ok(m.out(added)));
+        m.collapse(m.out(added));
+        m.compact();
+        m.validate();
+        RC_ASSERT(canonical(m.triangles()) == original);
+    });
+}
+
+TEST_CASE("split_vertex undoes collapse exactly (the vertex split of §2's history)", "[property]") {
+    rc::prop("collapse then split_vertex restores the faces, with the removed vertex renumbered last", [] {
+        TriMesh m = *fhr::test::gen_closed_mesh(0, 4, 600);
+        const auto original = canonical(m.triangles());
+        const HalfedgeId h(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(m.n_halfedges())));
+        RC_PRE(m.is_collapse_ok(h));
+        const VertexId v0 = m.from(h), v1 = m.to(h), va = m.to(m.next(h)), vb = m.to(m.next(TriMesh::twin(h)));
+        const Vec3 p0 = m.position(v0);
+        m.collapse(h);
+        m.compact();  // v0 disappears; vertices above it move down by one
+        auto renumbered = [&](VertexId v) { return VertexId(v.idx() - (v.idx() > v0.idx() ? 1 : 0)); };
+        const VertexId added = m.split_vertex(renumbered(v1), renumbered(va), renumbered(vb), p0);
+        m.validate();
+        RC_ASSERT(added.idx() == m.n_vertices() - 1);
+        RC_ASSERT(m.position(added) == p0);
+        // Map back: the new vertex is v0, the others return to their old numbers.
+        auto old_number = [&](std::uint32_t v) {
+            if (v == added.idx()) return v0.idx();
+            return v + (v >= v0.idx() ? 1u : 0u);
+        };
+        std::vector<Triangle> back = m.triangles();
+        for (auto& t : back)
+            for (auto& v : t) v = old_number(v);
+        RC_ASSERT(canonical(back) == original);
+    });
+}
+
+TEST_CASE("split_face inserts a vertex of valence 3 inside a face (paper Fig. 4)", "[property]") {
+    rc::prop("split_face keeps the invariants and adds two faces", [] {
+        TriMesh m = *fhr::test::gen_closed_mesh(0, 4, 600);
+        const long chi = fhr::euler_characteristic(m);
+        const FaceId f(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(m.n_faces())));
+        const auto corners = m.face_vertices(f);
+        const Vec3 centroid = (m.position(corners[0]) + m.position(corners[1]) + m.position(corners[2])) / 3;
+        const std::size_t faces = m.n_faces();
+        const VertexId c = m.split_face(f, centroid);
+        m.validate();
+        RC_ASSERT(m.n_faces() == faces + 2);
+        RC_ASSERT(fhr::euler_characteristic(m) == chi);
+        RC_ASSERT(m.valence(c) == 3u);
+        std::set<std::uint32_t> ring;
+        m.for_each_outgoing(c, [&](HalfedgeId g) { ring.insert(m.to(g).idx()); });
+        const std::set<std::uint32_t> expected{corners[0].idx(), corners[1].idx(), corners[2].idx()};
+        RC_ASSERT(ring == expected);
+        // The three new faces keep the old face's orientation: their normals agree with it.
+        const Vec3 n = (m.position(corners[1]) - m.position(corners[0])).cross(m.position(corners[2]) - m.position(corners[0]));
+        m.for_each_outgoing(c, [&](HalfedgeId g) { RC_ASSERT(fhr::face_normal(m, m.face(g)).dot(n) > 0); });
+    });
+}
