@@ -209,3 +209,41 @@ TEST_CASE("CLI-CONVERT-1: convert round-trips every writable format", "[cli]") {
         }
     }
 }
+
+TEST_CASE("DOM-7: fhr decimate writes the domain and its correspondence, byte-identical on a rerun", "[cli][domain]") {
+    const std::string mesh = temp_path("dec-in.off");
+    REQUIRE(run_fhr({"generate", "--genus", "2", "--faces", "3000", "--seed", "9", "--noise", "0.2", "--out", mesh}).exit_code == 0);
+    const std::string a = temp_path("dec-a.off"), b = temp_path("dec-b.off");
+    REQUIRE(run_fhr({"decimate", mesh, "--faces", "200", "--out", a}).exit_code == 0);
+    REQUIRE(run_fhr({"decimate", mesh, "--faces", "200", "--out", b}).exit_code == 0);
+    CHECK(fhr::test::read_file(a) == fhr::test::read_file(b));
+    const std::string corr = fhr::test::read_file(temp_path("dec-a.correspondence"));
+    const std::string corr_b = fhr::test::read_file(temp_path("dec-b.correspondence"));
+    CHECK(corr.substr(corr.find('\n')) == corr_b.substr(corr_b.find('\n')));  // all but the comment naming the file
+    const auto info = run_fhr({"info", "--json", a});
+    CHECK_THAT(info.out, Catch::Contains("\"faces\": 200") && Catch::Contains("\"genus\": 2"));
+    // One index per domain vertex: V = F/2 + χ = 100 − 2.
+    int entries = 0;
+    for (std::size_t p = 0; (p = corr.find('\n', p)) != std::string::npos; ++p) ++entries;
+    CHECK(entries == 1 + 98);  // the comment line and 98 indices
+    // --vertices N means F = 2(N − χ).
+    const std::string c = temp_path("dec-c.off");
+    REQUIRE(run_fhr({"decimate", mesh, "--vertices", "98", "--out", c}).exit_code == 0);
+    CHECK(fhr::test::read_file(c) == fhr::test::read_file(a));
+}
+
+TEST_CASE("DOM-9: fhr decimate refuses requests that cannot be met, leaving no file", "[cli][domain]") {
+    const std::string mesh = temp_path("dec-bad.off");
+    REQUIRE(run_fhr({"generate", "--genus", "1", "--faces", "500", "--seed", "2", "--out", mesh}).exit_code == 0);
+    const std::vector<std::pair<std::string, std::string>> requests{
+        {"101", "odd"}, {"502", "more than the mesh has (500)"}, {"12", "fewer than a closed surface of genus 1 needs (at least 14)"}};
+    for (const auto& [faces, expect] : requests) {
+        const fs::path dir = temp_path("dec-bad-" + faces);
+        fs::create_directories(dir);
+        const auto r = run_fhr({"decimate", mesh, "--faces", faces, "--out", (dir / "d.off").string()});
+        CHECK(r.exit_code == 2);
+        CHECK(count_lines(r.err) == 1);
+        CHECK_THAT(r.err, Catch::Contains(expect));
+        CHECK(fs::is_empty(dir));
+    }
+}

@@ -49,5 +49,6 @@ void save_mesh(const std::string& path, const TriMesh& mesh);
 int run_info(const std::vector<std::string>& args);
 int run_generate(const std::vector<std::string>& args);
 int run_convert(const std::vector<std::string>& args);
+int run_decimate(const std::vector<std::string>& args);
 
 }  // namespace fhr::cli

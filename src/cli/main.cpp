@@ -22,6 +22,10 @@ usage:
       a random closed orientable manifold mesh of genus G with exactly N faces (N even)
   fhr convert MESH --out MESH2 [--triangulate]
       validate MESH and write it as .off, .obj or .ply
+  fhr decimate MESH (--faces N | --vertices N) --out DOMAIN.off [--min-angle DEG]
+               [--max-normal-deviation DEG]
+      §2: the parameter domain D by half-edge collapses; writes DOMAIN.off and, beside it,
+      DOMAIN.correspondence (the vertex of MESH at each vertex of D)
   fhr help
 
 MESH files: .off/.coff, .obj, .ply (ascii or binary), .stl (ascii or binary).
@@ -37,6 +41,7 @@ int main(int argc, char** argv) {
         if (command == "info") return fhr::cli::run_info(args);
         if (command == "generate") return fhr::cli::run_generate(args);
         if (command == "convert") return fhr::cli::run_convert(args);
+        if (command == "decimate") return fhr::cli::run_decimate(args);
         if (command == "help" || command == "--help" || command == "-h") {
             std::fputs(usage, stdout);
             return 0;

@@ -1,7 +1,12 @@
 // FHR cli — `fhr generate` (random closed manifolds, for tests and for users fuzzing their own
-// code) and `fhr convert` (validate and rewrite a mesh).
+// code), `fhr convert` (validate and rewrite a mesh) and `fhr decimate` (§2: the domain D).
+#include <filesystem>
+
 #include "cli/common.hpp"
+#include "core/topology.hpp"
+#include "domain/decimate.hpp"
 #include "generate/random_mesh.hpp"
+#include "io/atomic_file.hpp"
 
 namespace fhr::cli {
 
@@ -24,6 +29,32 @@ int run_convert(const std::vector<std::string>& argv) {
     options.triangulate = args.flag("triangulate");
     const TriMesh mesh = load_mesh(args.single_positional("MESH"), options);
     save_mesh(args.require("out"), mesh);
+    return 0;
+}
+
+int run_decimate(const std::vector<std::string>& argv) {
+    const Args args(argv, {}, {"faces", "vertices", "out", "min-angle", "max-normal-deviation"});
+    const TriMesh T = load_mesh(args.single_positional("MESH"), BuildOptions{});
+    domain::DecimateOptions options;
+    const bool by_faces = args.get("faces").has_value(), by_vertices = args.get("vertices").has_value();
+    if (by_faces == by_vertices) usage_error("give exactly one of --faces N and --vertices N");
+    if (by_faces) {
+        options.target_faces = static_cast<std::size_t>(args.integer("faces", 0, 0, INT32_MAX));
+    } else {
+        // A closed triangulation has F = 2(V − χ) faces.
+        const long v = static_cast<long>(args.integer("vertices", 0, 0, INT32_MAX));
+        options.target_faces = static_cast<std::size_t>(std::max(0L, 2 * (v - euler_characteristic(T))));
+    }
+    options.min_angle_deg = args.real("min-angle", options.min_angle_deg, 0.0, 60.0);
+    options.max_normal_deviation_deg = args.real("max-normal-deviation", options.max_normal_deviation_deg, 0.0, 180.0);
+    const std::string out = args.require("out");
+    const domain::Domain d = domain::decimate(T, options);
+    // FMT-CORR: one vertex index of T per vertex of D, beside the domain file.
+    std::string corr = "# fhr correspondence: vertex j of " + std::filesystem::path(out).filename().string() +
+                       " is the vertex on line j of the mesh\n";
+    for (VertexId v : d.t_vertex) corr += std::to_string(v.idx()) + "\n";
+    io::write_file_atomically(std::filesystem::path(out).replace_extension(".correspondence").string(), corr);
+    save_mesh(out, d.mesh);
     return 0;
 }
 

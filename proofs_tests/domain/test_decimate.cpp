@@ -1,0 +1,167 @@
+// §2 the parameter domain D: half-edge-collapse decimation. Properties over random closed meshes
+// of genus 0–4 and the paper's own meshes: D is a valid closed manifold with T's Euler
+// characteristic and exactly the requested face count; its vertices are vertices of T at
+// unchanged positions; no face is degenerate or below the angle threshold; every valence ≥ 3;
+// deterministic; undoing the recorded collapses gives T back (DOM-1..9 of spec/domain.md).
+#include <catch2/catch.hpp>
+#include <rapidcheck/catch.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/build.hpp"
+#include "core/errors.hpp"
+#include "core/predicates.hpp"
+#include "core/topology.hpp"
+#include "domain/decimate.hpp"
+#include "io/read.hpp"
+#include "support/gen_mesh.hpp"
+#include "support/test_support.hpp"
+
+using namespace fhr;
+using domain::decimate;
+using domain::DecimateOptions;
+using domain::Domain;
+
+namespace {
+
+std::vector<Triangle> canonical(std::vector<Triangle> t) {
+    for (auto& f : t) std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+    std::sort(t.begin(), t.end());
+    return t;
+}
+
+double min_angle_deg(const TriMesh& m, FaceId f) {
+    const auto v = m.face_vertices(f);
+    double smallest = 180;
+    for (int k = 0; k < 3; ++k) {
+        const Vec3 u = m.position(v[(k + 1) % 3]) - m.position(v[k]), w = m.position(v[(k + 2) % 3]) - m.position(v[k]);
+        smallest = std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) * 180 / M_PI);
+    }
+    return smallest;
+}
+
+// The first violated property of spec/domain.md DOM-1..6 for one decimation, or "" if none.
+std::string domain_violation(const TriMesh& T, const Domain& d, const DecimateOptions& o) {
+    const TriMesh& D = d.mesh;
+    try {
+        D.validate();
+    } catch (const std::logic_error& e) {
+        return std::string("DOM-1: ") + e.what();
+    }
+    if (!D.is_closed() || connected_components(D).count != 1) return "DOM-1: not closed and connected";
+    if (euler_characteristic(D) != euler_characteristic(T)) return "DOM-2: Euler characteristic differs";
+    if (D.n_faces() != o.target_faces) return "DOM-3: face count " + std::to_string(D.n_faces());
+    if (d.t_vertex.size() != D.n_vertices()) return "DOM-4: correspondence size";
+    for (VertexId v : D.vertices())
+        if (D.position(v) != T.position(d.t_vertex[v.idx()])) return "DOM-4: vertex moved";
+    if (!std::is_sorted(d.t_vertex.begin(), d.t_vertex.end()) ||
+        std::adjacent_find(d.t_vertex.begin(), d.t_vertex.end()) != d.t_vertex.end())
+        return "DOM-4: correspondence not one-to-one";
+    for (FaceId f : D.faces()) {
+        const auto v = D.face_vertices(f);
+        if (collinear(D.position(v[0]), D.position(v[1]), D.position(v[2]))) return "DOM-5: degenerate face";
+        if (min_angle_deg(D, f) < o.min_angle_deg * (1 - 1e-12)) return "DOM-5: corner below the minimum angle";
+    }
+    for (VertexId v : D.vertices())
+        if (D.valence(v) < 3) return "DOM-6: valence below 3";
+    if (d.history.size() != (T.n_faces() - D.n_faces()) / 2) return "DOM-8: history length";
+    return "";
+}
+
+// DOM-8: replaying all collapses backwards gives exactly T's faces, in T's numbering.
+bool undo_gives_back(const TriMesh& T, const Domain& d) {
+    const Domain back = domain::undo_collapses(d, T, d.history.size());
+    back.mesh.validate();
+    if (back.mesh.n_vertices() != T.n_vertices()) return false;
+    std::vector<Triangle> tris = back.mesh.triangles();
+    for (auto& t : tris)
+        for (auto& v : t) v = back.t_vertex[v].idx();
+    for (VertexId v : back.mesh.vertices())
+        if (back.mesh.position(v) != T.position(back.t_vertex[v.idx()])) return false;
+    return canonical(tris) == canonical(T.triangles());
+}
+
+TriMesh load(const std::string& path) {
+    BuildLog log;
+    return build_trimesh(io::read_soup(path), {}, log);
+}
+
+}  // namespace
+
+TEST_CASE("min_closed_faces follows Heawood's bound, with the genus-2 exception", "[unit][domain]") {
+    CHECK(domain::min_closed_faces(0) == 4);    // tetrahedron
+    CHECK(domain::min_closed_faces(1) == 14);   // Möbius–Császár torus, 7 vertices
+    CHECK(domain::min_closed_faces(2) == 24);   // 10 vertices (Jungerman–Ringel)
+    CHECK(domain::min_closed_faces(3) == 28);   // 10 vertices
+    CHECK(domain::min_closed_faces(6) == 2 * (12 - (2 - 12)));  // 12 vertices: K12 embeds in genus 6
+}
+
+TEST_CASE("DOM-1..8: decimation of random closed meshes of genus 0-4", "[property][domain]") {
+    rc::prop("decimate, check, undo", [] {
+        const test::GeneratedMesh T = *test::gen_closed_mesh(0, 4, 1500);
+        // Close to the minimum, the angle and normal rules can leave no valid collapse (DOM-9).
+        const std::size_t lowest = std::max(2 * domain::min_closed_faces(T.options.genus), T.n_faces() / 5);
+        DecimateOptions o;
+        o.target_faces = 2 * *rc::gen::inRange(lowest / 2, T.n_faces() / 2 + 1);
+        const Domain d = decimate(T, o);
+        RC_ASSERT(domain_violation(T, d, o) == "");
+        RC_ASSERT(undo_gives_back(T, d));
+        // DOM-7: deterministic.
+        const Domain again = decimate(T, o);
+        RC_ASSERT(again.mesh.triangles() == d.mesh.triangles());
+        RC_ASSERT(again.t_vertex == d.t_vertex);
+    });
+}
+
+TEST_CASE("DOM-3: the paper's fandisk decimates to 114 faces, 171 edges, 59 vertices (paper §6)", "[real][domain]") {
+    const auto path = test::cgal_mesh("fandisk.off");
+    if (!path) {
+        WARN("fandisk.off is not present (./run extracts libcgal-demo's meshes into out/); skipped");
+        return;
+    }
+    const TriMesh T = load(*path);
+    DecimateOptions o;
+    o.target_faces = 114;
+    const Domain d = decimate(T, o);
+    CHECK(d.mesh.n_faces() == 114);
+    CHECK(d.mesh.n_edges() == 171);
+    CHECK(d.mesh.n_vertices() == 59);
+    CHECK(domain_violation(T, d, o) == "");
+    CHECK(undo_gives_back(T, d));
+}
+
+TEST_CASE("DOM-2: meshes of higher genus keep their genus (elephant g = 3, rocker g = 1, horse)", "[real][domain]") {
+    struct Case { std::optional<std::string> path; long genus; std::size_t faces; };
+    const std::vector<Case> cases{{test::cgal_mesh("elephant.off"), 3, 120},
+                                  {test::shared_mesh("rocker.off"), 1, 100},
+                                  {test::shared_mesh("horse.off"), 0, 200}};
+    for (const Case& c : cases) {
+        if (!c.path) {
+            WARN("a real mesh is not present here (libcgal-demo data or ../shared/meshes); skipped");
+            continue;
+        }
+        const TriMesh T = load(*c.path);
+        REQUIRE(genus(T) == c.genus);
+        DecimateOptions o;
+        o.target_faces = c.faces;
+        const Domain d = decimate(T, o);
+        CHECK(domain_violation(T, d, o) == "");
+        CHECK(genus(d.mesh) == c.genus);
+    }
+}
+
+TEST_CASE("DOM-9: requests that cannot be met are refused with a clear message", "[unit][domain]") {
+    const TriMesh T = generate::random_closed_mesh({2, 400, 3, 0.0});
+    DecimateOptions o;
+    o.target_faces = 101;
+    CHECK_THROWS_WITH(decimate(T, o), Catch::Contains("odd"));
+    o.target_faces = 402;
+    CHECK_THROWS_WITH(decimate(T, o), Catch::Contains("more than the mesh has (400)"));
+    o.target_faces = 22;
+    CHECK_THROWS_WITH(decimate(T, o), Catch::Contains("fewer than a closed surface of genus 2 needs (at least 24)"));
+    o.target_faces = 24;  // allowed topologically, but no collapse keeps the angles above 1°
+    CHECK_THROWS_WITH(decimate(T, o), Catch::Contains("decimation stopped at") && Catch::Contains("ask for more faces"));
+    o.target_faces = 400;  // nothing to do
+    CHECK(decimate(T, o).mesh.triangles() == T.triangles());
+}

@@ -1,0 +1,65 @@
+// FHR §2 — the parameter domain D by half-edge-collapse decimation.
+//
+// Paper §2: D is a coarse triangulation of the same topology as T, found by mesh decimation
+// with half-edge collapses, which never move a vertex, so that every vertex v_j of D is a vertex
+// x_j of T. The paper used Campagna's method and leaves the error metric and the validity rules
+// open; ours are in paper_notes/domain.md.
+//
+// Pseudocode:
+//   Q_v  <- Σ over the faces f at v of area(f) · (plane quadric of f)          (Garland–Heckbert)
+//   push every halfedge h = (v0 -> v1) with cost (Q_v0 + Q_v1)(p_v1)
+//   while #faces > target:
+//       pop the cheapest h (ties: lowest halfedge index); skip stale entries
+//       if the collapse v0 -> v1 is valid (link condition; no face turns by more than
+//          max_normal_deviation; no new corner below min_angle; no exactly degenerate face):
+//           collapse, Q_v1 += Q_v0, record (v0, v1, va, vb), re-push the halfedges near v1
+//   if the queue runs dry first: the target cannot be met under these rules (error)
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "core/trimesh.hpp"
+
+namespace fhr::domain {
+
+/// One half-edge collapse in T's vertex numbering: `removed` merged into `kept`, removing the
+/// faces (removed, kept, left) and (kept, removed, right). Undone by
+/// TriMesh::split_vertex(kept, left, right, position of removed).
+struct Collapse {
+    VertexId removed, kept, left, right;
+};
+
+struct DecimateOptions {
+    std::size_t target_faces = 0;            ///< even, >= min_closed_faces(genus), <= T's faces
+    double max_normal_deviation_deg = 90.0;  ///< no face may turn by more than this (flips)
+    double min_angle_deg = 1.0;              ///< no new corner angle below this (needles, degeneracy)
+};
+
+/// D together with its correspondence to T (paper §2).
+struct Domain {
+    TriMesh mesh;                     ///< D: compact, closed, with T's Euler characteristic
+    std::vector<VertexId> t_vertex;   ///< #V(D): the vertex x_j of T at vertex v_j of D
+    std::vector<Collapse> history;    ///< the collapses, in the order they were made
+};
+
+/// The fewest faces of a closed orientable triangulated surface of genus g: F = 2(V − χ) with
+/// the fewest vertices V = ⌈(7 + √(1 + 48g)) / 2⌉ (Heawood's bound, attained for every g except
+/// g = 2, which needs 10 vertices; Jungerman & Ringel 1980).
+std::size_t min_closed_faces(long genus);
+
+/// Half-edge-collapse decimation of T to exactly options.target_faces faces.
+/// \pre T is valid, closed and connected (build_trimesh).
+/// \post D is valid and closed with χ(D) = χ(T); D's vertices are T's vertices at unchanged
+///       positions; no face of D has a corner below min_angle_deg; deterministic.
+/// \throws InvalidInput when the target is odd, larger than T's face count, below
+///         min_closed_faces(genus), or cannot be reached under the validity rules.
+Domain decimate(const TriMesh& T, const DecimateOptions& options);
+
+/// Undoes the last `count` collapses of d.history (vertex splits, most recent first), giving a
+/// finer domain whose vertices are again vertices of T. With count = d.history.size() the result
+/// is T itself, with its vertices renumbered: result.t_vertex maps them to T.
+/// \pre count <= d.history.size().
+Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count);
+
+}  // namespace fhr::domain
