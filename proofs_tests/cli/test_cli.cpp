@@ -57,7 +57,7 @@ const std::vector<BadInput>& bad_inputs() {
         {"NaN coordinate", "nan.off", off("4 4 0", "0 0 nan\n1 0 0\n0 1 0\n0 0 1\n" + tet_f), "NaN"},
         {"Inf coordinate", "inf.off", off("4 4 0", "0 0 inf\n1 0 0\n0 1 0\n0 0 1\n" + tet_f), "inf"},
         {"absurd counts", "absurd.off", off("1000000000 2000000000 0", tet_v + tet_f), "count"},
-        {"face with 2 vertices", "two.off", off("4 5 0", tet_v + tet_f + "2 0 1\n"), "2 vertices"},
+        {"face with 2 vertices", "two.off", off("4 5 0", tet_v + tet_f + "2 0 1            \n"), "2 vertices"},
         {"repeated vertex", "repeat.off", off("4 5 0", tet_v + tet_f + "3 0 1 1\n"), "repeats vertex 1"},
         {"polygon", "quad.off", off("4 4 0", tet_v + "4 0 2 1 3\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"), "--triangulate"},
         {"duplicate faces", "dup.off", off("4 5 0", tet_v + tet_f + "3 3 2 1\n"), "duplicates"},

@@ -27,8 +27,6 @@
 namespace fhr {
 namespace {
 
-constexpr double max_coordinate = 1e150;  // (2·1e150)^2·3 stays far below DBL_MAX ≈ 1.8e308
-
 class Builder {
 public:
     Builder(const PolygonSoup& soup, const BuildOptions& options, BuildLog& log)

@@ -17,6 +17,11 @@ namespace fhr {
 
 using Vec3 = Eigen::Vector3d;
 
+/// INV-IN-1 / FMT-NUM: the largest accepted coordinate magnitude. Squared lengths of differences,
+/// (2·1e150)² · 3 ≈ 1.2e301, stay below DBL_MAX ≈ 1.8e308, so no length, area or determinant of the
+/// pipeline overflows.
+inline constexpr double max_coordinate = 1e150;
+
 /// Polygons in compressed-row form: polygon p has the 0-based point indices
 /// `indices[offsets[p] .. offsets[p+1])`. offsets.size() == polygon count + 1.
 struct PolygonSoup {

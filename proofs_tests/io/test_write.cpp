@@ -1,0 +1,199 @@
+// Tests of the writers (spec/formats.md FMT-WRITE-*): exact round trip through our own readers
+// for OFF, OBJ and PLY, the written layouts, and atomic replacement of the output file.
+#include <algorithm>
+#include <bit>
+#include <cfloat>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <rapidcheck/catch.h>
+
+#include "io/atomic_file.hpp"
+#include "io/read.hpp"
+#include "io/write.hpp"
+#include "refusal.hpp"
+#include "support/test_support.hpp"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+using fhr::Vec3;
+using fhr::io::Triangle;
+using fhr::test::refusal;
+
+namespace {
+
+/// Doubles of every kind a coordinate may be: special values (±0, 0.1, subnormals, the limits
+/// ±1e150) and arbitrary bit patterns with the exponent folded into the accepted range
+/// (exponent field < 1520, so |x| < 2^497 < 1e150; field 0 gives subnormals).
+rc::Gen<double> coordinate() {
+    return rc::gen::weightedOneOf<double>({
+        {1, rc::gen::element(0.0, -0.0, 0.1, -0.1, 1.0 / 3.0, 1e-300, -1e-300, 1e150, -1e150, 5e-324,
+                             2.2250738585072009e-308, DBL_MIN, 123456789.123456789)},
+        {3, rc::gen::map(rc::gen::arbitrary<std::uint64_t>(),
+                         [](std::uint64_t bits) {
+                             const std::uint64_t exponent = ((bits >> 52) & 0x7ff) % 1520;
+                             return std::bit_cast<double>((bits & ~(0x7ffULL << 52)) | (exponent << 52));
+                         })},
+    });
+}
+
+struct Mesh {
+    std::vector<Vec3> points;
+    std::vector<Triangle> triangles;
+};
+
+Mesh random_mesh() {
+    Mesh m;
+    const auto n = *rc::gen::inRange<std::uint32_t>(1, 30);
+    for (std::uint32_t v = 0; v < n; ++v) m.points.emplace_back(*coordinate(), *coordinate(), *coordinate());
+    const auto f = *rc::gen::inRange<std::size_t>(1, 30);
+    for (std::size_t t = 0; t < f; ++t) {
+        Triangle tri;
+        for (std::uint32_t& i : tri) i = *rc::gen::inRange<std::uint32_t>(0, n);
+        m.triangles.push_back(tri);
+    }
+    return m;
+}
+
+/// The soup read back holds exactly the mesh: bit-identical coordinates, the same triangles.
+bool same_mesh(const fhr::PolygonSoup& soup, const Mesh& m) {
+    if (soup.points.size() != m.points.size() || soup.polygon_count() != m.triangles.size()) return false;
+    for (std::size_t v = 0; v < m.points.size(); ++v)
+        for (int c = 0; c < 3; ++c)
+            if (std::bit_cast<std::uint64_t>(soup.points[v][c]) != std::bit_cast<std::uint64_t>(m.points[v][c]))
+                return false;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+        if (soup.polygon_size(t) != 3) return false;
+        for (int c = 0; c < 3; ++c)
+            if (soup.polygon(t)[c] != m.triangles[t][c]) return false;
+    }
+    return true;
+}
+
+/// The names in `dir`.
+std::vector<std::string> listing(const fs::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+const std::vector<Vec3> unit_points = {{0.1, -0.0, 1e-300}, {1, 2, 3}, {5e-324, -1e150, 0.5}};
+const std::vector<Triangle> unit_triangle = {{0, 1, 2}};
+
+}  // namespace
+
+TEST_CASE("FMT-WRITE-2: write then read is bit-identical for OFF, OBJ and PLY", "[property][io]") {
+    const std::string off = fhr::test::temp_path("round-trip.off");
+    const std::string obj = fhr::test::temp_path("round-trip.obj");
+    const std::string ply = fhr::test::temp_path("round-trip.ply");
+    rc::prop("OFF round trip", [&] {
+        const Mesh m = random_mesh();
+        fhr::io::write_off(off, m.points, m.triangles);
+        RC_ASSERT(same_mesh(fhr::io::read_soup(off), m));
+    });
+    rc::prop("OBJ round trip", [&] {
+        const Mesh m = random_mesh();
+        std::vector<fhr::io::Vec2> uv;
+        if (*rc::gen::arbitrary<bool>())
+            for (std::size_t k = 0; k < 3 * m.triangles.size(); ++k) uv.emplace_back(*coordinate(), *coordinate());
+        fhr::io::write_obj(obj, m.points, m.triangles, uv);
+        RC_ASSERT(same_mesh(fhr::io::read_soup(obj), m));
+    });
+    rc::prop("PLY round trip", [&] {
+        const Mesh m = random_mesh();
+        fhr::io::write_ply(ply, m.points, m.triangles);
+        RC_ASSERT(same_mesh(fhr::io::read_soup(ply), m));
+    });
+}
+
+TEST_CASE("FMT-WRITE-2: OFF text uses the shortest round-trip numbers", "[unit][io]") {
+    const std::string path = fhr::test::temp_path("unit.off");
+    fhr::io::write_off(path, unit_points, unit_triangle);
+    CHECK(fhr::test::read_file(path) == "OFF\n3 1 0\n0.1 -0 1e-300\n1 2 3\n5e-324 -1e+150 0.5\n3 0 1 2\n");
+}
+
+TEST_CASE("FMT-WRITE-3: OBJ with per-corner texture coordinates", "[unit][io]") {
+    const std::string path = fhr::test::temp_path("uv.obj");
+    const std::vector<fhr::io::Vec2> uv = {{0, 0}, {1, 0.1}, {1.0 / 3.0, 1}};
+    fhr::io::write_obj(path, unit_points, unit_triangle, uv);
+    CHECK(fhr::test::read_file(path) ==
+          "v 0.1 -0 1e-300\nv 1 2 3\nv 5e-324 -1e+150 0.5\nvt 0 0\nvt 1 0.1\nvt 0.3333333333333333 1\nf 1/1 2/2 3/3\n");
+    fhr::io::write_obj(path, unit_points, unit_triangle);
+    CHECK_THAT(fhr::test::read_file(path), Contains("\nf 1 2 3\n"));
+    CHECK_THROWS_AS(fhr::io::write_obj(path, unit_points, unit_triangle, std::vector<fhr::io::Vec2>(2)),
+                    std::invalid_argument);
+}
+
+TEST_CASE("FMT-WRITE-3: binary PLY layout (little endian doubles, uchar/uint face lists)", "[unit][io]") {
+    const std::string path = fhr::test::temp_path("unit.ply");
+    fhr::io::write_ply(path, unit_points, unit_triangle);
+    const std::string bytes = fhr::test::read_file(path);
+    const std::string header =
+        "ply\nformat binary_little_endian 1.0\ncomment written by fhr\nelement vertex 3\nproperty double x\n"
+        "property double y\nproperty double z\nelement face 1\nproperty list uchar uint vertex_indices\nend_header\n";
+    REQUIRE(bytes.size() == header.size() + 3 * 24 + 13);
+    CHECK(bytes.substr(0, header.size()) == header);
+    CHECK(bytes.substr(header.size(), 8) == std::string("\x9a\x99\x99\x99\x99\x99\xb9\x3f", 8));  // 0.1
+    CHECK(bytes.substr(header.size() + 72) == std::string("\x03\0\0\0\0\x01\0\0\0\x02\0\0\0", 13));
+}
+
+TEST_CASE("FMT-WRITE-*: writers refuse triangles that index past the points", "[unit][io]") {
+    const std::vector<Triangle> bad = {{0, 1, 3}};
+    const std::string path = fhr::test::temp_path("bad.off");
+    CHECK_THROWS_AS(fhr::io::write_off(path, unit_points, bad), std::invalid_argument);
+    CHECK_THROWS_AS(fhr::io::write_obj(path, unit_points, bad), std::invalid_argument);
+    CHECK_THROWS_AS(fhr::io::write_ply(path, unit_points, bad), std::invalid_argument);
+    CHECK_FALSE(fs::exists(path));
+}
+
+TEST_CASE("FMT-WRITE-1: a successful write replaces the file and leaves no temporary", "[unit][io]") {
+    const fs::path dir = fhr::test::temp_path("atomic-ok");
+    fs::create_directories(dir);
+    const std::string path = (dir / "mesh.off").string();
+    fhr::io::write_file_atomically(path, "old");
+    fhr::io::write_off(path, unit_points, unit_triangle);
+    CHECK(listing(dir) == std::vector<std::string>{"mesh.off"});
+    CHECK(fhr::io::read_soup(path).points.size() == 3);
+}
+
+TEST_CASE("FMT-WRITE-1: a failed write throws InvalidInput and leaves nothing behind", "[unit][io]") {
+    const fs::path dir = fhr::test::temp_path("atomic-fail");
+    fs::create_directories(dir);
+
+    const std::string missing_dir = (dir / "no-such-dir" / "mesh.off").string();
+    const fhr::InvalidInput missing = refusal([&] { fhr::io::write_off(missing_dir, unit_points, unit_triangle); });
+    CHECK(missing.file() == missing_dir);
+    CHECK(missing.line() == 0);
+    CHECK(missing.problem() == "cannot write: No such file or directory");
+
+    const std::string under_file = fhr::test::write_temp("atomic-plain-file", "x") + "/mesh.ply";
+    CHECK(refusal([&] { fhr::io::write_ply(under_file, unit_points, unit_triangle); }).problem() ==
+          "cannot write: Not a directory");
+
+    // the temporary is written, then the rename onto a directory fails: the temporary goes
+    fs::create_directories(dir / "occupied.obj");
+    const fhr::InvalidInput occupied =
+        refusal([&] { fhr::io::write_obj((dir / "occupied.obj").string(), unit_points, unit_triangle); });
+    CHECK_THAT(occupied.problem(), Contains("cannot write: Is a directory"));
+
+    std::vector<std::string> expected = {"occupied.obj"};
+    if (::geteuid() != 0) {  // permissions do not stop root
+        const fs::path read_only = dir / "read-only";
+        fs::create_directories(read_only);
+        fs::permissions(read_only, fs::perms::owner_read | fs::perms::owner_exec);
+        CHECK_THAT(refusal([&] { fhr::io::write_off((read_only / "m.off").string(), unit_points, unit_triangle); })
+                       .problem(),
+                   Contains("cannot write: Permission denied"));
+        CHECK(listing(read_only).empty());
+        fs::permissions(read_only, fs::perms::owner_all);
+        expected.push_back("read-only");
+    }
+    CHECK(listing(dir) == expected);
+    CHECK(listing(dir / "occupied.obj").empty());
+}
