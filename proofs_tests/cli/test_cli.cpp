@@ -247,3 +247,37 @@ TEST_CASE("DOM-9: fhr decimate refuses requests that cannot be met, leaving no f
         CHECK(fs::is_empty(dir));
     }
 }
+
+TEST_CASE("DOM-10..13: fhr attach inserts a user-given domain's points, and refuses bad correspondences", "[cli][domain]") {
+    const std::string mesh = temp_path("att.off"), dom = temp_path("att-d.off");
+    REQUIRE(run_fhr({"generate", "--genus", "1", "--faces", "600", "--seed", "4", "--out", mesh}).exit_code == 0);
+    REQUIRE(run_fhr({"decimate", mesh, "--faces", "60", "--out", dom}).exit_code == 0);
+    const std::string corr = fhr::test::read_file(temp_path("att-d.correspondence"));
+    // Replace the first two entries by a face point and an edge point.
+    std::string lines = corr.substr(corr.find('\n') + 1);
+    lines = lines.substr(lines.find('\n') + 1);
+    lines = lines.substr(lines.find('\n') + 1);
+    const std::string good = write_temp("att-good.corr", "f 7 0.2 0.3 0.5\nf 9 0 0.25 0.75\n" + lines);
+    const std::string refined = temp_path("att-r.off");
+    const auto r = run_fhr({"attach", mesh, "--domain", dom, "--correspondence", good, "--out", refined});
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("2 points inserted"));
+    const auto info = run_fhr({"info", "--json", refined});
+    CHECK_THAT(info.out, Catch::Contains("\"vertices\": 302") && Catch::Contains("\"genus\": 1"));
+    const std::vector<std::pair<std::string, std::string>> bad{
+        {"3\n", "has 1 entries but the domain"},
+        {"f 7 0.2 0.3 0.6\n" + lines + "1\n", "sum to"},
+        {"f 7 0.2 0.3 0.5\n" + lines + "9999\n", "index 9999 out of range"},
+    };
+    for (const auto& [text, expect] : bad) {
+        const std::string path = write_temp("att-bad.corr", text);
+        const fs::path dir = temp_path("att-bad-out");
+        fs::create_directories(dir);
+        const auto e = run_fhr({"attach", mesh, "--domain", dom, "--correspondence", path, "--out", (dir / "x.off").string()});
+        CHECK(e.exit_code == 2);
+        CHECK(count_lines(e.err) == 1);
+        CHECK_THAT(e.err, Catch::Contains(expect));
+        CHECK(fs::is_empty(dir));
+    }
+}

@@ -50,5 +50,6 @@ int run_info(const std::vector<std::string>& args);
 int run_generate(const std::vector<std::string>& args);
 int run_convert(const std::vector<std::string>& args);
 int run_decimate(const std::vector<std::string>& args);
+int run_attach(const std::vector<std::string>& args);
 
 }  // namespace fhr::cli

@@ -26,6 +26,10 @@ usage:
                [--max-normal-deviation DEG]
       §2: the parameter domain D by half-edge collapses; writes DOMAIN.off and, beside it,
       DOMAIN.correspondence (the vertex of MESH at each vertex of D)
+  fhr attach MESH --domain D.off --correspondence FILE [--out MESH2]
+      §2: check a user-given domain D and its points x_j on MESH (a vertex index, or
+      `f FACE b0 b1 b2` per line); points in faces or on edges are inserted (Fig. 4); with --out,
+      write the refined mesh and MESH2.correspondence (every x_j now a vertex)
   fhr help
 
 MESH files: .off/.coff, .obj, .ply (ascii or binary), .stl (ascii or binary).
@@ -42,6 +46,7 @@ int main(int argc, char** argv) {
         if (command == "generate") return fhr::cli::run_generate(args);
         if (command == "convert") return fhr::cli::run_convert(args);
         if (command == "decimate") return fhr::cli::run_decimate(args);
+        if (command == "attach") return fhr::cli::run_attach(args);
         if (command == "help" || command == "--help" || command == "-h") {
             std::fputs(usage, stdout);
             return 0;

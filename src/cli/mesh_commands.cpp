@@ -1,10 +1,13 @@
 // FHR cli — `fhr generate` (random closed manifolds, for tests and for users fuzzing their own
 // code), `fhr convert` (validate and rewrite a mesh) and `fhr decimate` (§2: the domain D).
+#include <cstdio>
 #include <filesystem>
 
 #include "cli/common.hpp"
 #include "core/topology.hpp"
 #include "domain/decimate.hpp"
+#include "domain/user_domain.hpp"
+#include "io/read.hpp"
 #include "generate/random_mesh.hpp"
 #include "io/atomic_file.hpp"
 
@@ -32,6 +35,17 @@ int run_convert(const std::vector<std::string>& argv) {
     return 0;
 }
 
+namespace {
+
+// FMT-CORR-1: one vertex index of T per vertex of D, beside the file `mesh_path` names.
+void write_correspondence(const std::string& mesh_path, const domain::Domain& d) {
+    std::string corr = "# fhr correspondence: one line per domain vertex, its vertex in the mesh\n";
+    for (VertexId v : d.t_vertex) corr += std::to_string(v.idx()) + "\n";
+    io::write_file_atomically(std::filesystem::path(mesh_path).replace_extension(".correspondence").string(), corr);
+}
+
+}  // namespace
+
 int run_decimate(const std::vector<std::string>& argv) {
     const Args args(argv, {}, {"faces", "vertices", "out", "min-angle", "max-normal-deviation"});
     const TriMesh T = load_mesh(args.single_positional("MESH"), BuildOptions{});
@@ -49,12 +63,29 @@ int run_decimate(const std::vector<std::string>& argv) {
     options.max_normal_deviation_deg = args.real("max-normal-deviation", options.max_normal_deviation_deg, 0.0, 180.0);
     const std::string out = args.require("out");
     const domain::Domain d = domain::decimate(T, options);
-    // FMT-CORR: one vertex index of T per vertex of D, beside the domain file.
-    std::string corr = "# fhr correspondence: vertex j of " + std::filesystem::path(out).filename().string() +
-                       " is the vertex on line j of the mesh\n";
-    for (VertexId v : d.t_vertex) corr += std::to_string(v.idx()) + "\n";
-    io::write_file_atomically(std::filesystem::path(out).replace_extension(".correspondence").string(), corr);
+    write_correspondence(out, d);
     save_mesh(out, d.mesh);
+    return 0;
+}
+
+int run_attach(const std::vector<std::string>& argv) {
+    const Args args(argv, {}, {"domain", "correspondence", "out"});
+    const std::string& mesh_path = args.single_positional("MESH");
+    TriMesh T = load_mesh(mesh_path, BuildOptions{});
+    const domain::DomainSources sources{args.require("domain"), args.require("correspondence")};
+    TriMesh D = load_mesh(sources.domain_file, BuildOptions{});
+    const auto x = io::parse_correspondence(io::read_bytes(sources.correspondence_file), sources.correspondence_file,
+                                            T.n_vertices(), T.n_faces());
+    const std::size_t before = T.n_vertices();
+    const domain::Domain d = domain::attach_domain(T, std::move(D), x, sources);
+    std::printf("domain %s: %zu vertices, %zu faces; %zu points inserted into %s (paper Fig. 4)\n",
+                sources.domain_file.c_str(), d.mesh.n_vertices(), d.mesh.n_faces(), T.n_vertices() - before,
+                mesh_path.c_str());
+    if (const auto out = args.get("out")) {
+        // The refined T, and the correspondence in its numbering: every x_j is now a vertex.
+        write_correspondence(*out, d);
+        save_mesh(*out, T);
+    }
     return 0;
 }
 

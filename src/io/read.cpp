@@ -27,10 +27,7 @@ Format format_from_extension(const std::string& path) {
                            "; expected .off, .coff, .obj, .ply or .stl)");
 }
 
-namespace {
-
-/// The whole file; InvalidInput "cannot open/read: <reason>" otherwise.
-std::string read_all(const std::string& path) {
+std::string read_bytes(const std::string& path) {
     const auto refuse = [&](const char* what, int error) {
         throw InvalidInput(path, 0, std::string(what) + ": " + std::strerror(error));
     };
@@ -60,11 +57,9 @@ std::string read_all(const std::string& path) {
     return bytes;
 }
 
-}  // namespace
-
 PolygonSoup read_soup(const std::string& path) {
     const Format format = format_from_extension(path);
-    return parse(format, read_all(path), path);
+    return parse(format, read_bytes(path), path);
 }
 
 PolygonSoup parse(Format format, std::string_view bytes, const std::string& name) {

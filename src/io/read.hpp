@@ -16,6 +16,9 @@ enum class Format { off, obj, ply, stl };
 /// \throws InvalidInput "unknown format" for any other extension.
 Format format_from_extension(const std::string& path);
 
+/// The whole file's bytes. \throws InvalidInput(path, 0, "cannot open: <reason>") or "cannot read: ...".
+std::string read_bytes(const std::string& path);
+
 /// Reads a whole file and parses it with the reader for its extension.
 /// \throws InvalidInput (unreadable file, empty file, any syntax error of spec/formats.md).
 PolygonSoup read_soup(const std::string& path);
