@@ -24,3 +24,18 @@ if [ -n "$horse" ]; then
         printf "goal: peak memory <= 300 bytes/triangle: measured %d: %s\n", bpf, (bpf <= 300 ? "met" : "NOT met");
     }'
 fi
+
+# §2 mesh reduction (paper timing table row "mesh reduction"): our half-edge-collapse decimation
+# against CGAL's edge_collapse restricted to half-edge placement, same targets, same run
+# (bench/bench_decimate.cpp). 5 alternating runs each; the four cases take about 30 s in all.
+echo "== stage: mesh reduction (§2 decimation) vs CGAL, median of 5 runs each"
+for c in fandisk.off:114 armadillo.off:114 refined_elephant.off:114 refined_elephant.off:800; do
+    m=$meshes/${c%%:*}
+    if [ -f "$m" ]; then
+        "$build/bench/bench_decimate" "$m" "${c##*:}" 5 || echo "$(basename "$m") -> ${c##*:}: bench_decimate failed (exit $?)"
+    else
+        echo "$(basename "$m"): not present here, skipped (libcgal-demo data, FHR_CGAL_MESHES=$meshes)"
+    fi
+done > "$build/bench-decimate.txt"
+grep -v '^goal:' "$build/bench-decimate.txt" || true
+grep '^goal:' "$build/bench-decimate.txt" || true

@@ -32,15 +32,20 @@ int orient2d_exact(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eig
     return sign_of(det);
 }
 
-}  // namespace
-
-int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+// The filtered sign of orient2d: ±1 when the floating-point value is certain, 0 when undecided.
+int orient2d_filtered(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
     const double detleft = (a.x() - c.x()) * (b.y() - c.y());
     const double detright = (a.y() - c.y()) * (b.x() - c.x());
     const double det = detleft - detright;
     const double permanent = std::abs(detleft) + std::abs(detright);
-    if (decided_by_filter(det, permanent, ccw_bound)) return det > 0 ? 1 : -1;
-    return orient2d_exact(a, b, c);
+    return decided_by_filter(det, permanent, ccw_bound) ? (det > 0 ? 1 : -1) : 0;
+}
+
+}  // namespace
+
+int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+    const int s = orient2d_filtered(a, b, c);
+    return s != 0 ? s : orient2d_exact(a, b, c);
 }
 
 int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
@@ -71,8 +76,12 @@ bool collinear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::
     auto drop = [](const Eigen::Vector3d& p, int axis) {
         return Eigen::Vector2d(p[(axis + 1) % 3], p[(axis + 2) % 3]);
     };
+    // First the cheap filtered signs: one certain non-zero component settles it. (Axis-aligned
+    // faces have an exactly zero component, which the filter can never decide.)
     for (int axis = 0; axis < 3; ++axis)
-        if (orient2d(drop(a, axis), drop(b, axis), drop(c, axis)) != 0) return false;
+        if (orient2d_filtered(drop(a, axis), drop(b, axis), drop(c, axis)) != 0) return false;
+    for (int axis = 0; axis < 3; ++axis)
+        if (orient2d_exact(drop(a, axis), drop(b, axis), drop(c, axis)) != 0) return false;
     return true;
 }
 

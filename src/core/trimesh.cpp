@@ -9,6 +9,7 @@
 //                                                                           vB          vB
 #include "core/trimesh.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -185,11 +186,16 @@ bool TriMesh::is_collapse_ok(HalfedgeId h) const {
     const VertexId v0 = from(h), v1 = to(h), va = to(next(h)), vb = to(next(twin(h)));
     if (va == vb) return false;
     if (n_vertices() - deleted_vertices_ <= 4) return false;
-    // Link condition: the common neighbours of v0 and v1 are exactly va and vb.
+    // Link condition: the common neighbours of v0 and v1 are exactly va and vb. v1's neighbours
+    // are gathered once into a small contiguous buffer (valences are small), then each neighbour
+    // of v0 is looked up there.
+    thread_local std::vector<VertexId> ring;
+    ring.clear();
+    for_each_outgoing(v1, [&](HalfedgeId g) { ring.push_back(to(g)); });
     bool ok = true;
     for_each_outgoing(v0, [&](HalfedgeId g) {
         const VertexId w = to(g);
-        if (w != v1 && w != va && w != vb && find_halfedge(v1, w).valid()) ok = false;
+        if (w != v1 && w != va && w != vb && std::find(ring.begin(), ring.end(), w) != ring.end()) ok = false;
     });
     return ok;
 }

@@ -8,7 +8,7 @@
 #include <queue>
 #include <string>
 
-#include <Eigen/Core>
+#include <array>
 
 #include "core/errors.hpp"
 #include "core/geometry.hpp"
@@ -18,29 +18,41 @@
 namespace fhr::domain {
 namespace {
 
-using Quadric = Eigen::Matrix4d;
+// Garland & Heckbert 1997: the squared distance of x to the plane n·x + d = 0 is the quadric
+// [x 1] K [x 1]^T with K = [n d][n d]^T; weighting by area makes the error an integral over the
+// surface. K is symmetric, so 10 numbers hold it: the upper triangle, row by row.
+struct Quadric {
+    std::array<double, 10> k{};
+    Quadric& operator+=(const Quadric& o) {
+        for (int i = 0; i < 10; ++i) k[i] += o.k[i];
+        return *this;
+    }
+    friend Quadric operator+(Quadric a, const Quadric& b) { return a += b; }
+    // [x 1] K [x 1]^T, clamped at 0 (it is ≥ 0 in exact arithmetic; round-off can dip below).
+    double operator()(const Vec3& p) const {
+        const double x = p.x(), y = p.y(), z = p.z();
+        const double e = k[0] * x * x + 2 * k[1] * x * y + 2 * k[2] * x * z + 2 * k[3] * x + k[4] * y * y +
+                         2 * k[5] * y * z + 2 * k[6] * y + k[7] * z * z + 2 * k[8] * z + k[9];
+        return std::max(0.0, e);
+    }
+};
 
-// Garland & Heckbert 1997: the squared distance to the plane n·x + d = 0 is [x 1] K [x 1]^T
-// with K = [n d][n d]^T; weighting by area makes the error an integral over the surface.
 Quadric face_quadric(const TriMesh& m, FaceId f) {
-    const auto v = m.face_vertices(f);
     const Vec3 n = face_normal(m, f);
-    const Eigen::Vector4d plane(n.x(), n.y(), n.z(), -n.dot(m.position(v[0])));
-    return face_area(m, f) * plane * plane.transpose();
+    const double a = n.x(), b = n.y(), c = n.z(), d = -n.dot(m.position(m.face_vertices(f)[0]));
+    const double w = face_area(m, f);
+    return {{w * a * a, w * a * b, w * a * c, w * a * d, w * b * b, w * b * c, w * b * d, w * c * c, w * c * d, w * d * d}};
 }
 
-double evaluate(const Quadric& q, const Vec3& p) {
-    const Eigen::Vector4d x(p.x(), p.y(), p.z(), 1.0);
-    return std::max(0.0, x.dot(q * x));  // ≥ 0 in exact arithmetic; clamp round-off
-}
-
-// The smallest corner angle of triangle (a, b, c), in radians (atan2 form, see geometry.hpp).
-double min_corner_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
-    auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-        const Vec3 u = q - p, w = r - p;
-        return std::atan2(u.cross(w).norm(), u.dot(w));
-    };
-    return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+// True when every corner angle of triangle (a, b, c) is at least `min_angle` (< 90°), where
+// tan_min = tan(min_angle). A corner with edge vectors u, w has tan(angle) = |u × w| / (u · w), and
+// |u × w| = 2·area is the same at all three corners, so no trigonometry is needed.
+bool corners_at_least(const Vec3& a, const Vec3& b, const Vec3& c, double tan_min) {
+    const double twice_area = (b - a).cross(c - a).norm();
+    const double dots[3] = {(b - a).dot(c - a), (c - b).dot(a - b), (a - c).dot(b - c)};
+    for (double d : dots)
+        if (d > 0 && twice_area < tan_min * d) return false;  // an acute corner below the minimum
+    return true;
 }
 
 struct Candidate {
@@ -55,15 +67,18 @@ struct Candidate {
 class Decimator {
 public:
     Decimator(const TriMesh& T, const DecimateOptions& o)
-        : m_(T), options_(o), quadric_(T.n_vertices(), Quadric::Zero()), stamp_(T.n_halfedges(), 0),
+        : m_(T), options_(o), quadric_(T.n_vertices()), stamp_(T.n_edges(), 0),
           rejected_(T.n_halfedges(), false) {
         cos_max_turn_ = std::cos(o.max_normal_deviation_deg * M_PI / 180.0);
-        min_angle_ = o.min_angle_deg * M_PI / 180.0;
+        tan_min_angle_ = std::tan(o.min_angle_deg * M_PI / 180.0);
         for (FaceId f : m_.faces()) {
             const Quadric q = face_quadric(m_, f);
             for (VertexId v : m_.face_vertices(f)) quadric_[v.idx()] += q;
         }
-        for (HalfedgeId h : m_.halfedges()) push(h);
+        std::vector<Candidate> all;
+        all.reserve(m_.n_edges());
+        for (EdgeId e : m_.edges()) all.push_back(edge_candidate(e));
+        queue_ = Queue(std::greater<>(), std::move(all));  // heapified in O(n)
     }
 
     Domain run() {
@@ -80,9 +95,10 @@ public:
             const Candidate c = queue_.top();
             queue_.pop();
             const HalfedgeId h(c.halfedge);
-            if (c.stamp != stamp_[h.idx()] || m_.is_deleted(TriMesh::edge(h))) continue;
-            if (!valid(h)) {
+            if (c.stamp != stamp_[TriMesh::edge(h).idx()] || m_.is_deleted(TriMesh::edge(h))) continue;
+            if (!valid(h)) {  // try the edge's other direction at its own cost
                 rejected_[h.idx()] = true;
+                if (!rejected_[TriMesh::twin(h).idx()]) queue_.push(candidate(TriMesh::twin(h)));
                 continue;
             }
             const VertexId v0 = m_.from(h), v1 = m_.to(h);
@@ -103,10 +119,11 @@ private:
     TriMesh m_;
     const DecimateOptions& options_;
     std::vector<Quadric> quadric_;
-    std::vector<std::uint32_t> stamp_;
-    std::vector<bool> rejected_;  // popped, found invalid, and not queued since
-    std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue_;
-    double cos_max_turn_ = 0, min_angle_ = 0;
+    std::vector<std::uint32_t> stamp_;  // per edge
+    std::vector<bool> rejected_;        // per halfedge: popped, found invalid, and not queued since
+    using Queue = std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>>;
+    Queue queue_;
+    double cos_max_turn_ = 0, tan_min_angle_ = 0;
 
     static std::string fmt(double x) {
         char buf[32];
@@ -114,22 +131,28 @@ private:
         return buf;
     }
 
-    void push(HalfedgeId h) {
-        rejected_[h.idx()] = false;
-        const double cost = evaluate(quadric_[m_.from(h).idx()] + quadric_[m_.to(h).idx()], m_.position(m_.to(h)));
-        queue_.push({cost, h.idx(), ++stamp_[h.idx()]});
+    double cost(HalfedgeId h) const {
+        return (quadric_[m_.from(h).idx()] + quadric_[m_.to(h).idx()])(m_.position(m_.to(h)));
     }
+    // The queue holds one entry per edge, for one of its directions; a new entry supersedes the
+    // edge's older ones (stamp).
+    Candidate candidate(HalfedgeId h) { return {cost(h), h.idx(), ++stamp_[TriMesh::edge(h).idx()]}; }
+    // The cheaper direction of e, both directions counting as untried again.
+    Candidate edge_candidate(EdgeId e) {
+        const HalfedgeId h0 = TriMesh::halfedge(e, 0), h1 = TriMesh::halfedge(e, 1);
+        rejected_[h0.idx()] = rejected_[h1.idx()] = false;
+        return candidate(cost(h1) < cost(h0) ? h1 : h0);
+    }
+    void push_edge(EdgeId e) { queue_.push(edge_candidate(e)); }
 
-    // Costs change for the halfedges at v1 (its quadric grew): they are queued again. Validity
-    // can change for every halfedge whose link or faces touch v1's star, so a candidate found
-    // invalid earlier (and dropped) near v1 is queued again too.
+    // Costs change for the edges at v1 (its quadric grew): they are queued again. Validity can
+    // change for every halfedge whose link or faces touch v1's star, so an edge with a direction
+    // found invalid earlier near v1 is queued again too.
     void refresh_around(VertexId v1) {
         m_.for_each_outgoing(v1, [&](HalfedgeId g) {
-            push(g);
-            push(TriMesh::twin(g));
+            push_edge(TriMesh::edge(g));
             m_.for_each_outgoing(m_.to(g), [&](HalfedgeId k) {
-                for (HalfedgeId x : {k, TriMesh::twin(k)})
-                    if (rejected_[x.idx()]) push(x);
+                if (rejected_[k.idx()] || rejected_[TriMesh::twin(k).idx()]) push_edge(TriMesh::edge(k));
             });
         });
     }
@@ -154,7 +177,7 @@ private:
                 return;
             }
             const Vec3 n_new = (a - p1).cross(b - p1).normalized();
-            if (n_new.dot(face_normal(m_, f)) < cos_max_turn_ || min_corner_angle(p1, a, b) < min_angle_) ok = false;
+            if (n_new.dot(face_normal(m_, f)) < cos_max_turn_ || !corners_at_least(p1, a, b, tan_min_angle_)) ok = false;
         });
         return ok;
     }

@@ -7,12 +7,13 @@
 //
 // Pseudocode:
 //   Q_v  <- Σ over the faces f at v of area(f) · (plane quadric of f)          (Garland–Heckbert)
-//   push every halfedge h = (v0 -> v1) with cost (Q_v0 + Q_v1)(p_v1)
+//   cost(h = v0 -> v1) = (Q_v0 + Q_v1)(p_v1); queue every edge with its cheaper direction
 //   while #faces > target:
 //       pop the cheapest h (ties: lowest halfedge index); skip stale entries
 //       if the collapse v0 -> v1 is valid (link condition; no face turns by more than
 //          max_normal_deviation; no new corner below min_angle; no exactly degenerate face):
-//           collapse, Q_v1 += Q_v0, record (v0, v1, va, vb), re-push the halfedges near v1
+//           collapse, Q_v1 += Q_v0, record (v0, v1, va, vb), re-queue the edges near v1
+//       else queue the edge's other direction, unless it was found invalid too
 //   if the queue runs dry first: the target cannot be met under these rules (error)
 #pragma once
 

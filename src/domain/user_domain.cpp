@@ -9,6 +9,7 @@
 #include "domain/user_domain.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <tuple>
 
@@ -65,13 +66,13 @@ public:
     VertexId insert(const std::array<double, 3>& b, const Vec3& p) {
         const Eigen::Vector3d target(b[0], b[1], b[2]);
         FaceId best;
-        Eigen::Vector3d best_coords;
+        Eigen::Vector3d best_coords = Eigen::Vector3d::Constant(-INFINITY);
         for (FaceId f : pieces_) {
             const auto c = T_.face_vertices(f);
             Eigen::Matrix3d m;
             for (int k = 0; k < 3; ++k) m.col(k) = bary_.at(c[k]);
             const Eigen::Vector3d coords = m.colPivHouseholderQr().solve(target);
-            if (!best.valid() || coords.minCoeff() > best_coords.minCoeff()) {
+            if (coords.minCoeff() > best_coords.minCoeff()) {
                 best = f;
                 best_coords = coords;
             }
