@@ -3,6 +3,7 @@
 //   INV-IN-1  coordinates finite and |x| <= 1e150 (squared lengths cannot overflow)
 //   INV-IN-2  every face has at least 3 vertices, none repeated
 //   INV-IN-3  faces are triangles (or --triangulate: fan from the first vertex)
+//   INV-IN-12 no isolated vertices (else dropped, with a warning)
 //   INV-IN-4  no two faces have the same vertex set
 //   INV-IN-5  no triangle is degenerate (its corners exactly collinear; exact predicate)
 //   INV-IN-6  every edge lies in at most two faces
@@ -11,7 +12,6 @@
 //   INV-IN-9  every vertex is manifold: its faces form one fan
 //   INV-IN-10 no boundary (the paper's §3 partition needs a closed surface)
 //   INV-IN-11 one connected component
-//   INV-IN-12 no isolated vertices (else dropped, with a warning)
 #include "core/build.hpp"
 
 #include <algorithm>
@@ -36,16 +36,16 @@ public:
         check_coordinates();
         collect_triangles();
         if (tris_.empty()) fail(0, "no faces");
-        check_duplicates();
         drop_isolated_vertices();
-        if (options_.refuse_degenerate) check_degenerate();
         detail::EdgeTable table = detail::build_edge_table(positions_.size(), tris_);
+        check_duplicates(table);
+        if (options_.refuse_degenerate) check_degenerate();
         check_edge_manifold(table);
         if (orient(table)) table = detail::build_edge_table(positions_.size(), tris_);  // corners moved
         if (const std::uint32_t v = detail::first_non_manifold_vertex(positions_.size(), tris_, table);
             v != UINT32_MAX)
             fail_vertex(v, "non-manifold vertex " + vname(v) + ": its faces form more than one fan");
-        TriMesh mesh = TriMesh::from_triangles(std::move(positions_), tris_);
+        TriMesh mesh = TriMesh::from_triangles(std::move(positions_), tris_, table);
         check_closed_and_connected(mesh);
         log_.vertex_origin = std::move(origin_);
         return mesh;
@@ -110,20 +110,27 @@ private:
         }
     }
 
-    void check_duplicates() const {  // INV-IN-4
-        std::vector<std::pair<Triangle, std::uint32_t>> keys(tris_.size());
-        for (std::uint32_t t = 0; t < tris_.size(); ++t) {
-            Triangle k = tris_[t];
-            std::sort(k.begin(), k.end());
-            keys[t] = {k, t};
-        }
-        std::sort(keys.begin(), keys.end());
-        for (std::size_t i = 1; i < keys.size(); ++i)
-            if (keys[i].first == keys[i - 1].first) {
-                const std::uint32_t a = keys[i - 1].second, b = keys[i].second;
-                fail_face(b, "faces " + std::to_string(tri_polygon_[a]) + " and " + std::to_string(tri_polygon_[b]) +
-                                 " are duplicates (vertices " + tri_vertices(b) + ")");
+    // INV-IN-4: two faces with the same vertex set share all their edges, so it suffices to
+    // compare the faces around each edge (sorted, so a huge fan still costs O(d log d)).
+    void check_duplicates(const detail::EdgeTable& table) const {
+        std::vector<std::pair<Triangle, std::uint32_t>> around;
+        for (std::uint32_t e = 0; e < table.n_edges(); ++e) {
+            if (table.edge_degree(e) < 2) continue;
+            around.clear();
+            for (std::uint32_t i = table.edge_offsets[e]; i < table.edge_offsets[e + 1]; ++i) {
+                const std::uint32_t t = table.edge_corners[i] / 3;
+                Triangle k = tris_[t];
+                std::sort(k.begin(), k.end());
+                around.emplace_back(k, t);
             }
+            std::sort(around.begin(), around.end());
+            for (std::size_t i = 1; i < around.size(); ++i)
+                if (around[i].first == around[i - 1].first) {
+                    const std::uint32_t a = around[i - 1].second, b = around[i].second;
+                    fail_face(b, "faces " + std::to_string(tri_polygon_[a]) + " and " + std::to_string(tri_polygon_[b]) +
+                                     " are duplicates (vertices " + tri_vertices(b) + ")");
+                }
+        }
     }
 
     void drop_isolated_vertices() {  // INV-IN-12

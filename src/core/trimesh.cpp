@@ -35,6 +35,15 @@ TriMesh TriMesh::from_triangles(std::vector<Vec3> positions, std::span<const Tri
             broken("from_triangles: face " + std::to_string(f) + " repeats a vertex");
     }
     const detail::EdgeTable table = detail::build_edge_table(nv, triangles);
+    TriMesh m = from_triangles(std::move(positions), triangles, table);
+    if (const std::uint32_t v = detail::first_non_manifold_vertex(nv, triangles, table); v != UINT32_MAX)
+        broken("from_triangles: " + vname(VertexId(v)) + " has more than one fan");
+    return m;
+}
+
+TriMesh TriMesh::from_triangles(std::vector<Vec3> positions, std::span<const Triangle> triangles,
+                                const detail::EdgeTable& table) {
+    const std::size_t nv = positions.size();
     TriMesh m;
     m.pos_ = std::move(positions);
     const std::size_t ne = table.n_edges();
@@ -59,8 +68,6 @@ TriMesh TriMesh::from_triangles(std::vector<Vec3> positions, std::span<const Tri
             corner_he[c[1]] = HalfedgeId(2 * e + 1);
         }
     }
-    if (const std::uint32_t v = detail::first_non_manifold_vertex(nv, triangles, table); v != UINT32_MAX)
-        broken("from_triangles: " + vname(VertexId(v)) + " has more than one fan");
     for (std::uint32_t f = 0; f < triangles.size(); ++f) {
         const HalfedgeId h[3] = {corner_he[3 * f], corner_he[3 * f + 1], corner_he[3 * f + 2]};
         m.set_face_loop(FaceId(f), h[0], h[1], h[2]);

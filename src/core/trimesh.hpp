@@ -23,6 +23,10 @@
 
 namespace fhr {
 
+namespace detail {
+struct EdgeTable;
+}
+
 using Triangle = std::array<std::uint32_t, 3>;
 
 class TriMesh {
@@ -36,6 +40,11 @@ public:
     ///      triangle at least and its triangles form one fan.
     /// \throws std::logic_error naming the violated precondition.
     static TriMesh from_triangles(std::vector<Vec3> positions, std::span<const Triangle> triangles);
+    /// The same, for a caller that has already checked that every index is in range, no triangle
+    /// repeats a vertex and every vertex is manifold (build_trimesh), and built `table` =
+    /// detail::build_edge_table(positions.size(), triangles): nothing is computed twice.
+    static TriMesh from_triangles(std::vector<Vec3> positions, std::span<const Triangle> triangles,
+                                  const detail::EdgeTable& table);
 
     // --- sizes (including garbage slots, see has_garbage) ---------------------------------
     std::size_t n_vertices() const { return out_.size(); }
