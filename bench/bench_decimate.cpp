@@ -58,6 +58,8 @@
 #include <boost/optional.hpp>
 #pragma GCC diagnostic pop
 
+#include "bench_support.hpp"
+
 #include "core/build.hpp"
 #include "core/errors.hpp"
 #include "core/topology.hpp"
@@ -68,9 +70,11 @@ namespace {
 
 namespace SMS = CGAL::Surface_mesh_simplification;
 namespace PMP = CGAL::Polygon_mesh_processing;
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Mesh = CGAL::Surface_mesh<Point>;
+using fhr::bench::Kernel;
+using fhr::bench::Mesh;
+using fhr::bench::median;
+using fhr::bench::min_of;
+using fhr::bench::to_cgal;
 using GH = SMS::GarlandHeckbert_plane_policies<Mesh, Kernel>;
 
 // Half-edge collapse placement for CGAL: keep the endpoint with the lower combined quadric
@@ -94,18 +98,6 @@ private:
     const GH& gh_;
 };
 
-Mesh to_cgal(const fhr::TriMesh& m) {
-    Mesh sm;
-    sm.reserve(static_cast<Mesh::size_type>(m.n_vertices()), static_cast<Mesh::size_type>(m.n_edges()),
-               static_cast<Mesh::size_type>(m.n_faces()));
-    for (const fhr::Vec3& p : m.positions()) sm.add_vertex(Point(p.x(), p.y(), p.z()));
-    for (const fhr::Triangle& t : m.triangles()) {
-        const Mesh::Face_index f = sm.add_face(Mesh::Vertex_index(t[0]), Mesh::Vertex_index(t[1]), Mesh::Vertex_index(t[2]));
-        if (f == Mesh::null_face()) throw std::runtime_error("CGAL::Surface_mesh refused a face of T");
-    }
-    return sm;
-}
-
 long euler_characteristic(const Mesh& sm) {
     return static_cast<long>(sm.number_of_vertices()) - static_cast<long>(sm.number_of_edges()) +
            static_cast<long>(sm.number_of_faces());
@@ -125,13 +117,6 @@ double cgal_decimate(Mesh& sm, std::size_t faces) {
     return ms;
 }
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
-
-double min_of(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -144,8 +129,7 @@ int main(int argc, char** argv) {
     const std::size_t target = static_cast<std::size_t>(std::strtoull(argv[2], nullptr, 10));
     const int runs = argc > 3 ? std::max(1, std::atoi(argv[3])) : 5;
     try {
-        fhr::BuildLog log;
-        const fhr::TriMesh T = fhr::build_trimesh(fhr::io::read_soup(path), {}, log);
+        const fhr::TriMesh T = fhr::bench::load(path);
         const long chi = fhr::euler_characteristic(T);
         const Mesh T_cgal = to_cgal(T);
 

@@ -39,3 +39,16 @@ for c in fandisk.off:114 armadillo.off:114 refined_elephant.off:114 refined_elep
 done > "$build/bench-decimate.txt"
 grep -v '^goal:' "$build/bench-decimate.txt" || true
 grep '^goal:' "$build/bench-decimate.txt" || true
+
+# §3 geodesic paths (paper timing table row "geodesic paths"): the exact path of every edge of the
+# decimated domain by the ellipse search, against CGAL building one tree per path
+# (bench/bench_geodesic.cpp). CGAL needs about half a second per tree on the fandisk.
+echo "== stage: geodesic paths (§3) vs CGAL Surface_mesh_shortest_path"
+for c in fandisk.off:114 refined_elephant.off:800; do
+    m=$meshes/${c%%:*}
+    if [ -f "$m" ]; then
+        "$build/bench/bench_geodesic" "$m" "${c##*:}" || echo "$(basename "$m"): bench_geodesic failed (exit $?)"
+    else
+        echo "$(basename "$m"): not present here, skipped"
+    fi
+done

@@ -281,3 +281,20 @@ TEST_CASE("DOM-10..13: fhr attach inserts a user-given domain's points, and refu
         CHECK(fs::is_empty(dir));
     }
 }
+
+TEST_CASE("GEO-E2: fhr geodesic prints the path, and refuses bad vertex indices", "[cli][geodesic]") {
+    const std::string mesh = temp_path("geo.off");
+    REQUIRE(run_fhr({"generate", "--genus", "1", "--faces", "800", "--seed", "8", "--noise", "0.1", "--out", mesh}).exit_code == 0);
+    const auto r = run_fhr({"geodesic", mesh, "3", "200", "--json"});
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("\"length\": ") && Catch::Contains("\"K\": ") &&
+                          Catch::Contains("\"windows_created\": ") && Catch::Contains("\"vertex\": 200"));
+    for (const auto& [src, dst, expect] : std::vector<std::tuple<std::string, std::string, std::string>>{
+             {"3", "100000", "out of range"}, {"3", "3", "the same"}, {"x", "3", "SRC must be a vertex index"}}) {
+        const auto e = run_fhr({"geodesic", mesh, src, dst});
+        CHECK(e.exit_code == 2);
+        CHECK(count_lines(e.err) == 1);
+        CHECK_THAT(e.err, Catch::Contains(expect));
+    }
+}

@@ -51,5 +51,6 @@ int run_generate(const std::vector<std::string>& args);
 int run_convert(const std::vector<std::string>& args);
 int run_decimate(const std::vector<std::string>& args);
 int run_attach(const std::vector<std::string>& args);
+int run_geodesic(const std::vector<std::string>& args);
 
 }  // namespace fhr::cli

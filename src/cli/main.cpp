@@ -30,6 +30,9 @@ usage:
       §2: check a user-given domain D and its points x_j on MESH (a vertex index, or
       `f FACE b0 b1 b2` per line); points in faces or on edges are inserted (Fig. 4); with --out,
       write the refined mesh and MESH2.correspondence (every x_j now a vertex)
+  fhr geodesic MESH SRC DST [--json] [--K K]
+      §3: the exact shortest path between two vertices, searched in the ellipse sub-mesh
+      (K = 1.06, grown until the result is certified): length, points, K, windows
   fhr help
 
 MESH files: .off/.coff, .obj, .ply (ascii or binary), .stl (ascii or binary).
@@ -47,6 +50,7 @@ int main(int argc, char** argv) {
         if (command == "convert") return fhr::cli::run_convert(args);
         if (command == "decimate") return fhr::cli::run_decimate(args);
         if (command == "attach") return fhr::cli::run_attach(args);
+        if (command == "geodesic") return fhr::cli::run_geodesic(args);
         if (command == "help" || command == "--help" || command == "-h") {
             std::fputs(usage, stdout);
             return 0;
