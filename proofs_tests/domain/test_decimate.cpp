@@ -82,10 +82,6 @@ bool undo_gives_back(const TriMesh& T, const Domain& d) {
     return canonical(tris) == canonical(T.triangles());
 }
 
-TriMesh load(const std::string& path) {
-    BuildLog log;
-    return build_trimesh(io::read_soup(path), {}, log);
-}
 
 }  // namespace
 
@@ -120,7 +116,7 @@ TEST_CASE("DOM-3: the paper's fandisk decimates to 114 faces, 171 edges, 59 vert
         WARN("fandisk.off is not present (./run extracts libcgal-demo's meshes into out/); skipped");
         return;
     }
-    const TriMesh T = load(*path);
+    const TriMesh T = test::load_mesh(*path);
     DecimateOptions o;
     o.target_faces = 114;
     const Domain d = decimate(T, o);
@@ -141,7 +137,7 @@ TEST_CASE("DOM-2: meshes of higher genus keep their genus (elephant g = 3, rocke
             WARN("a real mesh is not present here (libcgal-demo data or ../shared/meshes); skipped");
             continue;
         }
-        const TriMesh T = load(*c.path);
+        const TriMesh T = test::load_mesh(*c.path);
         REQUIRE(genus(T) == c.genus);
         DecimateOptions o;
         o.target_faces = c.faces;

@@ -54,8 +54,7 @@ TEST_CASE("GEO-E1: the 171 fandisk domain edges (paper §6) by the ellipse searc
         WARN("fandisk.off is not present (./run extracts libcgal-demo's meshes into out/); skipped");
         return;
     }
-    BuildLog log;
-    const TriMesh T = build_trimesh(io::read_soup(*path), {}, log);
+    const TriMesh T = test::load_mesh(*path);
     domain::DecimateOptions o;
     o.target_faces = 114;
     const domain::Domain D = domain::decimate(T, o);

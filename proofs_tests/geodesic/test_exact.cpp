@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
@@ -93,10 +92,6 @@ std::string sci(double x) {
     return buf;
 }
 
-TriMesh load(const std::string& path) {
-    BuildLog log;
-    return build_trimesh(io::read_soup(path), {}, log);
-}
 
 bool face_kept(const std::vector<std::uint8_t>* mask, FaceId f) { return f.valid() && (!mask || (*mask)[f.idx()]); }
 
@@ -330,7 +325,7 @@ TEST_CASE("GEO-1 and GEO-4: the fandisk; the elephant (genus 3) and the rocker (
             WARN(std::string(c.name) + " is not present (./run extracts the meshes into out/, or ../shared/meshes); skipped");
             continue;
         }
-        const TriMesh m = load(*c.path);
+        const TriMesh m = test::load_mesh(*c.path);
         // Sources of the highest and of the lowest valence.
         VertexId high(0), low(0);
         for (VertexId v : m.vertices()) {
@@ -590,13 +585,13 @@ TEST_CASE("GEO-7: on icospheres the polyhedral distance converges to the geodesi
     }
 }
 
-TEST_CASE("GEO-8: early stop gives the final distance; the fandisk's 171 domain paths are fast", "[geodesic][oracle][real]") {
+TEST_CASE("GEO-8: early stop gives the final distance on the fandisk's 171 domain paths", "[geodesic][oracle][real]") {
     const auto path = test::cgal_mesh("fandisk.off");
     if (!path) {
         WARN("fandisk.off is not present (./run extracts libcgal-demo's meshes into out/); skipped");
         return;
     }
-    const TriMesh m = load(*path);
+    const TriMesh m = test::load_mesh(*path);
     domain::DecimateOptions o;
     o.target_faces = 114;
     const domain::Domain d = domain::decimate(m, o);
@@ -607,20 +602,12 @@ TEST_CASE("GEO-8: early stop gives the final distance; the fandisk's 171 domain 
     }
     REQUIRE(pairs.size() == 171);
     std::vector<GeodesicPath> paths;
-    std::size_t windows = 0;
-    const auto start = std::chrono::steady_clock::now();
+    // Timings are measured by bench/bench_geodesic.cpp, not here.
     for (const auto& [s, t] : pairs) {
         ExactGeodesic g(m, s);
         g.propagate(std::array{t});
         paths.push_back(g.path_to(t));
-        windows += g.stats().windows_created;
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double ms_per_path = 1e3 * seconds / 171;
-    const double windows_per_path = static_cast<double>(windows) / 171;
-    CAPTURE(seconds, ms_per_path, windows_per_path);
-    // CGAL builds one 0.39 s tree per pair (design.md §3): the goal is 300× faster in total.
-    CHECK(seconds < 171 * 0.39 / 300);
     std::size_t through_vertex = 0;
     for (std::size_t i = 0; i < pairs.size(); ++i) {
         INFO("domain edge " << i);

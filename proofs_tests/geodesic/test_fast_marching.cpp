@@ -14,7 +14,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <map>
 #include <random>
 #include <sstream>
@@ -473,32 +472,16 @@ TEST_CASE("fast marching refuses bad sources and handles empty ones", "[unit][ge
     CHECK(at_source.distance[0] == 0);
 }
 
-TEST_CASE("horse: full field in well under 50 ms, valid, early stop", "[real][geodesic]") {
+TEST_CASE("horse: the full field is valid, and early stop finalizes exactly the vertices within the bound", "[real][geodesic]") {
     const auto path = test::shared_mesh("horse.off");
     if (!path) {
         WARN("horse.off is not present (../shared/meshes); skipped");
         return;
     }
-    BuildLog log;
-    const TriMesh m = build_trimesh(io::read_soup(*path), {}, log);
+    const TriMesh m = test::load_mesh(*path);
     const std::vector<VertexId> source{VertexId(0)};
-    // This thread's CPU time, best of 5: other processes share the machine. Measured with a
-    // load of 4-5 on 2 cores: wall clock up to 42 ms, CPU time 22-29 ms (it still feels the
-    // shared caches); 21 ms wall at a load of 2.5.
-    auto cpu_seconds = [] {
-        timespec t{};
-        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-        return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-    };
-    DistanceField f;
-    double best = INFINITY;
-    for (int run = 0; run < 5; ++run) {
-        const double start = cpu_seconds();
-        f = fast_marching(m, source);
-        best = std::min(best, cpu_seconds() - start);
-    }
-    INFO("horse (" << m.n_vertices() << " vertices): best of 5 runs " << best * 1e3 << " ms CPU");
-    CHECK(best < 0.05);
+    // Its speed (about 22 ms for the horse) is a benchmark matter, not asserted here.
+    const DistanceField f = fast_marching(m, source);
     CHECK(field_violation(m, source, f) == "");
     CHECK(chord_violation(m, source[0], f) == "");
     FastMarchingOptions o;

@@ -181,7 +181,7 @@ TEST_CASE("FMT-SIZE-1: absurd counts are refused before allocating", "[unit][io]
     text.resize(100, '\n');
     const auto start = std::chrono::steady_clock::now();
     const fhr::InvalidInput e = off_refusal(text);
-    CHECK(std::chrono::steady_clock::now() - start < std::chrono::milliseconds(100));
+    CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(1));  // CLI-ERR-1: refused at once, not after a huge allocation
     CHECK(e.line() == 2);
     CHECK_THAT(e.problem(), Contains("1000000000 vertices and 1000000000 faces") && Contains("truncated file"));
     // counts whose byte need overflows 64 bits saturate instead of wrapping around

@@ -13,6 +13,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/build.hpp"
+#include "io/read.hpp"
+
 extern char** environ;
 
 namespace fhr::test {
@@ -50,6 +53,11 @@ fs::path env_or(const char* var, const fs::path& fallback) {
 const fs::path source_root() { return fs::path(FHR_TEST_DATA).parent_path().parent_path(); }
 
 }  // namespace
+
+TriMesh load_mesh(const std::string& path) {
+    BuildLog log;
+    return build_trimesh(io::read_soup(path), {}, log);
+}
 
 std::string temp_path(std::string_view file_name) { return (temp_dir() / file_name).string(); }
 

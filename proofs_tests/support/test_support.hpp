@@ -6,7 +6,12 @@
 #include <string_view>
 #include <vector>
 
+#include "core/trimesh.hpp"
+
 namespace fhr::test {
+
+/// Reads and validates a mesh file with the strict reader and builder (default options).
+TriMesh load_mesh(const std::string& path);
 
 /// A fresh path inside this process's temporary directory (removed at exit).
 std::string temp_path(std::string_view file_name);
