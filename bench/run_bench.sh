@@ -42,12 +42,14 @@ grep '^goal:' "$build/bench-decimate.txt" || true
 
 # §3 geodesic paths (paper timing table row "geodesic paths"): the exact path of every edge of the
 # decimated domain by the ellipse search, against CGAL building one tree per path
-# (bench/bench_geodesic.cpp). CGAL needs about half a second per tree on the fandisk.
+# (bench/bench_geodesic.cpp). CGAL needs about half a second per tree on the fandisk (every
+# source there), several seconds on refined_elephant (8 sources sampled).
 echo "== stage: geodesic paths (§3) vs CGAL Surface_mesh_shortest_path"
-for c in fandisk.off:114 refined_elephant.off:800; do
+for c in fandisk.off:114:1000 refined_elephant.off:800:8; do
     m=$meshes/${c%%:*}
+    rest=${c#*:}
     if [ -f "$m" ]; then
-        "$build/bench/bench_geodesic" "$m" "${c##*:}" || echo "$(basename "$m"): bench_geodesic failed (exit $?)"
+        "$build/bench/bench_geodesic" "$m" "${rest%%:*}" "${rest##*:}" || echo "$(basename "$m"): bench_geodesic failed (exit $?)"
     else
         echo "$(basename "$m"): not present here, skipped"
     fi

@@ -59,6 +59,7 @@ private:
     std::vector<std::uint32_t> tri_polygon_; // soup polygon of each triangle
     std::vector<Vec3> positions_;
     std::vector<std::uint32_t> origin_;      // soup point of each kept vertex
+    std::size_t components_ = 0;             // connected components, counted by orient()
 
     [[noreturn]] void fail(std::uint64_t line, const std::string& what) const {
         throw InvalidInput(soup_.source, line, what);
@@ -115,7 +116,20 @@ private:
     void check_duplicates(const detail::EdgeTable& table) const {
         std::vector<std::pair<Triangle, std::uint32_t>> around;
         for (std::uint32_t e = 0; e < table.n_edges(); ++e) {
-            if (table.edge_degree(e) < 2) continue;
+            const std::uint32_t degree = table.edge_degree(e);
+            if (degree < 2) continue;
+            const std::uint32_t* c = &table.edge_corners[table.edge_offsets[e]];
+            if (degree == 2) {  // the usual case: two faces, two vertex sets to compare
+                const std::uint32_t a = c[0] / 3, b = c[1] / 3;
+                Triangle ka = tris_[a], kb = tris_[b];
+                std::sort(ka.begin(), ka.end());
+                std::sort(kb.begin(), kb.end());
+                if (ka == kb)
+                    fail_face(std::max(a, b), "faces " + std::to_string(tri_polygon_[std::min(a, b)]) + " and " +
+                                                  std::to_string(tri_polygon_[std::max(a, b)]) +
+                                                  " are duplicates (vertices " + tri_vertices(std::max(a, b)) + ")");
+                continue;
+            }
             around.clear();
             for (std::uint32_t i = table.edge_offsets[e]; i < table.edge_offsets[e + 1]; ++i) {
                 const std::uint32_t t = table.edge_corners[i] / 3;
@@ -184,9 +198,11 @@ private:
         std::vector<std::int8_t> flip(nf, -1);
         std::vector<std::uint32_t> queue, component_faces;
         std::size_t changed = 0;
+        components_ = 0;
         std::uint32_t first_changed = UINT32_MAX;
         for (std::uint32_t root = 0; root < nf; ++root) {
             if (flip[root] >= 0) continue;
+            ++components_;
             flip[root] = 0;
             queue.assign(1, root);
             bool closed = true;
@@ -251,8 +267,8 @@ private:
             }
         }
         if (options_.require_connected) {
-            const Components comp = connected_components(mesh);
-            if (comp.count > 1) {
+            if (components_ > 1) {  // found by orient(); connected_components names a vertex
+                const Components comp = connected_components(mesh);
                 const auto other = std::find_if(comp.vertex_component.begin(), comp.vertex_component.end(),
                                                 [](std::uint32_t c) { return c != 0; }) -
                                    comp.vertex_component.begin();
