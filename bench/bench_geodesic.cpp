@@ -56,10 +56,7 @@ int main(int argc, char** argv) {
         const fhr::domain::Domain D = fhr::domain::decimate(T, options);
         struct Pair { fhr::VertexId a, b; double ours = 0; };
         std::vector<Pair> pairs;
-        for (fhr::EdgeId e : D.mesh.edges()) {
-            const fhr::HalfedgeId h = fhr::TriMesh::halfedge(e, 0);
-            pairs.push_back({D.t_vertex[D.mesh.from(h).idx()], D.t_vertex[D.mesh.to(h).idx()]});
-        }
+        for (const auto& [a, b] : fhr::domain::edge_endpoints(D)) pairs.push_back({a, b});
         std::size_t windows = 0, grown = 0;
         const auto t0 = Clock::now();
         for (Pair& p : pairs) {

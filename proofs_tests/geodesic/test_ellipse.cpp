@@ -61,9 +61,7 @@ TEST_CASE("GEO-E1: the 171 fandisk domain edges (paper §6) by the ellipse searc
     // Unrestricted distances: one full tree per domain vertex that starts an edge.
     std::map<std::uint32_t, std::unique_ptr<ExactGeodesic>> trees;
     std::size_t edges = 0, grown = 0, checked = 0;
-    for (EdgeId e : D.mesh.edges()) {
-        const HalfedgeId h = TriMesh::halfedge(e, 0);
-        const VertexId a = D.t_vertex[D.mesh.from(h).idx()], b = D.t_vertex[D.mesh.to(h).idx()];
+    for (const auto& [a, b] : domain::edge_endpoints(D)) {
         auto& tree = trees[a.idx()];
         if (!tree) {
             tree = std::make_unique<ExactGeodesic>(T, a);

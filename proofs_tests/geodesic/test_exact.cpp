@@ -595,11 +595,7 @@ TEST_CASE("GEO-8: early stop gives the final distance on the fandisk's 171 domai
     domain::DecimateOptions o;
     o.target_faces = 114;
     const domain::Domain d = domain::decimate(m, o);
-    std::vector<std::pair<VertexId, VertexId>> pairs;
-    for (EdgeId e : d.mesh.edges()) {
-        const HalfedgeId h = TriMesh::halfedge(e, 0);
-        pairs.emplace_back(d.t_vertex[d.mesh.from(h).idx()], d.t_vertex[d.mesh.to(h).idx()]);
-    }
+    const auto pairs = domain::edge_endpoints(d);
     REQUIRE(pairs.size() == 171);
     std::vector<GeodesicPath> paths;
     // Timings are measured by bench/bench_geodesic.cpp, not here.

@@ -185,6 +185,16 @@ private:
 
 }  // namespace
 
+std::vector<std::pair<VertexId, VertexId>> edge_endpoints(const Domain& d) {
+    std::vector<std::pair<VertexId, VertexId>> pairs;
+    pairs.reserve(d.mesh.n_edges());
+    for (EdgeId e : d.mesh.edges()) {
+        const HalfedgeId h = TriMesh::halfedge(e, 0);
+        pairs.emplace_back(d.t_vertex[d.mesh.from(h).idx()], d.t_vertex[d.mesh.to(h).idx()]);
+    }
+    return pairs;
+}
+
 std::size_t min_closed_faces(long genus) {
     const long chi = 2 - 2 * genus;
     long v = static_cast<long>(std::ceil((7.0 + std::sqrt(1.0 + 48.0 * static_cast<double>(genus))) / 2.0));

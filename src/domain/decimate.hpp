@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "core/trimesh.hpp"
@@ -43,6 +44,10 @@ struct Domain {
     std::vector<VertexId> t_vertex;   ///< #V(D): the vertex x_j of T at vertex v_j of D
     std::vector<Collapse> history;    ///< the collapses, in the order they were made
 };
+
+/// For each edge [v_j, v_k] of D (in edge order), the vertices x_j, x_k of T it stands for: the
+/// endpoints of the geodesics Γ(x_j, x_k) of §3.
+std::vector<std::pair<VertexId, VertexId>> edge_endpoints(const Domain& d);
 
 /// The fewest faces of a closed orientable triangulated surface of genus g: F = 2(V − χ) with
 /// the fewest vertices V = ⌈(7 + √(1 + 48g)) / 2⌉ (Heawood's bound, attained for every g except
