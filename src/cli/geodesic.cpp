@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "cli/common.hpp"
-#include "cli/json.hpp"
+#include "io/json.hpp"
 #include "geodesic/ellipse.hpp"
 
 namespace fhr::cli {
@@ -38,7 +38,7 @@ int run_geodesic(const std::vector<std::string>& argv) {
     geodesic::EllipseOptions options;
     options.K = args.real("K", options.K, 1.0, 1e6);
     const geodesic::EllipsePath r = geodesic::ellipse_shortest_path(T, a, b, options);
-    JsonWriter j;
+    io::JsonWriter j;
     j.begin_object().key("source").value(a.idx()).key("target").value(b.idx());
     j.key("length").value(r.path.length).key("K").value(r.K).key("attempts").value(r.attempts);
     j.key("ellipse_faces").value(r.ellipse_faces).key("windows_created").value(r.windows_created);

@@ -5,7 +5,7 @@
 #include <optional>
 
 #include "cli/common.hpp"
-#include "cli/json.hpp"
+#include "io/json.hpp"
 #include "core/errors.hpp"
 #include "core/geometry.hpp"
 #include "core/topology.hpp"
@@ -21,7 +21,7 @@ struct Facts {
     BuildLog log;
 };
 
-void write_vec(JsonWriter& j, const Vec3& v) {
+void write_vec(io::JsonWriter& j, const Vec3& v) {
     j.begin_array().value(v.x()).value(v.y()).value(v.z()).end_array();
 }
 
@@ -62,7 +62,7 @@ std::string print_human(const std::string& path, const Facts& f) {
 }
 
 std::string print_json(const std::string& path, const Facts& f) {
-    JsonWriter j;
+    io::JsonWriter j;
     j.begin_object().key("file").value(path);
     j.key("points").value(f.soup_points).key("polygons").value(f.soup_polygons);
     if (f.mesh) {

@@ -33,6 +33,12 @@ usage:
   fhr geodesic MESH SRC DST [--json] [--K K]
       §3: the exact shortest path between two vertices, searched in the ellipse sub-mesh
       (K = 1.06, grown until the result is certified): length, points, K, windows
+  fhr run MESH (--faces N | --domain D.off --correspondence FILE) --out DIR
+          [--weights shape-preserving|mean-value|uniform] [--solver sparse-lu|bicgstab]
+      §2–§4 end to end: writes DIR/domain.off, geodesics.obj, refined.ply, param.fhrp,
+      textured.obj, report.json, timings.json; exit 3 if §3 cannot partition, 4 if not certified
+  fhr verify PARAM.fhrp [--mesh INPUT] [--json]
+      the oracle: check a `fhr-param 1` file against PARAM-1..11 (spec/param.md); exit 1 if invalid
   fhr help
 
 MESH files: .off/.coff, .obj, .ply (ascii or binary), .stl (ascii or binary).
@@ -40,6 +46,11 @@ exit codes: 0 ok, 2 invalid input or usage, 3 partition failure, 4 numerical fai
 )";
 
 }  // namespace
+
+namespace fhr::cli {
+int run_verify(const std::vector<std::string>& args);  // src/cli/verify.cpp
+int run_run(const std::vector<std::string>& args);     // src/cli/run.cpp
+}
 
 int main(int argc, char** argv) {
     const std::vector<std::string> args(argv + (argc > 1 ? 2 : argc), argv + argc);
@@ -51,6 +62,8 @@ int main(int argc, char** argv) {
         if (command == "decimate") return fhr::cli::run_decimate(args);
         if (command == "attach") return fhr::cli::run_attach(args);
         if (command == "geodesic") return fhr::cli::run_geodesic(args);
+        if (command == "verify") return fhr::cli::run_verify(args);
+        if (command == "run") return fhr::cli::run_run(args);
         if (command == "help" || command == "--help" || command == "-h") {
             std::fputs(usage, stdout);
             return 0;

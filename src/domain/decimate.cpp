@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <queue>
 #include <string>
 
@@ -231,6 +233,96 @@ Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count) {
         r.t_vertex.push_back(c.removed);
     }
     return r;
+}
+
+namespace {
+
+// Selective undoing of collapses out of order (Hoppe 1997): a collapse can be undone once its
+// kept and side vertices are in D again and still neighbours; those that were removed since are
+// brought back first, by undoing the (more recent) collapses that removed them.
+class Refiner {
+public:
+    Refiner(Domain& d, const TriMesh& T) : d_(d), T_(T), current_(T.n_vertices()), removed_by_(T.n_vertices(), none), undone_(d.history.size(), 0) {
+        for (std::size_t j = 0; j < d.t_vertex.size(); ++j) current_[d.t_vertex[j].idx()] = VertexId(static_cast<VertexId::Index>(j));
+        for (std::size_t i = 0; i < d.history.size(); ++i) removed_by_[d.history[i].removed.idx()] = i;
+    }
+    ~Refiner() {
+        std::size_t kept = 0;
+        for (std::size_t i = 0; i < d_.history.size(); ++i)
+            if (!undone_[i]) d_.history[kept++] = d_.history[i];
+        d_.history.resize(kept);
+    }
+    Refiner(const Refiner&) = delete;
+    Refiner& operator=(const Refiner&) = delete;
+
+    std::size_t count() const { return count_; }
+    VertexId current(VertexId x) const { return current_[x.idx()]; }
+
+    // Brings vertex x of T back into D.
+    bool restore(VertexId x) { return current_[x.idx()].valid() || (removed_by_[x.idx()] != none && undo(removed_by_[x.idx()])); }
+
+    // Undoes the most recent remaining collapse that kept x and satisfies `wanted`.
+    template <class Wanted>
+    bool split(VertexId x, Wanted&& wanted) {
+        for (std::size_t i = d_.history.size(); i-- > 0;)
+            if (!undone_[i] && d_.history[i].kept == x && wanted(d_.history[i]) && undo(i)) return true;
+        return false;
+    }
+
+    // Whether undoing collapse c would move D vertex w from c's kept vertex to the new one: the
+    // moved ones are strictly inside the counter-clockwise wedge from left to right
+    // (TriMesh::split_vertex).
+    // False when D lost its kept or side vertices.
+    bool moves(const Collapse& c, VertexId w) const {
+        const VertexId k = current_[c.kept.idx()], a = current_[c.left.idx()], b = current_[c.right.idx()];
+        if (!k.valid() || !a.valid() || !b.valid()) return false;
+        const HalfedgeId ha = d_.mesh.find_halfedge(k, a), hb = d_.mesh.find_halfedge(k, b);
+        if (!ha.valid() || !hb.valid()) return false;
+        for (HalfedgeId g = d_.mesh.ccw_rotated(ha); g != hb; g = d_.mesh.ccw_rotated(g))
+            if (d_.mesh.to(g) == w) return true;
+        return false;
+    }
+
+private:
+    static constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+    Domain& d_;
+    const TriMesh& T_;
+    std::vector<VertexId> current_;       // T vertex -> its D vertex (invalid: removed)
+    std::vector<std::size_t> removed_by_;  // T vertex -> the collapse that removed it
+    std::vector<std::uint8_t> undone_;
+    std::size_t count_ = 0;
+
+    bool undo(std::size_t i) {
+        const Collapse c = d_.history[i];
+        for (VertexId x : {c.kept, c.left, c.right})
+            if (!restore(x)) return false;
+        const VertexId k = current_[c.kept.idx()], a = current_[c.left.idx()], b = current_[c.right.idx()];
+        if (a == b || !d_.mesh.find_halfedge(k, a).valid() || !d_.mesh.find_halfedge(k, b).valid()) return false;
+        current_[c.removed.idx()] = d_.mesh.split_vertex(k, a, b, T_.position(c.removed));
+        d_.t_vertex.push_back(c.removed);
+        undone_[i] = 1;
+        ++count_;
+        return true;
+    }
+};
+
+}  // namespace
+
+std::size_t refine_at(Domain& d, const TriMesh& T, std::span<const VertexId> at) {
+    Refiner r(d, T);
+    for (VertexId x : at) {
+        if (r.current(x).valid()) r.split(x, [](const Collapse&) { return true; });
+        else r.restore(x);
+    }
+    return r.count();
+}
+
+std::size_t split_edge_away(Domain& d, const TriMesh& T, VertexId a, VertexId b) {
+    Refiner r(d, T);
+    const VertexId xa = d.t_vertex[a.idx()], xb = d.t_vertex[b.idx()];
+    // The most recent collapse that gave a (or b) the edge to the other end, undone.
+    if (!r.split(xa, [&](const Collapse& c) { return r.moves(c, b); })) r.split(xb, [&](const Collapse& c) { return r.moves(c, a); });
+    return r.count();
 }
 
 }  // namespace fhr::domain

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -67,5 +68,22 @@ Domain decimate(const TriMesh& T, const DecimateOptions& options);
 /// is T itself, with its vertices renumbered: result.t_vertex maps them to T.
 /// \pre count <= d.history.size().
 Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count);
+
+/// Selective refinement of D at some vertices of T (§3's remedy when conditions (1)/(2) fail,
+/// paper_notes/partition.md), after Hoppe (1997): a vertex x of T that D lost comes back by
+/// undoing the collapse that removed it; a vertex x_j of D is split again by undoing the most
+/// recent remaining collapse that kept it. A collapse whose kept or side vertices have since been
+/// removed needs the collapses that removed them undone first, recursively (each of those is more
+/// recent, so the recursion ends). Undone collapses leave d.history; new vertices are appended.
+/// \return the number of collapses undone (0 when none of `at` has one left that can be undone).
+/// \post D is valid and closed with the same Euler characteristic; its vertices are T's.
+std::size_t refine_at(Domain& d, const TriMesh& T, std::span<const VertexId> at);
+
+/// Selective refinement that removes D's edge [v_a, v_b]: undoes the most recent remaining
+/// collapse that kept x_a (else x_b) and whose split moves the edge's other end to the new
+/// vertex, so that the edge becomes [new vertex, v_b] (Hoppe 1997; TriMesh::split_vertex).
+/// \return the number of collapses undone (0 when no such collapse is left).
+/// \post as refine_at.
+std::size_t split_edge_away(Domain& d, const TriMesh& T, VertexId a, VertexId b);
 
 }  // namespace fhr::domain

@@ -7,22 +7,18 @@
 
 #include "core/errors.hpp"
 #include "geodesic/fast_marching.hpp"
+#include "geodesic/scratch.hpp"
 
 namespace fhr::geodesic {
 namespace {
 
-// d_a(a, b): fast marching from a, its bound doubled until b is final. The straight-line
-// distance is a lower bound of the geodesic one, so the first bound is never wasted by much.
-double approximate_distance(const TriMesh& mesh, VertexId a, VertexId b) {
-    double bound = 2 * (mesh.position(a) - mesh.position(b)).norm();
-    for (;;) {
-        const DistanceField f = fast_marching(mesh, std::span(&a, 1), {bound});
-        if (std::isfinite(f.distance[b.idx()])) return f.distance[b.idx()];
-        bound *= 2;
-    }
-}
+/// The certificate search compares lengths of two runs of the exact algorithm, each carrying a
+/// relative rounding error of about k·2⁻⁵² after k unfoldings (k <= 10⁴ on our meshes, so
+/// <= 2.3·10⁻¹²): it prunes above L(1 + margin) and calls a path shorter only below L(1 − margin),
+/// the exact algorithm's own filter_tolerance (paper_notes/exact_geodesics.md, "Tolerances").
+constexpr double certificate_margin = 1e-11;
 
-// A face next to h that the mask leaves out (so h lies on T_jk's artificial boundary).
+// A face is outside T_jk when the mask leaves it out (a real hole of T is not outside).
 bool outside(const TriMesh& mesh, const std::vector<std::uint8_t>& mask, HalfedgeId h) {
     return !mesh.is_boundary(h) && !mask[mesh.face(h).idx()];
 }
@@ -42,33 +38,19 @@ bool touches_boundary(const TriMesh& mesh, const std::vector<std::uint8_t>& mask
     return false;
 }
 
-// Distance from p to the segment [u, w].
-double segment_distance(const Vec3& p, const Vec3& u, const Vec3& w) {
-    const Vec3 e = w - u;
-    const double len2 = e.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((p - u).dot(e) / len2, 0.0, 1.0) : 0.0;
-    return (p - (u + t * e)).norm();
-}
-
-// Theorem (paper_notes/ellipse.md): a path from a to b that leaves T_jk first meets its
-// artificial boundary at a point x of some boundary edge (u, w) of length ℓ. Its part up to x
-// lies in T_jk, so it is at least d_R(a, x) long (d_R: exact distance within T_jk); d_R is
-// 1-Lipschitz along the edge, so d_R(a, x) >= max(d_R(a,u) − |ux|, d_R(a,w) − |wx|)
-// >= (d_R(a,u) + d_R(a,w) − ℓ) / 2. The rest is at least the straight-line distance from b to the
-// edge. When that sum is at least the restricted length L on every boundary edge, no path
-// through the outside is shorter, and the restricted path is a shortest path of T.
-bool certified(const TriMesh& mesh, const std::vector<std::uint8_t>& mask, const ExactGeodesic& from_a, VertexId b,
-               double L) {
-    const Vec3& pb = mesh.position(b);
-    for (HalfedgeId h : mesh.halfedges()) {
-        if (mesh.is_boundary(h) || !mask[mesh.face(h).idx()] || !outside(mesh, mask, TriMesh::twin(h))) continue;
-        const VertexId u = mesh.from(h), w = mesh.to(h);
-        const Vec3 &pu = mesh.position(u), &pw = mesh.position(w);
-        const double to_edge = 0.5 * (from_a.distance(u) + from_a.distance(w) - (pu - pw).norm());
-        if (to_edge + segment_distance(pb, pu, pw) < L) return false;
+// The face mask of T_jk, borrowed clean (all zero) from a per-thread pool (scratch.hpp): an
+// array of #F entries per path would cost more than the ellipse on a large mesh. `in` lists the
+// faces set to 1. The ellipse only grows with K (the fields are fixed, the bound grows), so the
+// mask is only ever added to.
+struct MaskScratch {
+    std::vector<std::uint8_t> mask;
+    std::vector<std::uint32_t> in;
+    void fit(std::size_t n) { mask.resize(n, 0); }  // clean, so shrinking or growing keeps it clean
+    void reset() {
+        for (std::uint32_t f : in) mask[f] = 0;
+        detail::clear_buffer(in);
     }
-    return true;
-}
+};
 
 }  // namespace
 
@@ -79,36 +61,67 @@ EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, c
                                       std::to_string(nv) + " vertices)");
     if (a == b) throw InvalidInput("", 0, "the two vertices are the same (" + std::to_string(a.idx()) + ")");
     if (!(options.K > 1)) throw InvalidInput("", 0, "K must be greater than 1");
-    const double d_ab = approximate_distance(mesh, a, b);
+    // d_a(a, b): the run from a, stopped once b is final, then continued for the ellipse.
+    FastMarching from_a(mesh, std::span(&a, 1));
+    const double d_ab = from_a.advance_to(b);
+    if (!std::isfinite(d_ab)) throw InvalidInput("", 0, "the two vertices are not connected");
+    FastMarching from_b(mesh, std::span(&b, 1));
+    const detail::Borrowed<MaskScratch> scratch = detail::borrow<MaskScratch>(mesh.n_faces());
+    std::vector<std::uint8_t>& mask = scratch->mask;
     EllipsePath result;
-    std::vector<std::uint8_t> mask(mesh.n_faces());
     for (double K = options.K;; K = 1 + 2 * (K - 1)) {
         const double bound = K * d_ab;
-        const DistanceField from_a = fast_marching(mesh, std::span(&a, 1), {bound});
-        const DistanceField from_b = fast_marching(mesh, std::span(&b, 1), {bound});
-        std::fill(mask.begin(), mask.end(), 0);
-        std::size_t faces = 0;
-        for (VertexId v : from_a.finalized) {
-            if (!(from_a.distance[v.idx()] + from_b.distance[v.idx()] <= bound)) continue;
+        from_a.advance(bound);
+        from_b.advance(bound);
+        // T_jk: the faces around every vertex with d_a(v, a) + d_a(v, b) <= K·D_a. Such a vertex
+        // has d_a(v, a) <= K·D_a, so from_a has reached it. Earlier attempts' faces stay in.
+        for (VertexId v : from_a.finalized()) {
+            if (!(from_a.distance(v) + from_b.distance(v) <= bound)) continue;
             mesh.for_each_outgoing(v, [&](HalfedgeId h) {
+                if (mesh.is_boundary(h)) return;
                 std::uint8_t& in = mask[mesh.face(h).idx()];
-                faces += !in;
+                if (!in) scratch->in.push_back(mesh.face(h).idx());
                 in = 1;
             });
         }
+        const std::size_t faces = scratch->in.size();
         const bool everything = faces == mesh.n_faces();
-        ExactGeodesic exact(mesh, a, {everything ? nullptr : &mask});
-        exact.propagate();  // all of T_jk: the certificate needs d_R on its whole boundary
-        GeodesicPath path = exact.path_to(b);
+        ExactGeodesic restricted(mesh, a, {everything ? nullptr : &mask});
+        restricted.propagate(std::span(&b, 1));
+        GeodesicPath path = restricted.path_to(b);
+        const double L = path.length;
         result.attempts += 1;
-        result.windows_created += exact.stats().windows_created;
-        if (everything || (std::isfinite(path.length) && !touches_boundary(mesh, mask, path) &&
-                           certified(mesh, mask, exact, b, path.length))) {
+        result.windows_created += restricted.stats().windows_created;
+        result.K = K;
+        result.ellipse_faces = faces;
+        if (everything) {
             result.path = std::move(path);
-            result.K = K;
-            result.ellipse_faces = faces;
+            result.certificate = EllipsePath::Certificate::whole_mesh;
             return result;
         }
+        if (!std::isfinite(L) || touches_boundary(mesh, mask, path)) continue;  // the paper's rule: grow K
+        // Certificate 1 (paper_notes/ellipse.md): every path that leaves T_jk is at least
+        // min(border_key, stop_key) long.
+        if (std::min(restricted.stats().border_key, restricted.stats().stop_key) >= L) {
+            result.path = std::move(path);
+            result.certificate = EllipsePath::Certificate::border;
+            return result;
+        }
+        // Certificate 2: the exact search on all of T, pruned above L (1 + filter margin), sees only
+        // {p : d(a, p) + |p − b| <= L(1 + margin)}; what it finds shorter than L is the distance on T.
+        ExactOptions whole;
+        whole.prune_above = L * (1 + certificate_margin);
+        ExactGeodesic search(mesh, a, whole);
+        search.propagate(std::span(&b, 1));
+        result.certificate_windows = search.stats().windows_created;
+        if (search.distance(b) < L * (1 - certificate_margin)) {
+            result.path = search.path_to(b);
+            result.certificate = EllipsePath::Certificate::replaced;
+        } else {
+            result.path = std::move(path);
+            result.certificate = EllipsePath::Certificate::search;
+        }
+        return result;
     }
 }
 

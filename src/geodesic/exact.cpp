@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/geometry.hpp"
+#include "geodesic/scratch.hpp"
 
 namespace fhr::geodesic {
 
@@ -72,27 +73,80 @@ double longest_edge_at(const TriMesh& m, VertexId v) {
 
 }  // namespace
 
-ExactGeodesic::ExactGeodesic(const TriMesh& mesh, VertexId source, ExactOptions options)
-    : mesh_(mesh), options_(options) {
+void ExactGeodesic::Scratch::fit(std::size_t n) {
+    if (dist.size() >= n) return;
+    dist.resize(n, INFINITY);
+    via.resize(n, Via{});
+    kind.resize(n, unknown);
+}
+
+void ExactGeodesic::Scratch::reset() {
+    for (std::uint32_t v : touched) {
+        dist[v] = INFINITY;
+        via[v] = Via{};
+        kind[v] = unknown;
+    }
+    detail::clear_buffer(touched);
+    detail::clear_buffer(windows);
+    detail::clear_buffer(heap);
+}
+
+void ExactGeodesic::ScratchDeleter::operator()(Scratch* s) const {
+    detail::ScratchPool<Scratch>::release(std::unique_ptr<Scratch>(s));
+}
+
+namespace {
+
+void check_source(const TriMesh& mesh, VertexId source, const ExactOptions& options) {
     if (!source.valid() || source.idx() >= mesh.n_vertices())
         throw std::invalid_argument("ExactGeodesic: source vertex out of range");
     if (options.face_mask && options.face_mask->size() != mesh.n_faces())
         throw std::invalid_argument("ExactGeodesic: face_mask needs one entry per face");
-    dist_.assign(mesh.n_vertices(), INFINITY);
-    via_.assign(mesh.n_vertices(), Via{});
-    kind_.assign(mesh.n_vertices(), unknown);
+}
+
+}  // namespace
+
+ExactGeodesic::ExactGeodesic(const TriMesh& mesh, VertexId source, ExactOptions options)
+    : mesh_((check_source(mesh, source, options), mesh)),
+      options_(options),
+      scratch_(detail::ScratchPool<Scratch>::acquire(mesh.n_vertices()).release()),
+      dist_(scratch_->dist),
+      via_(scratch_->via),
+      kind_(scratch_->kind),
+      windows_(scratch_->windows),
+      heap_(scratch_->heap) {
+    scratch_->touched.push_back(source.idx());
     dist_[source.idx()] = 0;
     via_[source.idx()] = {Via::Kind::source, 0};
     push_vertex(source);
 }
 
+ExactGeodesic::~ExactGeodesic() = default;
+
 bool ExactGeodesic::face_exists(FaceId f) const {
     return f.valid() && (!options_.face_mask || (*options_.face_mask)[f.idx()] != 0);
+}
+
+bool ExactGeodesic::masked_out(FaceId f) const {
+    return f.valid() && options_.face_mask && (*options_.face_mask)[f.idx()] == 0;
+}
+
+// A window that would enter a masked-out face: its key over its interval (clamped to the edge,
+// not filtered, so at most the key the window would have had) bounds from below every path that
+// leaves the mask through it.
+void ExactGeodesic::note_border(const Window& candidate) {
+    Window w = candidate;
+    const double len = (mesh_.position(mesh_.to(w.h)) - mesh_.position(mesh_.from(w.h))).norm();
+    const double lo = std::min(w.b0, w.b1), hi = std::max(w.b0, w.b1);
+    w.b0 = std::clamp(lo, 0.0, len);
+    w.b1 = std::clamp(hi, 0.0, len);
+    stats_.border_key = std::min(stats_.border_key, window_key(w));
 }
 
 std::uint8_t ExactGeodesic::vertex_kind(VertexId v) {
     std::uint8_t& kind = kind_[v.idx()];
     if (kind == unknown) {
+        if (dist_[v.idx()] == INFINITY) scratch_->touched.push_back(v.idx());
         bool boundary = false;
         double sum = 0;
         mesh_.for_each_outgoing(v, [&](HalfedgeId h) {
@@ -132,12 +186,15 @@ double ExactGeodesic::window_key(const Window& w) const {
 }
 
 void ExactGeodesic::push_vertex(VertexId v) {
-    heap_.push_back({vertex_key(v, dist_[v.idx()]), dist_[v.idx()], seq_++, v.idx(), true});
+    const double key = vertex_key(v, dist_[v.idx()]);
+    if (key > options_.prune_above) return;
+    heap_.push_back({key, dist_[v.idx()], seq_++, v.idx(), true});
     std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
 }
 
 void ExactGeodesic::relax(VertexId v, double d, Via via) {
     if (!(d < dist_[v.idx()])) return;
+    if (dist_[v.idx()] == INFINITY && kind_[v.idx()] == unknown) scratch_->touched.push_back(v.idx());
     dist_[v.idx()] = d;
     via_[v.idx()] = via;
     if (vertex_kind(v) != plain) push_vertex(v);
@@ -165,9 +222,11 @@ void ExactGeodesic::push_window(const Window& candidate) {
     w.b1 = std::clamp(w.b1, 0.0, f.len);
     // sy < 0: a source image on the edge's own line sends rays along the edge only (zero width).
     if (!(w.b1 - w.b0 > width_tolerance * f.len) || !(w.sy < 0) || useless(w, f)) return;
+    const double key = window_key(w);
+    if (key > options_.prune_above) return;
     windows_.push_back(w);
     ++stats_.windows_created;
-    heap_.push_back({window_key(w), 0, seq_++, static_cast<std::uint32_t>(windows_.size() - 1), false});
+    heap_.push_back({key, 0, seq_++, static_cast<std::uint32_t>(windows_.size() - 1), false});
     std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
 }
 
@@ -207,6 +266,8 @@ void ExactGeodesic::expand_vertex(VertexId v) {
     do {
         if (face_exists(mesh_.face(g)) || face_exists(mesh_.face(TriMesh::twin(g))))
             relax(mesh_.to(g), delta + (mesh_.position(mesh_.to(g)) - pv).norm(), {Via::Kind::edge, v.idx()});
+        // v is on the mask's border: a path may leave through v itself.
+        if (masked_out(mesh_.face(g))) stats_.border_key = std::min(stats_.border_key, vertex_key(v, delta));
         bool emit = face_exists(mesh_.face(g));
         if (!all_faces) {
             // The face spans [a, a + fan_[k]] counted from the arrival direction; the wedge is
@@ -218,11 +279,15 @@ void ExactGeodesic::expand_vertex(VertexId v) {
         if (emit) {
             // The edge opposite v in face(g), seen from the face beyond it: b -> a.
             const HalfedgeId beyond = TriMesh::twin(mesh_.next(g));
-            if (face_exists(mesh_.face(beyond))) {
+            if (face_exists(mesh_.face(beyond)) || masked_out(mesh_.face(beyond))) {
                 const Vec3& pb = mesh_.position(mesh_.from(beyond));
                 const Vec3 e = mesh_.position(mesh_.to(beyond)) - pb, r = pv - pb;
                 const double len = e.norm();
-                push_window({beyond, v, no_parent, 0, len, e.dot(r) / len, -e.cross(r).norm() / len, delta});
+                const Window w{beyond, v, no_parent, 0, len, e.dot(r) / len, -e.cross(r).norm() / len, delta};
+                if (face_exists(mesh_.face(beyond)))
+                    push_window(w);
+                else
+                    note_border(w);
             }
         }
         g = mesh_.ccw_rotated(g);
@@ -258,22 +323,30 @@ void ExactGeodesic::propagate_window(std::uint32_t index) {
     }
     if (left_end > w.b0) {
         const HalfedgeId child = TriMesh::twin(hp);
-        if (face_exists(mesh_.face(child))) {
+        if (face_exists(mesh_.face(child)) || masked_out(mesh_.face(child))) {
             const double len = std::hypot(f.cx, f.cy);
             const P2 o{0, 0}, u{f.cx / len, f.cy / len};
             const P2 si = to_frame(s, o, u);
             const double b1 = left_end == xc ? len : intercept(si, to_frame({left_end, 0}, o, u));
-            push_window({child, w.pseudo, index, intercept(si, to_frame({w.b0, 0}, o, u)), b1, si.x, si.y, w.sigma});
+            const Window c{child, w.pseudo, index, intercept(si, to_frame({w.b0, 0}, o, u)), b1, si.x, si.y, w.sigma};
+            if (face_exists(mesh_.face(child)))
+                push_window(c);
+            else
+                note_border(c);
         }
     }
     if (right_start < w.b1) {
         const HalfedgeId child = TriMesh::twin(hn);
-        if (face_exists(mesh_.face(child))) {
+        if (face_exists(mesh_.face(child)) || masked_out(mesh_.face(child))) {
             const double len = std::hypot(f.len - f.cx, f.cy);
             const P2 u{(f.len - f.cx) / len, -f.cy / len};
             const P2 si = to_frame(s, c, u);
             const double b0 = right_start == xc ? 0 : intercept(si, to_frame({right_start, 0}, c, u));
-            push_window({child, w.pseudo, index, b0, intercept(si, to_frame({w.b1, 0}, c, u)), si.x, si.y, w.sigma});
+            const Window r{child, w.pseudo, index, b0, intercept(si, to_frame({w.b1, 0}, c, u)), si.x, si.y, w.sigma};
+            if (face_exists(mesh_.face(child)))
+                push_window(r);
+            else
+                note_border(r);
         }
     }
 }
@@ -289,11 +362,13 @@ void ExactGeodesic::propagate(std::span<const VertexId> targets) {
         std::make_heap(heap_.begin(), heap_.end(), std::greater<>());
     }
     while (!heap_.empty()) {
+        stats_.stop_key = heap_.front().key;
         if (!targets.empty()) {
             double bound = 0;
             for (VertexId t : targets) bound = std::max(bound, dist_[t.idx()]);
             if (heap_.front().key >= bound) return;  // nothing left can lower a target's distance
         }
+        if (heap_.front().key > options_.prune_above) return;  // keys from before a re-keying
         std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
         const Event e = heap_.back();
         heap_.pop_back();
@@ -302,6 +377,7 @@ void ExactGeodesic::propagate(std::span<const VertexId> targets) {
         else if (e.dist == dist_[e.index])  // else stale: the vertex was reached shorter since
             expand_vertex(VertexId(e.index));
     }
+    stats_.stop_key = INFINITY;
 }
 
 GeodesicPath ExactGeodesic::path_to(VertexId target) const {

@@ -26,6 +26,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -48,6 +49,15 @@ struct ExactStats {
     std::size_t windows_created = 0;     ///< windows that passed the filter and were queued
     std::size_t windows_propagated = 0;  ///< windows popped and unfolded into their next face
     std::size_t pseudo_sources = 0;      ///< vertex events expanded (the source included)
+    /// With a face_mask: the smallest key (a lower bound of the length of any source-to-target
+    /// path through that point, see propagate) among the events expanded so far that reached the
+    /// mask's border: a window unfolded into a face whose next face is masked out (its key over
+    /// the interval it would have had there), and a pseudo-source next to a masked-out face.
+    /// INFINITY when none did. The ellipse certificate of §3 reads it (paper_notes/ellipse.md).
+    double border_key = INFINITY;
+    /// The smallest key left in the queue when propagate() last returned (INFINITY if empty):
+    /// every event not yet expanded, and everything it can lead to, has at least this key.
+    double stop_key = INFINITY;
 };
 
 struct ExactOptions {
@@ -55,6 +65,11 @@ struct ExactOptions {
     /// edge between a masked-in and a masked-out face is a boundary edge, and its vertices are
     /// boundary vertices (pseudo-sources).
     const std::vector<std::uint8_t>* face_mask = nullptr;
+    /// Events whose key exceeds this are never queued or expanded, so only paths no longer than
+    /// it are searched: a target whose distance exceeds it may be left at a larger value (or
+    /// INFINITY). A distance below it is exact as without the bound (the events of a path keep
+    /// keys at most its length). The ellipse certificate uses it (paper_notes/ellipse.md).
+    double prune_above = INFINITY;
 };
 
 /// The relative tolerances of the algorithm; their derivations are in
@@ -72,6 +87,9 @@ public:
     ///      has one entry per face and outlives this object; the mesh must outlive this object.
     /// \throws std::invalid_argument when the source is out of range or the mask has the wrong size.
     ExactGeodesic(const TriMesh& mesh, VertexId source, ExactOptions options = {});
+    ~ExactGeodesic();
+    ExactGeodesic(const ExactGeodesic&) = delete;
+    ExactGeodesic& operator=(const ExactGeodesic&) = delete;
 
     /// Propagates until d(t) is final for every t in `targets` (early stop; the order is
     /// goal-directed, so other vertices' distances need not be final yet), or until the whole
@@ -118,21 +136,40 @@ private:
     };
     static constexpr std::uint32_t no_parent = 0xffffffffu;
 
-    const TriMesh& mesh_;
-    ExactOptions options_;
-    std::vector<double> dist_;
-    std::vector<Via> via_;
     /// Vertex kinds, computed when first needed; saddles and boundary vertices are pseudo-sources.
     static constexpr std::uint8_t unknown = 0, plain = 1, saddle = 2, boundary_vertex = 3;
-    std::vector<std::uint8_t> kind_;
-    std::vector<Window> windows_;
+    /// The per-vertex arrays and the reusable buffers, borrowed clean from a per-thread pool
+    /// (geodesic/scratch.hpp) so that a search costs what it touches, not O(#V).
+    struct Scratch {
+        std::vector<double> dist;
+        std::vector<Via> via;
+        std::vector<std::uint8_t> kind;
+        std::vector<std::uint32_t> touched;  ///< vertices whose dist, via or kind changed
+        std::vector<Window> windows;
+        std::vector<Event> heap;
+        void fit(std::size_t n);
+        void reset();
+    };
+    struct ScratchDeleter {
+        void operator()(Scratch* s) const;
+    };
+
+    const TriMesh& mesh_;
+    ExactOptions options_;
+    std::unique_ptr<Scratch, ScratchDeleter> scratch_;
+    std::vector<double>& dist_;
+    std::vector<Via>& via_;
+    std::vector<std::uint8_t>& kind_;
+    std::vector<Window>& windows_;
+    std::vector<Event>& heap_;
     std::vector<double> fan_;    ///< expand_vertex's corner angles, reused
     std::vector<Vec3> goals_;    ///< positions of the current targets
-    std::vector<Event> heap_;
     std::uint32_t seq_ = 0;
     ExactStats stats_;
 
     bool face_exists(FaceId f) const;
+    bool masked_out(FaceId f) const;
+    void note_border(const Window& candidate);
     std::uint8_t vertex_kind(VertexId v);
     double vertex_key(VertexId v, double d) const;
     double window_key(const Window& w) const;

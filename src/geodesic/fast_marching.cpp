@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "geodesic/scratch.hpp"
 
 namespace fhr::geodesic {
 
@@ -58,51 +59,103 @@ struct VirtualVertex {
     Vec3 p2;  // z = 0
 };
 
-class FastMarcher {
-public:
-    FastMarcher(const TriMesh& m, const FastMarchingOptions& o)
-        : m_(m), o_(o), dist_(m.n_vertices(), INFINITY), final_(m.n_vertices(), 0) {
-        if (o.unfold) link_head_.assign(m.n_vertices(), no_link);
-    }
+// The per-vertex arrays of a run, borrowed clean from the per-thread pool (scratch.hpp) and
+// handed back clean: `touched` lists the vertices whose dist (and final flag) changed, `linked`
+// those whose link_head did.
+struct MarchScratch {
+    std::vector<double> dist;
+    std::vector<std::uint8_t> final;
+    std::vector<std::uint32_t> link_head;
+    std::vector<std::uint32_t> touched, linked;
+    std::vector<VertexId> finalized;
+    std::vector<HeapEntry> heap;
+    struct Link {
+        HalfedgeId corner;
+        std::uint32_t next;
+    };
+    std::vector<Link> links;
 
-    DistanceField run(std::span<const VertexId> sources) {
+    void fit(std::size_t n) {
+        if (dist.size() >= n) return;
+        dist.resize(n, INFINITY);
+        final.resize(n, 0);
+        link_head.resize(n, no_link);
+    }
+    void reset() {
+        for (std::uint32_t v : touched) {
+            dist[v] = INFINITY;
+            final[v] = 0;
+        }
+        for (std::uint32_t p : linked) link_head[p] = no_link;
+        detail::clear_buffer(touched);
+        detail::clear_buffer(linked);
+        detail::clear_buffer(finalized);
+        detail::clear_buffer(heap);
+        detail::clear_buffer(links);
+    }
+};
+
+}  // namespace
+
+struct FastMarching::State {
+public:
+    State(const TriMesh& m, bool unfold)
+        : m_(m),
+          unfold_(unfold),
+          s_(detail::borrow<MarchScratch>(m.n_vertices())),
+          dist_(s_->dist),
+          final_(s_->final),
+          link_head_(s_->link_head),
+          finalized_(s_->finalized),
+          heap_(s_->heap),
+          links_(s_->links) {}
+
+    void start(std::span<const VertexId> sources) {
         for (VertexId s : sources) {
             if (dist_[s.idx()] == 0) continue;
-            dist_[s.idx()] = 0;
+            set_dist(s.idx(), 0);
             push(0, s.idx());
         }
+    }
+
+    // The main loop of the full run, stopped before a vertex beyond max_distance is accepted,
+    // or right after `target` is accepted.
+    void run(double max_distance, VertexId target) {
         while (!heap_.empty()) {
             const HeapEntry top = heap_.front();
             if (final_[top.v] || top.d != dist_[top.v]) {  // accepted already, or a stale entry
                 pop();
                 continue;
             }
-            if (top.d > o_.max_distance) break;
+            if (top.d > max_distance) break;
             pop();
             accept(top.v);
+            if (top.v == target.idx()) break;
         }
-        // Early stop: the tentative values left in the band are not fast-marching values yet.
-        for (const HeapEntry& e : heap_)
-            if (!final_[e.v]) dist_[e.v] = INFINITY;
-        return DistanceField{std::move(dist_), std::move(finalized_)};
     }
+
+    double distance(VertexId v) const { return final_[v.idx()] ? dist_[v.idx()] : INFINITY; }
+    const TriMesh& mesh() const { return m_; }
+    std::span<const VertexId> finalized() const { return finalized_; }
 
 private:
     const TriMesh& m_;
-    const FastMarchingOptions& o_;
-    std::vector<double> dist_;
-    std::vector<std::uint8_t> final_;
-    std::vector<VertexId> finalized_;
-    std::vector<HeapEntry> heap_;
+    const bool unfold_;
+    detail::Borrowed<MarchScratch> s_;
+    std::vector<double>& dist_;  // tentative in the band, final where final_ is set
+    std::vector<std::uint8_t>& final_;
     // Obtuse corners waiting for their virtual vertex p to become final: singly linked lists,
     // one per p, of the corners' opposite halfedges.
-    std::vector<std::uint32_t> link_head_;
-    struct Link {
-        HalfedgeId corner;
-        std::uint32_t next;
-    };
-    std::vector<Link> links_;
+    std::vector<std::uint32_t>& link_head_;
+    std::vector<VertexId>& finalized_;
+    std::vector<HeapEntry>& heap_;
+    std::vector<MarchScratch::Link>& links_;
     double front_ = 0;  // distance of the vertex being accepted
+
+    void set_dist(std::uint32_t v, double d) {
+        if (dist_[v] == INFINITY) s_->touched.push_back(v);
+        dist_[v] = d;
+    }
 
     void push(double d, std::uint32_t v) {
         heap_.push_back({d, v});
@@ -125,7 +178,7 @@ private:
             update_corner(h, true);                    // the corner at to(next(h)), opposite v -> w
             update_corner(m_.next(m_.next(h)), true);  // the corner at w, opposite to(next(h)) -> v
         });
-        if (!o_.unfold) return;
+        if (!unfold_) return;
         for (std::uint32_t l = link_head_[v]; l != no_link; l = links_[l].next)
             update_corner(links_[l].corner, false);
     }
@@ -133,7 +186,7 @@ private:
     void relax(std::uint32_t c, double t) {
         t = std::max(t, front_);  // rounding must not let a value fall below the accepted front
         if (t < dist_[c]) {
-            dist_[c] = t;
+            set_dist(c, t);
             push(t, c);
         }
     }
@@ -150,7 +203,7 @@ private:
             return (m_.position(a) - pc).dot(m_.position(b) - pc) >= 0;
         }();
         if (acute && !(fa && fb)) return;  // the common case: only the edge update applies
-        if (!acute && !o_.unfold) return;
+        if (!acute && !unfold_) return;
         const Vec3& pc = m_.position(c);
         const Vec3 e_a = m_.position(a) - pc, e_b = m_.position(b) - pc;
         const double d_a = dist_[a.idx()], d_b = dist_[b.idx()];
@@ -164,6 +217,7 @@ private:
         // The corner is first met when the first of a, b becomes final (exactly once); from
         // then on it must also hear about p.
         if (from_edge_end && !(fa && fb) && !final_[pi]) {
+            if (link_head_[pi] == no_link) s_->linked.push_back(pi);
             links_.push_back({h, link_head_[pi]});
             link_head_[pi] = static_cast<std::uint32_t>(links_.size() - 1);
         }
@@ -222,17 +276,51 @@ private:
     }
 };
 
-}  // namespace
+namespace {
 
-DistanceField fast_marching(const TriMesh& mesh, std::span<const VertexId> sources,
-                            const FastMarchingOptions& options) {
-    if (std::isnan(options.max_distance)) throw InvalidInput("", 0, "fast marching: max_distance is NaN");
+void check_sources(const TriMesh& mesh, std::span<const VertexId> sources) {
     for (VertexId s : sources)
         if (!s.valid() || s.idx() >= mesh.n_vertices())
             throw InvalidInput("", 0, "fast marching: source " + std::to_string(s.idx()) +
                                           " is not a vertex of the mesh (" + std::to_string(mesh.n_vertices()) +
                                           " vertices)");
-    return FastMarcher(mesh, options).run(sources);
+}
+
+}  // namespace
+
+FastMarching::FastMarching(const TriMesh& mesh, std::span<const VertexId> sources, bool unfold) {
+    check_sources(mesh, sources);
+    state_ = std::make_unique<State>(mesh, unfold);
+    state_->start(sources);
+}
+
+FastMarching::~FastMarching() = default;
+
+void FastMarching::advance(double max_distance) {
+    if (std::isnan(max_distance)) throw InvalidInput("", 0, "fast marching: max_distance is NaN");
+    state_->run(max_distance, VertexId());
+}
+
+double FastMarching::advance_to(VertexId target) {
+    check_sources(state_->mesh(), std::span(&target, 1));
+    state_->run(INFINITY, target);
+    return state_->distance(target);
+}
+
+double FastMarching::distance(VertexId v) const { return state_->distance(v); }
+
+std::span<const VertexId> FastMarching::finalized() const { return state_->finalized(); }
+
+DistanceField fast_marching(const TriMesh& mesh, std::span<const VertexId> sources,
+                            const FastMarchingOptions& options) {
+    if (std::isnan(options.max_distance)) throw InvalidInput("", 0, "fast marching: max_distance is NaN");
+    FastMarching run(mesh, sources, options.unfold);
+    run.advance(options.max_distance);
+    DistanceField field{std::vector<double>(mesh.n_vertices(), INFINITY), {}};
+    const std::span<const VertexId> done = run.finalized();
+    field.finalized.assign(done.begin(), done.end());
+    for (VertexId v : done) field.distance[v.idx()] = run.distance(v);
+    return field;
 }
 
 }  // namespace fhr::geodesic

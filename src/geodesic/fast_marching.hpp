@@ -29,6 +29,7 @@
 #pragma once
 
 #include <cmath>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -72,11 +73,44 @@ struct DistanceField {
 ///       (tested, not proved: the planar update overestimates a point source's circular front);
 ///       with several, not always: adjacent sources act like the segment between them.
 ///       The result depends only on the mesh, the sources (as a set) and the options.
-///       Cost: O(#V) to allocate the per-vertex arrays, plus O(k log k) for the k vertices within
-///       the final front.
+///       Cost: O(#V) for the returned distance array, plus O(k log k) for the k vertices within
+///       the final front (the run's own arrays are pooled, see FastMarching).
 /// \throws InvalidInput when a source is not a vertex of the mesh, or max_distance is NaN.
 DistanceField fast_marching(const TriMesh& mesh, std::span<const VertexId> sources,
                             const FastMarchingOptions& options = {});
+
+/// A fast-marching run that can be continued (§3 needs d_a(x_j, x_k) first, then the field up to
+/// K·d_a(x_j, x_k), then, when K grows, a little further: one run serves all three). After
+/// advance(r) it has accepted exactly the vertices `fast_marching(mesh, sources, {r, unfold})`
+/// accepts, in the same order and with bitwise the same values; advance_to(t) stops right after
+/// t is accepted. Either may be called again to continue: every call performs the next steps of
+/// the one full run, so any sequence of calls yields a prefix of it.
+/// Its per-vertex arrays come from a per-thread pool (geodesic/scratch.hpp): constructing a run
+/// costs O(1) after the first, not O(#V), and its work is proportional to the vertices reached.
+class FastMarching {
+public:
+    /// \pre mesh valid without garbage, sources are vertices of it; the mesh outlives the run.
+    /// \throws InvalidInput when a source is not a vertex of the mesh.
+    FastMarching(const TriMesh& mesh, std::span<const VertexId> sources, bool unfold = true);
+    ~FastMarching();
+    FastMarching(const FastMarching&) = delete;
+    FastMarching& operator=(const FastMarching&) = delete;
+
+    /// Accepts vertices while the smallest band value is <= max_distance.
+    /// \throws InvalidInput when max_distance is NaN.
+    void advance(double max_distance);
+    /// Accepts vertices until `target` is final or nothing is left; returns distance(target).
+    double advance_to(VertexId target);
+    /// The distance of a final vertex, INFINITY for every other vertex.
+    double distance(VertexId v) const;
+    /// The final vertices in acceptance order (distances non-decreasing).
+    std::span<const VertexId> finalized() const;
+
+    struct State;
+
+private:
+    std::unique_ptr<State> state_;
+};
 
 /// The Kimmel–Sethian planar update (1998, the update on one triangle): the value at c of the plane
 /// wave t(x) = n·x + const with |n| = 1 that takes d_a at a and d_b at b, where e_a = a − c and

@@ -6,35 +6,15 @@
 #include "io/write.hpp"
 
 #include <bit>
-#include <charconv>
 #include <stdexcept>
 #include <string>
 
 #include "io/atomic_file.hpp"
+#include "io/number_text.hpp"
 
 namespace fhr::io {
 
 namespace {
-
-void append_number(std::string& out, double v) {
-    char buffer[32];
-    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
-    out.append(buffer, end);
-}
-
-void append_number(std::string& out, std::uint64_t v) {
-    char buffer[24];
-    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
-    out.append(buffer, end);
-}
-
-/// `x y z` of one point.
-void append_point(std::string& out, const Vec3& p) {
-    for (int c = 0; c < 3; ++c) {
-        append_number(out, p[c]);
-        out += c < 2 ? ' ' : '\n';
-    }
-}
 
 /// \pre every index of `triangles` is < point_count (a caller bug otherwise).
 void check_indices(std::size_t point_count, std::span<const Triangle> triangles) {
@@ -100,19 +80,44 @@ void write_obj(const std::string& path, std::span<const Vec3> points, std::span<
     write_file_atomically(path, out);
 }
 
-void write_ply(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles) {
+void write_obj_polylines(const std::string& path, std::span<const Vec3> points,
+                         std::span<const std::vector<std::uint32_t>> polylines) {
+    std::string out;
+    for (const Vec3& p : points) {
+        out += "v ";
+        append_point(out, p);
+    }
+    for (const auto& line : polylines) {
+        out += 'l';
+        for (std::uint32_t v : line) {
+            if (v >= points.size()) throw std::invalid_argument("fhr::io::write_obj_polylines: index out of range");
+            out += ' ';
+            append_number(out, std::uint64_t{v} + 1);
+        }
+        out += '\n';
+    }
+    write_file_atomically(path, out);
+}
+
+void write_ply(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles,
+               std::span<const std::uint32_t> face_patch) {
     check_indices(points.size(), triangles);
+    if (!face_patch.empty() && face_patch.size() != triangles.size())
+        throw std::logic_error("write_ply: one patch id per face is needed");
     std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by fhr\nelement vertex ";
     append_number(out, points.size());
     out += "\nproperty double x\nproperty double y\nproperty double z\nelement face ";
     append_number(out, triangles.size());
-    out += "\nproperty list uchar uint vertex_indices\nend_header\n";
+    out += "\nproperty list uchar uint vertex_indices\n";
+    if (!face_patch.empty()) out += "property uint patch\n";
+    out += "end_header\n";
     out.reserve(out.size() + 24 * points.size() + 13 * triangles.size());
     for (const Vec3& p : points)
         for (int c = 0; c < 3; ++c) append_little_endian(out, std::bit_cast<std::uint64_t>(p[c]), 8);
-    for (const Triangle& t : triangles) {
+    for (std::size_t f = 0; f < triangles.size(); ++f) {
         out += '\3';
-        for (std::uint32_t v : t) append_little_endian(out, v, 4);
+        for (std::uint32_t v : triangles[f]) append_little_endian(out, v, 4);
+        if (!face_patch.empty()) append_little_endian(out, face_patch[f], 4);
     }
     write_file_atomically(path, out);
 }

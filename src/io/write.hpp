@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "core/polygon_soup.hpp"
 
@@ -22,7 +23,13 @@ void write_off(const std::string& path, std::span<const Vec3> points, std::span<
 void write_obj(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles,
                std::span<const Vec2> corner_uv = {});
 
-/// Binary little-endian PLY with double vertex coordinates and uint32 face indices.
-void write_ply(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles);
+/// OBJ polylines (`l` lines), one per entry of `polylines` (fhr run's geodesics.obj).
+void write_obj_polylines(const std::string& path, std::span<const Vec3> points,
+                         std::span<const std::vector<std::uint32_t>> polylines);
+/// Binary little-endian PLY with double vertex coordinates and uint32 face indices; when
+/// `face_patch` is non-empty, one more face property `uint patch` (fhr run's refined.ply: the
+/// domain face whose patch holds each face of T′).
+void write_ply(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles,
+               std::span<const std::uint32_t> face_patch = {});
 
 }  // namespace fhr::io

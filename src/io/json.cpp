@@ -1,10 +1,11 @@
-// FHR cli — minimal JSON writer (see json.hpp).
-#include "cli/json.hpp"
+// FHR io — minimal JSON writer (see json.hpp).
+#include "io/json.hpp"
 
-#include <charconv>
 #include <cmath>
 
-namespace fhr::cli {
+#include "io/number_text.hpp"
+
+namespace fhr::io {
 
 void JsonWriter::newline() {
     out_ += '\n';
@@ -90,13 +91,6 @@ void JsonWriter::write_string(std::string_view s) {
     out_ += '"';
 }
 
-template <class T>
-static void append_number(std::string& out, T x) {
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof buf, x);
-    out.append(buf, r.ptr);
-}
-
 JsonWriter& JsonWriter::value(double x) {
     if (!std::isfinite(x)) return null();
     element_start();
@@ -128,4 +122,4 @@ JsonWriter& JsonWriter::null() {
     return *this;
 }
 
-}  // namespace fhr::cli
+}  // namespace fhr::io

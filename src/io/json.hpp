@@ -1,4 +1,4 @@
-// FHR cli — a minimal JSON writer for reports (`--json`, report.json). Numbers are written in
+// FHR io — a minimal JSON writer for reports (`--json`, report.json). Numbers are written in
 // shortest round-trip form, so a reader gets back the exact doubles; non-finite numbers become null.
 #pragma once
 
@@ -7,7 +7,7 @@
 #include <string_view>
 #include <type_traits>
 
-namespace fhr::cli {
+namespace fhr::io {
 
 class JsonWriter {
 public:
@@ -42,4 +42,4 @@ private:
     JsonWriter& unsigned_value(std::uint64_t x);
 };
 
-}  // namespace fhr::cli
+}  // namespace fhr::io

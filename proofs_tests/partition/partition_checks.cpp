@@ -1,0 +1,171 @@
+// FHR tests — PART-1..8 of spec/partition.md, independent of how src/partition computes them.
+#include "partition/partition_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "core/geometry.hpp"
+#include "core/topology.hpp"
+
+namespace fhr::test {
+namespace {
+
+// Distance from p to the segment [a, b].
+double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 e = b - a;
+    const double t = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    return (p - (a + t * e)).norm();
+}
+
+// The faces of T whose closure holds vertex v of T′ (its own vertex's faces, or its edge's two).
+std::set<std::uint32_t> faces_holding(const TriMesh& T, const partition::Origin& o) {
+    std::set<std::uint32_t> s;
+    if (o.vertex.valid()) {
+        T.for_each_outgoing(o.vertex, [&](HalfedgeId h) { s.insert(T.face(h).idx()); });
+    } else {
+        s.insert(T.face(TriMesh::halfedge(o.edge, 0)).idx());
+        s.insert(T.face(TriMesh::halfedge(o.edge, 1)).idx());
+    }
+    return s;
+}
+
+}  // namespace
+
+std::string partition_violation(const TriMesh& T, const partition::Partition& P) {
+    std::ostringstream why;
+    const TriMesh& M = P.network.mesh;
+    const domain::Domain& D = P.domain;
+    // PART-1: T′ is a valid closed triangulation with T's Euler characteristic.
+    try {
+        M.validate();
+    } catch (const std::logic_error& e) {
+        return std::string("PART-1: ") + e.what();
+    }
+    if (!boundary_loops(M).empty() || euler_characteristic(M) != euler_characteristic(T)) return "PART-1: T′ is not closed with χ(T)";
+    // PART-2: Ω_T′ = Ω_T — T's vertices kept in place, new vertices on T's edges, every face of
+    // T′ inside a face of T, the same area.
+    if (M.n_vertices() < T.n_vertices() || P.network.origin.size() != M.n_vertices()) return "PART-2: vertex count";
+    for (VertexId v : T.vertices())
+        if (M.position(v) != T.position(v) || P.network.origin[v.idx()].vertex != v) {
+            why << "PART-2: vertex " << v.idx() << " of T moved";
+            return why.str();
+        }
+    for (std::size_t i = T.n_vertices(); i < M.n_vertices(); ++i) {
+        const partition::Origin& o = P.network.origin[i];
+        if (o.vertex.valid() || !(o.t > 0 && o.t < 1)) return "PART-2: a new vertex is not inside an edge of T";
+        const HalfedgeId h = TriMesh::halfedge(o.edge, 0);
+        const Vec3 &a = T.position(T.from(h)), &b = T.position(T.to(h));
+        if (segment_distance(M.position(VertexId(static_cast<VertexId::Index>(i))), a, b) > 1e-12 * (b - a).norm()) {
+            why << "PART-2: vertex " << i << " of T′ is off its edge " << o.edge.idx() << " of T";
+            return why.str();
+        }
+    }
+    for (FaceId f : M.faces()) {
+        const auto v = M.face_vertices(f);
+        std::set<std::uint32_t> common = faces_holding(T, P.network.origin[v[0].idx()]);
+        for (int k = 1; k < 3; ++k) {
+            const auto s = faces_holding(T, P.network.origin[v[static_cast<std::size_t>(k)].idx()]);
+            std::set<std::uint32_t> both;
+            std::set_intersection(common.begin(), common.end(), s.begin(), s.end(), std::inserter(both, both.begin()));
+            common = both;
+        }
+        if (common.empty()) {
+            why << "PART-2: face " << f.idx() << " of T′ lies in no face of T";
+            return why.str();
+        }
+    }
+    double area_t = 0, area_m = 0;
+    for (FaceId f : T.faces()) area_t += face_area(T, f);
+    for (FaceId f : M.faces()) area_m += face_area(M, f);
+    // Rounding: each of the ~#F area terms is exact to a few ulps, so the sums agree to ~1e−13.
+    if (std::abs(area_t - area_m) > 1e-12 * area_t) return "PART-2: the area of T′ differs from T's";
+    // PART-3: one path per D edge, from x_j to x_k, its segments edges of T′ carrying its D halfedge.
+    if (P.network.path.size() != D.mesh.n_edges() || P.paths.size() != D.mesh.n_edges()) return "PART-3: path count";
+    std::vector<int> on_path(M.n_vertices(), -1);
+    for (EdgeId e : D.mesh.edges()) {
+        const auto& path = P.network.path[e.idx()];
+        const HalfedgeId dh = TriMesh::halfedge(e, 0);
+        if (path.size() < 2 || path.front() != D.t_vertex[D.mesh.from(dh).idx()] || path.back() != D.t_vertex[D.mesh.to(dh).idx()])
+            return "PART-3: a path does not join its corners";
+        double length = 0;
+        for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+            const HalfedgeId h = M.find_halfedge(path[i], path[i + 1]);
+            if (!h.valid() || P.network.d_halfedge[h.idx()] != static_cast<std::int32_t>(dh.idx()) ||
+                P.network.d_halfedge[TriMesh::twin(h).idx()] != static_cast<std::int32_t>(TriMesh::twin(dh).idx()))
+                return "PART-3: a path segment is not a labelled edge of T′";
+            length += (M.position(path[i + 1]) - M.position(path[i])).norm();
+        }
+        // Snapping moves each node by at most max_snap_distance: the embedded curve is at most
+        // 2·(#nodes)·max_snap longer than the exact geodesic, and never shorter than it by more than rounding.
+        const double L = P.paths[e.idx()].path.length;
+        if (length < L * (1 - 1e-12) || length > L * (1 + 1e-12) + 2 * static_cast<double>(path.size()) * P.network.max_snap_distance) {
+            why << "PART-3: the curve of domain edge " << e.idx() << " is " << length << " long, its geodesic " << L;
+            return why.str();
+        }
+        // PART-4: condition (1) — the curves' interiors are disjoint and hold no corner.
+        for (std::size_t i = 1; i + 1 < path.size(); ++i) {
+            if (P.network.corner[path[i].idx()] >= 0 || on_path[path[i].idx()] >= 0) {
+                why << "PART-4: the curve of domain edge " << e.idx() << " meets another curve or a corner at vertex " << path[i].idx();
+                return why.str();
+            }
+            on_path[path[i].idx()] = static_cast<int>(e.idx());
+        }
+    }
+    std::size_t labelled = 0;
+    for (std::int32_t d : P.network.d_halfedge) labelled += d >= 0;
+    std::size_t segments = 0;
+    for (const auto& path : P.network.path) segments += path.size() - 1;
+    if (labelled != 2 * segments) return "PART-3: edges of T′ carry labels of no path";
+    // PART-5: condition (2) — around x_j the curves leave in the order of D's edges around v_j.
+    for (VertexId vj : D.mesh.vertices()) {
+        std::vector<std::int32_t> d_order, t_order;
+        D.mesh.for_each_outgoing(vj, [&](HalfedgeId h) { d_order.push_back(static_cast<std::int32_t>(h.idx())); });
+        M.for_each_outgoing(D.t_vertex[vj.idx()], [&](HalfedgeId h) {
+            if (P.network.d_halfedge[h.idx()] >= 0) t_order.push_back(P.network.d_halfedge[h.idx()]);
+        });
+        const auto it = std::find(t_order.begin(), t_order.end(), d_order.front());
+        if (it == t_order.end() || t_order.size() != d_order.size()) return "PART-5: the curves at a corner are not D's edges";
+        std::rotate(t_order.begin(), it, t_order.end());
+        if (t_order != d_order) {
+            why << "PART-5: the cyclic order at domain vertex " << vj.idx() << " differs from D's";
+            return why.str();
+        }
+    }
+    // PART-6: every face of T′ in exactly one patch, one patch per face of D.
+    const auto& patches = P.patches;
+    if (patches.patch.size() != D.mesh.n_faces() || patches.patch_of_face.size() != M.n_faces()) return "PART-6: patch count";
+    std::vector<int> seen(M.n_faces(), 0);
+    for (FaceId df : D.mesh.faces())
+        for (FaceId f : patches.patch[df.idx()].faces) {
+            if (patches.patch_of_face[f.idx()] != df) return "PART-6: patch_of_face disagrees with the patch's faces";
+            ++seen[f.idx()];
+        }
+    if (std::any_of(seen.begin(), seen.end(), [](int s) { return s != 1; })) return "PART-6: a face of T′ is not in exactly one patch";
+    // PART-7: patch adjacency is D's — across every curve edge, the patches of D's two faces.
+    for (HalfedgeId h : M.halfedges()) {
+        const std::int32_t dh = P.network.d_halfedge[h.idx()];
+        if (dh >= 0 && patches.patch_of_face[M.face(h).idx()] != D.mesh.face(HalfedgeId(static_cast<HalfedgeId::Index>(dh))))
+            return "PART-7: a patch borders a curve of a domain face it does not belong to";
+        if (dh < 0 && patches.patch_of_face[M.face(h).idx()] != patches.patch_of_face[M.face(TriMesh::twin(h)).idx()])
+            return "PART-7: two patches meet along an edge that is on no curve";
+    }
+    // PART-8: each patch is a disk bounded by the three curves of its face, corners at x_j, x_k, x_l.
+    for (FaceId df : D.mesh.faces()) {
+        const partition::Patch& p = patches.patch[df.idx()];
+        const std::string v = param::disk_violation(p.disk);
+        if (!v.empty()) {
+            why << "PART-8: patch " << df.idx() << ": " << v;
+            return why.str();
+        }
+        const auto corners = D.mesh.face_vertices(df);
+        for (std::size_t c = 0; c < 3; ++c)
+            if (p.vertices[p.disk.boundary[p.disk.corners[c]]] != D.t_vertex[corners[c].idx()]) return "PART-8: a corner is misplaced";
+        for (std::size_t i = 0; i < p.vertices.size(); ++i)
+            if (p.disk.positions[i] != M.position(p.vertices[i])) return "PART-8: a patch vertex's position differs from T′'s";
+    }
+    return "";
+}
+
+}  // namespace fhr::test

@@ -1,0 +1,15 @@
+// FHR tests — the invariants PART-1..8 of spec/partition.md, checked on any result of §3's
+// partition: shared by the unit, property and real-mesh tests.
+#pragma once
+
+#include <string>
+
+#include "core/trimesh.hpp"
+#include "partition/partition.hpp"
+
+namespace fhr::test {
+
+/// The first broken invariant of spec/partition.md for partition P of T ("" when all hold).
+std::string partition_violation(const TriMesh& T, const partition::Partition& P);
+
+}  // namespace fhr::test

@@ -1,0 +1,148 @@
+// §3 the partition: the geodesic network embedded into T′, conditions (1) and (2), the patches,
+// and recovery when the conditions fail. Invariants PART-1..9 of spec/partition.md.
+#include <catch2/catch.hpp>
+#include <rapidcheck/catch.h>
+
+#include <algorithm>
+
+#include "core/errors.hpp"
+#include "core/geometry.hpp"
+#include "core/topology.hpp"
+#include "domain/decimate.hpp"
+#include "partition/partition.hpp"
+#include "partition/partition_checks.hpp"
+#include "support/gen_mesh.hpp"
+#include "support/test_support.hpp"
+
+using namespace fhr;
+using partition::Conflict;
+
+namespace {
+
+TriMesh fandisk() {
+    const auto path = test::cgal_mesh("fandisk.off");
+    if (!path) throw std::runtime_error("fandisk.off is missing: run ./run demo to extract libcgal-demo's meshes");
+    return test::load_mesh(*path);
+}
+
+std::vector<geodesic::GeodesicPath> exact_paths(const TriMesh& T, const domain::Domain& D) {
+    std::vector<geodesic::GeodesicPath> paths;
+    for (const auto& [a, b] : domain::edge_endpoints(D)) paths.push_back(geodesic::ellipse_shortest_path(T, a, b).path);
+    return paths;
+}
+
+bool has_kind(const partition::Embedding& e, Conflict::Kind kind) {
+    return std::any_of(e.conflicts.begin(), e.conflicts.end(), [&](const Conflict& c) { return c.kind == kind; });
+}
+
+// D with every face turned over: the same edges, every cyclic order reversed.
+domain::Domain mirrored(const domain::Domain& D) {
+    std::vector<Triangle> faces = D.mesh.triangles();
+    for (auto& f : faces) std::swap(f[1], f[2]);
+    domain::Domain m = D;
+    m.mesh = TriMesh::from_triangles(D.mesh.positions(), faces);
+    m.history.clear();
+    return m;
+}
+
+}  // namespace
+
+TEST_CASE("PART-1..8: the fandisk's 114-face domain gives 171 paths and 114 disk patches", "[partition][real]") {
+    const TriMesh T = fandisk();
+    const domain::Domain D = domain::decimate(T, {.target_faces = 114});
+    const partition::Partition P = partition::partition(T, D);
+    CHECK(P.paths.size() == 171);
+    CHECK(P.patches.patch.size() == 114);
+    CHECK(P.domain.mesh.n_faces() == 114 + 2 * P.collapses_undone);
+    CHECK(test::partition_violation(T, P) == "");
+    // T′ refines T: more vertices, and every path node that is not a vertex of T is new.
+    CHECK(P.network.mesh.n_vertices() > T.n_vertices());
+    CHECK(P.network.max_snap_distance <= partition::snap_fraction * edge_length_stats(T).max);
+}
+
+TEST_CASE("PART-4: a path through another corner breaks (1) and is reported", "[partition][unit]") {
+    const TriMesh T = fandisk();
+    const domain::Domain D = domain::decimate(T, {.target_faces = 114});
+    std::vector<geodesic::GeodesicPath> paths = exact_paths(T, D);
+    // Route D edge 0 = (v_j, v_k) through the third corner v_m of its face: Γ(x_j, x_m) + Γ(x_m, x_k).
+    const HalfedgeId h = TriMesh::halfedge(EdgeId(0), 0);
+    const HalfedgeId hk = D.mesh.next(h), hm = D.mesh.next(hk);  // v_k -> v_m, v_m -> v_j
+    auto along = [&](HalfedgeId dh) {  // the path of D halfedge dh, in its direction
+        geodesic::GeodesicPath p = paths[TriMesh::edge(dh).idx()];
+        if (dh.idx() & 1u) std::reverse(p.points.begin(), p.points.end());
+        return p;
+    };
+    geodesic::GeodesicPath detour = along(TriMesh::twin(hm));  // v_j -> v_m
+    const geodesic::GeodesicPath second = along(TriMesh::twin(hk));  // v_m -> v_k
+    detour.points.insert(detour.points.end(), second.points.begin() + 1, second.points.end());
+    paths[0] = detour;
+    const partition::Embedding e = partition::embed(T, D, paths);
+    CHECK(has_kind(e, Conflict::Kind::through_corner));
+    CHECK(has_kind(e, Conflict::Kind::shared_node));
+    const auto described = e.conflicts.front().describe();
+    CHECK(described.find("domain edge") != std::string::npos);
+}
+
+TEST_CASE("PART-5: a domain with its orientation reversed breaks (2) at every corner; without history it cannot be recovered",
+          "[partition][unit]") {
+    const TriMesh T = fandisk();
+    const domain::Domain D = mirrored(domain::decimate(T, {.target_faces = 114}));
+    const partition::Embedding e = partition::embed(T, D, exact_paths(T, D));
+    std::vector<std::uint8_t> at(D.mesh.n_vertices(), 0);
+    for (const Conflict& c : e.conflicts)
+        if (c.kind == Conflict::Kind::order) at[c.d_vertex] = 1;
+    CHECK(std::count(at.begin(), at.end(), 1) == static_cast<long>(D.mesh.n_vertices()));
+    try {
+        (void)partition::partition(T, D);
+        FAIL("a reversed user domain was accepted");
+    } catch (const PartitionFailure& f) {
+        CHECK(f.exit_code() == 3);
+        CHECK(std::string(f.what()).find("domain edge") != std::string::npos);
+    }
+}
+
+TEST_CASE("PART-9: a domain made wrong by an edge flip is detected and recovered by refining it", "[partition][recovery]") {
+    const TriMesh T = fandisk();
+    const domain::Domain D0 = domain::decimate(T, {.target_faces = 114});
+    // Flip D's edges in turn until the flipped domain's paths break (1) or (2): a hand-made bad domain.
+    bool found = false;
+    for (EdgeId e : D0.mesh.edges()) {
+        if (!D0.mesh.is_flip_ok(e)) continue;
+        domain::Domain D = D0;
+        D.mesh.flip(e);
+        const partition::Embedding emb = partition::embed(T, D, exact_paths(T, D));
+        if (emb.conflicts.empty()) continue;
+        found = true;
+        const partition::Partition P = partition::partition(T, D);
+        INFO("flipped domain edge " << e.idx());
+        CHECK(P.retries >= 1);
+        CHECK(P.collapses_undone >= 1);
+        CHECK(!P.resolved.empty());
+        CHECK(P.domain.mesh.n_faces() == 114 + 2 * P.collapses_undone);
+        CHECK(euler_characteristic(P.domain.mesh) == euler_characteristic(T));
+        CHECK(test::partition_violation(T, P) == "");
+        break;
+    }
+    CHECK(found);
+}
+
+TEST_CASE("PART-1..9: random meshes of genus 0–3 and random domain sizes partition validly", "[partition][property]") {
+    rc::prop("partition of a random closed mesh over a random decimated domain", [] {
+        const test::GeneratedMesh g = *test::gen_closed_mesh(0, 3, 1500);
+        const TriMesh& T = g;
+        const std::size_t lo = domain::min_closed_faces(g.options.genus) + 2 * 4;
+        const std::size_t hi = std::max(lo, T.n_faces() / 3);
+        const std::size_t target = 2 * *rc::gen::inRange(lo / 2, hi / 2 + 1);
+        RC_PRE(target <= T.n_faces());
+        domain::Domain D;
+        try {
+            D = domain::decimate(T, {.target_faces = target});
+        } catch (const InvalidInput&) {
+            RC_DISCARD("the decimation cannot reach this size under its rules");
+        }
+        const partition::Partition P = partition::partition(T, D);
+        RC_TAG(P.retries > 0 ? "recovered" : "first try");
+        RC_ASSERT(test::partition_violation(T, P) == "");
+        RC_ASSERT(P.domain.mesh.n_faces() == target + 2 * P.collapses_undone);
+    });
+}

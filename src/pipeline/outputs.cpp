@@ -1,0 +1,142 @@
+// FHR §6 — the files of `fhr run` (see outputs.hpp).
+#include "pipeline/outputs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "core/errors.hpp"
+#include "io/atomic_file.hpp"
+#include "io/json.hpp"
+#include "io/write.hpp"
+
+namespace fhr::pipeline {
+
+exchange::ParamFile to_param_file(const Parameterization& p) {
+    const domain::Domain& D = p.partition.domain;
+    exchange::ParamFile f;
+    f.domain_vertices.assign(D.mesh.positions().begin(), D.mesh.positions().end());
+    f.domain_faces = D.mesh.triangles();
+    f.surface_vertices = p.refined_positions;
+    f.surface_faces.reserve(p.refined_faces.size());
+    for (std::size_t i = 0; i < p.refined_faces.size(); ++i) f.surface_faces.push_back({p.refined_faces[i], p.face_patch[i], p.face_beta[i]});
+    return f;
+}
+
+namespace {
+
+// The patches laid out as an atlas in [0, 1]²: patch i's triangle (equilateral, corners
+// e_0, e_1, e_2 at its lower left, lower right and top) in cell i of a G × G grid, with a margin.
+std::vector<io::Vec2> atlas_uv(const Parameterization& p) {
+    const std::size_t n = p.disks.size();
+    const std::size_t G = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(n))));
+    const double cell = 1.0 / static_cast<double>(G), size = 0.9 * cell;
+    const std::array<io::Vec2, 3> corner{io::Vec2(0, 0), io::Vec2(1, 0), io::Vec2(0.5, std::sqrt(3.0) / 2)};
+    std::vector<io::Vec2> uv;
+    uv.reserve(3 * p.refined_faces.size());
+    for (std::size_t f = 0; f < p.refined_faces.size(); ++f) {
+        const std::size_t i = p.face_patch[f];
+        const io::Vec2 origin(static_cast<double>(i % G) * cell + 0.05 * cell, static_cast<double>(i / G) * cell + 0.05 * cell);
+        for (const auto& beta : p.face_beta[f])
+            uv.push_back(origin + size * (beta[0] * corner[0] + beta[1] * corner[1] + beta[2] * corner[2]));
+    }
+    return uv;
+}
+
+void write_report(const std::string& path, const InputInfo& input, const Parameterization& p,
+                  const exchange::VerifyReport& oracle, const Options& options) {
+    const partition::Partition& P = p.partition;
+    const TriMesh& D = P.domain.mesh;
+    io::JsonWriter j;
+    j.begin_object();
+    j.key("input").begin_object();
+    j.key("path").value(input.path).key("vertices").value(input.vertices).key("faces").value(input.faces);
+    j.key("genus").value(input.genus).end_object();
+
+    j.key("domain").begin_object();
+    j.key("vertices").value(D.n_vertices()).key("edges").value(D.n_edges()).key("faces").value(D.n_faces());
+    j.key("faces_requested").value(input.domain_faces_requested);
+    j.key("retries").value(P.retries).key("collapses_undone").value(P.collapses_undone);
+    j.key("conflicts_resolved").value(P.resolved.size()).end_object();
+
+    std::size_t windows = 0, max_attempts = 0;
+    double max_K = 0, total_length = 0;
+    for (const auto& path : P.paths) {
+        windows += path.windows_created;
+        max_attempts = std::max(max_attempts, path.attempts);
+        max_K = std::max(max_K, path.K);
+        total_length += path.path.length;
+    }
+    j.key("partition").begin_object();
+    j.key("paths").value(P.paths.size()).key("total_length").value(total_length);
+    j.key("max_K").value(max_K).key("max_attempts").value(max_attempts).key("windows_created").value(windows);
+    j.key("max_snap_distance").value(P.network.max_snap_distance);
+    j.key("refined_vertices").value(p.refined_positions.size()).key("refined_faces").value(p.refined_faces.size());
+    j.key("dividing_edges_split").value(p.dividing_edges_split).end_object();
+
+    std::size_t flipped = 0, boundary = 0;
+    double min_angle = std::numeric_limits<double>::infinity();
+    for (const auto& c : p.certificates) {
+        flipped += c.flipped_triangles;
+        boundary += c.boundary_violations;
+        min_angle = std::min(min_angle, c.min_image_angle_degrees);
+    }
+    j.key("parameterization").begin_object();
+    j.key("patches").value(p.disks.size());
+    j.key("weights").value(param::name(options.map.weights)).key("solver").value(param::name(options.map.solver));
+    j.key("certified").value(p.certified() && oracle.valid());
+    j.key("flipped_triangles").value(flipped).key("boundary_violations").value(boundary);
+    j.key("min_image_angle_degrees").value(min_angle);
+    const auto first = std::find_if(p.certificates.begin(), p.certificates.end(), [](const auto& c) { return !c.passed; });
+    if (first != p.certificates.end())
+        j.key("first_failure").value("patch " + std::to_string(first - p.certificates.begin()) + ": " + first->first_failure);
+    j.key("oracle").begin_object();
+    j.key("valid").value(oracle.valid()).key("checks").begin_array();
+    for (const auto& c : oracle.checks) {
+        j.begin_object().key("id").value(c.id).key("status").value(exchange::to_string(c.status));
+        j.key("checked").value(c.checked).key("failures").value(c.failures);
+        if (!c.first_failure.empty()) j.key("first_failure").value(c.first_failure);
+        j.end_object();
+    }
+    j.end_array().end_object().end_object();
+    j.end_object();
+    io::write_file_atomically(path, j.str());
+}
+
+void write_timings(const std::string& path, const Timings& timings) {
+    io::JsonWriter j;
+    j.begin_object();
+    double total = 0;
+    for (const auto& [stage, seconds] : timings.stages) {
+        j.key(stage).value(seconds);
+        total += seconds;
+    }
+    j.key("total").value(total).end_object();
+    io::write_file_atomically(path, j.str());
+}
+
+}  // namespace
+
+void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
+                   const exchange::VerifyReport& oracle, const Timings& timings, const Options& options) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw InvalidInput(dir, 0, "cannot create the output folder: " + ec.message());
+    const std::string base = dir + "/";
+    const partition::Partition& P = p.partition;
+    io::write_off(base + "domain.off", P.domain.mesh.positions(), P.domain.mesh.triangles());
+    std::vector<std::vector<std::uint32_t>> lines;
+    for (const auto& path : P.network.path) {
+        auto& line = lines.emplace_back();
+        for (VertexId v : path) line.push_back(v.idx());
+    }
+    io::write_obj_polylines(base + "geodesics.obj", P.network.mesh.positions(), lines);
+    io::write_ply(base + "refined.ply", p.refined_positions, p.refined_faces, p.face_patch);
+    exchange::write_param(base + "param.fhrp", to_param_file(p));
+    io::write_obj(base + "textured.obj", p.refined_positions, p.refined_faces, atlas_uv(p));
+    write_report(base + "report.json", input, p, oracle, options);
+    write_timings(base + "timings.json", timings);
+}
+
+}  // namespace fhr::pipeline

@@ -1,0 +1,95 @@
+// FHR §2–§4 — the method end to end (see pipeline.hpp for the pseudocode).
+#include "pipeline/pipeline.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "param/dividing_edges.hpp"
+
+namespace fhr::pipeline {
+
+double Timings::seconds(std::string_view stage) const {
+    for (const auto& [name, s] : stages)
+        if (name == stage) return s;
+    return 0;
+}
+
+bool Parameterization::certified() const {
+    return std::all_of(certificates.begin(), certificates.end(), [](const param::Certificate& c) { return c.passed; });
+}
+
+namespace {
+
+class Stopwatch {
+public:
+    Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+    double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+private:
+    std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options, Timings& timings) {
+    auto say = [&](const std::string& line) {
+        if (options.progress) options.progress(line);
+    };
+    Parameterization out;
+
+    // §3: one geodesic per edge of D, T′, conditions (1) and (2), the patches.
+    say("geodesic paths: " + std::to_string(D.mesh.n_edges()) + " domain edges");
+    Stopwatch paths;
+    partition::PartitionOptions po;
+    po.progress = options.progress;
+    out.partition = partition::partition(T, std::move(D), po);
+    timings.stages.emplace_back("geodesic_paths", paths.seconds());
+    const partition::Partition& P = out.partition;
+    say("partition: " + std::to_string(P.network.mesh.n_faces()) + " faces in T′, " +
+        std::to_string(P.patches.patch.size()) + " patches, " + std::to_string(P.retries) + " retries");
+
+    // §4: each patch onto its triangle, certified.
+    Stopwatch param;
+    const std::size_t n_patches = P.patches.patch.size();
+    out.disks.reserve(n_patches);
+    out.maps.reserve(n_patches);
+    out.certificates.reserve(n_patches);
+    for (const partition::Patch& patch : P.patches.patch) {
+        param::Disk disk = patch.disk;
+        out.dividing_edges_split += param::split_dividing_edges(disk);
+        out.maps.push_back(param::map_patch(disk, options.map));
+        out.certificates.push_back(param::certify(disk, out.maps.back()));
+        out.disks.push_back(std::move(disk));
+    }
+    // The final T′: the vertices of T′ of §3, then each patch's dividing-edge midpoints; faces
+    // patch by patch, each with the β of its corners.
+    const TriMesh& M = P.network.mesh;
+    out.refined_positions.assign(M.positions().begin(), M.positions().end());
+    out.refined_faces.reserve(M.n_faces() + 2 * out.dividing_edges_split);
+    for (std::uint32_t i = 0; i < n_patches; ++i) {
+        const param::Disk& disk = out.disks[i];
+        const partition::Patch& patch = P.patches.patch[i];
+        std::vector<std::uint32_t> global(disk.positions.size());
+        for (std::size_t v = 0; v < disk.positions.size(); ++v) {
+            if (v < patch.vertices.size()) {
+                global[v] = patch.vertices[v].idx();
+            } else {
+                global[v] = static_cast<std::uint32_t>(out.refined_positions.size());
+                out.refined_positions.push_back(disk.positions[v]);
+            }
+        }
+        for (const auto& t : disk.triangles) {
+            out.refined_faces.push_back({global[t[0]], global[t[1]], global[t[2]]});
+            out.face_patch.push_back(i);
+            out.face_beta.push_back({out.maps[i].beta[t[0]], out.maps[i].beta[t[1]], out.maps[i].beta[t[2]]});
+        }
+    }
+    timings.stages.emplace_back("parameterization", param.seconds());
+    const std::size_t failed = static_cast<std::size_t>(
+        std::count_if(out.certificates.begin(), out.certificates.end(), [](const param::Certificate& c) { return !c.passed; }));
+    say("parameterization: " + std::to_string(n_patches) + " patches, " + std::to_string(out.dividing_edges_split) +
+        " dividing edges split, " + (failed ? std::to_string(failed) + " NOT certified" : std::string("all certified")));
+    return out;
+}
+
+}  // namespace fhr::pipeline

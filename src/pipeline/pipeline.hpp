@@ -1,0 +1,59 @@
+// FHR §2–§4 — the method end to end, in memory: the domain D (§2), the partition of T into
+// patches by geodesics (§3), and one convex-combination map per patch (§4), certified.
+//
+// Pseudocode (paper §6 runs exactly these stages; their names are the timing table's):
+//   mesh_reduction:   D <- decimate(T) (or the user's D, attached to T)
+//   geodesic_paths:   paths, T′, patches <- partition(T, D)       (D may be refined: §3 recovery)
+//   parameterization: for each patch S_i: split its dividing edges (Floater 2003, Thm 6.1);
+//                     ψ_i <- chord-length boundary + convex combinations inside (eq. 2);
+//                     certify ψ_i (exact orientation, boundary monotone, areas)
+//   the final T′ (with the dividing-edge midpoints) and, per face, its patch and the β of ψ
+//   at its corners: the `fhr-param 1` content (spec/param.md)
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/trimesh.hpp"
+#include "domain/decimate.hpp"
+#include "param/certificate.hpp"
+#include "param/patch_map.hpp"
+#include "partition/partition.hpp"
+
+namespace fhr::pipeline {
+
+/// Wall-clock seconds per stage, in the order run (names: paper §6's timing table).
+struct Timings {
+    std::vector<std::pair<std::string, double>> stages;
+    double seconds(std::string_view stage) const;  ///< 0 when the stage did not run
+};
+
+struct Options {
+    param::PatchMapOptions map;
+    std::function<void(const std::string&)> progress;  ///< optional: one line per step
+};
+
+/// The parameterization φ: Ω_D → Ω_T as computed, with everything the outputs need.
+struct Parameterization {
+    partition::Partition partition;                 ///< D (final), paths, T′ before §4, patches
+    std::vector<param::Disk> disks;                 ///< #F(D): each patch after its dividing edges were split
+    std::vector<param::PatchMap> maps;              ///< #F(D): ψ_i at the disk's vertices
+    std::vector<param::Certificate> certificates;   ///< #F(D)
+    std::size_t dividing_edges_split = 0;
+    // The final T′: T′ of §3 plus the dividing-edge midpoints.
+    std::vector<Vec3> refined_positions;
+    std::vector<Triangle> refined_faces;
+    std::vector<std::uint32_t> face_patch;                      ///< per face: the D face of its patch
+    std::vector<std::array<std::array<double, 3>, 3>> face_beta;  ///< per face corner: β of ψ
+    bool certified() const;                          ///< every patch's certificate passed
+};
+
+/// §3 and §4 for T and a domain D whose vertices are vertices of T.
+/// \throws PartitionFailure (§3 conditions unrecoverable), NumericalFailure (a weight or solve).
+Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options, Timings& timings);
+
+}  // namespace fhr::pipeline
