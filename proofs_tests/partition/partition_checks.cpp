@@ -168,4 +168,25 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
     return "";
 }
 
+std::string recovery_violation(const TriMesh& T, const domain::Domain& D0, const partition::Partition& P) {
+    const domain::Domain& D = P.domain;
+    try {
+        D.mesh.validate();
+    } catch (const std::logic_error& e) {
+        return std::string("PART-9: ") + e.what();
+    }
+    if (!boundary_loops(D.mesh).empty() || euler_characteristic(D.mesh) != euler_characteristic(T)) return "PART-9: D lost T's topology";
+    if (D.t_vertex.size() != D.mesh.n_vertices()) return "PART-9: correspondence size";
+    std::vector<int> in_d(T.n_vertices(), 0);
+    for (std::size_t j = 0; j < D.t_vertex.size(); ++j) {
+        if (D.mesh.position(VertexId(static_cast<VertexId::Index>(j))) != T.position(D.t_vertex[j])) return "PART-9: a vertex of D is not at its x_j";
+        ++in_d[D.t_vertex[j].idx()];
+    }
+    for (VertexId v : P.kept)
+        if (in_d[v.idx()] != 1) return "PART-9: a kept vertex is not a vertex of D";
+    if (P.vertices_added != D.mesh.n_vertices() - D0.mesh.n_vertices()) return "PART-9: vertices_added is wrong";
+    if (P.retries == 0 && D.mesh.triangles() != D0.mesh.triangles()) return "PART-9: D changed without a retry";
+    return "";
+}
+
 }  // namespace fhr::test

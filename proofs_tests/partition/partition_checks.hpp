@@ -12,4 +12,7 @@ namespace fhr::test {
 /// The first broken invariant of spec/partition.md for partition P of T ("" when all hold).
 std::string partition_violation(const TriMesh& T, const partition::Partition& P);
 
+/// PART-9 for a partition P of T that started from the decimated domain D0 ("" when it holds).
+std::string recovery_violation(const TriMesh& T, const domain::Domain& D0, const partition::Partition& P);
+
 }  // namespace fhr::test

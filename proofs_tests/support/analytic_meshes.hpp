@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <map>
+#include <random>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -42,5 +44,56 @@ inline TriMesh icosphere(int level) {
     }
     return TriMesh::from_triangles(std::move(p), t);
 }
+
+// A polyhedron with every face finely and irregularly triangulated, flat: each face (a, b, c) of
+// `coarse` becomes the n × n lattice of points a + (i/n)(b − a) + (j/n)(c − a), the points inside an
+// edge moved along it and those inside a face moved within it by up to jitter/n of the lattice
+// step (the same edge point for both faces of an edge). The coarse vertices come first (vertex k of
+// the result is coarse vertex k), so a domain of the polyhedron's own corners has t_vertex = identity.
+// \pre coarse is closed and oriented, n >= 1, 0 <= jitter < 0.3 (no triangle can fold).
+inline TriMesh refined_polyhedron(const std::vector<Vec3>& corners, const std::vector<Triangle>& coarse, int n,
+                                  double jitter, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> shake(-jitter, jitter);
+    std::vector<Vec3> p = corners;
+    std::map<std::tuple<std::uint32_t, std::uint32_t, int>, std::uint32_t> on_edge;  // (lo, hi, step from lo)
+    std::vector<Triangle> t;
+    for (const Triangle& f : coarse) {
+        std::map<std::pair<int, int>, std::uint32_t> id;
+        auto vertex = [&](int i, int j) -> std::uint32_t {
+            if (const auto it = id.find({i, j}); it != id.end()) return it->second;
+            std::uint32_t v;
+            if (i + j == 0 || i == n || j == n) {
+                v = i == n ? f[1] : j == n ? f[2] : f[0];
+            } else if (i == 0 || j == 0 || i + j == n) {
+                // An edge point: (end a, end b, steps from a), shared with the neighbouring face.
+                const auto [a, b, k] = j == 0 ? std::tuple{f[0], f[1], i} : i == 0 ? std::tuple{f[0], f[2], j} : std::tuple{f[1], f[2], j};
+                const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
+                const int from_lo = a == lo ? k : n - k;
+                auto [it, fresh] = on_edge.try_emplace({lo, hi, from_lo}, static_cast<std::uint32_t>(p.size()));
+                if (fresh) p.push_back(p[lo] + ((from_lo + shake(rng)) / n) * (p[hi] - p[lo]));
+                v = it->second;
+            } else {
+                const double s = (i + shake(rng)) / n, r = (j + shake(rng)) / n;
+                v = static_cast<std::uint32_t>(p.size());
+                p.push_back(p[f[0]] + s * (p[f[1]] - p[f[0]]) + r * (p[f[2]] - p[f[0]]));
+            }
+            id[{i, j}] = v;
+            return v;
+        };
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; i + j < n; ++j) {
+                t.push_back({vertex(i, j), vertex(i + 1, j), vertex(i, j + 1)});
+                if (i + j < n - 1) t.push_back({vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1)});
+            }
+    }
+    return TriMesh::from_triangles(std::move(p), t);
+}
+
+inline const std::vector<Vec3> tetrahedron_corners{{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+inline const std::vector<Triangle> tetrahedron_faces{{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+inline const std::vector<Vec3> octahedron_corners{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+inline const std::vector<Triangle> octahedron_faces{{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                                    {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
 
 }  // namespace fhr::test

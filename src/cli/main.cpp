@@ -35,10 +35,16 @@ usage:
       (K = 1.06, grown until the result is certified): length, points, K, windows
   fhr run MESH (--faces N | --domain D.off --correspondence FILE) --out DIR
           [--weights shape-preserving|mean-value|uniform] [--solver sparse-lu|bicgstab]
+          [--figures [--up x|y|z]]
       §2–§4 end to end: writes DIR/domain.off, geodesics.obj, refined.ply, param.fhrp,
-      textured.obj, report.json, timings.json; exit 3 if §3 cannot partition, 4 if not certified
+      textured.obj, report.json, timings.json (and with --figures DIR/figures/: the paper's
+      Figures 6-7 as PNG, patches as SVG); exit 3 if §3 cannot partition, 4 if not certified
   fhr verify PARAM.fhrp [--mesh INPUT] [--json]
       the oracle: check a `fhr-param 1` file against PARAM-1..11 (spec/param.md); exit 1 if invalid
+  fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--genus-max G] [--seed S] [--keep DIR]
+                  [--timeout SECONDS]
+      fuzz another implementation: N random closed meshes, each run through PROGRAM and its output
+      checked by the oracle; failures kept in DIR with their reason and a smaller failing mesh
   fhr help
 
 MESH files: .off/.coff, .obj, .ply (ascii or binary), .stl (ascii or binary).
@@ -50,6 +56,7 @@ exit codes: 0 ok, 2 invalid input or usage, 3 partition failure, 4 numerical fai
 namespace fhr::cli {
 int run_verify(const std::vector<std::string>& args);  // src/cli/verify.cpp
 int run_run(const std::vector<std::string>& args);     // src/cli/run.cpp
+int run_oracle_fuzz(const std::vector<std::string>& args);  // src/cli/oracle_fuzz.cpp
 }
 
 int main(int argc, char** argv) {
@@ -64,6 +71,7 @@ int main(int argc, char** argv) {
         if (command == "geodesic") return fhr::cli::run_geodesic(args);
         if (command == "verify") return fhr::cli::run_verify(args);
         if (command == "run") return fhr::cli::run_run(args);
+        if (command == "oracle-fuzz") return fhr::cli::run_oracle_fuzz(args);
         if (command == "help" || command == "--help" || command == "-h") {
             std::fputs(usage, stdout);
             return 0;

@@ -21,7 +21,7 @@ double since(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 int run_run(const std::vector<std::string>& argv) {
-    const Args args(argv, {}, {"faces", "domain", "correspondence", "out", "weights", "solver"});
+    const Args args(argv, {"figures"}, {"faces", "domain", "correspondence", "out", "weights", "solver", "up"});
     const std::string& mesh_path = args.single_positional("MESH");
     const std::string out = args.require("out");
     const bool by_faces = args.get("faces").has_value(), by_domain = args.get("domain").has_value();
@@ -62,6 +62,12 @@ int run_run(const std::vector<std::string>& argv) {
     const exchange::VerifyReport oracle = exchange::verify(pipeline::to_param_file(p), &T);
     timings.stages.emplace_back("verification", since(start));
     pipeline::write_outputs(out, input, p, oracle, timings, options);
+    if (args.flag("figures")) {
+        const std::string up = args.get("up").value_or("y");
+        if (up != "x" && up != "y" && up != "z") usage_error("--up must be x, y or z, not '" + up + "'");
+        pipeline::write_figures(out, T, p, up[0] - 'x');
+        options.progress("figures: " + out + "/figures/");
+    }
     const bool certified = p.certified() && oracle.valid();
     std::printf("%s: %zu faces -> domain %zu faces (%zu retries) -> %zu patches, T' %zu faces; %s\n", mesh_path.c_str(),
                 T.n_faces(), p.partition.domain.mesh.n_faces(), p.partition.retries, p.disks.size(), p.refined_faces.size(),

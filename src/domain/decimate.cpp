@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <queue>
 #include <string>
 
@@ -70,7 +69,8 @@ class Decimator {
 public:
     Decimator(const TriMesh& T, const DecimateOptions& o)
         : m_(T), options_(o), quadric_(T.n_vertices()), stamp_(T.n_edges(), 0),
-          rejected_(T.n_halfedges(), false) {
+          rejected_(T.n_halfedges(), false), keep_(T.n_vertices(), 0) {
+        for (VertexId v : o.keep) keep_[v.idx()] = 1;
         cos_max_turn_ = std::cos(o.max_normal_deviation_deg * M_PI / 180.0);
         tan_min_angle_ = std::tan(o.min_angle_deg * M_PI / 180.0);
         for (FaceId f : m_.faces()) {
@@ -123,6 +123,7 @@ private:
     std::vector<Quadric> quadric_;
     std::vector<std::uint32_t> stamp_;  // per edge
     std::vector<bool> rejected_;        // per halfedge: popped, found invalid, and not queued since
+    std::vector<std::uint8_t> keep_;    // per vertex of T: never removed (DecimateOptions::keep)
     using Queue = std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>>;
     Queue queue_;
     double cos_max_turn_ = 0, tan_min_angle_ = 0;
@@ -163,7 +164,7 @@ private:
     // topology (Theorem, Dey et al. 1999: the link condition suffices) and every face that moves
     // with from(h) stays well shaped and does not turn over.
     bool valid(HalfedgeId h) const {
-        if (!m_.is_collapse_ok(h)) return false;
+        if (keep_[m_.from(h).idx()] || !m_.is_collapse_ok(h)) return false;
         const VertexId v0 = m_.from(h), v1 = m_.to(h);  // v0 disappears into v1
         const FaceId gone0 = m_.face(h), gone1 = m_.face(TriMesh::twin(h));
         const Vec3& p1 = m_.position(v1);
@@ -233,96 +234,6 @@ Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count) {
         r.t_vertex.push_back(c.removed);
     }
     return r;
-}
-
-namespace {
-
-// Selective undoing of collapses out of order (Hoppe 1997): a collapse can be undone once its
-// kept and side vertices are in D again and still neighbours; those that were removed since are
-// brought back first, by undoing the (more recent) collapses that removed them.
-class Refiner {
-public:
-    Refiner(Domain& d, const TriMesh& T) : d_(d), T_(T), current_(T.n_vertices()), removed_by_(T.n_vertices(), none), undone_(d.history.size(), 0) {
-        for (std::size_t j = 0; j < d.t_vertex.size(); ++j) current_[d.t_vertex[j].idx()] = VertexId(static_cast<VertexId::Index>(j));
-        for (std::size_t i = 0; i < d.history.size(); ++i) removed_by_[d.history[i].removed.idx()] = i;
-    }
-    ~Refiner() {
-        std::size_t kept = 0;
-        for (std::size_t i = 0; i < d_.history.size(); ++i)
-            if (!undone_[i]) d_.history[kept++] = d_.history[i];
-        d_.history.resize(kept);
-    }
-    Refiner(const Refiner&) = delete;
-    Refiner& operator=(const Refiner&) = delete;
-
-    std::size_t count() const { return count_; }
-    VertexId current(VertexId x) const { return current_[x.idx()]; }
-
-    // Brings vertex x of T back into D.
-    bool restore(VertexId x) { return current_[x.idx()].valid() || (removed_by_[x.idx()] != none && undo(removed_by_[x.idx()])); }
-
-    // Undoes the most recent remaining collapse that kept x and satisfies `wanted`.
-    template <class Wanted>
-    bool split(VertexId x, Wanted&& wanted) {
-        for (std::size_t i = d_.history.size(); i-- > 0;)
-            if (!undone_[i] && d_.history[i].kept == x && wanted(d_.history[i]) && undo(i)) return true;
-        return false;
-    }
-
-    // Whether undoing collapse c would move D vertex w from c's kept vertex to the new one: the
-    // moved ones are strictly inside the counter-clockwise wedge from left to right
-    // (TriMesh::split_vertex).
-    // False when D lost its kept or side vertices.
-    bool moves(const Collapse& c, VertexId w) const {
-        const VertexId k = current_[c.kept.idx()], a = current_[c.left.idx()], b = current_[c.right.idx()];
-        if (!k.valid() || !a.valid() || !b.valid()) return false;
-        const HalfedgeId ha = d_.mesh.find_halfedge(k, a), hb = d_.mesh.find_halfedge(k, b);
-        if (!ha.valid() || !hb.valid()) return false;
-        for (HalfedgeId g = d_.mesh.ccw_rotated(ha); g != hb; g = d_.mesh.ccw_rotated(g))
-            if (d_.mesh.to(g) == w) return true;
-        return false;
-    }
-
-private:
-    static constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
-    Domain& d_;
-    const TriMesh& T_;
-    std::vector<VertexId> current_;       // T vertex -> its D vertex (invalid: removed)
-    std::vector<std::size_t> removed_by_;  // T vertex -> the collapse that removed it
-    std::vector<std::uint8_t> undone_;
-    std::size_t count_ = 0;
-
-    bool undo(std::size_t i) {
-        const Collapse c = d_.history[i];
-        for (VertexId x : {c.kept, c.left, c.right})
-            if (!restore(x)) return false;
-        const VertexId k = current_[c.kept.idx()], a = current_[c.left.idx()], b = current_[c.right.idx()];
-        if (a == b || !d_.mesh.find_halfedge(k, a).valid() || !d_.mesh.find_halfedge(k, b).valid()) return false;
-        current_[c.removed.idx()] = d_.mesh.split_vertex(k, a, b, T_.position(c.removed));
-        d_.t_vertex.push_back(c.removed);
-        undone_[i] = 1;
-        ++count_;
-        return true;
-    }
-};
-
-}  // namespace
-
-std::size_t refine_at(Domain& d, const TriMesh& T, std::span<const VertexId> at) {
-    Refiner r(d, T);
-    for (VertexId x : at) {
-        if (r.current(x).valid()) r.split(x, [](const Collapse&) { return true; });
-        else r.restore(x);
-    }
-    return r.count();
-}
-
-std::size_t split_edge_away(Domain& d, const TriMesh& T, VertexId a, VertexId b) {
-    Refiner r(d, T);
-    const VertexId xa = d.t_vertex[a.idx()], xb = d.t_vertex[b.idx()];
-    // The most recent collapse that gave a (or b) the edge to the other end, undone.
-    if (!r.split(xa, [&](const Collapse& c) { return r.moves(c, b); })) r.split(xb, [&](const Collapse& c) { return r.moves(c, a); });
-    return r.count();
 }
 
 }  // namespace fhr::domain

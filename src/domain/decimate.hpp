@@ -18,7 +18,6 @@
 #pragma once
 
 #include <cstddef>
-#include <span>
 #include <utility>
 #include <vector>
 
@@ -37,6 +36,7 @@ struct DecimateOptions {
     std::size_t target_faces = 0;            ///< even, >= min_closed_faces(genus), <= T's faces
     double max_normal_deviation_deg = 90.0;  ///< no face may turn by more than this (flips)
     double min_angle_deg = 1.0;              ///< no new corner angle below this (needles, degeneracy)
+    std::vector<VertexId> keep{};            ///< vertices of T that D must keep (§3 recovery)
 };
 
 /// D together with its correspondence to T (paper §2).
@@ -69,21 +69,5 @@ Domain decimate(const TriMesh& T, const DecimateOptions& options);
 /// \pre count <= d.history.size().
 Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count);
 
-/// Selective refinement of D at some vertices of T (§3's remedy when conditions (1)/(2) fail,
-/// paper_notes/partition.md), after Hoppe (1997): a vertex x of T that D lost comes back by
-/// undoing the collapse that removed it; a vertex x_j of D is split again by undoing the most
-/// recent remaining collapse that kept it. A collapse whose kept or side vertices have since been
-/// removed needs the collapses that removed them undone first, recursively (each of those is more
-/// recent, so the recursion ends). Undone collapses leave d.history; new vertices are appended.
-/// \return the number of collapses undone (0 when none of `at` has one left that can be undone).
-/// \post D is valid and closed with the same Euler characteristic; its vertices are T's.
-std::size_t refine_at(Domain& d, const TriMesh& T, std::span<const VertexId> at);
-
-/// Selective refinement that removes D's edge [v_a, v_b]: undoes the most recent remaining
-/// collapse that kept x_a (else x_b) and whose split moves the edge's other end to the new
-/// vertex, so that the edge becomes [new vertex, v_b] (Hoppe 1997; TriMesh::split_vertex).
-/// \return the number of collapses undone (0 when no such collapse is left).
-/// \post as refine_at.
-std::size_t split_edge_away(Domain& d, const TriMesh& T, VertexId a, VertexId b);
 
 }  // namespace fhr::domain

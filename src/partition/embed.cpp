@@ -81,12 +81,12 @@ private:
         out_.conflicts.push_back(Conflict{kind, std::min(a, b), std::max(a, b), d_vertex, near});
     }
 
-    // The vertices of T at vertex v of T′: itself, or the ends of its edge of T.
-    std::array<VertexId, 3> near_node(VertexId v) const {
+    // The vertex of T nearest to vertex v of T′: itself, or the nearer end of its edge of T.
+    VertexId nearest(VertexId v) const {
         const Origin& o = out_.network.origin[v.idx()];
-        if (o.vertex.valid()) return {o.vertex, {}, {}};
+        if (o.vertex.valid()) return o.vertex;
         const HalfedgeId h = TriMesh::halfedge(o.edge, 0);
-        return {T_.from(h), T_.to(h), {}};
+        return o.t < 0.5 ? T_.from(h) : T_.to(h);
     }
 
     // The path's node as a vertex or an edge point of T (canonical edge direction), snapped.
@@ -136,14 +136,15 @@ private:
         }
         Network& net = out_.network;
         std::vector<VertexId>& path = net.path.emplace_back();
-        for (std::size_t i = 0; i < nodes.size(); ++i) {
-            const VertexId v = vertex_of(nodes[i]);
-            path.push_back(v);
-            if (i == 0 || i + 1 == nodes.size()) continue;
+        for (const Node& n : nodes) path.push_back(vertex_of(n));
+        for (std::size_t i = 1; i + 1 < nodes.size(); ++i) {
+            const VertexId v = path[i];
             if (net.corner[v.idx()] >= 0) {
-                conflict(Kind::through_corner, e, e, near_node(v), static_cast<std::uint32_t>(net.corner[v.idx()]));
+                // Γ(x_j, x_k) runs over x_m: D needs vertices beside x_m on it (paper_notes/partition.md).
+                conflict(Kind::through_corner, e, e, {nearest(path[i - 1]), nearest(path[i + 1]), {}},
+                         static_cast<std::uint32_t>(net.corner[v.idx()]));
             } else if (net.on_path[v.idx()].d_edge >= 0) {
-                conflict(Kind::shared_node, static_cast<std::uint32_t>(net.on_path[v.idx()].d_edge), e, near_node(v));
+                conflict(Kind::shared_node, static_cast<std::uint32_t>(net.on_path[v.idx()].d_edge), e, {nearest(v), {}, {}});
             } else {
                 net.on_path[v.idx()] = PathPosition{static_cast<std::int32_t>(e), static_cast<std::uint32_t>(i)};
             }
@@ -197,7 +198,7 @@ private:
             if (it == on_edge_.end()) continue;
             for (const auto& [t, v] : it->second) {
                 if (t > r.t0 && t < r.t1)
-                    conflict(Kind::shared_node, r.d_edge, static_cast<std::uint32_t>(net.on_path[v.idx()].d_edge), near_node(v));
+                    conflict(Kind::shared_node, r.d_edge, static_cast<std::uint32_t>(net.on_path[v.idx()].d_edge), {nearest(v), {}, {}});
             }
         }
     }
@@ -368,8 +369,11 @@ private:
             }
             for (std::size_t k = 0; k < n; ++k) {
                 if (!wrong[k]) continue;
+                // The curve's first node after x_j: a vertex of D there puts it in its place.
                 const std::uint32_t e = static_cast<std::uint32_t>(in_d[k]) / 2;
-                conflict(Kind::order, e, e, {D_.t_vertex[vj.idx()], {}, {}}, vj.idx());
+                const auto& path = net.path[e];
+                const VertexId first = (in_d[k] & 1) ? path[path.size() - 2] : path[1];
+                conflict(Kind::order, e, e, {nearest(first), {}, {}}, vj.idx());
             }
         }
     }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <utility>
 
 #include "core/errors.hpp"
@@ -35,64 +36,72 @@ private:
     std::map<std::pair<VertexId::Index, VertexId::Index>, geodesic::EllipsePath> cache_;
 };
 
-// Refines D near one conflict. First the conflicting D edges are split away (their paths, the
-// cause, disappear); failing that, D is refined at the vertices of T at the conflict's place,
-// then at the conflicting edges' corners and their neighbours, rings outwards. Returns the number
-// of collapses undone.
-std::size_t refine_near(domain::Domain& D, const TriMesh& T, const Conflict& c) {
-    std::size_t undone = 0;
-    for (std::uint32_t e : {c.d_edge_a, c.d_edge_b}) {
-        if (e == c.d_edge_b && e == c.d_edge_a && undone) break;
-        const HalfedgeId h = TriMesh::halfedge(EdgeId(e), 0);
-        if (D.mesh.find_halfedge(D.mesh.from(h), D.mesh.to(h)) == h) undone += domain::split_edge_away(D, T, D.mesh.from(h), D.mesh.to(h));
-    }
-    if (undone) return undone;
-    std::vector<VertexId> at;
-    for (VertexId v : c.near)
-        if (v.valid()) at.push_back(v);
-    if ((undone = domain::refine_at(D, T, at))) return undone;
-    std::vector<VertexId> ring;  // vertices of D
-    std::vector<std::uint8_t> in(D.mesh.n_vertices(), 0);
-    for (std::uint32_t e : {c.d_edge_a, c.d_edge_b})
-        for (unsigned side = 0; side < 2; ++side) {
-            const VertexId v = D.mesh.to(TriMesh::halfedge(EdgeId(e), side));
-            if (!in[v.idx()]) {
-                in[v.idx()] = 1;
-                ring.push_back(v);
-            }
+// The vertices of T that D should keep to resolve the conflicts: those at the conflicts' places
+// (paper_notes/partition.md); when all of them are D's already, the middle node of each
+// conflicting curve. Only vertices not yet in D and not yet kept are returned.
+std::vector<VertexId> new_keep(const TriMesh& T, const domain::Domain& D, const Embedding& embedding,
+                               std::vector<std::uint8_t>& kept) {
+    std::vector<std::uint8_t> in_d(T.n_vertices(), 0);
+    for (VertexId x : D.t_vertex) in_d[x.idx()] = 1;
+    std::vector<VertexId> keep;
+    auto add = [&](VertexId v) {
+        if (v.valid() && !in_d[v.idx()] && !kept[v.idx()]) {
+            kept[v.idx()] = 1;
+            keep.push_back(v);
         }
-    for (;;) {
-        at.clear();
-        for (VertexId v : ring) at.push_back(D.t_vertex[v.idx()]);
-        if (const std::size_t undone = domain::refine_at(D, T, at)) return undone;
-        const std::size_t before = ring.size();
-        for (std::size_t i = 0; i < before; ++i)
-            D.mesh.for_each_outgoing(ring[i], [&](HalfedgeId h) {
-                const VertexId w = D.mesh.to(h);
-                if (!in[w.idx()]) {
-                    in[w.idx()] = 1;
-                    ring.push_back(w);
-                }
-            });
-        if (ring.size() == before) return 0;
-    }
+    };
+    for (const Conflict& c : embedding.conflicts)
+        for (VertexId v : c.near) add(v);
+    if (!keep.empty()) return keep;
+    const Network& net = embedding.network;
+    for (const Conflict& c : embedding.conflicts)
+        for (std::uint32_t e : {c.d_edge_a, c.d_edge_b}) {
+            const auto& path = net.path[e];
+            const Origin& o = net.origin[path[path.size() / 2].idx()];
+            add(o.vertex.valid() ? o.vertex : T.from(TriMesh::halfedge(o.edge, o.t < 0.5 ? 0 : 1)));
+        }
+    return keep;
 }
 
-// Refines D near every conflict (the D edges named by later conflicts may have been split by
-// earlier ones; a conflict whose edge no longer exists is left for the next round).
-std::size_t refine_around(domain::Domain& D, const TriMesh& T, const std::vector<Conflict>& conflicts) {
-    const std::size_t n_edges = D.mesh.n_edges();
-    std::size_t undone = 0;
-    for (const Conflict& c : conflicts)
-        if (c.d_edge_b < n_edges) undone += refine_near(D, T, c);
-    return undone;
+// A curve Γ(x_j, x_k) that runs over a corner x_m of one of the two faces at [v_j, v_k] says that
+// this face is flat in the geodesic sense; the edge's flip [v_m, v_n] replaces it by Γ(x_m, x_n)
+// and keeps Γ(x_j, x_m), Γ(x_m, x_k). An edge made by a flip is never flipped again (`made`, as
+// pairs of vertices of T), so flips cannot cycle. Returns the number of edges flipped.
+using VertexPair = std::pair<VertexId::Index, VertexId::Index>;
+VertexPair pair_of(const domain::Domain& D, VertexId a, VertexId b) {
+    const VertexId::Index x = D.t_vertex[a.idx()].idx(), y = D.t_vertex[b.idx()].idx();
+    return {std::min(x, y), std::max(x, y)};
+}
+
+std::size_t flip_over_corners(domain::Domain& D, const std::vector<Conflict>& conflicts, std::set<VertexPair>& made) {
+    std::vector<std::uint8_t> touched(D.mesh.n_edges(), 0);
+    std::size_t flips = 0;
+    for (const Conflict& c : conflicts) {
+        if (c.kind != Conflict::Kind::through_corner || touched[c.d_edge_a]) continue;
+        const EdgeId e(c.d_edge_a);
+        const HalfedgeId h = TriMesh::halfedge(e, 0);
+        const VertexId m(c.d_vertex);
+        if (D.mesh.to(D.mesh.next(h)) != m && D.mesh.to(D.mesh.next(TriMesh::twin(h))) != m) continue;
+        if (!D.mesh.is_flip_ok(e) || made.count(pair_of(D, D.mesh.from(h), D.mesh.to(h)))) continue;
+        // The four edges of the two faces change their faces: none of them may flip this round.
+        for (HalfedgeId g : {h, TriMesh::twin(h)})
+            for (HalfedgeId k = D.mesh.next(g); k != g; k = D.mesh.next(k)) touched[TriMesh::edge(k).idx()] = 1;
+        touched[e.idx()] = 1;
+        D.mesh.flip(e);
+        made.insert(pair_of(D, D.mesh.from(h), D.mesh.to(h)));
+        ++flips;
+    }
+    return flips;
 }
 
 }  // namespace
 
 Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& options) {
-    const domain::Domain D0 = D;
-    std::size_t in_order = 0;  // collapses of D0's history undone in order by the fallback
+    const bool decimated = !D.history.empty();
+    const std::size_t faces0 = D.mesh.n_faces(), vertices0 = D.mesh.n_vertices();
+    std::vector<VertexId> keep;
+    std::vector<std::uint8_t> kept(T.n_vertices(), 0);
+    std::set<VertexPair> flipped;  // edges made by flips
     PathCache cache(T, options.ellipse);
     Partition out;
     for (;;) {
@@ -104,21 +113,13 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         if (embedding.conflicts.empty()) {
             out.patches = extract_patches(D, embedding.network);
             out.network = std::move(embedding.network);
-            out.collapses_undone = D.mesh.n_vertices() - D0.mesh.n_vertices();
+            out.vertices_added = D.mesh.n_vertices() - vertices0;
+            out.kept = std::move(keep);
             out.domain = std::move(D);
             return out;
         }
-        std::size_t undone = refine_around(D, T, embedding.conflicts);
-        if (undone == 0 && in_order < D0.history.size()) {
-            // Out-of-order splits can leave the remaining collapses without their neighbours;
-            // undoing in order (twice as many each time, up to D = T) always can.
-            in_order = std::min(D0.history.size(), std::max(2 * in_order, D.mesh.n_vertices() - D0.mesh.n_vertices() + 1));
-            const std::size_t before = D.mesh.n_vertices();
-            D = domain::undo_collapses(D0, T, in_order);
-            undone = D.mesh.n_vertices() > before ? D.mesh.n_vertices() - before : 1;
-        }
-        if (undone == 0) {
-            std::string what = "conditions (1)/(2) of §3 fail and the domain cannot be refined there:";
+        if (!decimated) {
+            std::string what = "conditions (1)/(2) of §3 fail for the given domain:";
             for (std::size_t i = 0; i < std::min<std::size_t>(embedding.conflicts.size(), 4); ++i)
                 what += (i ? "; " : " ") + embedding.conflicts[i].describe();
             if (embedding.conflicts.size() > 4) what += "; and " + std::to_string(embedding.conflicts.size() - 4) + " more";
@@ -126,10 +127,31 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         }
         out.resolved.insert(out.resolved.end(), embedding.conflicts.begin(), embedding.conflicts.end());
         ++out.retries;
+        if (const std::size_t flips = flip_over_corners(D, embedding.conflicts, flipped)) {
+            if (options.progress)
+                options.progress("partition: " + std::to_string(embedding.conflicts.size()) + " conflicts (" +
+                                 embedding.conflicts.front().describe() + "); flipped " + std::to_string(flips) +
+                                 " domain edges that ran over a corner");
+            continue;
+        }
+        // Decimate T again, keeping the vertices at the conflicts: two more faces per kept vertex.
+        const std::vector<VertexId> more = new_keep(T, D, embedding, kept);
+        keep.insert(keep.end(), more.begin(), more.end());
+        const std::size_t target = std::min(T.n_faces(), faces0 + 2 * keep.size());
+        try {
+            if (more.empty()) throw InvalidInput("", 0, "no vertex left to keep");
+            domain::DecimateOptions o;
+            o.target_faces = target;
+            o.keep = keep;
+            D = domain::decimate(T, o);
+        } catch (const InvalidInput&) {
+            D = domain::Domain{T, {}, {}};  // the last resort: D = T
+            for (VertexId v : T.vertices()) D.t_vertex.push_back(v);
+        }
         if (options.progress)
             options.progress("partition: " + std::to_string(embedding.conflicts.size()) + " conflicts (" +
-                             embedding.conflicts.front().describe() + "); the domain now has " +
-                             std::to_string(D.mesh.n_faces()) + " faces");
+                             embedding.conflicts.front().describe() + "); decimating again keeping " +
+                             std::to_string(keep.size()) + " vertices: " + std::to_string(D.mesh.n_faces()) + " faces");
     }
 }
 

@@ -2,23 +2,22 @@
 // of D, embedded into T′, conditions (1) and (2), the patches — and recovery when the conditions fail.
 //
 // Paper §3 requires "a parameter domain Ω_D and a vertex correspondence with the property that
-// conditions (1) and (2) hold", found always to hold in its examples, and notes that they could be
-// made "part of the stopping criterion" of the decimation. We do the equivalent after the fact:
-// when they fail, the collapses that made the conflicting corners are undone (selective
-// refinement of D near the conflict) and the paths are recomputed; only the paths of D's new
-// edges are new work.
+// conditions (1) and (2) hold", found always to hold in its examples, and notes that they "could
+// be made part of the stopping criterion" of the decimation. We do that after the fact: when they
+// fail, T is decimated again to two more faces per vertex that D must now keep — the vertices of T
+// at the conflicts — and the paths are recomputed (only those of new edges are new work).
 //
 // Pseudocode:
 //   loop:
 //       for each edge [v_j, v_k] of D: Γ(x_j, x_k) by the ellipse search (cached by its ends)
 //       embed the paths into T -> T′, with the conflicts against (1) and (2)
 //       if no conflict: cut T′ into the patches; return
-//       refine D at the corners of the conflicting edges (domain::refine_at), or at their
-//           neighbours, rings outwards, when those have no collapse left to undo
-//       if that is stuck: undo D's collapses in order instead, twice as many each time (ends at
-//           D = T, whose paths are T's edges: (1) and (2) hold)
-//       if nothing could be refined (a user-given D has no history): PartitionFailure naming
-//           the conflicting domain edges
+//       if D was given by the user: PartitionFailure naming the conflicting domain edges
+//       keep += the vertices of T at the conflicts (a shared node; beside a corner a curve runs
+//               over; a crossing face's corners; the first node of a curve out of order), or
+//               when all are in D already, the middle node of each conflicting curve
+//       D <- decimate(T, #F(D₀) + 2·|keep| faces, keeping `keep`); if that cannot be done: D = T
+//           (whose paths are T's own edges, so (1) and (2) hold)
 // Decisions and their reasons: paper_notes/partition.md.
 #pragma once
 
@@ -45,15 +44,16 @@ struct Partition {
     std::vector<geodesic::EllipsePath> paths;  ///< #E(D): Γ for D's halfedge (e, 0), from x_j to x_k
     Network network;                           ///< T′ with the paths embedded
     Patches patches;                           ///< one disk per face of D
-    std::size_t retries = 0;                   ///< rounds that found conflicts and refined D
-    std::size_t collapses_undone = 0;          ///< vertices added to D by the recovery
+    std::size_t retries = 0;                   ///< rounds that found conflicts and decimated again
+    std::size_t vertices_added = 0;            ///< #V(D) − #V(D₀)
+    std::vector<VertexId> kept;                ///< the vertices of T that the recovery made D keep
     std::vector<Conflict> resolved;            ///< the conflicts met on the way, in order
 };
 
 /// §3 for T and D.
 /// \pre T valid, closed, connected; D's vertices are vertices of T (decimate or attach_domain).
-/// \throws PartitionFailure when (1)/(2) fail and D cannot be refined near the conflict (a
-///         user-given domain has no collapses to undo); the message names the domain edges.
+/// \throws PartitionFailure when (1)/(2) fail for a user-given domain (one without decimation
+///         history); the message names the conflicting domain edges.
 Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& options = {});
 
 }  // namespace fhr::partition

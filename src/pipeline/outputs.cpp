@@ -10,6 +10,8 @@
 #include "io/atomic_file.hpp"
 #include "io/json.hpp"
 #include "io/write.hpp"
+#include "render/figures.hpp"
+#include "render/svg.hpp"
 
 namespace fhr::pipeline {
 
@@ -57,7 +59,7 @@ void write_report(const std::string& path, const InputInfo& input, const Paramet
     j.key("domain").begin_object();
     j.key("vertices").value(D.n_vertices()).key("edges").value(D.n_edges()).key("faces").value(D.n_faces());
     j.key("faces_requested").value(input.domain_faces_requested);
-    j.key("retries").value(P.retries).key("collapses_undone").value(P.collapses_undone);
+    j.key("retries").value(P.retries).key("vertices_added").value(P.vertices_added).key("kept_vertices").value(P.kept.size());
     j.key("conflicts_resolved").value(P.resolved.size()).end_object();
 
     std::size_t windows = 0, max_attempts = 0;
@@ -137,6 +139,43 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
     io::write_obj(base + "textured.obj", p.refined_positions, p.refined_faces, atlas_uv(p));
     write_report(base + "report.json", input, p, oracle, options);
     write_timings(base + "timings.json", timings);
+}
+
+void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis) {
+    const std::string base = dir + "/figures/";
+    std::error_code ec;
+    std::filesystem::create_directories(base, ec);
+    if (ec) throw InvalidInput(base, 0, "cannot create the figures folder: " + ec.message());
+    const partition::Partition& P = p.partition;
+    const render::FigureSize size;
+    render::ViewDirection view;
+    view.up_axis = up_axis;
+    const render::Camera camera = render::figure_camera(T.positions(), size, view);
+    const std::vector<Triangle> t_faces = T.triangles(), d_faces = P.domain.mesh.triangles();
+    const render::MeshData t{T.positions(), t_faces}, d{P.domain.mesh.positions(), d_faces};
+    render::write_fig6(base + "fig6.png", camera, t, d, size);
+    std::vector<std::vector<std::uint32_t>> lines;
+    for (const auto& path : P.network.path) {
+        auto& line = lines.emplace_back();
+        for (VertexId v : path) line.push_back(v.idx());
+    }
+    // The checkerboard coordinates: (β1, β2) of every corner, the same square cells in every patch.
+    std::vector<Eigen::Vector2d> uv;
+    uv.reserve(3 * p.refined_faces.size());
+    for (const auto& face : p.face_beta)
+        for (const auto& beta : face) uv.emplace_back(beta[1], beta[2]);
+    render::write_fig7(base + "fig7.png", camera, t, {P.network.mesh.positions(), lines}, {p.refined_positions, p.refined_faces}, uv, size);
+    // ψ_i(S_i) inside an equilateral triangle for the first patch and the one with the most faces.
+    const std::array<Eigen::Vector2d, 3> corners{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0.5, std::sqrt(3.0) / 2)};
+    std::size_t largest = 0;
+    for (std::size_t i = 0; i < p.disks.size(); ++i)
+        if (p.disks[i].triangles.size() > p.disks[largest].triangles.size()) largest = i;
+    for (std::size_t i : {std::size_t{0}, largest}) {
+        std::vector<render::ImageTriangle> image;
+        for (std::size_t f = 0; f < p.face_patch.size(); ++f)
+            if (p.face_patch[f] == i) image.push_back(p.face_beta[f]);
+        render::write_patch_svg(base + "patch" + std::to_string(i) + ".svg", corners, image);
+    }
 }
 
 }  // namespace fhr::pipeline

@@ -28,4 +28,10 @@ struct InputInfo {
 void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
                    const exchange::VerifyReport& oracle, const Timings& timings, const Options& options);
 
+/// The paper's Figures 6 and 7 (fig6.png: T and D; fig7.png: the geodesic network on T, and T′
+/// with a checkerboard over every patch through ψ) and one SVG per chosen patch (ψ_i(S_i) in its
+/// triangle: the first patch and the one with the most faces) into DIR/figures/, all from one camera
+/// with `up_axis` (0, 1, 2) up. Deterministic bytes.
+void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis);
+
 }  // namespace fhr::pipeline

@@ -1,0 +1,130 @@
+#!/usr/bin/env python3
+"""`./run corpus`: `fhr run` with default settings on every closed manifold mesh of libcgal-demo's
+data/meshes (those `fhr info --json` calls valid, without --triangulate) and on
+../shared/meshes/{horse,rocker}.off when present; each output is checked by `fhr verify --mesh`.
+Prints one row per mesh (mesh, genus, faces, domain faces requested -> final, §3 retries,
+certified, time), then `K of N certified (P %)` and every failure with its exit code and message.
+
+Domain size rule: N = F/100 rounded down to even, at most 1000, at least
+max(24, 2·min_closed_faces(genus)) (twice the fewest faces of a closed surface of that genus), and
+at most F (then D = T). When §2 cannot reach N under its validity rules it says `decimation
+stopped at K faces`; the run is then repeated once with --faces K (noted in the table).
+A mesh is certified when `fhr run` exits 0 and `fhr verify --mesh` accepts its param.fhrp.
+Outputs: OUT_DIR/<mesh>/ (fhr run's folder) and OUT_DIR/<mesh>.stderr (its progress lines).
+
+Usage: run_corpus.py FHR MESH_DIR OUT_DIR [--shared DIR] [--timeout SECONDS] [--only NAME ...]"""
+import argparse
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+
+parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+parser.add_argument("fhr")
+parser.add_argument("mesh_dir")
+parser.add_argument("out_dir")
+parser.add_argument("--shared", help="folder holding horse.off and rocker.off")
+parser.add_argument("--timeout", type=float, default=1800.0, help="seconds per `fhr run`")
+parser.add_argument("--only", nargs="*", help="run only these mesh file names")
+options = parser.parse_args()
+fhr, mesh_dir, out_dir, shared_dir, timeout = options.fhr, options.mesh_dir, options.out_dir, options.shared, options.timeout
+
+
+def min_closed_faces(genus):
+    """domain::min_closed_faces: F = 2(V − χ), V from Heawood's bound (10 for genus 2)."""
+    v = 10 if genus == 2 else math.ceil((7 + math.sqrt(1 + 48 * genus)) / 2)
+    return 2 * (v - (2 - 2 * genus))
+
+
+def domain_faces(faces, genus):
+    n = min(faces // 100 // 2 * 2, 1000)
+    return min(max(n, 24, 2 * min_closed_faces(genus)), faces)
+
+
+def info(path):
+    proc = subprocess.run([fhr, "info", "--json", path], capture_output=True, text=True)
+    try:
+        return json.loads(proc.stdout)
+    except json.JSONDecodeError:
+        return None
+
+
+def error_line(stderr):
+    lines = [l for l in stderr.splitlines() if l.startswith("fhr: error") or l.startswith("fhr: internal")]
+    return lines[-1] if lines else (stderr.strip().splitlines() or ["(no message)"])[-1]
+
+
+def run_one(path, faces, genus):
+    name = os.path.basename(path)
+    out = os.path.join(out_dir, name)
+    target = domain_faces(faces, genus)
+    row = {"mesh": name, "genus": genus, "faces": faces, "requested": target, "final": "-", "retries": "-",
+           "certified": False, "seconds": 0.0, "note": "", "failure": None}
+    start = time.monotonic()
+    for attempt in range(2):
+        try:
+            proc = subprocess.run([fhr, "run", path, "--faces", str(target), "--out", out], capture_output=True,
+                                  text=True, errors="replace", timeout=timeout)
+            code, stderr = proc.returncode, proc.stderr
+        except subprocess.TimeoutExpired:
+            code, stderr = -1, "timed out after %g s" % timeout
+        stopped = re.search(r"decimation stopped at (\d+) faces", stderr)
+        if code == 2 and stopped and attempt == 0:
+            row["note"] = "§2 reached %s, not %d" % (stopped.group(1), target)
+            target = int(stopped.group(1))
+            row["requested"] = target
+            continue
+        break
+    row["seconds"] = time.monotonic() - start
+    with open(out + ".stderr", "w") as f:  # fhr run's progress and error lines, for the failures
+        f.write(stderr)
+    report = os.path.join(out, "report.json")
+    if os.path.exists(report) and code in (0, 4):
+        with open(report) as f:
+            d = json.load(f)["domain"]
+        row["final"], row["retries"] = d["faces"], d["retries"]
+    if code != 0:
+        row["failure"] = "fhr run exit %d: %s" % (code, error_line(stderr))
+        return row
+    verify = subprocess.run([fhr, "verify", os.path.join(out, "param.fhrp"), "--mesh", path], capture_output=True,
+                            text=True, errors="replace")
+    if verify.returncode != 0:
+        row["failure"] = "fhr verify exit %d: %s" % (verify.returncode,
+                                                     (verify.stdout.splitlines() or [error_line(verify.stderr)])[0])
+        return row
+    row["certified"] = True
+    return row
+
+
+candidates = sorted(os.path.join(mesh_dir, m) for m in os.listdir(mesh_dir))
+if shared_dir:
+    candidates += [os.path.join(shared_dir, m) for m in ("horse.off", "rocker.off")
+                   if os.path.exists(os.path.join(shared_dir, m))]
+if options.only:
+    candidates = [p for p in candidates if os.path.basename(p) in options.only]
+inputs = []
+for path in candidates:
+    d = info(path)
+    if d and d.get("valid"):
+        inputs.append((path, d["faces"], d["genus"]))
+os.makedirs(out_dir, exist_ok=True)
+
+print("%-28s %5s %8s %15s %7s %9s %8s  %s" % ("mesh", "genus", "faces", "domain faces", "retries", "certified",
+                                              "time s", "note"))
+rows = []
+for path, faces, genus in inputs:
+    row = run_one(path, faces, genus)
+    rows.append(row)
+    print("%-28s %5d %8d %15s %7s %9s %8.2f  %s" % (
+        row["mesh"], row["genus"], row["faces"], "%s -> %s" % (row["requested"], row["final"]), row["retries"],
+        "yes" if row["certified"] else "NO", row["seconds"], row["note"]), flush=True)
+certified = sum(r["certified"] for r in rows)
+print("%d of %d certified (%.1f %%)" % (certified, len(rows), 100.0 * certified / max(len(rows), 1)))
+for r in rows:
+    if r["failure"]:
+        print("FAILED %s (genus %d, %d faces, --faces %s): %s" % (r["mesh"], r["genus"], r["faces"], r["requested"],
+                                                                   r["failure"]))
+sys.exit(0 if certified == len(rows) else 1)

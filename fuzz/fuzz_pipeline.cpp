@@ -1,0 +1,74 @@
+// FHR §2–§4 — libFuzzer target for the whole pipeline: the bytes choose a small random closed
+// mesh T with the generator's recipe (genus 0–2, at most min_faces + 300 faces, seed, noise;
+// src/generate), a domain size, the weights and the solver; §2 decimates T to D and
+// pipeline::parameterize runs §3 and §4. Every run must end certified (Proposition 1, the
+// per-patch certificate) and accepted by the independent oracle (spec/param.md PARAM-2..11
+// against T). The one expected refusal is InvalidInput from the decimation (the size cannot be
+// reached under its validity rules, spec/domain.md); a PartitionFailure is a finding too, since
+// §3's recovery ends at the latest at D = T. A finding prints the `fhr` commands that reproduce it
+// and traps. Every input is a valid recipe; the seeds (fuzz/corpus/pipeline/) are 24 bytes long
+// so that libFuzzer's length limit starts where a whole recipe fits (about 15 bytes).
+#include <fuzzer/FuzzedDataProvider.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "core/errors.hpp"
+#include "domain/decimate.hpp"
+#include "exchange/verify.hpp"
+#include "generate/random_mesh.hpp"
+#include "pipeline/outputs.hpp"
+#include "pipeline/pipeline.hpp"
+
+namespace {
+
+using namespace fhr;
+
+[[noreturn]] void finding(const generate::RandomMeshOptions& o, std::size_t target, const pipeline::Options& options,
+                          const std::string& what) {
+    std::fprintf(stderr,
+                 "fuzz_pipeline finding: %s\nreproduce: fhr generate --genus %d --faces %zu --seed %llu --noise %.2f "
+                 "--out m.off && fhr run m.off --faces %zu --weights %s --solver %s --out run\n",
+                 what.c_str(), o.genus, o.faces, static_cast<unsigned long long>(o.seed), o.noise, target,
+                 std::string(param::name(options.map.weights)).c_str(), std::string(param::name(options.map.solver)).c_str());
+    __builtin_trap();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    FuzzedDataProvider bytes(data, size);
+    generate::RandomMeshOptions o;
+    o.genus = bytes.ConsumeIntegralInRange(0, 2);
+    const std::size_t least = generate::min_faces(o.genus);
+    o.faces = least + 2 * bytes.ConsumeIntegralInRange<std::size_t>(0, 150);
+    o.seed = bytes.ConsumeIntegral<std::uint64_t>() >> 1;  // `fhr generate --seed` takes < 2^63
+    o.noise = bytes.ConsumeIntegralInRange(0, 45) / 100.0;  // the generator accepts [0, 0.5)
+    const std::size_t lowest = domain::min_closed_faces(o.genus);
+    const std::size_t target = lowest + 2 * bytes.ConsumeIntegralInRange<std::size_t>(0, (o.faces - lowest) / 2);
+    pipeline::Options options;
+    options.map.weights = bytes.PickValueInArray({param::Weights::shape_preserving, param::Weights::mean_value,
+                                                  param::Weights::uniform});
+    options.map.solver = bytes.PickValueInArray({param::Solver::sparse_lu, param::Solver::bicgstab});
+
+    const TriMesh T = generate::random_closed_mesh(o);
+    domain::Domain D;
+    try {
+        D = domain::decimate(T, {.target_faces = target});
+    } catch (const InvalidInput&) {
+        return 0;  // the expected refusal: this size cannot be reached under the decimation's rules
+    }
+    try {
+        pipeline::Timings timings;
+        const pipeline::Parameterization p = pipeline::parameterize(T, std::move(D), options, timings);
+        if (!p.certified()) finding(o, target, options, "a patch certificate failed");
+        const exchange::VerifyReport oracle = exchange::verify(pipeline::to_param_file(p), &T);
+        if (const exchange::CheckResult* bad = oracle.first_failure())
+            finding(o, target, options, "fhr verify: " + bad->id + ": " + bad->first_failure);
+    } catch (const Error& e) {  // PartitionFailure, NumericalFailure, or InvalidInput after §2
+        finding(o, target, options, std::string("exception: ") + e.what());
+    }
+    return 0;
+}

@@ -1,0 +1,119 @@
+// `fhr run` end to end (spec/cli.md CLI-RUN-1..5): all files written, the report's fields, the
+// run certified and accepted by the independent oracle `fhr verify --mesh`, byte-identical
+// outputs across runs, refused inputs and domains.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "core/build.hpp"
+#include "io/read.hpp"
+#include "support/test_support.hpp"
+
+using fhr::test::read_file;
+using fhr::test::run_fhr;
+using fhr::test::temp_path;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* const outputs[] = {"domain.off", "geodesics.obj", "refined.ply", "param.fhrp", "textured.obj", "report.json", "timings.json"};
+
+std::string fandisk() {
+    const auto path = fhr::test::cgal_mesh("fandisk.off");
+    if (!path) throw std::runtime_error("fandisk.off is missing: run ./run demo to extract libcgal-demo's meshes");
+    return *path;
+}
+
+// The integer value of "key": N in a JSON text (the first occurrence).
+long json_integer(const std::string& json, const std::string& key) {
+    std::smatch m;
+    if (!std::regex_search(json, m, std::regex("\"" + key + "\": (-?[0-9]+)"))) throw std::runtime_error("no key " + key);
+    return std::stol(m[1]);
+}
+
+bool json_true(const std::string& json, const std::string& key) { return json.find("\"" + key + "\": true") != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("CLI-RUN-1..4: fhr run on the fandisk writes every file, certified, verified, byte-identical", "[cli][run]") {
+    const std::string mesh = fandisk(), dir = temp_path("run1"), again = temp_path("run2");
+    const auto r = run_fhr({"run", mesh, "--faces", "114", "--out", dir});
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("certified") != std::string::npos);
+    for (const char* f : outputs) CHECK(fs::exists(dir + "/" + f));
+    const std::string report = read_file(dir + "/report.json");
+    CHECK(json_integer(report, "faces") == 12946);  // input.faces comes first
+    CHECK(json_integer(report, "genus") == 0);
+    CHECK(json_integer(report, "edges") == 171);
+    CHECK(json_integer(report, "paths") == 171);
+    CHECK(json_integer(report, "patches") == 114);
+    CHECK(json_integer(report, "flipped_triangles") == 0);
+    CHECK(json_true(report, "certified"));
+    CHECK(json_true(report, "valid"));
+    const std::string timings = read_file(dir + "/timings.json");
+    for (const char* stage : {"mesh_reduction", "geodesic_paths", "parameterization", "total"})
+        CHECK(timings.find(std::string("\"") + stage + "\"") != std::string::npos);
+    // refined.ply is T′ as our own strict reader sees it, with as many faces as the report says.
+    const fhr::PolygonSoup soup = fhr::io::read_soup(dir + "/refined.ply");
+    CHECK(static_cast<long>(soup.polygon_count()) == json_integer(report, "refined_faces"));
+    // The oracle, as a separate process, accepts param.fhrp against the input mesh.
+    const auto v = run_fhr({"verify", dir + "/param.fhrp", "--mesh", mesh});
+    INFO(v.out << v.err);
+    CHECK(v.exit_code == 0);
+    // CLI-RUN-4: a second run gives the same bytes (timings aside).
+    REQUIRE(run_fhr({"run", mesh, "--faces", "114", "--out", again}).exit_code == 0);
+    for (const char* f : outputs)
+        if (std::string(f) != "timings.json") CHECK(read_file(dir + "/" + f) == read_file(again + "/" + f));
+}
+
+TEST_CASE("CLI-RUN-1: --weights and --solver are honoured and still certified", "[cli][run]") {
+    const std::string mesh = fandisk(), dir = temp_path("run-mv");
+    const auto r = run_fhr({"run", mesh, "--faces", "200", "--out", dir, "--weights", "mean-value", "--solver", "bicgstab"});
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const std::string report = read_file(dir + "/report.json");
+    CHECK(report.find("\"weights\": \"mean-value\"") != std::string::npos);
+    CHECK(report.find("\"solver\": \"bicgstab\"") != std::string::npos);
+    CHECK(json_true(report, "certified"));
+}
+
+TEST_CASE("CLI-RUN-5: bad input and bad options exit 2 and write nothing", "[cli][run]") {
+    const std::string dir = temp_path("run-bad");
+    const std::string bad = fhr::test::write_temp("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    auto r = run_fhr({"run", bad, "--faces", "4", "--out", dir});
+    CHECK(r.exit_code == 2);
+    CHECK(!fs::exists(dir + "/report.json"));
+    r = run_fhr({"run", fandisk(), "--out", dir});  // neither --faces nor --domain
+    CHECK(r.exit_code == 2);
+    r = run_fhr({"run", fandisk(), "--faces", "114", "--out", dir, "--weights", "cotangent"});
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("cotangent") != std::string::npos);
+    CHECK(!fs::exists(dir + "/param.fhrp"));
+}
+
+TEST_CASE("CLI-RUN-5: a user domain whose paths break (1)/(2) exits 3 naming domain edges", "[cli][run]") {
+    // The decimated domain with the points of two far-apart domain vertices swapped: their curves
+    // now cross the others, and a user domain is never changed, so §3 cannot partition.
+    const std::string mesh = fandisk(), domain = temp_path("dom.off");
+    REQUIRE(run_fhr({"decimate", mesh, "--faces", "114", "--out", domain}).exit_code == 0);
+    const std::string corr = fs::path(domain).replace_extension(".correspondence").string();
+    std::istringstream in(read_file(corr));
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    REQUIRE(lines.size() == 60);  // a comment and 59 vertices
+    std::swap(lines[1], lines[59]);
+    std::string swapped;
+    for (const auto& line : lines) swapped += line + "\n";
+    const std::string bad = fhr::test::write_temp("swapped.correspondence", swapped), dir = temp_path("run-user");
+    const auto r = run_fhr({"run", mesh, "--domain", domain, "--correspondence", bad, "--out", dir});
+    INFO(r.err);
+    CHECK(r.exit_code == 3);
+    CHECK(r.err.find("domain edge") != std::string::npos);
+    CHECK(!fs::exists(dir + "/param.fhrp"));
+    // The unchanged correspondence works.
+    CHECK(run_fhr({"run", mesh, "--domain", domain, "--correspondence", corr, "--out", temp_path("run-user-ok")}).exit_code == 0);
+}

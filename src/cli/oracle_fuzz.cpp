@@ -1,0 +1,348 @@
+// FHR cli — `fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--genus-max G] [--seed S]
+// [--keep DIR] [--timeout SECONDS]`: fuzzing another implementation of the paper with fhr's oracle
+// (spec/cli.md CLI-ORACLE-*). Random closed meshes T (§1's input class, src/generate) go to the
+// program; whatever it writes must be a `fhr-param 1` file that `fhr verify --mesh T` accepts
+// (PARAM-1..11, src/exchange). Each failure is kept with its reason and shrunk.
+//
+// Pseudocode:
+//   for i in 0 .. N−1:
+//       recipe_i <- (genus, faces, seed, noise) drawn from splitmix64(S, i)   (deterministic)
+//       outcome  <- judge(recipe_i): write T to a temporary mesh.off; /bin/sh -c CMD with {mesh}
+//                   and {out} replaced by the shell-quoted paths; exit 0, then read {out}
+//                   (PARAM-1) and verify it against T (PARAM-2..11); the first failure is the reason
+//       if it failed: shrink(recipe_i) (below); keep mesh, output, reason and the smaller mesh
+//   print `N meshes, K failures`; exit 0 when K = 0, else 1
+//
+// Shrinking (greedy, as in delta debugging): a candidate is "smaller" when it has fewer faces, or
+// as many faces and a lower genus, or the same size without noise. From the current smallest
+// failing recipe, try in order: each lower genus with the same face count; min_faces(genus),
+// then the face count halfway and three quarters of the way down to it, then 2 faces fewer, each
+// with the recipe's seed and two more seeds (a smaller size is a different mesh, and a bug may
+// need a lucky one); no noise. The first candidate that fails *the same way* (same check id, same
+// exit code, a timeout or no output) becomes the current one and the search starts again; it
+// ends when no candidate fails or after shrink_budget runs of the program.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli/common.hpp"
+#include "core/errors.hpp"
+#include "exchange/fhr_param.hpp"
+#include "exchange/verify.hpp"
+#include "generate/random_mesh.hpp"
+#include "io/atomic_file.hpp"
+#include "io/read.hpp"
+
+extern char** environ;
+
+namespace fhr::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Runs of the program spent on shrinking one failure.
+constexpr int shrink_budget = 40;
+/// The largest face count above min_faces(genus) of a drawn mesh: modest, so that a slow
+/// implementation still gets through hundreds of meshes.
+constexpr std::uint64_t extra_faces_max = 600;
+/// Bytes of the program's stderr kept in a reason.
+constexpr std::size_t stderr_tail = 600;
+
+/// splitmix64 (Steele, Lea, Flood 2014): a fully specified stream, so the recipes are the same on
+/// every platform.
+class SplitMix {
+public:
+    explicit SplitMix(std::uint64_t state) : state_(state) {}
+    std::uint64_t next() {
+        std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    /// In [0, n); the bias of the modulo is below n / 2^64, irrelevant for a test recipe.
+    std::uint64_t below(std::uint64_t n) { return next() % n; }
+
+private:
+    std::uint64_t state_;
+};
+
+using Recipe = generate::RandomMeshOptions;
+
+/// Mesh i of the run with seed S: genus in [0, G], faces in [min_faces, min_faces + 600], a seed
+/// that `fhr generate --seed` accepts (< 2^63), noise 0, 0.05, 0.1 or 0.25.
+Recipe draw_recipe(std::uint64_t seed, std::uint64_t i, int genus_max) {
+    SplitMix r(SplitMix(seed).next() ^ (i * 0xD1B54A32D192ED03ull));
+    Recipe o;
+    o.genus = static_cast<int>(r.below(static_cast<std::uint64_t>(genus_max) + 1));
+    o.faces = generate::min_faces(o.genus) + 2 * r.below(extra_faces_max / 2 + 1);
+    o.seed = r.next() >> 1;
+    constexpr double noises[] = {0.0, 0.05, 0.1, 0.25};
+    o.noise = noises[r.below(4)];
+    return o;
+}
+
+std::string generate_command(const Recipe& o) {
+    char noise[32];
+    std::snprintf(noise, sizeof noise, "%g", o.noise);
+    return "fhr generate --genus " + std::to_string(o.genus) + " --faces " + std::to_string(o.faces) + " --seed " +
+           std::to_string(o.seed) + (o.noise != 0 ? std::string(" --noise ") + noise : std::string()) + " --out mesh.off";
+}
+
+/// POSIX shell single quotes: nothing inside is special except the quote itself.
+std::string shell_quote(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+std::string substitute(std::string cmd, const std::string& mesh, const std::string& out) {
+    for (const auto& [key, value] : {std::pair<std::string, std::string>{"{mesh}", shell_quote(mesh)}, {"{out}", shell_quote(out)}}) {
+        for (std::size_t at = cmd.find(key); at != std::string::npos; at = cmd.find(key, at + value.size()))
+            cmd.replace(at, key.size(), value);
+    }
+    return cmd;
+}
+
+struct Outcome {
+    bool ok = true;
+    std::string kind;    ///< what "fails the same way" compares: "PARAM-8", "exit 3", "signal 11", "timeout", "no output"
+    std::string reason;  ///< one line (the program's stderr tail follows on further lines)
+};
+
+std::string tail_of(const fs::path& file) {
+    std::string s;
+    try {
+        s = io::read_bytes(file.string());
+    } catch (const InvalidInput&) {
+        return "";
+    }
+    if (s.size() > stderr_tail) s = "…" + s.substr(s.size() - stderr_tail);
+    return s;
+}
+
+/// Runs `/bin/sh -c command` in its own process group with stdout and stderr to files in `dir`;
+/// after `timeout` seconds the group is killed. Returns the wait status, or −1 on a timeout.
+int run_shell(const std::string& command, const fs::path& dir, double timeout) {
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 1, (dir / "stdout").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, (dir / "stderr").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawnattr_t attr;
+    posix_spawnattr_init(&attr);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attr, 0);
+    std::string sh = "/bin/sh", c = "-c", cmd = command;
+    char* argv[] = {sh.data(), c.data(), cmd.data(), nullptr};
+    pid_t pid = 0;
+    const int err = posix_spawn(&pid, "/bin/sh", &actions, &attr, argv, environ);
+    posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attr);
+    if (err != 0) throw InvalidInput("/bin/sh", 0, "cannot start the shell");
+    const auto start = std::chrono::steady_clock::now();
+    int status = 0;
+    while (::waitpid(pid, &status, WNOHANG) == 0) {
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeout) {
+            ::kill(-pid, SIGKILL);
+            ::waitpid(pid, &status, 0);
+            return -1;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return status;
+}
+
+/// Generates the recipe's mesh in `dir`, runs the program on it and judges its output.
+Outcome judge(const Recipe& recipe, const std::string& cmd, const fs::path& dir, double timeout) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path mesh = dir / "mesh.off", out = dir / "out.fhrp";
+    save_mesh(mesh.string(), generate::random_closed_mesh(recipe));
+    const int status = run_shell(substitute(cmd, mesh.string(), out.string()), dir, timeout);
+    Outcome o;
+    o.ok = false;
+    const std::string err = tail_of(dir / "stderr");
+    const std::string err_lines = err.empty() ? "" : "\n" + err;
+    if (status == -1) {
+        o.kind = "timeout";
+        o.reason = "the program ran longer than " + std::to_string(static_cast<long>(timeout)) + " s" + err_lines;
+        return o;
+    }
+    if (WIFSIGNALED(status)) {
+        o.kind = "signal " + std::to_string(WTERMSIG(status));
+        o.reason = "the program was killed by signal " + std::to_string(WTERMSIG(status)) + err_lines;
+        return o;
+    }
+    if (WEXITSTATUS(status) != 0) {
+        o.kind = "exit " + std::to_string(WEXITSTATUS(status));
+        o.reason = "the program exited with code " + std::to_string(WEXITSTATUS(status)) + err_lines;
+        return o;
+    }
+    if (!fs::is_regular_file(out)) {
+        o.kind = "no output";
+        o.reason = "the program exited with code 0 but wrote no file at {out}" + err_lines;
+        return o;
+    }
+    exchange::ParamFile file;
+    try {
+        file = exchange::read_param(out.string());
+    } catch (const InvalidInput& e) {
+        o.kind = "PARAM-1";
+        o.reason = std::string("PARAM-1: ") + e.what();
+        return o;
+    }
+    const TriMesh T = load_mesh(mesh.string(), BuildOptions{});
+    const exchange::VerifyReport report = exchange::verify(file, &T);
+    if (const exchange::CheckResult* bad = report.first_failure()) {
+        o.kind = bad->id;
+        o.reason = bad->id + ": " + bad->first_failure;
+        return o;
+    }
+    o.ok = true;
+    return o;
+}
+
+/// Fewer faces, then lower genus, then less noise.
+bool smaller(const Recipe& a, const Recipe& b) {
+    if (a.faces != b.faces) return a.faces < b.faces;
+    if (a.genus != b.genus) return a.genus < b.genus;
+    return a.noise < b.noise;
+}
+
+/// The candidates tried from `r`, in order (see the file comment).
+std::vector<Recipe> shrink_candidates(const Recipe& r) {
+    std::vector<Recipe> c;
+    for (int g = 0; g < r.genus; ++g) {
+        Recipe x = r;
+        x.genus = g;
+        c.push_back(x);
+    }
+    const std::size_t least = generate::min_faces(r.genus), excess = (r.faces - least) / 2;
+    for (std::size_t faces : {least, least + 2 * (excess / 2), least + 2 * (excess * 3 / 4), r.faces - 2}) {
+        if (faces >= r.faces || faces < least) continue;
+        for (std::uint64_t k = 0; k < 3; ++k) {
+            Recipe x = r;
+            x.faces = faces;
+            x.seed = k == 0 ? r.seed : SplitMix(r.seed + k).next() >> 1;
+            c.push_back(x);
+        }
+    }
+    if (r.noise != 0) {
+        Recipe x = r;
+        x.noise = 0;
+        c.push_back(x);
+    }
+    return c;
+}
+
+struct Shrunk {
+    Recipe recipe;
+    Outcome outcome;
+    int runs = 0;
+};
+
+Shrunk shrink(const Recipe& failing, const Outcome& how, const std::string& cmd, const fs::path& dir, double timeout) {
+    Shrunk best{failing, how, 0};
+    bool progress = true;
+    while (progress && best.runs < shrink_budget) {
+        progress = false;
+        for (const Recipe& candidate : shrink_candidates(best.recipe)) {
+            if (best.runs >= shrink_budget) break;
+            if (!smaller(candidate, best.recipe)) continue;
+            ++best.runs;
+            const Outcome o = judge(candidate, cmd, dir, timeout);
+            if (!o.ok && o.kind == how.kind) {
+                best.recipe = candidate;
+                best.outcome = o;
+                progress = true;
+                break;
+            }
+        }
+    }
+    return best;
+}
+
+/// Keeps one failure: DIR/mesh-<i>/{mesh.off, out.fhrp (when written), reason.txt, smaller.off}.
+void keep_failure(const fs::path& keep, std::uint64_t i, const Recipe& recipe, const Outcome& outcome,
+                  const fs::path& run_dir, const Shrunk& shrunk, const std::string& cmd) {
+    const fs::path dir = keep / ("mesh-" + std::to_string(i));
+    fs::remove_all(dir);  // a folder of an earlier run with the same name
+    fs::create_directories(dir);
+    fs::copy_file(run_dir / "mesh.off", dir / "mesh.off", fs::copy_options::overwrite_existing);
+    if (fs::is_regular_file(run_dir / "out.fhrp"))
+        fs::copy_file(run_dir / "out.fhrp", dir / "out.fhrp", fs::copy_options::overwrite_existing);
+    save_mesh((dir / "smaller.off").string(), generate::random_closed_mesh(shrunk.recipe));
+    std::string text = "command: " + cmd + "\n";
+    text += "mesh.off: " + generate_command(recipe) + " (" + std::to_string(recipe.faces) + " faces, genus " +
+            std::to_string(recipe.genus) + ")\n";
+    text += "reason: " + outcome.reason + "\n";
+    text += "smaller.off: " + generate_command(shrunk.recipe) + " (" + std::to_string(shrunk.recipe.faces) + " faces, genus " +
+            std::to_string(shrunk.recipe.genus) + "; " + std::to_string(shrunk.runs) + " shrinking runs)\n";
+    text += "smaller reason: " + shrunk.outcome.reason + "\n";
+    io::write_file_atomically((dir / "reason.txt").string(), text);
+}
+
+/// The first line of a reason, for the one-line report.
+std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        std::string pattern = (fs::temp_directory_path() / "fhr-oracle-fuzz-XXXXXX").string();
+        if (!::mkdtemp(pattern.data())) throw InvalidInput(pattern, 0, "cannot create a temporary folder");
+        path = pattern;
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
+}  // namespace
+
+int run_oracle_fuzz(const std::vector<std::string>& argv) {
+    const Args args(argv, {}, {"cmd", "count", "genus-max", "seed", "keep", "timeout"});
+    if (!args.positional().empty()) usage_error("fhr oracle-fuzz takes no positional arguments");
+    const std::string cmd = args.require("cmd");
+    if (cmd.find("{mesh}") == std::string::npos || cmd.find("{out}") == std::string::npos)
+        usage_error("--cmd must contain {mesh} and {out}");
+    args.require("count");
+    const auto count = static_cast<std::uint64_t>(args.integer("count", 0, 1, 1'000'000));
+    const int genus_max = static_cast<int>(args.integer("genus-max", 2, 0, 20));
+    const auto seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, INT64_MAX));
+    const fs::path keep = args.get("keep").value_or("oracle-fuzz-failures");
+    const double timeout = args.real("timeout", 60.0, 0.1, 86400.0);
+
+    const TempDir tmp;
+    const fs::path run_dir = tmp.path / "run", shrink_dir = tmp.path / "shrink";
+    std::uint64_t failures = 0;
+    for (std::uint64_t i = 0; i < count; ++i) {
+        const Recipe recipe = draw_recipe(seed, i, genus_max);
+        const Outcome outcome = judge(recipe, cmd, run_dir, timeout);
+        std::printf("mesh %llu: %s: ", static_cast<unsigned long long>(i), generate_command(recipe).c_str());
+        if (outcome.ok) {
+            std::printf("valid\n");
+        } else {
+            ++failures;
+            const Shrunk shrunk = shrink(recipe, outcome, cmd, shrink_dir, timeout);
+            keep_failure(keep, i, recipe, outcome, run_dir, shrunk, cmd);
+            std::printf("FAILED: %s; smaller: %zu faces, genus %d; kept in %s\n", first_line(outcome.reason).c_str(),
+                        shrunk.recipe.faces, shrunk.recipe.genus, (keep / ("mesh-" + std::to_string(i))).string().c_str());
+        }
+        std::fflush(stdout);
+    }
+    std::printf("%llu meshes, %llu failures\n", static_cast<unsigned long long>(count),
+                static_cast<unsigned long long>(failures));
+    return failures == 0 ? 0 : 1;
+}
+
+}  // namespace fhr::cli
