@@ -69,8 +69,9 @@ def run_one(path, faces, genus):
             proc = subprocess.run([fhr, "run", path, "--faces", str(target), "--out", out], capture_output=True,
                                   text=True, errors="replace", timeout=timeout)
             code, stderr = proc.returncode, proc.stderr
-        except subprocess.TimeoutExpired:
-            code, stderr = -1, "timed out after %g s" % timeout
+        except subprocess.TimeoutExpired as e:  # e.stderr: what it printed before it was killed
+            partial = e.stderr.decode(errors="replace") if isinstance(e.stderr, bytes) else (e.stderr or "")
+            code, stderr = -1, partial + "timed out after %g s\n" % timeout
         stopped = re.search(r"decimation stopped at (\d+) faces", stderr)
         if code == 2 and stopped and attempt == 0:
             row["note"] = "§2 reached %s, not %d" % (stopped.group(1), target)
@@ -86,6 +87,10 @@ def run_one(path, faces, genus):
         with open(report) as f:
             d = json.load(f)["domain"]
         row["final"], row["retries"] = d["faces"], d["retries"]
+    if code == -1:
+        progress = stderr.splitlines()[:-1]
+        row["failure"] = "fhr run timed out after %g s; its last line: %s" % (timeout, progress[-1] if progress else "-")
+        return row
     if code != 0:
         row["failure"] = "fhr run exit %d: %s" % (code, error_line(stderr))
         return row

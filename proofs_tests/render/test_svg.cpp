@@ -120,7 +120,7 @@ TEST_CASE("REN-12: the rate–distortion plot has nice ticks, two series and a l
     // Lines: 2 axes + 5 + 6 ticks + 2 legend samples.
     CHECK(count(svg, "<line ") == 2 + 5 + 6 + 2);
     for (const char* tick : {">0<", ">5<", ">10<", ">15<", ">20<", ">0.01<", ">0.02<", ">0.03<", ">0.04<", ">0.05<"})
-        CHECK(count(svg, tick) == 1 + (std::string(tick) == ">0<"));
+        CHECK(count(svg, tick) == std::size_t{1} + (std::string(tick) == ">0<"));
     CHECK(count(svg, ">L2<") == 1);
     CHECK(count(svg, ">Hausdorff<") == 1);
     CHECK(count(svg, "fandisk &lt;J = 3&gt; &amp; friends") == 1);

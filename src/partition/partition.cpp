@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/errors.hpp"
+#include "core/parallel.hpp"
 
 namespace fhr::partition {
 namespace {
@@ -17,23 +18,34 @@ public:
     explicit PathCache(const TriMesh& T, const geodesic::EllipseOptions& options) : T_(T), options_(options) {}
 
     std::vector<geodesic::EllipsePath> all(const domain::Domain& D) {
+        const auto ends = domain::edge_endpoints(D);
+        // The paths not known yet, computed in parallel (core/parallel.hpp).
+        std::vector<Key> missing;
+        for (const auto& [a, b] : ends) {
+            const Key key = key_of(a, b);
+            if (!cache_.count(key) && std::find(missing.begin(), missing.end(), key) == missing.end()) missing.push_back(key);
+        }
+        std::vector<geodesic::EllipsePath> found(missing.size());
+        parallel_for(missing.size(), 8, [&](std::size_t i) {
+            found[i] = geodesic::ellipse_shortest_path(T_, VertexId(missing[i].first), VertexId(missing[i].second), options_);
+        });
+        for (std::size_t i = 0; i < missing.size(); ++i) cache_.emplace(missing[i], std::move(found[i]));
         std::vector<geodesic::EllipsePath> paths;
-        paths.reserve(D.mesh.n_edges());
-        for (const auto& [a, b] : domain::edge_endpoints(D)) {
-            const std::pair<VertexId::Index, VertexId::Index> key{std::min(a.idx(), b.idx()), std::max(a.idx(), b.idx())};
-            auto it = cache_.find(key);
-            if (it == cache_.end()) it = cache_.emplace(key, geodesic::ellipse_shortest_path(T_, VertexId(key.first), VertexId(key.second), options_)).first;
-            geodesic::EllipsePath p = it->second;
-            if (a.idx() != key.first) std::reverse(p.path.points.begin(), p.path.points.end());
+        paths.reserve(ends.size());
+        for (const auto& [a, b] : ends) {
+            geodesic::EllipsePath p = cache_.at(key_of(a, b));
+            if (a.idx() > b.idx()) std::reverse(p.path.points.begin(), p.path.points.end());
             paths.push_back(std::move(p));
         }
         return paths;
     }
 
 private:
+    using Key = std::pair<VertexId::Index, VertexId::Index>;
+    static Key key_of(VertexId a, VertexId b) { return {std::min(a.idx(), b.idx()), std::max(a.idx(), b.idx())}; }
     const TriMesh& T_;
     geodesic::EllipseOptions options_;
-    std::map<std::pair<VertexId::Index, VertexId::Index>, geodesic::EllipsePath> cache_;
+    std::map<Key, geodesic::EllipsePath> cache_;
 };
 
 // The vertices of T that D should keep to resolve the conflicts: those at the conflicts' places

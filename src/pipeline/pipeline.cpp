@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/parallel.hpp"
 #include "param/dividing_edges.hpp"
 
 namespace fhr::pipeline {
@@ -51,16 +52,18 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     // §4: each patch onto its triangle, certified.
     Stopwatch param;
     const std::size_t n_patches = P.patches.patch.size();
-    out.disks.reserve(n_patches);
-    out.maps.reserve(n_patches);
-    out.certificates.reserve(n_patches);
-    for (const partition::Patch& patch : P.patches.patch) {
-        param::Disk disk = patch.disk;
-        out.dividing_edges_split += param::split_dividing_edges(disk);
-        out.maps.push_back(param::map_patch(disk, options.map));
-        out.certificates.push_back(param::certify(disk, out.maps.back()));
-        out.disks.push_back(std::move(disk));
-    }
+    out.disks.resize(n_patches);
+    out.maps.resize(n_patches);
+    out.certificates.resize(n_patches);
+    std::vector<std::size_t> split(n_patches, 0);
+    parallel_for(n_patches, 16, [&](std::size_t i) {
+        param::Disk disk = P.patches.patch[i].disk;
+        split[i] = param::split_dividing_edges(disk);
+        out.maps[i] = param::map_patch(disk, options.map);
+        out.certificates[i] = param::certify(disk, out.maps[i]);
+        out.disks[i] = std::move(disk);
+    });
+    for (std::size_t s : split) out.dividing_edges_split += s;
     // The final T′: the vertices of T′ of §3, then each patch's dividing-edge midpoints; faces
     // patch by patch, each with the β of its corners.
     const TriMesh& M = P.network.mesh;
