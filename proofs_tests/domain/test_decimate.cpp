@@ -161,3 +161,30 @@ TEST_CASE("DOM-9: requests that cannot be met are refused with a clear message",
     o.target_faces = 400;  // nothing to do
     CHECK(decimate(T, o).mesh.triangles() == T.triangles());
 }
+
+TEST_CASE("DOM-14: kept vertices stay in D; best effort stops above an unreachable target instead of throwing", "[property][domain]") {
+    rc::prop("random meshes, random kept vertices", [] {
+        const test::GeneratedMesh g = *test::gen_closed_mesh(0, 3, 1200);
+        const TriMesh& T = g;
+        DecimateOptions o;
+        o.target_faces = std::max<std::size_t>(domain::min_closed_faces(g.options.genus) + 8, T.n_faces() / 4) & ~std::size_t{1};
+        RC_PRE(o.target_faces < T.n_faces());
+        const std::size_t n_keep = *rc::gen::inRange<std::size_t>(1, 8);
+        for (std::size_t i = 0; i < n_keep; ++i) o.keep.push_back(VertexId(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(T.n_vertices()))));
+        Domain d;
+        try {
+            d = decimate(T, o);
+        } catch (const InvalidInput&) {
+            RC_DISCARD("target unreachable under the validity rules");
+        }
+        for (VertexId x : o.keep) RC_ASSERT(std::find(d.t_vertex.begin(), d.t_vertex.end(), x) != d.t_vertex.end());
+        RC_ASSERT(domain_violation(T, d, o) == "");
+        // Keeping every vertex makes every collapse invalid: best effort returns T's face count.
+        DecimateOptions all;
+        all.target_faces = o.target_faces;
+        for (VertexId v : T.vertices()) all.keep.push_back(v);
+        RC_ASSERT_THROWS_AS(decimate(T, all), InvalidInput);
+        all.best_effort = true;
+        RC_ASSERT(decimate(T, all).mesh.n_faces() == T.n_faces());
+    });
+}

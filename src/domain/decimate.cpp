@@ -88,6 +88,7 @@ public:
         Domain d;
         while (faces > options_.target_faces) {
             if (queue_.empty()) {
+                if (options_.best_effort) break;
                 throw InvalidInput("", 0, "decimation stopped at " + std::to_string(faces) + " faces (target " +
                                               std::to_string(options_.target_faces) +
                                               "): no further half-edge collapse keeps the domain valid under "

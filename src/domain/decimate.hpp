@@ -37,6 +37,7 @@ struct DecimateOptions {
     double max_normal_deviation_deg = 90.0;  ///< no face may turn by more than this (flips)
     double min_angle_deg = 1.0;              ///< no new corner angle below this (needles, degeneracy)
     std::vector<VertexId> keep{};            ///< vertices of T that D must keep (§3 recovery)
+    bool best_effort = false;                ///< stop above the target instead of throwing when no collapse is valid
 };
 
 /// D together with its correspondence to T (paper §2).

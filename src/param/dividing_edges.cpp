@@ -30,7 +30,7 @@ std::size_t split_dividing_edges(Disk& disk) {
     for (const auto& [a, b] : dividing) {
         // The triangles holding the edge now (earlier splits may have moved it to a new one).
         const std::uint32_t t1 = edges.at(detail::edge_key(a, b)), t2 = edges.at(detail::edge_key(b, a));
-        auto third = [&](std::uint32_t t) {
+        auto third = [&, a = a, b = b](std::uint32_t t) {  // structured bindings are captured by copy (C++20, clang)
             const auto& f = disk.triangles[t];
             return f[0] != a && f[0] != b ? f[0] : f[1] != a && f[1] != b ? f[1] : f[2];
         };

@@ -65,13 +65,30 @@ std::vector<VertexId> new_keep(const TriMesh& T, const domain::Domain& D, const 
     for (const Conflict& c : embedding.conflicts)
         for (VertexId v : c.near) add(v);
     if (!keep.empty()) return keep;
+    // All at the conflicts is kept already: the middle node of each conflicting curve; failing
+    // that both ends of the edges of T its nodes lie on; failing that the neighbours in T of the
+    // conflicts' places.
     const Network& net = embedding.network;
+    auto nearest = [&](VertexId v) {
+        const Origin& o = net.origin[v.idx()];
+        return o.vertex.valid() ? o.vertex : T.from(TriMesh::halfedge(o.edge, o.t < 0.5 ? 0 : 1));
+    };
     for (const Conflict& c : embedding.conflicts)
-        for (std::uint32_t e : {c.d_edge_a, c.d_edge_b}) {
-            const auto& path = net.path[e];
-            const Origin& o = net.origin[path[path.size() / 2].idx()];
-            add(o.vertex.valid() ? o.vertex : T.from(TriMesh::halfedge(o.edge, o.t < 0.5 ? 0 : 1)));
-        }
+        for (std::uint32_t e : {c.d_edge_a, c.d_edge_b}) add(nearest(net.path[e][net.path[e].size() / 2]));
+    if (!keep.empty()) return keep;
+    for (const Conflict& c : embedding.conflicts)
+        for (std::uint32_t e : {c.d_edge_a, c.d_edge_b})
+            for (VertexId v : net.path[e]) {
+                const Origin& o = net.origin[v.idx()];
+                if (o.vertex.valid()) continue;
+                add(T.from(TriMesh::halfedge(o.edge, 0)));
+                add(T.to(TriMesh::halfedge(o.edge, 0)));
+            }
+    if (!keep.empty()) return keep;
+    // Last, the neighbours in T of the conflicts' places.
+    for (const Conflict& c : embedding.conflicts)
+        for (VertexId v : c.near)
+            if (v.valid()) T.for_each_outgoing(v, [&](HalfedgeId h) { add(T.to(h)); });
     return keep;
 }
 
@@ -155,10 +172,12 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             domain::DecimateOptions o;
             o.target_faces = target;
             o.keep = keep;
+            o.best_effort = true;
             D = domain::decimate(T, o);
-        } catch (const InvalidInput&) {
+        } catch (const InvalidInput& e) {
             D = domain::Domain{T, {}, {}};  // the last resort: D = T
             for (VertexId v : T.vertices()) D.t_vertex.push_back(v);
+            if (options.progress) options.progress(std::string("partition: D = T, because ") + e.what());
         }
         if (options.progress)
             options.progress("partition: " + std::to_string(embedding.conflicts.size()) + " conflicts (" +

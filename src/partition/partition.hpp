@@ -15,9 +15,10 @@
 //       if D was given by the user: PartitionFailure naming the conflicting domain edges
 //       keep += the vertices of T at the conflicts (a shared node; beside a corner a curve runs
 //               over; a crossing face's corners; the first node of a curve out of order), or
-//               when all are in D already, the middle node of each conflicting curve
-//       D <- decimate(T, #F(D₀) + 2·|keep| faces, keeping `keep`); if that cannot be done: D = T
-//           (whose paths are T's own edges, so (1) and (2) hold)
+//               when all are in D already, the middle node of each conflicting curve, or
+//               the ends of the edges its nodes lie on, or the neighbours of the places
+//       D <- decimate(T, #F(D₀) + 2·|keep| faces, keeping `keep`, stopping early if it must);
+//           if nothing new could be kept: D = T (whose paths are T's own edges: (1), (2) hold)
 // Decisions and their reasons: paper_notes/partition.md.
 #pragma once
 
