@@ -19,6 +19,21 @@ bool Parameterization::certified() const {
     return std::all_of(certificates.begin(), certificates.end(), [](const param::Certificate& c) { return c.passed; });
 }
 
+GlobalMap::GlobalMap(const Parameterization& p) : p_(p) {
+    locators_.reserve(p.disks.size());
+    for (std::size_t i = 0; i < p.disks.size(); ++i) locators_.emplace_back(p.disks[i], p.maps[i]);
+}
+
+Vec3 GlobalMap::phi(FaceId d, const std::array<double, 3>& beta) const { return locators_.at(d.idx()).phi(beta); }
+
+std::pair<FaceId, std::array<double, 3>> GlobalMap::psi(std::size_t f, const std::array<double, 3>& w) const {
+    // ψ is linear on every face of T′ (eq. 2): the weights of its corners' images.
+    std::array<double, 3> beta{0, 0, 0};
+    for (int k = 0; k < 3; ++k)
+        for (int r = 0; r < 3; ++r) beta[r] += w[k] * p_.face_beta[f][k][r];
+    return {FaceId(p_.face_patch[f]), beta};
+}
+
 namespace {
 
 class Stopwatch {

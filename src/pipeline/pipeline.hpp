@@ -21,6 +21,7 @@
 #include "core/trimesh.hpp"
 #include "domain/decimate.hpp"
 #include "param/certificate.hpp"
+#include "param/locate.hpp"
 #include "param/patch_map.hpp"
 #include "partition/partition.hpp"
 
@@ -50,6 +51,25 @@ struct Parameterization {
     std::vector<std::uint32_t> face_patch;                      ///< per face: the D face of its patch
     std::vector<std::array<std::array<double, 3>, 3>> face_beta;  ///< per face corner: β of ψ
     bool certified() const;                          ///< every patch's certificate passed
+};
+
+/// The global maps of §4: φ = ψ⁻¹ from any point of Ω_D (a face of D and barycentric coordinates
+/// in its corner order) to Ω_T, and ψ from any point of T′ (a face of the final T′ and barycentric
+/// coordinates in its corner order) to Ω_D. A point on an edge of D gives the same point of T from
+/// both faces, bit for bit (the patches' sides are parameterized from a canonical end, MAP-11).
+class GlobalMap {
+public:
+    /// \pre p is certified (every patch one-to-one); p outlives this object.
+    explicit GlobalMap(const Parameterization& p);
+    /// φ(d, β): the point of Ω_T whose image under ψ is β in domain face d.
+    /// \throws InvalidInput for β outside the triangle (beyond 1e−12), as PatchLocator.
+    Vec3 phi(FaceId d, const std::array<double, 3>& beta) const;
+    /// ψ(f, w): the domain face and β of the point Σ w_k · (corner k of face f of T′).
+    std::pair<FaceId, std::array<double, 3>> psi(std::size_t f, const std::array<double, 3>& w) const;
+
+private:
+    const Parameterization& p_;
+    std::vector<param::PatchLocator> locators_;
 };
 
 /// §3 and §4 for T and a domain D whose vertices are vertices of T.
