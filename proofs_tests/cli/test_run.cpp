@@ -117,3 +117,26 @@ TEST_CASE("CLI-RUN-5: a user domain whose paths break (1)/(2) exits 3 naming dom
     // The unchanged correspondence works.
     CHECK(run_fhr({"run", mesh, "--domain", domain, "--correspondence", corr, "--out", temp_path("run-user-ok")}).exit_code == 0);
 }
+
+TEST_CASE("CLI-RUN-1..3: --levels 3 --keep 5,20 on the fandisk reproduces the paper's §6 counts; --figures draws Figs. 6-9",
+          "[cli][run][wavelet]") {
+    const std::string mesh = fandisk(), dir = temp_path("run-wav");
+    const auto r = run_fhr({"run", mesh, "--faces", "114", "--levels", "3", "--keep", "5,20", "--figures", "--out", dir});
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    for (const char* f : {"remesh_L3.off", "wavelet_keep5.off", "wavelet_keep20.off", "figures/fig6.png", "figures/fig7.png",
+                          "figures/fig8.png", "figures/fig9.png", "figures/patch0.svg"})
+        CHECK(fs::exists(dir + "/" + f));
+    const std::string report = read_file(dir + "/report.json");
+    // Paper §6: D³ has 7,296 triangles; 3,650 − 59 = 3,591 coefficients; ⌊5 % · 3591⌋ = 179, ⌊20 % · 3591⌋ = 718.
+    CHECK(report.find("\"level\": 3,\n    \"vertices\": 3650,\n    \"faces\": 7296") != std::string::npos);
+    CHECK(json_integer(report, "coefficients") == 3591);
+    CHECK(report.find("\"percent\": 5,\n        \"count\": 179") != std::string::npos);
+    CHECK(report.find("\"percent\": 20,\n        \"count\": 718") != std::string::npos);
+    std::smatch m;
+    REQUIRE(std::regex_search(report, m, std::regex("\"reconstruction_max_error\": ([0-9.e+-]+)")));
+    CHECK(std::stod(m[1]) <= 1e-12);
+    const std::string timings = read_file(dir + "/timings.json");
+    for (const char* stage : {"refinement", "decomposition", "reconstruction"}) CHECK(timings.find(stage) != std::string::npos);
+    CHECK(run_fhr({"run", mesh, "--faces", "114", "--keep", "5", "--out", temp_path("run-keep")}).exit_code == 2);
+}

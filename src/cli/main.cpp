@@ -35,9 +35,10 @@ usage:
       (K = 1.06, grown until the result is certified): length, points, K, windows
   fhr run MESH (--faces N | --domain D.off --correspondence FILE) --out DIR
           [--weights shape-preserving|mean-value|uniform] [--solver sparse-lu|bicgstab]
-          [--figures [--up x|y|z]]
+          [--levels J [--keep P,Q,...]] [--figures [--up x|y|z]]
       §2–§4 end to end: writes DIR/domain.off, geodesics.obj, refined.ply, param.fhrp,
-      textured.obj, report.json, timings.json (and with --figures DIR/figures/: the paper's
+      textured.obj, report.json, timings.json; with --levels also §5's remesh_LJ.off and
+      wavelet_keepP.off (the largest P % of the wavelet coefficients); with --figures DIR/figures/: the paper's
       Figures 6-7 as PNG, patches as SVG); exit 3 if §3 cannot partition, 4 if not certified
   fhr verify PARAM.fhrp [--mesh INPUT] [--json]
       the oracle: check a `fhr-param 1` file against PARAM-1..11 (spec/param.md); exit 1 if invalid

@@ -2,6 +2,8 @@
 // parameterization), its outputs and report (spec/cli.md CLI-RUN-*), progress on stderr.
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <optional>
 
 #include "cli/common.hpp"
 #include "core/errors.hpp"
@@ -21,7 +23,7 @@ double since(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 int run_run(const std::vector<std::string>& argv) {
-    const Args args(argv, {"figures"}, {"faces", "domain", "correspondence", "out", "weights", "solver", "up"});
+    const Args args(argv, {"figures"}, {"faces", "domain", "correspondence", "out", "weights", "solver", "up", "levels", "keep"});
     const std::string& mesh_path = args.single_positional("MESH");
     const std::string out = args.require("out");
     const bool by_faces = args.get("faces").has_value(), by_domain = args.get("domain").has_value();
@@ -61,11 +63,38 @@ int run_run(const std::vector<std::string>& argv) {
     start = std::chrono::steady_clock::now();
     const exchange::VerifyReport oracle = exchange::verify(pipeline::to_param_file(p), &T);
     timings.stages.emplace_back("verification", since(start));
-    pipeline::write_outputs(out, input, p, oracle, timings, options);
+    // §5: D^J sampled through φ, prewavelet decomposition, compression.
+    const int levels = static_cast<int>(args.integer("levels", 0, 0, 8));
+    std::vector<double> keep;
+    if (const auto k = args.get("keep")) {
+        if (levels == 0) usage_error("--keep needs --levels J (J >= 1)");
+        for (std::size_t at = 0; at <= k->size();) {
+            const std::size_t comma = std::min(k->find(',', at), k->size());
+            const std::string item = k->substr(at, comma - at);
+            char* end = nullptr;
+            const double percent = std::strtod(item.c_str(), &end);
+            if (item.empty() || *end != '\0' || !(percent > 0 && percent <= 100))
+                usage_error("--keep takes percentages in (0, 100] separated by commas, not '" + *k + "'");
+            keep.push_back(percent);
+            at = comma + 1;
+        }
+    }
+    std::optional<wavelet::WaveletResult> wavelets;
+    if (levels > 0) {
+        const pipeline::GlobalMap phi(p);
+        wavelets = wavelet::analyse(p.partition.domain.mesh, [&](FaceId d, const std::array<double, 3>& beta) { return phi.phi(d, beta); },
+                                    levels, keep, T);
+        timings.stages.emplace_back("refinement", wavelets->refinement_seconds);
+        timings.stages.emplace_back("decomposition", wavelets->decomposition_seconds);
+        timings.stages.emplace_back("reconstruction", wavelets->reconstruction_seconds);
+        options.progress("wavelets: D^" + std::to_string(levels) + " " + std::to_string(wavelets->remesh_faces.size()) + " faces, " +
+                         std::to_string(wavelets->coefficients) + " coefficients");
+    }
+    pipeline::write_outputs(out, input, p, oracle, timings, options, wavelets ? &*wavelets : nullptr);
     if (args.flag("figures")) {
         const std::string up = args.get("up").value_or("y");
         if (up != "x" && up != "y" && up != "z") usage_error("--up must be x, y or z, not '" + up + "'");
-        pipeline::write_figures(out, T, p, up[0] - 'x');
+        pipeline::write_figures(out, T, p, up[0] - 'x', wavelets ? &*wavelets : nullptr);
         options.progress("figures: " + out + "/figures/");
     }
     const bool certified = p.certified() && oracle.valid();

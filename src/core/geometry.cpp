@@ -84,4 +84,45 @@ EdgeLengthStats edge_length_stats(const TriMesh& m) {
     return s;
 }
 
+namespace {
+
+Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 ab = b - a;
+    const double len2 = ab.squaredNorm();
+    if (!(len2 > 0)) return a;
+    const double t = std::clamp((p - a).dot(ab) / len2, 0.0, 1.0);
+    return a + t * ab;
+}
+
+}  // namespace
+
+/// (degenerate triangles included: a zero-length edge is its end point.)
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) return a;
+    const Vec3 bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) return b;
+    const Vec3 cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) return c;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return closest_on_segment(p, a, b);
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return closest_on_segment(p, a, c);
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return closest_on_segment(p, b, c);
+    const double sum = va + vb + vc;
+    if (!(sum > 0)) {
+        // Degenerate (zero-area) triangle: the nearest of its three edges.
+        const Vec3 q[3] = {closest_on_segment(p, a, b), closest_on_segment(p, b, c), closest_on_segment(p, c, a)};
+        const Vec3* best = &q[0];
+        for (const Vec3& x : q)
+            if ((x - p).squaredNorm() < (*best - p).squaredNorm()) best = &x;
+        return *best;
+    }
+    return a + (vb / sum) * ab + (vc / sum) * ac;
+}
+
 }  // namespace fhr

@@ -33,4 +33,9 @@ struct EdgeLengthStats {
 };
 EdgeLengthStats edge_length_stats(const TriMesh& m);
 
+/// The point of triangle abc closest to p (Ericson 2005, "Real-Time Collision Detection", §5.1.5:
+/// the Voronoi regions of the vertices, then of the edges, else the face). Shared by the oracle's
+/// PARAM-11 (src/exchange) and the Hausdorff distance of §5 (src/wavelet).
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
 }  // namespace fhr

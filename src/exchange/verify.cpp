@@ -23,6 +23,8 @@
 // plus sorting for PARAM-11; 500k faces verify in about a second.
 #include "exchange/verify.hpp"
 
+#include "core/geometry.hpp"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -696,28 +698,6 @@ Bits bits(const Vec3& p) {
     return b;
 }
 
-/// The point of triangle abc closest to p (Ericson 2005, "Real-Time Collision Detection", §5.1.5:
-/// Voronoi regions of the vertices, then the edges, then the face).
-Vec3 closest_point(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    const Vec3 bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-    const Vec3 cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    const double denominator = va + vb + vc;
-    return a + ab * (vb / denominator) + ac * (vc / denominator);
-}
-
 /// A uniform grid over the faces of T, stored sparsely as sorted (cell, face) pairs: each face is
 /// listed in every cell its bounding box, grown by `tolerance`, meets. Then a point within
 /// `tolerance` of a face finds that face in its own cell.
@@ -775,7 +755,7 @@ public:
         double best = std::numeric_limits<double>::infinity();
         for (auto it = first; it != last; ++it) {
             const Triangle& t = triangles_[faces_[it - keys_.begin()]];
-            best = std::min(best, (closest_point(p, pos(t[0]), pos(t[1]), pos(t[2])) - p).norm());
+            best = std::min(best, (closest_point_on_triangle(p, pos(t[0]), pos(t[1]), pos(t[2])) - p).norm());
         }
         return best;
     }

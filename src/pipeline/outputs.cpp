@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json.hpp"
+#include "io/number_text.hpp"
 #include "io/write.hpp"
 #include "render/figures.hpp"
 #include "render/svg.hpp"
@@ -46,8 +47,31 @@ std::vector<io::Vec2> atlas_uv(const Parameterization& p) {
     return uv;
 }
 
+// The percentage as a file-name part: 5 -> "5", 2.5 -> "2.5".
+std::string percent_name(double p) {
+    std::string s;
+    io::append_number(s, p);
+    return s;
+}
+
+void write_wavelet_report(io::JsonWriter& j, const wavelet::WaveletResult& w) {
+    j.key("remesh").begin_object();
+    j.key("level").value(w.levels).key("vertices").value(w.remesh_positions.size()).key("faces").value(w.remesh_faces.size());
+    j.key("hausdorff").value(w.remesh_hausdorff.lower()).key("hausdorff_upper_bound").value(w.remesh_hausdorff.upper());
+    j.key("hausdorff_relative_to_bbox_diagonal").value(w.hausdorff_relative).end_object();
+    j.key("wavelet").begin_object();
+    j.key("coefficients").value(w.coefficients).key("reconstruction_max_error").value(w.reconstruction_max_error);
+    j.key("reconstruction_max_error_relative").value(w.max_abs_coordinate > 0 ? w.reconstruction_max_error / w.max_abs_coordinate : 0.0);
+    j.key("kept").begin_array();
+    for (const auto& k : w.kept) {
+        j.begin_object().key("percent").value(k.percent).key("count").value(k.count).key("l2_error").value(k.l2_error);
+        j.key("hausdorff").value(k.hausdorff.lower()).key("hausdorff_upper_bound").value(k.hausdorff.upper()).end_object();
+    }
+    j.end_array().end_object();
+}
+
 void write_report(const std::string& path, const InputInfo& input, const Parameterization& p,
-                  const exchange::VerifyReport& oracle, const Options& options) {
+                  const exchange::VerifyReport& oracle, const Options& options, const wavelet::WaveletResult* wavelets) {
     const partition::Partition& P = p.partition;
     const TriMesh& D = P.domain.mesh;
     io::JsonWriter j;
@@ -102,6 +126,7 @@ void write_report(const std::string& path, const InputInfo& input, const Paramet
         j.end_object();
     }
     j.end_array().end_object().end_object();
+    if (wavelets) write_wavelet_report(j, *wavelets);
     j.end_object();
     io::write_file_atomically(path, j.str());
 }
@@ -121,7 +146,8 @@ void write_timings(const std::string& path, const Timings& timings) {
 }  // namespace
 
 void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
-                   const exchange::VerifyReport& oracle, const Timings& timings, const Options& options) {
+                   const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
+                   const wavelet::WaveletResult* wavelets) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) throw InvalidInput(dir, 0, "cannot create the output folder: " + ec.message());
@@ -137,11 +163,17 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
     io::write_ply(base + "refined.ply", p.refined_positions, p.refined_faces, p.face_patch);
     exchange::write_param(base + "param.fhrp", to_param_file(p));
     io::write_obj(base + "textured.obj", p.refined_positions, p.refined_faces, atlas_uv(p));
-    write_report(base + "report.json", input, p, oracle, options);
+    if (wavelets) {
+        io::write_off(base + "remesh_L" + std::to_string(wavelets->levels) + ".off", wavelets->remesh_positions, wavelets->remesh_faces);
+        for (const auto& k : wavelets->kept)
+            io::write_off(base + "wavelet_keep" + percent_name(k.percent) + ".off", k.positions, wavelets->remesh_faces);
+    }
+    write_report(base + "report.json", input, p, oracle, options, wavelets);
     write_timings(base + "timings.json", timings);
 }
 
-void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis) {
+void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis,
+                   const wavelet::WaveletResult* wavelets) {
     const std::string base = dir + "/figures/";
     std::error_code ec;
     std::filesystem::create_directories(base, ec);
@@ -165,6 +197,15 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
     for (const auto& face : p.face_beta)
         for (const auto& beta : face) uv.emplace_back(beta[1], beta[2]);
     render::write_fig7(base + "fig7.png", camera, t, {P.network.mesh.positions(), lines}, {p.refined_positions, p.refined_faces}, uv, size);
+    if (wavelets) {
+        // Fig. 8: D^J (the refined domain, flat) and f^J(Ω_D); Fig. 9: two compressed surfaces.
+        const TriMesh dj = wavelet::refine(P.domain.mesh, wavelets->levels).levels.back();
+        const std::vector<Triangle> dj_faces = dj.triangles();
+        render::write_fig8(base + "fig8.png", camera, {dj.positions(), dj_faces}, {wavelets->remesh_positions, wavelets->remesh_faces}, size);
+        if (wavelets->kept.size() >= 2)
+            render::write_fig9(base + "fig9.png", camera, {wavelets->kept[0].positions, wavelets->remesh_faces},
+                               {wavelets->kept[1].positions, wavelets->remesh_faces}, size);
+    }
     // ψ_i(S_i) inside an equilateral triangle for the first patch and the one with the most faces.
     const std::array<Eigen::Vector2d, 3> corners{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0.5, std::sqrt(3.0) / 2)};
     std::size_t largest = 0;

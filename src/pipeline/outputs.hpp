@@ -9,6 +9,7 @@
 #include "core/trimesh.hpp"
 #include "exchange/verify.hpp"
 #include "pipeline/pipeline.hpp"
+#include "wavelet/analyse.hpp"
 
 namespace fhr::pipeline {
 
@@ -24,14 +25,19 @@ struct InputInfo {
 };
 
 /// Writes DIR/{domain.off, geodesics.obj, refined.ply, param.fhrp, textured.obj, report.json,
-/// timings.json}; `oracle` is fhr verify's judgement of param.fhrp against T.
+/// timings.json}; `oracle` is fhr verify's judgement of param.fhrp against T. With §5's result
+/// (`wavelets` not null) also remesh_L{J}.off, wavelet_keep{p}.off and the report's `remesh`
+/// and `wavelet` sections.
 void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
-                   const exchange::VerifyReport& oracle, const Timings& timings, const Options& options);
+                   const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
+                   const wavelet::WaveletResult* wavelets);
 
 /// The paper's Figures 6 and 7 (fig6.png: T and D; fig7.png: the geodesic network on T, and T′
 /// with a checkerboard over every patch through ψ) and one SVG per chosen patch (ψ_i(S_i) in its
 /// triangle: the first patch and the one with the most faces) into DIR/figures/, all from one camera
-/// with `up_axis` (0, 1, 2) up. Deterministic bytes.
-void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis);
+/// with `up_axis` (0, 1, 2) up; with §5's result also fig8.png (D^J and f^J(Ω_D)) and, with two
+/// or more kept percentages, fig9.png (the first two reconstructions). Deterministic bytes.
+void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis,
+                   const wavelet::WaveletResult* wavelets);
 
 }  // namespace fhr::pipeline
