@@ -57,7 +57,7 @@ done
 
 # §3 embedding T -> T′ and the patches, §4 the parameterization (bench/bench_pipeline.cpp).
 echo "== stage: partition (embedding + patches) and parameterization (§4), median of 5 runs"
-for c in "$meshes/fandisk.off:114" "$shared/horse.off:400"; do
+for c in "$meshes/fandisk.off:114" "$shared/horse.off:1000"; do
     m=${c%%:*}
     if [ -f "$m" ]; then
         "$build/bench/bench_pipeline" "$m" "${c##*:}" 5 || echo "$(basename "$m"): bench_pipeline failed (exit $?)"
