@@ -11,6 +11,7 @@
 #include "domain/decimate.hpp"
 #include "partition/partition.hpp"
 #include "partition/partition_checks.hpp"
+#include "support/gen_domain.hpp"
 #include "support/gen_mesh.hpp"
 #include "support/test_support.hpp"
 
@@ -129,16 +130,7 @@ TEST_CASE("PART-1..9: random meshes of genus 0–3 and random domain sizes parti
     rc::prop("partition of a random closed mesh over a random decimated domain", [] {
         const test::GeneratedMesh g = *test::gen_closed_mesh(0, 3, 1500);
         const TriMesh& T = g;
-        const std::size_t lo = domain::min_closed_faces(g.options.genus) + 2 * 4;
-        const std::size_t hi = std::max(lo, T.n_faces() / 3);
-        const std::size_t target = 2 * *rc::gen::inRange(lo / 2, hi / 2 + 1);
-        RC_PRE(target <= T.n_faces());
-        domain::Domain D;
-        try {
-            D = domain::decimate(T, {.target_faces = target});
-        } catch (const InvalidInput&) {
-            RC_DISCARD("the decimation cannot reach this size under its rules");
-        }
+        const domain::Domain D = test::random_domain(T, g.options.genus);
         const partition::Partition P = partition::partition(T, D);
         RC_TAG(P.retries > 0 ? "recovered" : "first try");
         RC_ASSERT(test::partition_violation(T, P) == "");

@@ -14,6 +14,7 @@
 #include "exchange/verify.hpp"
 #include "pipeline/outputs.hpp"
 #include "pipeline/pipeline.hpp"
+#include "support/gen_domain.hpp"
 #include "support/gen_mesh.hpp"
 
 using namespace fhr;
@@ -22,16 +23,8 @@ TEST_CASE("pipeline: every run on a random mesh of genus 0–3 is certified and 
     rc::prop("parameterize(random T, decimated D) is certified and valid", [] {
         const test::GeneratedMesh g = *test::gen_closed_mesh(0, 3, 1200);
         const TriMesh& T = g;
-        const std::size_t lo = domain::min_closed_faces(g.options.genus) + 2 * 4;
-        const std::size_t hi = std::max(lo, T.n_faces() / 3);
-        const std::size_t target = 2 * *rc::gen::inRange(lo / 2, hi / 2 + 1);
-        RC_PRE(target <= T.n_faces());
-        domain::Domain D;
-        try {
-            D = domain::decimate(T, {.target_faces = target});
-        } catch (const InvalidInput&) {
-            RC_DISCARD("the decimation cannot reach this size under its rules");
-        }
+        domain::Domain D = test::random_domain(T, g.options.genus);
+        const std::size_t target = D.mesh.n_faces();
         pipeline::Options options;
         options.map.weights = *rc::gen::element(param::Weights::shape_preserving, param::Weights::mean_value,
                                                 param::Weights::uniform);
