@@ -1,12 +1,14 @@
 // `fhr run` end to end (spec/cli.md CLI-RUN-1..5): all files written, the report's fields, the
 // run certified and accepted by the independent oracle `fhr verify --mesh`, byte-identical
-// outputs across runs, refused inputs and domains.
+// outputs across runs, refused inputs and domains; with --levels and --figures, Figs. 6–9 and the
+// rate–distortion plot of §6's compression (spec/render.md REN-14).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "core/build.hpp"
 #include "io/read.hpp"
@@ -35,6 +37,49 @@ long json_integer(const std::string& json, const std::string& key) {
 }
 
 bool json_true(const std::string& json, const std::string& key) { return json.find("\"" + key + "\": true") != std::string::npos; }
+
+// Every capture of `pattern` in `text`, as numbers.
+std::vector<double> all_numbers(const std::string& text, const std::string& pattern) {
+    std::vector<double> out;
+    const std::regex re(pattern);
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it) out.push_back(std::stod((*it)[1]));
+    return out;
+}
+
+// REN-14 on the fandisk run with --keep 5,20: the points 1, 2, 5, 10, 20, 50, 100 % at their x
+// (REN-12's plot area: x = 80 + 530·p/100 on an axis to 100), the L2 series at the report's values
+// for 5 % and 20 % and at 0 for 100 %, and non-increasing as more coefficients are kept.
+void check_rate_distortion(const std::string& svg, const std::string& report) {
+    CHECK(svg.rfind("<?xml version=\"1.0\"", 0) == 0);
+    CHECK(svg.find("<svg xmlns=\"http://www.w3.org/2000/svg\"") != std::string::npos);
+    CHECK(svg.size() >= 7);
+    CHECK(svg.substr(svg.size() - 7) == "</svg>\n");
+    CHECK(svg.find("f^3 from the largest of 3591 wavelet coefficients") != std::string::npos);
+    CHECK(all_numbers(svg, "<circle cx=\"([0-9.]+)\"").size() == 14);  // 7 points, 2 series
+    std::vector<std::vector<double>> xs, ys;
+    const std::regex polyline("<polyline[^>]*points=\"([^\"]*)\"");
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), polyline); it != std::sregex_iterator(); ++it) {
+        const std::string points = (*it)[1];
+        xs.push_back(all_numbers(points, "([0-9.]+),"));
+        ys.push_back(all_numbers(points, ",([0-9.]+)"));
+    }
+    REQUIRE(xs.size() == 2);
+    const std::vector<double> expected_x{85.30, 90.60, 106.50, 133.00, 186.00, 345.00, 610.00};
+    for (int s = 0; s < 2; ++s) {
+        REQUIRE(xs[s].size() == expected_x.size());
+        for (std::size_t i = 0; i < expected_x.size(); ++i) CHECK(xs[s][i] == Approx(expected_x[i]).margin(1e-9));
+    }
+    // The y axis: 0 at 360, its last tick label m at 50 (REN-12).
+    const std::vector<double> ticks = all_numbers(svg, "<text x=\"70.00\" y=\"[0-9.]+\" text-anchor=\"end\">([0-9.e+-]+)<");
+    REQUIRE(ticks.size() >= 4);
+    const auto y_of = [&](double value) { return 360 - 310 * value / ticks.back(); };
+    const std::vector<double> l2 = all_numbers(report, "\"l2_error\": ([0-9.e+-]+)");
+    REQUIRE(l2.size() == 2);
+    CHECK(ys[0][2] == Approx(y_of(l2[0])).margin(0.006));  // 5 %
+    CHECK(ys[0][4] == Approx(y_of(l2[1])).margin(0.006));  // 20 %
+    CHECK(ys[0][6] == Approx(360.0).margin(0.006));        // 100 %: the round trip, error ~1e-15
+    for (std::size_t i = 1; i < ys[0].size(); ++i) CHECK(ys[0][i] >= ys[0][i - 1]);
+}
 
 }  // namespace
 
@@ -118,14 +163,15 @@ TEST_CASE("CLI-RUN-5: a user domain whose paths break (1)/(2) exits 3 naming dom
     CHECK(run_fhr({"run", mesh, "--domain", domain, "--correspondence", corr, "--out", temp_path("run-user-ok")}).exit_code == 0);
 }
 
-TEST_CASE("CLI-RUN-1..3: --levels 3 --keep 5,20 on the fandisk reproduces the paper's §6 counts; --figures draws Figs. 6-9",
+TEST_CASE("CLI-RUN-1..3, REN-14: --levels 3 --keep 5,20 on the fandisk reproduces the paper's §6 counts; --figures draws "
+          "Figs. 6-9 and the rate-distortion plot",
           "[cli][run][wavelet]") {
     const std::string mesh = fandisk(), dir = temp_path("run-wav");
     const auto r = run_fhr({"run", mesh, "--faces", "114", "--levels", "3", "--keep", "5,20", "--figures", "--out", dir});
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     for (const char* f : {"remesh_L3.off", "wavelet_keep5.off", "wavelet_keep20.off", "figures/fig6.png", "figures/fig7.png",
-                          "figures/fig8.png", "figures/fig9.png", "figures/patch0.svg"})
+                          "figures/fig8.png", "figures/fig9.png", "figures/patch0.svg", "figures/rate_distortion.svg"})
         CHECK(fs::exists(dir + "/" + f));
     const std::string report = read_file(dir + "/report.json");
     // Paper §6: D³ has 7,296 triangles; 3,650 − 59 = 3,591 coefficients; ⌊5 % · 3591⌋ = 179, ⌊20 % · 3591⌋ = 718.
@@ -136,6 +182,7 @@ TEST_CASE("CLI-RUN-1..3: --levels 3 --keep 5,20 on the fandisk reproduces the pa
     std::smatch m;
     REQUIRE(std::regex_search(report, m, std::regex("\"reconstruction_max_error\": ([0-9.e+-]+)")));
     CHECK(std::stod(m[1]) <= 1e-12);
+    check_rate_distortion(read_file(dir + "/figures/rate_distortion.svg"), report);
     const std::string timings = read_file(dir + "/timings.json");
     for (const char* stage : {"refinement", "decomposition", "reconstruction"}) CHECK(timings.find(stage) != std::string::npos);
     CHECK(run_fhr({"run", mesh, "--faces", "114", "--keep", "5", "--out", temp_path("run-keep")}).exit_code == 2);

@@ -39,7 +39,7 @@ usage:
       §2–§4 end to end: writes DIR/domain.off, geodesics.obj, refined.ply, param.fhrp,
       textured.obj, report.json, timings.json; with --levels also §5's remesh_LJ.off and
       wavelet_keepP.off (the largest P % of the wavelet coefficients); with --figures DIR/figures/: the paper's
-      Figures 6-7 as PNG, patches as SVG); exit 3 if §3 cannot partition, 4 if not certified
+      Figures 6-9 as PNG, patches and the rate-distortion plot as SVG; exit 3 if §3 cannot partition, 4 if not certified
   fhr verify PARAM.fhrp [--mesh INPUT] [--json]
       the oracle: check a `fhr-param 1` file against PARAM-1..11 (spec/param.md); exit 1 if invalid
   fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--genus-max G] [--seed S] [--keep DIR]

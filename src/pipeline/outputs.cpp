@@ -13,6 +13,8 @@
 #include "io/write.hpp"
 #include "render/figures.hpp"
 #include "render/svg.hpp"
+#include "wavelet/compress.hpp"
+#include "wavelet/filter_bank.hpp"
 
 namespace fhr::pipeline {
 
@@ -143,6 +145,29 @@ void write_timings(const std::string& path, const Timings& timings) {
     io::write_file_atomically(path, j.str());
 }
 
+// §6's rate–distortion curve (REN-14): at each of 1, 2, 5, 10, 20, 50, 100 % and the requested
+// percentages (each once), the L2 and Hausdorff errors of the reconstruction from the largest
+// ⌊p·N/100⌋ coefficients. The requested points are analyse's own; the others are made the same
+// way (keep_largest, reconstruct, rms_distance, hausdorff at analyse's default resolution).
+std::vector<render::RatePoint> rate_curve(const wavelet::Refinement& r, const TriMesh& T, const wavelet::WaveletResult& w) {
+    std::vector<render::RatePoint> points;
+    const auto has = [&](double p) { return std::any_of(points.begin(), points.end(), [&](const auto& q) { return q.kept_percent == p; }); };
+    for (const auto& k : w.kept)
+        if (!has(k.percent)) points.push_back({k.percent, k.l2_error, k.hausdorff.lower()});
+    const wavelet::FilterBank bank(r);
+    const wavelet::Decomposition d = bank.decompose(w.remesh_positions);
+    const std::vector<Triangle> t_faces = T.triangles();
+    wavelet::HausdorffOptions ho;
+    ho.resolution = 1e-4 * w.bbox_diagonal;
+    for (const double p : {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0}) {
+        if (has(p)) continue;
+        const std::vector<Vec3> f = bank.reconstruct(wavelet::keep_largest(bank, d, wavelet::kept_count(w.coefficients, p)));
+        points.push_back({p, wavelet::rms_distance(w.remesh_positions, f),
+                          wavelet::hausdorff(T.positions(), t_faces, f, w.remesh_faces, ho).lower()});
+    }
+    return points;
+}
+
 }  // namespace
 
 void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
@@ -199,12 +224,18 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
     render::write_fig7(base + "fig7.png", camera, t, {P.network.mesh.positions(), lines}, {p.refined_positions, p.refined_faces}, uv, size);
     if (wavelets) {
         // Fig. 8: D^J (the refined domain, flat) and f^J(Ω_D); Fig. 9: two compressed surfaces.
-        const TriMesh dj = wavelet::refine(P.domain.mesh, wavelets->levels).levels.back();
+        const wavelet::Refinement r = wavelet::refine(P.domain.mesh, wavelets->levels);
+        const TriMesh& dj = r.levels.back();
         const std::vector<Triangle> dj_faces = dj.triangles();
         render::write_fig8(base + "fig8.png", camera, {dj.positions(), dj_faces}, {wavelets->remesh_positions, wavelets->remesh_faces}, size);
         if (wavelets->kept.size() >= 2)
             render::write_fig9(base + "fig9.png", camera, {wavelets->kept[0].positions, wavelets->remesh_faces},
                                {wavelets->kept[1].positions, wavelets->remesh_faces}, size);
+        render::RatePlotLabels labels;
+        labels.title = "Rate–distortion: f^" + std::to_string(wavelets->levels) + " from the largest of " +
+                       std::to_string(wavelets->coefficients) + " wavelet coefficients";
+        labels.y = "error (L2: RMS over the vertices of D^J; Hausdorff: to T)";
+        render::write_rate_distortion_svg(base + "rate_distortion.svg", rate_curve(r, T, *wavelets), labels);
     }
     // ψ_i(S_i) inside an equilateral triangle for the first patch and the one with the most faces.
     const std::array<Eigen::Vector2d, 3> corners{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0.5, std::sqrt(3.0) / 2)};

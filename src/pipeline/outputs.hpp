@@ -36,7 +36,9 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
 /// with a checkerboard over every patch through ψ) and one SVG per chosen patch (ψ_i(S_i) in its
 /// triangle: the first patch and the one with the most faces) into DIR/figures/, all from one camera
 /// with `up_axis` (0, 1, 2) up; with §5's result also fig8.png (D^J and f^J(Ω_D)) and, with two
-/// or more kept percentages, fig9.png (the first two reconstructions). Deterministic bytes.
+/// or more kept percentages, fig9.png (the first two reconstructions), and rate_distortion.svg
+/// (§6's compression: L2 and Hausdorff errors at 1, 2, 5, 10, 20, 50, 100 % and the kept
+/// percentages; REN-14). Deterministic bytes.
 void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis,
                    const wavelet::WaveletResult* wavelets);
 
