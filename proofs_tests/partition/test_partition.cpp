@@ -20,11 +20,13 @@ using partition::Conflict;
 
 namespace {
 
-TriMesh fandisk() {
-    const auto path = test::cgal_mesh("fandisk.off");
-    if (!path) throw std::runtime_error("fandisk.off is missing: run ./run demo to extract libcgal-demo's meshes");
+TriMesh cgal_mesh(const char* name) {
+    const auto path = test::cgal_mesh(name);
+    if (!path) throw std::runtime_error(std::string(name) + " is missing: run ./run demo to extract libcgal-demo's meshes");
     return test::load_mesh(*path);
 }
+
+TriMesh fandisk() { return cgal_mesh("fandisk.off"); }
 
 std::vector<geodesic::GeodesicPath> exact_paths(const TriMesh& T, const domain::Domain& D) {
     std::vector<geodesic::GeodesicPath> paths;
@@ -124,6 +126,29 @@ TEST_CASE("PART-9: a domain made wrong by an edge flip is detected and recovered
         break;
     }
     CHECK(found);
+}
+
+TEST_CASE("PART-9: the elephant at 114 faces needs all three remedies and ends far from D = T", "[partition][recovery][real]") {
+    // libcgal-demo's elephant (genus 3, 5,558 faces) over a 114-face domain: curves over corners
+    // (flips), conflicts at new vertices (decimating again) and conflicts whose vertices would add
+    // too much (stepping back) all occur; before the step back existed this run ended at D = T.
+    const TriMesh T = cgal_mesh("elephant.off");
+    const domain::Domain D0 = domain::decimate(T, {.target_faces = 114});
+    std::size_t flips = 0, keeps = 0, steps = 0;
+    partition::PartitionOptions options;
+    options.progress = [&](const std::string& line) {
+        flips += line.find("flipped") != std::string::npos;
+        keeps += line.find("decimating again") != std::string::npos;
+        steps += line.find("stepping back") != std::string::npos;
+    };
+    const partition::Partition P = partition::partition(T, D0, options);
+    CHECK(flips >= 1);
+    CHECK(keeps >= 1);
+    CHECK(steps >= 1);
+    CHECK(P.retries == flips + keeps + steps);
+    CHECK(P.domain.mesh.n_faces() <= T.n_faces() / 4);
+    CHECK(test::recovery_violation(T, D0, P) == "");
+    CHECK(test::partition_violation(T, P) == "");
 }
 
 TEST_CASE("PART-1..9: random meshes of genus 0–3 and random domain sizes partition validly", "[partition][property]") {

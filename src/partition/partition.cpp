@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <utility>
 
 #include "core/errors.hpp"
@@ -127,10 +128,11 @@ std::size_t flip_over_corners(domain::Domain& D, const std::vector<Conflict>& co
 
 Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& options) {
     const bool decimated = !D.history.empty();
-    const std::size_t faces0 = D.mesh.n_faces(), vertices0 = D.mesh.n_vertices();
+    const std::size_t vertices0 = D.mesh.n_vertices();
     std::vector<VertexId> keep;
     std::vector<std::uint8_t> kept(T.n_vertices(), 0);
     std::set<VertexPair> flipped;  // edges made by flips
+    domain::Domain base = D;       // the last decimation, stepped back along its history
     PathCache cache(T, options.ellipse);
     Partition out;
     for (;;) {
@@ -154,35 +156,45 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             if (embedding.conflicts.size() > 4) what += "; and " + std::to_string(embedding.conflicts.size() - 4) + " more";
             throw PartitionFailure(what);
         }
+        const std::size_t conflicts = embedding.conflicts.size();
+        const std::string first = embedding.conflicts.front().describe();
         out.resolved.insert(out.resolved.end(), embedding.conflicts.begin(), embedding.conflicts.end());
         ++out.retries;
         if (const std::size_t flips = flip_over_corners(D, embedding.conflicts, flipped)) {
             if (options.progress)
-                options.progress("partition: " + std::to_string(embedding.conflicts.size()) + " conflicts (" +
-                                 embedding.conflicts.front().describe() + "); flipped " + std::to_string(flips) +
-                                 " domain edges that ran over a corner");
+                options.progress("partition: " + std::to_string(conflicts) + " conflicts (" + first + "); flipped " +
+                                 std::to_string(flips) + " domain edges that ran over a corner");
             continue;
         }
-        // Decimate T again, keeping the vertices at the conflicts: two more faces per kept vertex.
+        // Local: decimate T again to two more faces per new vertex to keep, keeping the vertices at
+        // the conflicts — when they are few: at most an eighth of D's faces (a quarter more faces).
         const std::vector<VertexId> more = new_keep(T, D, embedding, kept);
-        keep.insert(keep.end(), more.begin(), more.end());
-        const std::size_t target = std::min(T.n_faces(), faces0 + 2 * keep.size());
-        try {
-            if (more.empty()) throw InvalidInput("", 0, "no vertex left to keep");
+        if (!more.empty() && 8 * more.size() <= D.mesh.n_faces()) {
+            keep.insert(keep.end(), more.begin(), more.end());
             domain::DecimateOptions o;
-            o.target_faces = target;
+            o.target_faces = std::min(T.n_faces(), D.mesh.n_faces() + 2 * more.size());
             o.keep = keep;
             o.best_effort = true;
-            D = domain::decimate(T, o);
-        } catch (const InvalidInput& e) {
-            D = domain::Domain{T, {}, {}};  // the last resort: D = T
-            for (VertexId v : T.vertices()) D.t_vertex.push_back(v);
-            if (options.progress) options.progress(std::string("partition: D = T, because ") + e.what());
+            base = domain::decimate(T, o);
+            D = base;
+            if (options.progress)
+                options.progress("partition: " + std::to_string(conflicts) + " conflicts (" + first +
+                                 "); decimating again keeping " + std::to_string(keep.size()) + " vertices: " +
+                                 std::to_string(D.mesh.n_faces()) + " faces");
+            continue;
         }
+        for (VertexId v : more) kept[v.idx()] = 0;  // not kept after all: candidates again later
+        // Global: step back along the last decimation, undoing its last collapses until D has a
+        // quarter more faces; at the end of the history D = T, whose paths are T's own edges, so
+        // (1) and (2) hold and the loop ends.
+        if (base.history.empty()) throw std::logic_error("partition: conflicts on D = T, whose paths are T's edges");
+        const std::size_t undo = std::min(base.history.size(), std::max<std::size_t>(1, D.mesh.n_faces() / 8));
+        base = domain::undo_collapses(base, T, undo);
+        D = base;
         if (options.progress)
-            options.progress("partition: " + std::to_string(embedding.conflicts.size()) + " conflicts (" +
-                             embedding.conflicts.front().describe() + "); decimating again keeping " +
-                             std::to_string(keep.size()) + " vertices: " + std::to_string(D.mesh.n_faces()) + " faces");
+            options.progress("partition: " + std::to_string(conflicts) + " conflicts (" + first + "); stepping back " +
+                             std::to_string(undo) + " collapses of the decimation: " + std::to_string(D.mesh.n_faces()) +
+                             " faces");
     }
 }
 

@@ -4,21 +4,27 @@
 // Paper §3 requires "a parameter domain Ω_D and a vertex correspondence with the property that
 // conditions (1) and (2) hold", found always to hold in its examples, and notes that they "could
 // be made part of the stopping criterion" of the decimation. We do that after the fact: when they
-// fail, T is decimated again to two more faces per vertex that D must now keep — the vertices of T
-// at the conflicts — and the paths are recomputed (only those of new edges are new work).
+// fail, D is changed where they fail — an edge flipped, or T decimated again keeping the vertices
+// at the conflicts — or, when that would add too much, refined everywhere by undoing the last
+// collapses of its decimation; the paths are recomputed (only those of new edges are new work).
 //
 // Pseudocode:
+//   base <- D
 //   loop:
 //       for each edge [v_j, v_k] of D: Γ(x_j, x_k) by the ellipse search (cached by its ends)
 //       embed the paths into T -> T′, with the conflicts against (1) and (2)
 //       if no conflict: cut T′ into the patches; return
 //       if D was given by the user: PartitionFailure naming the conflicting domain edges
-//       keep += the vertices of T at the conflicts (a shared node; beside a corner a curve runs
-//               over; a crossing face's corners; the first node of a curve out of order), or
-//               when all are in D already, the middle node of each conflicting curve, or
-//               the ends of the edges its nodes lie on, or the neighbours of the places
-//       D <- decimate(T, #F(D₀) + 2·|keep| faces, keeping `keep`, stopping early if it must);
-//           if nothing new could be kept: D = T (whose paths are T's own edges: (1), (2) hold)
+//       if some curve runs over a corner of a face beside its edge: flip those edges; next round
+//       more <- the vertices of T at the conflicts not in D (a shared node; beside a corner a
+//               curve runs over; a crossing face's corners; the first node of a curve out of
+//               order), or when all are in D already, the middle node of each conflicting curve,
+//               or the ends of the edges its nodes lie on, or the neighbours of the places
+//       if more is not empty and 8·|more| ≤ #F(D):
+//           keep += more; base <- decimate(T, #F(D) + 2·|more| faces, keeping `keep`, stopping
+//           early if it must); D <- base
+//       else: base <- base with its last max(1, #F(D)/8) collapses undone; D <- base
+//           (at the end of the history D = T, whose paths are T's own edges: (1), (2) hold)
 // Decisions and their reasons: paper_notes/partition.md.
 #pragma once
 
