@@ -185,5 +185,6 @@ TEST_CASE("CLI-RUN-1..3, REN-14: --levels 3 --keep 5,20 on the fandisk reproduce
     check_rate_distortion(read_file(dir + "/figures/rate_distortion.svg"), report);
     const std::string timings = read_file(dir + "/timings.json");
     for (const char* stage : {"refinement", "decomposition", "reconstruction"}) CHECK(timings.find(stage) != std::string::npos);
+    CHECK(timings.find("\"hausdorff\"") > timings.find("\"total\""));  // after the total, not in it (CLI-RUN-3)
     CHECK(run_fhr({"run", mesh, "--faces", "114", "--keep", "5", "--out", temp_path("run-keep")}).exit_code == 2);
 }

@@ -87,6 +87,7 @@ int run_run(const std::vector<std::string>& argv) {
         timings.stages.emplace_back("refinement", wavelets->refinement_seconds);
         timings.stages.emplace_back("decomposition", wavelets->decomposition_seconds);
         timings.stages.emplace_back("reconstruction", wavelets->reconstruction_seconds);
+        timings.after_total.emplace_back("hausdorff", wavelets->hausdorff_seconds);
         options.progress("wavelets: D^" + std::to_string(levels) + " " + std::to_string(wavelets->remesh_faces.size()) + " faces, " +
                          std::to_string(wavelets->coefficients) + " coefficients");
     }

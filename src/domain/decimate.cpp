@@ -74,6 +74,11 @@ public:
         cos_max_turn_ = std::cos(o.max_normal_deviation_deg * M_PI / 180.0);
         tan_min_angle_ = std::tan(o.min_angle_deg * M_PI / 180.0);
         for (FaceId f : m_.faces()) {
+            const auto [a, b, c] = m_.face_vertices(f);
+            volume_ += volume6(m_.position(a), m_.position(b), m_.position(c));
+        }
+        min_volume_ = 1e-6 * volume_;
+        for (FaceId f : m_.faces()) {
             const Quadric q = face_quadric(m_, f);
             for (VertexId v : m_.face_vertices(f)) quadric_[v.idx()] += q;
         }
@@ -107,6 +112,7 @@ public:
             const VertexId v0 = m_.from(h), v1 = m_.to(h);
             d.history.push_back({v0, v1, m_.to(m_.next(h)), m_.to(m_.next(TriMesh::twin(h)))});
             m_.collapse(h);
+            volume_ += change_;
             faces -= 2;
             quadric_[v1.idx()] += quadric_[v0.idx()];
             refresh_around(v1);
@@ -128,6 +134,13 @@ private:
     using Queue = std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>>;
     Queue queue_;
     double cos_max_turn_ = 0, tan_min_angle_ = 0;
+    // D's signed volume, kept above min_volume_ (a small part of T's) so that D stays outward
+    // oriented like T: per-face normal rules alone let a coarse domain turn inside out.
+    double volume_ = 0, min_volume_ = 0;
+    mutable double change_ = 0;  // the volume change of the collapse last found valid
+
+    // Six times the signed volume of the tetrahedron (0, a, b, c).
+    static double volume6(const Vec3& a, const Vec3& b, const Vec3& c) { return a.dot(b.cross(c)); }
 
     static std::string fmt(double x) {
         char buf[32];
@@ -168,14 +181,16 @@ private:
         if (keep_[m_.from(h).idx()] || !m_.is_collapse_ok(h)) return false;
         const VertexId v0 = m_.from(h), v1 = m_.to(h);  // v0 disappears into v1
         const FaceId gone0 = m_.face(h), gone1 = m_.face(TriMesh::twin(h));
-        const Vec3& p1 = m_.position(v1);
+        const Vec3 &p0 = m_.position(v0), &p1 = m_.position(v1);
         bool ok = true;
+        double change = 0;
         m_.for_each_outgoing(v0, [&](HalfedgeId g) {
             const FaceId f = m_.face(g);
-            if (!ok || f == gone0 || f == gone1) return;
-            // Face (v0, a, b) becomes (v1, a, b).
+            // Face (v0, a, b) becomes (v1, a, b); the two faces at h go.
             const Vec3& a = m_.position(m_.to(g));
             const Vec3& b = m_.position(m_.to(m_.next(g)));
+            change += (f == gone0 || f == gone1 ? 0.0 : volume6(p1, a, b)) - volume6(p0, a, b);
+            if (!ok || f == gone0 || f == gone1) return;
             if (collinear(p1, a, b)) {
                 ok = false;
                 return;
@@ -183,7 +198,9 @@ private:
             const Vec3 n_new = (a - p1).cross(b - p1).normalized();
             if (n_new.dot(face_normal(m_, f)) < cos_max_turn_ || !corners_at_least(p1, a, b, tan_min_angle_)) ok = false;
         });
-        return ok;
+        if (!ok || volume_ + change <= min_volume_) return false;
+        change_ = change;
+        return true;
     }
 };
 

@@ -141,7 +141,9 @@ void write_timings(const std::string& path, const Timings& timings) {
         j.key(stage).value(seconds);
         total += seconds;
     }
-    j.key("total").value(total).end_object();
+    j.key("total").value(total);
+    for (const auto& [measure, seconds] : timings.after_total) j.key(measure).value(seconds);
+    j.end_object();
     io::write_file_atomically(path, j.str());
 }
 

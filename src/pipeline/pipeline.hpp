@@ -29,7 +29,8 @@ namespace fhr::pipeline {
 
 /// Wall-clock seconds per stage, in the order run (names: paper §6's timing table).
 struct Timings {
-    std::vector<std::pair<std::string, double>> stages;
+    std::vector<std::pair<std::string, double>> stages;       ///< summed into "total"
+    std::vector<std::pair<std::string, double>> after_total;  ///< written after "total", not summed: measurements of the result
     double seconds(std::string_view stage) const;  ///< 0 when the stage did not run
 };
 

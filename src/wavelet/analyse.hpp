@@ -44,6 +44,7 @@ struct WaveletResult {
     double refinement_seconds = 0;        ///< refine + sample φ (steady_clock)
     double decomposition_seconds = 0;     ///< build the filter bank + decompose
     double reconstruction_seconds = 0;    ///< the full reconstruction of the round trip
+    double hausdorff_seconds = 0;         ///< all Hausdorff brackets (an error measure, not a stage of the paper)
 };
 
 /// The §5 wavelet stage for a closed domain D, φ: Ω_D → Ω_T and the input surface T. Hausdorff

@@ -33,6 +33,14 @@ TriangleTree::TriangleTree(std::span<const Vec3> positions, std::span<const Tria
     }
     nodes_.reserve(2 * triangles_.size() / leaf_size + 2);
     if (!triangles_.empty()) build(0, static_cast<std::uint32_t>(triangles_.size()), centroid);
+    fan_start_.assign(positions_.size() + 1, 0);
+    for (const Triangle& f : triangles_)
+        for (std::uint32_t v : f) ++fan_start_[v + 1];
+    for (std::size_t v = 0; v < positions_.size(); ++v) fan_start_[v + 1] += fan_start_[v];
+    fan_.resize(fan_start_.back());
+    std::vector<std::uint32_t> next(fan_start_.begin(), fan_start_.end() - 1);
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        for (std::uint32_t v : triangles_[t]) fan_[next[v]++] = t;
 }
 
 std::uint32_t TriangleTree::build(std::uint32_t first, std::uint32_t count, std::vector<Vec3>& centroid) {
@@ -111,6 +119,123 @@ double TriangleTree::distance_to(const Vec3& p, std::uint32_t t) const {
     return (closest_point_on_triangle(p, positions_[f[0]], positions_[f[1]], positions_[f[2]]) - p).norm();
 }
 
+double TriangleTree::pair_bound(const Vec3 (&x)[3], std::uint32_t t1, std::uint32_t t2) const {
+    constexpr double none = std::numeric_limits<double>::infinity();
+    const Triangle& f = triangles_[t1];
+    const Triangle& g = triangles_[t2];
+    // τ₁ = (a, b, c) with ab the edge shared with τ₂; d is τ₂'s other corner.
+    int shared = 0, c_at = -1, d_at = -1;
+    for (int i = 0; i < 3; ++i) {
+        const bool in_g = f[i] == g[0] || f[i] == g[1] || f[i] == g[2];
+        const bool in_f = g[i] == f[0] || g[i] == f[1] || g[i] == f[2];
+        shared += in_g;
+        if (!in_g) c_at = i;
+        if (!in_f) d_at = i;
+    }
+    if (shared != 2 || c_at < 0 || d_at < 0) return none;
+    const Vec3& a = positions_[f[(c_at + 1) % 3]];
+    const Vec3& b = positions_[f[(c_at + 2) % 3]];
+    const Vec3& c = positions_[f[c_at]];
+    const Vec3& d = positions_[g[d_at]];
+    const Vec3 normal = (b - a).cross(c - a);
+    const double twice_area = normal.norm();
+    if (!(twice_area > 0)) return none;
+    const Vec3 n = normal / twice_area;
+    const double lift = n.dot(d - a);
+    const Vec3 d_flat = d - lift * n;
+    // Q = a d' b c is convex when d' and c are on opposite sides of ab and a and b on opposite
+    // sides of cd'; each signed area must clear a margin far above its rounding error.
+    const double margin = 1e-9 * (b - a).squaredNorm() + 1e-9 * (d - c).squaredNorm();
+    const double side_d = n.dot((b - a).cross(d_flat - a));
+    const double side_a = n.dot((d_flat - c).cross(a - c)), side_b = n.dot((d_flat - c).cross(b - c));
+    if (!(side_d < -margin) || !((side_a > margin && side_b < -margin) || (side_a < -margin && side_b > margin))) return none;
+    // The rounding in d' moves it by a few ulps of |d|: h covers it with the same relative margin.
+    const double h = std::abs(lift) + 1e-12 * (d - a).norm();
+    double sup = 0;
+    for (const Vec3& p : x) {
+        const double to_first = (closest_point_on_triangle(p, a, b, c) - p).norm();
+        const double to_second = (closest_point_on_triangle(p, b, a, d_flat) - p).norm();
+        sup = std::max(sup, std::min(to_first, to_second));
+    }
+    return sup + h;
+}
+
+double TriangleTree::fan_bound(const Vec3 (&x)[3], std::uint32_t v) const {
+    constexpr double none = std::numeric_limits<double>::infinity();
+    const std::uint32_t first = fan_start_[v], count = fan_start_[v + 1] - first;
+    if (count < 3) return none;
+    // The link as one closed cycle: triangle (v, p, q) in its own orientation gives p -> q.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> link;
+    link.reserve(count);
+    for (std::uint32_t i = first; i < first + count; ++i) {
+        const Triangle& f = triangles_[fan_[i]];
+        const int at = f[0] == v ? 0 : f[1] == v ? 1 : 2;
+        link.emplace_back(f[(at + 1) % 3], f[(at + 2) % 3]);
+    }
+    std::vector<std::uint32_t> cycle{link[0].first};
+    for (std::uint32_t step = 0; step < count; ++step) {
+        const std::uint32_t from = cycle.back();
+        auto it = std::find_if(link.begin(), link.end(), [&](const auto& e) { return e.first == from; });
+        if (it == link.end()) return none;
+        cycle.push_back(it->second);
+    }
+    if (cycle.back() != cycle.front()) return none;
+    cycle.pop_back();
+    for (std::size_t i = 0; i < cycle.size(); ++i)
+        for (std::size_t j = i + 1; j < cycle.size(); ++j)
+            if (cycle[i] == cycle[j]) return none;  // not a simple cycle: not a disk
+    // Flatten into the plane through v normal to the fan's area-weighted normal.
+    const Vec3& o = positions_[v];
+    Vec3 normal = Vec3::Zero();
+    double scale = 0;
+    for (std::size_t i = 0; i < cycle.size(); ++i) {
+        const Vec3 &p = positions_[cycle[i]], &q = positions_[cycle[(i + 1) % cycle.size()]];
+        normal += (p - o).cross(q - o);
+        scale = std::max(scale, (p - o).norm());
+    }
+    if (!(normal.norm() > 0)) return none;
+    const Vec3 n = normal.normalized();
+    const double slack = 1e-12 * scale;  // rounding in the flattening and the measures below
+    std::vector<Vec3> w(cycle.size());
+    double lift = 0;
+    for (std::size_t i = 0; i < cycle.size(); ++i) {
+        const Vec3& p = positions_[cycle[i]];
+        const double l = n.dot(p - o);
+        lift = std::max(lift, std::abs(l));
+        w[i] = p - l * n;
+    }
+    const std::size_t k = w.size();
+    auto turn = [&](const Vec3& a, const Vec3& b, const Vec3& c) { return n.dot((b - a).cross(c - b)); };
+    for (std::size_t i = 0; i < k; ++i)  // the flat fan's triangles keep their orientation
+        if (!(n.dot((w[i] - o).cross(w[(i + 1) % k] - o)) > 1e-9 * (w[i] - o).norm() * (w[(i + 1) % k] - o).norm())) return none;
+    // Corners: the link points that turn left by more than 1e−9 (sine); a right turn beyond it is reflex.
+    std::vector<std::size_t> corners;
+    for (std::size_t i = 0; i < k; ++i) {
+        const Vec3 &a = w[(i + k - 1) % k], &b = w[i], &c = w[(i + 1) % k];
+        const double t = turn(a, b, c), tol = 1e-9 * (b - a).norm() * (c - b).norm();
+        if (t < -tol) return none;
+        if (t > tol) corners.push_back(i);
+    }
+    if (corners.size() < 3) return none;
+    // Straight points onto their corners' chord (ε), and the corners' polygon convex.
+    double eps = 0;
+    const std::size_t m = corners.size();
+    for (std::size_t j = 0; j < m; ++j) {
+        const Vec3 &a = w[corners[j]], &b = w[corners[(j + 1) % m]], &c = w[corners[(j + 2) % m]];
+        if (!(turn(a, b, c) > 1e-9 * (b - a).norm() * (c - b).norm())) return none;
+        for (std::size_t i = (corners[j] + 1) % k; i != corners[(j + 1) % m]; i = (i + 1) % k)
+            eps = std::max(eps, (b - a).cross(w[i] - a).norm() / (b - a).norm());
+    }
+    double sup = 0;
+    for (const Vec3& p : x) {
+        double d = std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j < m; ++j)
+            d = std::min(d, (closest_point_on_triangle(p, o, w[corners[j]], w[corners[(j + 1) % m]]) - p).norm());
+        sup = std::max(sup, d);
+    }
+    return sup + lift + eps + slack;
+}
+
 DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles,
                                      const TriangleTree& B, const HausdorffOptions& options) {
     DirectedHausdorff h;
@@ -141,6 +266,24 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
         double b = std::max({q.d[0], q.d[1], q.d[2]}) + ell / root3;  // Lipschitz
         for (std::uint32_t t : q.near)                                  // convexity
             b = std::min(b, std::max({B.distance_to(q.x[0], t), B.distance_to(q.x[1], t), B.distance_to(q.x[2], t)}));
+        for (int i = 0; i < 3; ++i)                                     // two triangles
+            if (const std::uint32_t s = q.near[i], t = q.near[(i + 1) % 3]; s != t) b = std::min(b, B.pair_bound(q.x, s, t));
+        if (q.near[0] != q.near[1] || q.near[1] != q.near[2])  // a vertex fan: at a vertex common to them all
+            for (std::uint32_t v : B.triangle(q.near[0]))
+                if (std::count(B.triangle(q.near[1]).begin(), B.triangle(q.near[1]).end(), v) &&
+                    std::count(B.triangle(q.near[2]).begin(), B.triangle(q.near[2]).end(), v))
+                    b = std::min(b, B.fan_bound(q.x, v));
+        return b;
+    };
+    // Not settled by the corners' triangles: the triangle closest to the centroid too, alone and
+    // with each corner's (where A lies on B across a crease, the corners' closest triangles can
+    // be on the other side of it; the centroid's is the one under the piece).
+    auto centroid_bound = [&](const Piece& q) {
+        const Vec3 c = (q.x[0] + q.x[1] + q.x[2]) / 3.0;
+        const std::uint32_t t = query(c).triangle;
+        double b = std::max({B.distance_to(q.x[0], t), B.distance_to(q.x[1], t), B.distance_to(q.x[2], t)});
+        for (std::uint32_t s : q.near)
+            if (s != t) b = std::min(b, B.pair_bound(q.x, s, t));
         return b;
     };
     // The triangles with the farthest corner first: they raise lower soonest.
@@ -168,9 +311,11 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
             const Piece q = stack.back();
             stack.pop_back();
             const double ell = std::max({(q.x[1] - q.x[0]).norm(), (q.x[2] - q.x[1]).norm(), (q.x[0] - q.x[2]).norm()});
-            const double b = bound(q, ell);
+            const double dmax = std::max({q.d[0], q.d[1], q.d[2]});
+            double b = bound(q, ell);
+            if (b > h.lower && b - dmax > options.resolution) b = std::min(b, centroid_bound(q));
             if (b <= h.lower) continue;
-            if (b - std::max({q.d[0], q.d[1], q.d[2]}) <= options.resolution || q.depth >= options.max_depth) {
+            if (b - dmax <= options.resolution || q.depth >= options.max_depth) {
                 h.upper = std::max(h.upper, b);
                 continue;
             }

@@ -13,7 +13,21 @@
 //             is 1-Lipschitz: sup ≤ max_k d_k + ℓ/√3;
 //             (convexity) for any one triangle τ of B, d(·, τ) is convex, so on the piece it is
 //             largest at a corner: sup ≤ max_k d(x_k, τ), tried for the corners' closest triangles.
-//             The piece's bound is the smaller of the two
+//             (two triangles) when the corners' closest triangles τ₁ = (a, b, c) and τ₂ = (b, a, d)
+//             share an edge: turn τ₂ about ab into τ₁'s plane, τ₂' = (b, a, d'), which moves no
+//             point by more than h = |d − d'| (an affine map fixing a, b); when Q = τ₁ ∪ τ₂' is a
+//             convex quadrilateral, d(·, Q) is convex and d(·, τ₁ ∪ τ₂) ≤ d(·, Q) + h, so
+//             sup ≤ max_k min(d(x_k, τ₁), d(x_k, τ₂')) + h. This settles the pieces that straddle
+//             an edge of B where A lies on B (a remesh of a flat region), which the one-triangle
+//             bound can only settle at the resolution's size, piece by piece.
+//             (a vertex fan) when the corners' closest triangles share a vertex v of B: flatten v's
+//             fan into the plane through v normal to its area-weighted normal (moving no point by
+//             more than the largest lift h of its link), then move each link point that is
+//             straight (turn below 1e−9) onto the chord of its neighbouring corners (by at most ε,
+//             measured). When the fan's triangles stay positively oriented and the corners make a
+//             convex polygon P, d(·, fan) ≤ d(·, P) + h + ε with d(·, P) convex:
+//             sup ≤ max_k d(x_k, P) + h + ε. This settles the pieces at the vertices of B.
+//             The piece's bound is the smallest of these
 //   search    lower <- max over A's vertices of d(v, B); then for each triangle of A (those with
 //             the farthest corner first), branch and bound: a piece whose bound is ≤ lower is
 //             done; a piece whose bound exceeds its largest corner distance by ≤ δ adds its bound
@@ -51,6 +65,16 @@ public:
     Hit closest(const Vec3& p, std::uint32_t hint = 0) const;
     /// |p − closest point of triangle t|. \pre t < the number of triangles.
     double distance_to(const Vec3& p, std::uint32_t t) const;
+    /// An upper bound of d(·, t1 ∪ t2) on the triangle x (the two-triangle bound of the file
+    /// header), or +∞ when t1 and t2 do not share an edge or do not make a convex quadrilateral
+    /// with a margin. \pre t1, t2 < the number of triangles.
+    double pair_bound(const Vec3 (&x)[3], std::uint32_t t1, std::uint32_t t2) const;
+    /// An upper bound of d(·, the triangles at vertex v) on the triangle x (the vertex-fan bound
+    /// of the file header), or +∞ when v's fan is not a closed disk that flattens to a convex
+    /// polygon. \pre v < the number of positions.
+    double fan_bound(const Vec3 (&x)[3], std::uint32_t v) const;
+    /// The vertices of triangle t. \pre t < the number of triangles.
+    const Triangle& triangle(std::uint32_t t) const { return triangles_[t]; }
 
 private:
     struct Node {
@@ -62,6 +86,7 @@ private:
     std::vector<Triangle> triangles_;
     std::vector<std::uint32_t> order_;
     std::vector<Node> nodes_;
+    std::vector<std::uint32_t> fan_start_, fan_;  ///< the triangles at vertex v: fan_[fan_start_[v] .. fan_start_[v + 1])
     std::uint32_t build(std::uint32_t first, std::uint32_t count, std::vector<Vec3>& centroid);
 };
 
