@@ -96,14 +96,35 @@ std::vector<VertexId> new_keep(const TriMesh& T, const domain::Domain& D, const 
 // A curve Γ(x_j, x_k) that runs over a corner x_m of one of the two faces at [v_j, v_k] says that
 // this face is flat in the geodesic sense; the edge's flip [v_m, v_n] replaces it by Γ(x_m, x_n)
 // and keeps Γ(x_j, x_m), Γ(x_m, x_k). An edge made by a flip is never flipped again (`made`, as
-// pairs of vertices of T), so flips cannot cycle. Returns the number of edges flipped.
+// pairs of vertices of T, each with the pair it replaced), so flips cannot cycle. Returns the
+// number of edges flipped.
 using VertexPair = std::pair<VertexId::Index, VertexId::Index>;
+using Flips = std::map<VertexPair, VertexPair>;  // edge made -> edge replaced, as vertices of T
 VertexPair pair_of(const domain::Domain& D, VertexId a, VertexId b) {
     const VertexId::Index x = D.t_vertex[a.idx()].idx(), y = D.t_vertex[b.idx()].idx();
     return {std::min(x, y), std::max(x, y)};
 }
 
-std::size_t flip_over_corners(domain::Domain& D, const std::vector<Conflict>& conflicts, std::set<VertexPair>& made) {
+// After D is decimated again or stepped back, the flips made before where they apply again: the
+// replaced edge is in D with the made edge's ends opposite it (the same two faces). The paths of
+// such an edge ran over a corner before and would again. Returns the number of edges flipped.
+std::size_t reapply_flips(domain::Domain& D, const Flips& made) {
+    std::map<VertexId::Index, VertexId> vertex;  // vertex of T -> vertex of D
+    for (std::size_t j = 0; j < D.t_vertex.size(); ++j) vertex.emplace(D.t_vertex[j].idx(), VertexId(static_cast<VertexId::Index>(j)));
+    std::size_t flips = 0;
+    for (const auto& [to, from] : made) {
+        const auto a = vertex.find(from.first), b = vertex.find(from.second);
+        if (a == vertex.end() || b == vertex.end()) continue;
+        const HalfedgeId h = D.mesh.find_halfedge(a->second, b->second);
+        if (!h.valid() || !D.mesh.is_flip_ok(TriMesh::edge(h))) continue;
+        if (pair_of(D, D.mesh.to(D.mesh.next(h)), D.mesh.to(D.mesh.next(TriMesh::twin(h)))) != to) continue;
+        D.mesh.flip(TriMesh::edge(h));
+        ++flips;
+    }
+    return flips;
+}
+
+std::size_t flip_over_corners(domain::Domain& D, const std::vector<Conflict>& conflicts, Flips& made) {
     std::vector<std::uint8_t> touched(D.mesh.n_edges(), 0);
     std::size_t flips = 0;
     for (const Conflict& c : conflicts) {
@@ -112,13 +133,14 @@ std::size_t flip_over_corners(domain::Domain& D, const std::vector<Conflict>& co
         const HalfedgeId h = TriMesh::halfedge(e, 0);
         const VertexId m(c.d_vertex);
         if (D.mesh.to(D.mesh.next(h)) != m && D.mesh.to(D.mesh.next(TriMesh::twin(h))) != m) continue;
-        if (!D.mesh.is_flip_ok(e) || made.count(pair_of(D, D.mesh.from(h), D.mesh.to(h)))) continue;
+        const VertexPair replaced = pair_of(D, D.mesh.from(h), D.mesh.to(h));
+        if (!D.mesh.is_flip_ok(e) || made.count(replaced)) continue;
         // The four edges of the two faces change their faces: none of them may flip this round.
         for (HalfedgeId g : {h, TriMesh::twin(h)})
             for (HalfedgeId k = D.mesh.next(g); k != g; k = D.mesh.next(k)) touched[TriMesh::edge(k).idx()] = 1;
         touched[e.idx()] = 1;
         D.mesh.flip(e);
-        made.insert(pair_of(D, D.mesh.from(h), D.mesh.to(h)));
+        made.emplace(pair_of(D, D.mesh.from(h), D.mesh.to(h)), replaced);
         ++flips;
     }
     return flips;
@@ -131,7 +153,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
     const std::size_t vertices0 = D.mesh.n_vertices();
     std::vector<VertexId> keep;
     std::vector<std::uint8_t> kept(T.n_vertices(), 0);
-    std::set<VertexPair> flipped;  // edges made by flips
+    Flips flipped;                 // edges made by flips
     domain::Domain base = D;       // the last decimation, stepped back along its history
     PathCache cache(T, options.ellipse);
     Partition out;
@@ -177,10 +199,11 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             o.best_effort = true;
             base = domain::decimate(T, o);
             D = base;
+            const std::size_t again = reapply_flips(D, flipped);
             if (options.progress)
                 options.progress("partition: " + std::to_string(conflicts) + " conflicts (" + first +
                                  "); decimating again keeping " + std::to_string(keep.size()) + " vertices: " +
-                                 std::to_string(D.mesh.n_faces()) + " faces");
+                                 std::to_string(D.mesh.n_faces()) + " faces, " + std::to_string(again) + " earlier flips made again");
             continue;
         }
         for (VertexId v : more) kept[v.idx()] = 0;  // not kept after all: candidates again later
@@ -191,10 +214,11 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         const std::size_t undo = std::min(base.history.size(), std::max<std::size_t>(1, D.mesh.n_faces() / 8));
         base = domain::undo_collapses(base, T, undo);
         D = base;
+        const std::size_t again = reapply_flips(D, flipped);
         if (options.progress)
             options.progress("partition: " + std::to_string(conflicts) + " conflicts (" + first + "); stepping back " +
                              std::to_string(undo) + " collapses of the decimation: " + std::to_string(D.mesh.n_faces()) +
-                             " faces");
+                             " faces, " + std::to_string(again) + " earlier flips made again");
     }
 }
 

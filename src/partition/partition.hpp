@@ -16,6 +16,7 @@
 //       if no conflict: cut T′ into the patches; return
 //       if D was given by the user: PartitionFailure naming the conflicting domain edges
 //       if some curve runs over a corner of a face beside its edge: flip those edges; next round
+//           (the flips are made again, where they apply, after each new D below)
 //       more <- the vertices of T at the conflicts not in D (a shared node; beside a corner a
 //               curve runs over; a crossing face's corners; the first node of a curve out of
 //               order), or when all are in D already, the middle node of each conflicting curve,
