@@ -2,8 +2,6 @@
 // Usage: bench_io MESH [RUNS]. Prints the median and minimum wall time of read_soup +
 // build_trimesh over RUNS runs (default 7), and the peak memory the first load added, per
 // triangle. Goals (issue 2): horse ≤ 60 ms, ≤ 300 bytes per triangle.
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -17,10 +15,18 @@
 
 namespace {
 
+// The peak resident size of this process image: VmHWM of /proc/self/status. Not getrusage's
+// ru_maxrss, which Linux carries across execve, so that a child of a large parent (the Python
+// bench driver) starts with the parent's peak and a load's growth is hidden below it.
 long peak_rss_bytes() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return u.ru_maxrss * 1024L;
+    std::FILE* f = std::fopen("/proc/self/status", "r");
+    if (!f) return 0;
+    char line[256];
+    long kib = 0;
+    while (std::fgets(line, sizeof line, f))
+        if (std::sscanf(line, "VmHWM: %ld kB", &kib) == 1) break;
+    std::fclose(f);
+    return kib * 1024L;
 }
 
 std::size_t load(const std::string& path) {
