@@ -149,6 +149,45 @@ TEST_CASE("DOM-2: meshes of higher genus keep their genus (elephant g = 3, rocke
     }
 }
 
+TEST_CASE("DOM-16: decimating again from an earlier decimation keeps every rule and a consistent history", "[property][domain]") {
+    rc::prop("random meshes; a decimation, then more kept vertices and more faces", [] {
+        const test::GeneratedMesh g = *test::gen_closed_mesh(0, 3, 1200);
+        const TriMesh& T = g;
+        DecimateOptions first;
+        first.target_faces = std::max<std::size_t>(domain::min_closed_faces(g.options.genus) + 8, T.n_faces() / 4) & ~std::size_t{1};
+        RC_PRE(first.target_faces < T.n_faces());
+        Domain d1, d2;
+        try {
+            d1 = decimate(T, first);
+        } catch (const InvalidInput&) {
+            RC_DISCARD("target unreachable under the validity rules");
+        }
+        DecimateOptions again = first;
+        const std::size_t extra = *rc::gen::inRange<std::size_t>(0, 6);
+        for (std::size_t i = 0; i < extra; ++i)
+            again.keep.push_back(VertexId(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(T.n_vertices()))));
+        again.target_faces = std::min(T.n_faces(), d1.mesh.n_faces() + 2 * extra);
+        try {
+            d2 = decimate_again(T, d1, again);
+        } catch (const InvalidInput&) {
+            RC_DISCARD("target unreachable with the new kept vertices");
+        }
+        for (VertexId x : again.keep) RC_ASSERT(std::find(d2.t_vertex.begin(), d2.t_vertex.end(), x) != d2.t_vertex.end());
+        RC_ASSERT(domain_violation(T, d2, again) == "");
+        RC_ASSERT(undo_gives_back(T, d2));  // the reused prefix and the new collapses make one history
+        RC_ASSERT(domain::history_describes(d2, T));
+        Domain flipped = d2;  // a domain changed after its decimation is told apart
+        EdgeId e(0);
+        while (e.idx() < flipped.mesh.n_edges() && !flipped.mesh.is_flip_ok(e)) e = EdgeId(e.idx() + 1);
+        if (e.idx() < flipped.mesh.n_edges()) {
+            flipped.mesh.flip(e);
+            RC_ASSERT(!domain::history_describes(flipped, T));
+        }
+        // Nothing new to keep and the same target: the earlier decimation is reused whole.
+        if (extra == 0) RC_ASSERT(d2.mesh.triangles() == d1.mesh.triangles() && d2.t_vertex == d1.t_vertex);
+    });
+}
+
 TEST_CASE("DOM-15: a noisy sphere decimated to a tetrahedron stays outward oriented", "[unit][domain]") {
     // Found by fuzz_pipeline: each collapse turned no face by more than 90°, yet the 4-face domain
     // came out inside out (negative volume), which `fhr verify` rejects (PARAM-3).

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <queue>
+#include <stdexcept>
 #include <string>
 
 #include <array>
@@ -65,23 +66,41 @@ struct Candidate {
     }
 };
 
+// Six times the signed volume enclosed by m (the sum over its faces of a · (b × c)).
+double volume6_of(const TriMesh& m) {
+    double v = 0;
+    for (FaceId f : m.faces()) {
+        const auto [a, b, c] = m.face_vertices(f);
+        v += m.position(a).dot(m.position(b).cross(m.position(c)));
+    }
+    return v;
+}
+
+// Each vertex's quadric: the area-weighted plane quadrics of its faces.
+std::vector<Quadric> vertex_quadrics(const TriMesh& T) {
+    std::vector<Quadric> q(T.n_vertices());
+    for (FaceId f : T.faces()) {
+        const Quadric k = face_quadric(T, f);
+        for (VertexId v : T.face_vertices(f)) q[v.idx()] += k;
+    }
+    return q;
+}
+
+// Decimates `start`, a decimation of T after the collapses `start.history` (T itself with none),
+// whose vertex j is T's vertex start.t_vertex[j] with quadric quadrics[j].
 class Decimator {
 public:
-    Decimator(const TriMesh& T, const DecimateOptions& o)
-        : m_(T), options_(o), quadric_(T.n_vertices()), stamp_(T.n_edges(), 0),
-          rejected_(T.n_halfedges(), false), keep_(T.n_vertices(), 0) {
-        for (VertexId v : o.keep) keep_[v.idx()] = 1;
+    Decimator(const Domain& start, std::vector<Quadric> quadrics, double t_volume6, const DecimateOptions& o)
+        : m_(start.mesh), t_of_(start.t_vertex), history_(start.history), options_(o), quadric_(std::move(quadrics)),
+          stamp_(m_.n_edges(), 0), rejected_(m_.n_halfedges(), false), keep_(m_.n_vertices(), 0) {
+        std::vector<std::uint8_t> kept(std::max_element(t_of_.begin(), t_of_.end())->idx() + 1, 0);
+        for (VertexId v : o.keep)
+            if (v.idx() < kept.size()) kept[v.idx()] = 1;
+        for (VertexId v : m_.vertices()) keep_[v.idx()] = kept[t_of_[v.idx()].idx()];
         cos_max_turn_ = std::cos(o.max_normal_deviation_deg * M_PI / 180.0);
         tan_min_angle_ = std::tan(o.min_angle_deg * M_PI / 180.0);
-        for (FaceId f : m_.faces()) {
-            const auto [a, b, c] = m_.face_vertices(f);
-            volume_ += volume6(m_.position(a), m_.position(b), m_.position(c));
-        }
-        min_volume_ = 1e-6 * volume_;
-        for (FaceId f : m_.faces()) {
-            const Quadric q = face_quadric(m_, f);
-            for (VertexId v : m_.face_vertices(f)) quadric_[v.idx()] += q;
-        }
+        volume_ = volume6_of(m_);
+        min_volume_ = 1e-6 * t_volume6;
         std::vector<Candidate> all;
         all.reserve(m_.n_edges());
         for (EdgeId e : m_.edges()) all.push_back(edge_candidate(e));
@@ -91,6 +110,7 @@ public:
     Domain run() {
         std::size_t faces = m_.n_faces();
         Domain d;
+        d.history = std::move(history_);
         while (faces > options_.target_faces) {
             if (queue_.empty()) {
                 if (options_.best_effort) break;
@@ -110,7 +130,8 @@ public:
                 continue;
             }
             const VertexId v0 = m_.from(h), v1 = m_.to(h);
-            d.history.push_back({v0, v1, m_.to(m_.next(h)), m_.to(m_.next(TriMesh::twin(h)))});
+            d.history.push_back({t_of_[v0.idx()], t_of_[v1.idx()], t_of_[m_.to(m_.next(h)).idx()],
+                                 t_of_[m_.to(m_.next(TriMesh::twin(h))).idx()]});
             m_.collapse(h);
             volume_ += change_;
             faces -= 2;
@@ -118,7 +139,7 @@ public:
             refresh_around(v1);
         }
         for (VertexId v : m_.vertices())
-            if (!m_.is_deleted(v)) d.t_vertex.push_back(v);
+            if (!m_.is_deleted(v)) d.t_vertex.push_back(t_of_[v.idx()]);
         m_.compact();  // keeps the survivors' order, so D's vertex j is d.t_vertex[j]
         d.mesh = std::move(m_);
         return d;
@@ -126,11 +147,13 @@ public:
 
 private:
     TriMesh m_;
+    std::vector<VertexId> t_of_;      // vertex of m_ -> vertex of T
+    std::vector<Collapse> history_;   // the collapses that made `start` from T
     const DecimateOptions& options_;
     std::vector<Quadric> quadric_;
     std::vector<std::uint32_t> stamp_;  // per edge
     std::vector<bool> rejected_;        // per halfedge: popped, found invalid, and not queued since
-    std::vector<std::uint8_t> keep_;    // per vertex of T: never removed (DecimateOptions::keep)
+    std::vector<std::uint8_t> keep_;    // per vertex: never removed (DecimateOptions::keep)
     using Queue = std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>>;
     Queue queue_;
     double cos_max_turn_ = 0, tan_min_angle_ = 0;
@@ -223,7 +246,9 @@ std::size_t min_closed_faces(long genus) {
     return static_cast<std::size_t>(2 * (v - chi));
 }
 
-Domain decimate(const TriMesh& T, const DecimateOptions& options) {
+namespace {
+
+void check_target(const TriMesh& T, const DecimateOptions& options) {
     const std::size_t target = options.target_faces;
     const long g = genus(T);
     if (target % 2 != 0)
@@ -234,7 +259,50 @@ Domain decimate(const TriMesh& T, const DecimateOptions& options) {
     if (target < min_closed_faces(g))
         throw InvalidInput("", 0, "--faces " + std::to_string(target) + " is fewer than a closed surface of genus " +
                                       std::to_string(g) + " needs (at least " + std::to_string(min_closed_faces(g)) + ")");
-    return Decimator(T, options).run();
+}
+
+}  // namespace
+
+Domain decimate(const TriMesh& T, const DecimateOptions& options) {
+    check_target(T, options);
+    Domain start{T, {}, {}};
+    for (VertexId v : T.vertices()) start.t_vertex.push_back(v);
+    return Decimator(start, vertex_quadrics(T), volume6_of(T), options).run();
+}
+
+Domain decimate_again(const TriMesh& T, const Domain& previous, const DecimateOptions& options) {
+    check_target(T, options);
+    // The collapses of `previous` before its first that removes a vertex kept now, and leaving at
+    // least the target's faces, are the ones a new decimation makes first.
+    std::vector<std::uint8_t> kept(T.n_vertices(), 0);
+    for (VertexId v : options.keep) kept[v.idx()] = 1;
+    std::size_t reuse = std::min(previous.history.size(), (T.n_faces() - options.target_faces) / 2);
+    for (std::size_t i = 0; i < reuse; ++i)
+        if (kept[previous.history[i].removed.idx()]) reuse = i;
+    const Domain start = undo_collapses(previous, T, previous.history.size() - reuse);
+    std::vector<Quadric> merged = vertex_quadrics(T);  // summed in the order decimate summed them
+    for (std::size_t i = 0; i < reuse; ++i) merged[previous.history[i].kept.idx()] += merged[previous.history[i].removed.idx()];
+    std::vector<Quadric> quadrics(start.t_vertex.size());
+    for (std::size_t j = 0; j < quadrics.size(); ++j) quadrics[j] = merged[start.t_vertex[j].idx()];
+    Domain d = Decimator(start, std::move(quadrics), volume6_of(T), options).run();
+    // Number D's vertices in T's order, as decimate does (DOM-4): the undone prefix appended its
+    // vertices at the end.
+    std::vector<std::uint32_t> order(d.t_vertex.size()), rank(d.t_vertex.size());
+    for (std::uint32_t j = 0; j < order.size(); ++j) order[j] = j;
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return d.t_vertex[a] < d.t_vertex[b]; });
+    std::vector<Vec3> positions(order.size());
+    std::vector<VertexId> t_vertex(order.size());
+    for (std::uint32_t r = 0; r < order.size(); ++r) {
+        rank[order[r]] = r;
+        positions[r] = d.mesh.position(VertexId(order[r]));
+        t_vertex[r] = d.t_vertex[order[r]];
+    }
+    std::vector<Triangle> faces = d.mesh.triangles();
+    for (Triangle& f : faces)
+        for (std::uint32_t& v : f) v = rank[v];
+    d.mesh = TriMesh::from_triangles(std::move(positions), faces);
+    d.t_vertex = std::move(t_vertex);
+    return d;
 }
 
 Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count) {
@@ -252,6 +320,26 @@ Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count) {
         r.t_vertex.push_back(c.removed);
     }
     return r;
+}
+
+bool history_describes(const Domain& d, const TriMesh& T) {
+    Domain back;
+    try {
+        back = undo_collapses(d, T, d.history.size());
+    } catch (const std::logic_error&) {
+        return false;  // a split whose neighbours are not there: D changed after its decimation
+    }
+    if (back.mesh.n_vertices() != T.n_vertices()) return false;
+    // The same faces, each from its smallest vertex (orientation kept), in any order.
+    auto canonical = [](std::vector<Triangle> faces) {
+        for (Triangle& f : faces) std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+        std::sort(faces.begin(), faces.end());
+        return faces;
+    };
+    std::vector<Triangle> faces = back.mesh.triangles();
+    for (Triangle& f : faces)
+        for (std::uint32_t& v : f) v = back.t_vertex[v].idx();
+    return canonical(std::move(faces)) == canonical(T.triangles());
 }
 
 }  // namespace fhr::domain

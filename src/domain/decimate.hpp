@@ -64,6 +64,17 @@ std::size_t min_closed_faces(long genus);
 ///         min_closed_faces(genus), or cannot be reached under the validity rules.
 Domain decimate(const TriMesh& T, const DecimateOptions& options);
 
+/// The decimation of T under `options` (typically more vertices to keep and more faces than
+/// before), reusing `previous` — a decimation of T that kept a subset of options.keep — up to its
+/// first collapse that removes a vertex kept now (or that would go below the target): that
+/// prefix is undone to, and the decimation goes on from there with the same rules. Same
+/// guarantees as decimate; the §3 recovery's re-decimations (paper_notes/partition.md).
+Domain decimate_again(const TriMesh& T, const Domain& previous, const DecimateOptions& options);
+
+/// True when undoing all of d.history gives T back, face for face: the history describes d.mesh
+/// (false, for instance, after an edge of d.mesh was flipped). O(#F(T) log #F(T)).
+bool history_describes(const Domain& d, const TriMesh& T);
+
 /// Undoes the last `count` collapses of d.history (vertex splits, most recent first), giving a
 /// finer domain whose vertices are again vertices of T. With count = d.history.size() the result
 /// is T itself, with its vertices renumbered: result.t_vertex maps them to T.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <utility>
@@ -149,12 +150,29 @@ std::size_t flip_over_corners(domain::Domain& D, const std::vector<Conflict>& co
 }  // namespace
 
 Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& options) {
+    const domain::Domain D0 = D;
     const bool decimated = !D.history.empty();
     const std::size_t vertices0 = D.mesh.n_vertices();
     std::vector<VertexId> keep;
     std::vector<std::uint8_t> kept(T.n_vertices(), 0);
     Flips flipped;                 // edges made by flips
-    domain::Domain base = D;       // the last decimation, stepped back along its history
+    // The last decimation, from which the recovery decimates again or steps back: D itself when
+    // its history describes it, else (D changed after its decimation) T decimated afresh to D's
+    // size when first needed.
+    std::optional<domain::Domain> base;
+    auto last_decimation = [&]() -> domain::Domain& {
+        if (!base) {
+            if (domain::history_describes(D0, T)) {
+                base = D0;
+            } else {
+                domain::DecimateOptions o;
+                o.target_faces = D0.mesh.n_faces();
+                o.best_effort = true;
+                base = domain::decimate(T, o);
+            }
+        }
+        return *base;
+    };
     PathCache cache(T, options.ellipse);
     Partition out;
     for (;;) {
@@ -197,8 +215,8 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             o.target_faces = std::min(T.n_faces(), D.mesh.n_faces() + 2 * more.size());
             o.keep = keep;
             o.best_effort = true;
-            base = domain::decimate(T, o);
-            D = base;
+            base = domain::decimate_again(T, last_decimation(), o);
+            D = *base;
             const std::size_t again = reapply_flips(D, flipped);
             if (options.progress)
                 options.progress("partition: " + std::to_string(conflicts) + " conflicts (" + first +
@@ -210,10 +228,11 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         // Global: step back along the last decimation, undoing its last collapses until D has a
         // quarter more faces; at the end of the history D = T, whose paths are T's own edges, so
         // (1) and (2) hold and the loop ends.
-        if (base.history.empty()) throw std::logic_error("partition: conflicts on D = T, whose paths are T's edges");
-        const std::size_t undo = std::min(base.history.size(), std::max<std::size_t>(1, D.mesh.n_faces() / 8));
-        base = domain::undo_collapses(base, T, undo);
-        D = base;
+        domain::Domain& last = last_decimation();
+        if (last.history.empty()) throw std::logic_error("partition: conflicts on D = T, whose paths are T's edges");
+        const std::size_t undo = std::min(last.history.size(), std::max<std::size_t>(1, D.mesh.n_faces() / 8));
+        base = domain::undo_collapses(last, T, undo);
+        D = *base;
         const std::size_t again = reapply_flips(D, flipped);
         if (options.progress)
             options.progress("partition: " + std::to_string(conflicts) + " conflicts (" + first + "); stepping back " +
