@@ -57,7 +57,9 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
         KeptResult k;
         k.percent = p;
         k.count = kept_count(out.coefficients, p);
+        start = std::chrono::steady_clock::now();
         k.positions = bank.reconstruct(keep_largest(bank, d, k.count));
+        out.reconstruction_seconds += seconds_since(start);
         k.l2_error = rms_distance(out.remesh_positions, k.positions);
         out.kept.push_back(std::move(k));
     }

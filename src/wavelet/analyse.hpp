@@ -43,7 +43,7 @@ struct WaveletResult {
     std::vector<KeptResult> kept;         ///< one per requested percentage, in the order given
     double refinement_seconds = 0;        ///< refine + sample φ (steady_clock)
     double decomposition_seconds = 0;     ///< build the filter bank + decompose
-    double reconstruction_seconds = 0;    ///< the full reconstruction of the round trip
+    double reconstruction_seconds = 0;    ///< the round trip's reconstruction and, per kept percentage, choosing the coefficients and reconstructing
     double hausdorff_seconds = 0;         ///< all Hausdorff brackets (an error measure, not a stage of the paper)
 };
 
