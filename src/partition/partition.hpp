@@ -9,7 +9,7 @@
 // collapses of its decimation; the paths are recomputed (only those of new edges are new work).
 //
 // Pseudocode:
-//   base <- D
+//   base <- D (when its history describes it, else T decimated afresh to D's size)
 //   loop:
 //       for each edge [v_j, v_k] of D: Γ(x_j, x_k) by the ellipse search (cached by its ends)
 //       embed the paths into T -> T′, with the conflicts against (1) and (2)
@@ -22,8 +22,9 @@
 //               order), or when all are in D already, the middle node of each conflicting curve,
 //               or the ends of the edges its nodes lie on, or the neighbours of the places
 //       if more is not empty and 8·|more| ≤ #F(D):
-//           keep += more; base <- decimate(T, #F(D) + 2·|more| faces, keeping `keep`, stopping
-//           early if it must); D <- base
+//           keep += more; base <- decimate_again(T, base, #F(D) + 2·|more| faces, keeping
+//           `keep`, stopping early if it must: base's collapses are reused up to its first
+//           that removes a vertex now kept); D <- base
 //       else: base <- base with its last max(1, #F(D)/8) collapses undone; D <- base
 //           (at the end of the history D = T, whose paths are T's own edges: (1), (2) hold)
 // Decisions and their reasons: paper_notes/partition.md.
