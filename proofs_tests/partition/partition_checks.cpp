@@ -1,6 +1,7 @@
 // FHR tests — PART-1..8 of spec/partition.md, independent of how src/partition computes them.
 #include "partition/partition_checks.hpp"
 
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -8,6 +9,7 @@
 
 #include "core/geometry.hpp"
 #include "core/topology.hpp"
+#include "geodesic/ellipse.hpp"
 
 namespace fhr::test {
 namespace {
@@ -186,6 +188,30 @@ std::string recovery_violation(const TriMesh& T, const domain::Domain& D0, const
         if (in_d[v.idx()] != 1) return "PART-9: a kept vertex is not a vertex of D";
     if (P.vertices_added != D.mesh.n_vertices() - D0.mesh.n_vertices()) return "PART-9: vertices_added is wrong";
     if (P.retries == 0 && D.mesh.triangles() != D0.mesh.triangles()) return "PART-9: D changed without a retry";
+    return "";
+}
+
+std::string keep_violation(const TriMesh& T, const domain::Domain& D0, const partition::Partition& P) {
+    if (P.domain.mesh.triangles() != D0.mesh.triangles() || P.domain.t_vertex != D0.t_vertex) return "PART-10: D was changed";
+    if (P.retries != 0 || P.curves.size() != D0.mesh.n_edges()) return "PART-10: retries or curve count";
+    const auto ends = domain::edge_endpoints(D0);
+    for (std::size_t e = 0; e < ends.size(); ++e) {
+        const partition::CurveInfo& c = P.curves[e];
+        const double g = geodesic::ellipse_shortest_path(T, ends[e].first, ends[e].second).path.length;
+        const double L = P.paths[e].path.length;
+        std::ostringstream why;
+        why << "PART-10: domain edge " << e << " (L " << L << ", geodesic " << g << ", restricted shortest " << c.shortest
+            << ", bound " << c.separation_bound << "): ";
+        if (std::abs(c.geodesic_length - g) > 1e-12 * g) return why.str() + "the reported geodesic length is wrong";
+        if (c.kind == partition::CurveKind::geodesic) {
+            if (std::abs(L - g) > 1e-9 * g) return why.str() + "a curve called geodesic is not a shortest path";
+            continue;
+        }
+        if (c.reason.empty()) return why.str() + "a restricted curve without its reason";
+        if (c.shortest < g * (1 - 1e-12)) return why.str() + "the restricted shortest length is below the geodesic's";
+        if (L < c.shortest * (1 - 1e-9)) return why.str() + "the separated curve is shorter than the restricted shortest";
+        if (L > c.shortest + c.separation_bound + 1e-12 * L) return why.str() + "the separation added more than its bound";
+    }
     return "";
 }
 

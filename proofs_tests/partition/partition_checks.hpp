@@ -15,4 +15,9 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
 /// PART-9 for a partition P of T that started from the decimated domain D0 ("" when it holds).
 std::string recovery_violation(const TriMesh& T, const domain::Domain& D0, const partition::Partition& P);
 
+/// PART-10 for a partition P of T that kept the domain D0 ("" when it holds): D0 delivered as
+/// given; every curve an exact geodesic (its length Γ's, recomputed here) or a restricted path
+/// no shorter than Γ, within its separation bound of the restricted shortest length, with a reason.
+std::string keep_violation(const TriMesh& T, const domain::Domain& D0, const partition::Partition& P);
+
 }  // namespace fhr::test

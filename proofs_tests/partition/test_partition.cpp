@@ -136,6 +136,7 @@ TEST_CASE("PART-9: the elephant at 114 faces needs all three remedies and ends f
     const domain::Domain D0 = domain::decimate(T, {.target_faces = 114});
     std::size_t flips = 0, keeps = 0, steps = 0;
     partition::PartitionOptions options;
+    options.keep_domain = false;  // the paper-only mode, which changes D
     options.progress = [&](const std::string& line) {
         flips += line.find("flipped") != std::string::npos;
         keeps += line.find("decimating again") != std::string::npos;
@@ -160,5 +161,32 @@ TEST_CASE("PART-1..9: random meshes of genus 0–3 and random domain sizes parti
         RC_TAG(P.retries > 0 ? "recovered" : "first try");
         RC_ASSERT(test::partition_violation(T, P) == "");
         RC_ASSERT(test::recovery_violation(T, D, P) == "");
+    });
+}
+
+TEST_CASE("PART-10: the elephant at 114 faces keeps its domain, conflicting edges restricted", "[partition][keep][real]") {
+    // The run that the paper-only mode ends at 1,184 faces (PART-9 above): kept at 114.
+    const TriMesh T = cgal_mesh("elephant.off");
+    const domain::Domain D0 = domain::decimate(T, {.target_faces = 114});
+    REQUIRE_FALSE(partition::embed(T, D0, exact_paths(T, D0)).conflicts.empty());
+    const partition::Partition P = partition::partition(T, D0);
+    const auto restricted = std::count_if(P.curves.begin(), P.curves.end(),
+                                          [](const partition::CurveInfo& c) { return c.kind == partition::CurveKind::restricted; });
+    CHECK(restricted > 0);
+    CHECK(restricted < static_cast<long>(P.curves.size()) / 4);
+    CHECK(P.keep_start_faces > D0.mesh.n_faces());
+    CHECK(test::keep_violation(T, D0, P) == "");
+    CHECK(test::partition_violation(T, P) == "");
+}
+
+TEST_CASE("PART-10: random meshes of genus 0–3 keep their decimated domain", "[partition][keep][property]") {
+    rc::prop("the partition of a random closed mesh keeps its random decimated domain", [] {
+        const test::GeneratedMesh g = *test::gen_closed_mesh(0, 3, 1500);
+        const TriMesh& T = g;
+        const domain::Domain D = test::random_domain(T, g.options.genus);
+        const partition::Partition P = partition::partition(T, D);
+        RC_TAG(P.keep_start_faces > 0 ? "kept with restricted paths" : "geodesics only");
+        RC_ASSERT(test::partition_violation(T, P) == "");
+        RC_ASSERT(test::keep_violation(T, D, P) == "");
     });
 }

@@ -35,8 +35,9 @@ usage:
       (K = 1.06, grown until the result is certified): length, points, K, windows
   fhr run MESH (--faces N | --domain D.off --correspondence FILE) --out DIR
           [--weights shape-preserving|mean-value|uniform] [--solver sparse-lu|bicgstab]
-          [--levels J [--keep P,Q,...]] [--figures [--up x|y|z]]
-      §2–§4 end to end: writes DIR/domain.off, geodesics.obj, refined.ply, param.fhrp,
+          [--paths keep|geodesic] [--levels J [--keep P,Q,...]] [--figures [--up x|y|z]]
+      §2–§4 end to end (--paths keep, the default: D is kept, edges whose geodesics conflict
+      get restricted shortest paths; geodesic: the paper's geodesics only, D changed where they conflict): writes DIR/domain.off, geodesics.obj, refined.ply, param.fhrp,
       textured.obj, report.json, timings.json; with --levels also §5's remesh_LJ.off and
       wavelet_keepP.off (the largest P % of the wavelet coefficients); with --figures DIR/figures/: the paper's
       Figures 6-9 as PNG, patches and the rate-distortion plot as SVG; exit 3 if §3 cannot partition, 4 if not certified

@@ -23,7 +23,7 @@ double since(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 int run_run(const std::vector<std::string>& argv) {
-    const Args args(argv, {"figures"}, {"faces", "domain", "correspondence", "out", "weights", "solver", "up", "levels", "keep"});
+    const Args args(argv, {"figures"}, {"faces", "domain", "correspondence", "out", "weights", "solver", "up", "levels", "keep", "paths"});
     const std::string& mesh_path = args.single_positional("MESH");
     const std::string out = args.require("out");
     const bool by_faces = args.get("faces").has_value(), by_domain = args.get("domain").has_value();
@@ -31,6 +31,10 @@ int run_run(const std::vector<std::string>& argv) {
     pipeline::Options options;
     if (const auto w = args.get("weights")) options.map.weights = param::parse_weights(*w);
     if (const auto s = args.get("solver")) options.map.solver = param::parse_solver(*s);
+    if (const auto paths = args.get("paths")) {
+        if (*paths != "keep" && *paths != "geodesic") usage_error("--paths must be keep or geodesic, not '" + *paths + "'");
+        options.keep_domain = *paths == "keep";
+    }
     options.progress = [](const std::string& line) { std::fprintf(stderr, "fhr run: %s\n", line.c_str()); };
 
     pipeline::Timings timings;

@@ -81,13 +81,16 @@ void write_obj(const std::string& path, std::span<const Vec3> points, std::span<
 }
 
 void write_obj_polylines(const std::string& path, std::span<const Vec3> points,
-                         std::span<const std::vector<std::uint32_t>> polylines) {
+                         std::span<const std::vector<std::uint32_t>> polylines, std::span<const std::string> groups) {
+    if (!groups.empty() && groups.size() != polylines.size()) throw std::invalid_argument("fhr::io::write_obj_polylines: one group per polyline");
     std::string out;
     for (const Vec3& p : points) {
         out += "v ";
         append_point(out, p);
     }
-    for (const auto& line : polylines) {
+    for (std::size_t i = 0; i < polylines.size(); ++i) {
+        const auto& line = polylines[i];
+        if (!groups.empty() && (i == 0 || groups[i] != groups[i - 1])) out += "g " + groups[i] + '\n';
         out += 'l';
         for (std::uint32_t v : line) {
             if (v >= points.size()) throw std::invalid_argument("fhr::io::write_obj_polylines: index out of range");

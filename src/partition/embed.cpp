@@ -40,8 +40,9 @@ using SideMask = std::uint8_t;
 
 class Embedder {
 public:
-    Embedder(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths)
-        : T_(T), D_(D), paths_(paths) {
+    Embedder(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths,
+             std::span<const std::uint8_t> unsnapped)
+        : T_(T), D_(D), paths_(paths), unsnapped_(unsnapped) {
         Network& n = out_.network;
         n.corner.assign(T.n_vertices(), -1);
         for (std::size_t j = 0; j < D.t_vertex.size(); ++j) n.corner[D.t_vertex[j].idx()] = static_cast<std::int32_t>(j);
@@ -70,6 +71,7 @@ private:
     const TriMesh& T_;
     const domain::Domain& D_;
     std::span<const geodesic::GeodesicPath> paths_;
+    std::span<const std::uint8_t> unsnapped_;
     Embedding out_;
     std::vector<Vec3> positions_;
     // Per edge of T: its nodes as (t, vertex of T′), in order of registration.
@@ -90,13 +92,13 @@ private:
     }
 
     // The path's node as a vertex or an edge point of T (canonical edge direction), snapped.
-    Node node_of(const SurfacePoint& p) {
+    Node node_of(const SurfacePoint& p, bool snap) {
         if (p.kind == SurfacePoint::Kind::vertex) return Node{p.vertex, {}, 0};
         if (p.kind != SurfacePoint::Kind::edge) throw std::logic_error("embed: a path node inside a face");
         const EdgeId e = TriMesh::edge(p.halfedge);
         const double t = (p.halfedge.idx() & 1u) ? 1 - p.t : p.t;
         const HalfedgeId h = TriMesh::halfedge(e, 0);
-        if (t <= snap_fraction || t >= 1 - snap_fraction) {
+        if (snap && (t <= snap_fraction || t >= 1 - snap_fraction)) {
             const VertexId v = t <= snap_fraction ? T_.from(h) : T_.to(h);
             const double moved = (T_.position(v) - position(T_, p)).norm();
             out_.network.max_snap_distance = std::max(out_.network.max_snap_distance, moved);
@@ -131,7 +133,7 @@ private:
             throw std::logic_error("embed: the path of D edge " + std::to_string(e) + " does not run from x_j to x_k");
         std::vector<Node> nodes;
         for (const SurfacePoint& p : points) {
-            const Node n = node_of(p);
+            const Node n = node_of(p, unsnapped_.empty() || !unsnapped_[e]);
             if (nodes.empty() || !same(nodes.back(), n)) nodes.push_back(n);
         }
         Network& net = out_.network;
@@ -397,8 +399,10 @@ std::string Conflict::describe() const {
     return {};
 }
 
-Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths) {
-    return Embedder(T, D, paths).run();
+Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths,
+                std::span<const std::uint8_t> unsnapped) {
+    if (!unsnapped.empty() && unsnapped.size() != paths.size()) throw std::logic_error("embed: one unsnapped flag per path");
+    return Embedder(T, D, paths, unsnapped).run();
 }
 
 }  // namespace fhr::partition

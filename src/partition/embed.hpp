@@ -90,7 +90,11 @@ struct Embedding {
 ///      polyline with consecutive nodes in a common face of T (GeodesicPath's contract).
 /// \post when no conflict: network.mesh is valid and closed with χ(T′) = χ(T), Ω_T′ = Ω_T, and
 ///       every segment of every (snapped) path is an edge of T′ labelled with its D halfedge.
+/// `unsnapped` (empty, or one flag per path): a path flagged 1 is placed exactly as given, without
+/// snapping — a restricted path whose separation points lie closer to a vertex of T than
+/// snap_fraction on purpose (partition/restricted.hpp).
 /// \throws std::logic_error when a path breaks its contract (not a caller's input error).
-Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths);
+Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths,
+                std::span<const std::uint8_t> unsnapped = {});
 
 }  // namespace fhr::partition

@@ -180,7 +180,33 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         paths.reserve(out.paths.size());
         for (const auto& p : out.paths) paths.push_back(p.path);
         Embedding embedding = embed(T, D, paths);
+        std::optional<KeptNetwork> attempt;
+        if (!embedding.conflicts.empty() && options.keep_domain && out.retries == 0 && decimated && domain::history_describes(D, T)) {
+            // Keeping D (partition/keep.hpp): restricted shortest paths where the geodesics conflict.
+            try {
+                attempt = keep_domain(T, D, out.paths, embedding.conflicts, [&](const domain::Domain& d) { return cache.all(d); },
+                                      options.progress);
+            } catch (const PartitionFailure& e) {
+                // No room to separate two curves: D is changed as the paper-only mode does.
+                if (options.progress) options.progress(std::string("keeping the domain failed (") + e.what() + "); changing D instead");
+            }
+        }
+        if (!embedding.conflicts.empty() && attempt) {
+            const KeptNetwork& kept = *attempt;
+            for (std::size_t e = 0; e < kept.paths.size(); ++e) out.paths[e].path = kept.paths[e];
+            out.curves = kept.info;
+            out.keep_start_faces = kept.start_faces;
+            out.keep_rounds = kept.rounds;
+            out.resolved = embedding.conflicts;
+            std::vector<std::uint8_t> unsnapped;
+            for (const CurveInfo& c : kept.info) unsnapped.push_back(c.kind == CurveKind::restricted);
+            embedding = embed(T, D, kept.paths, unsnapped);
+            if (!embedding.conflicts.empty())
+                throw std::logic_error("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
+        }
         if (embedding.conflicts.empty()) {
+            if (out.curves.empty())
+                for (const auto& p : out.paths) out.curves.push_back(CurveInfo{CurveKind::geodesic, p.path.length, 0, 0, {}});
             out.patches = extract_patches(D, embedding.network);
             out.network = std::move(embedding.network);
             out.vertices_added = D.mesh.n_vertices() - vertices0;

@@ -14,6 +14,9 @@
 //       for each edge [v_j, v_k] of D: Γ(x_j, x_k) by the ellipse search (cached by its ends)
 //       embed the paths into T -> T′, with the conflicts against (1) and (2)
 //       if no conflict: cut T′ into the patches; return
+//       if keeping D (the default) and D's history describes it, on the first round:
+//           restricted shortest paths where the geodesics conflict (partition/keep.hpp); return
+//           (no room to separate two curves: go on below, changing D)
 //       if D was given by the user: PartitionFailure naming the conflicting domain edges
 //       if some curve runs over a corner of a face beside its edge: flip those edges; next round
 //           (the flips are made again, where they apply, after each new D below)
@@ -38,12 +41,16 @@
 #include "domain/decimate.hpp"
 #include "geodesic/ellipse.hpp"
 #include "partition/embed.hpp"
+#include "partition/keep.hpp"
 #include "partition/patches.hpp"
 
 namespace fhr::partition {
 
 struct PartitionOptions {
     geodesic::EllipseOptions ellipse;
+    /// true (the default): D is kept, conflicting edges get restricted shortest paths
+    /// (partition/keep.hpp); false: the paper's geodesics only, D changed where they conflict.
+    bool keep_domain = true;
     std::function<void(const std::string&)> progress;  ///< optional: one line per round
 };
 
@@ -57,6 +64,9 @@ struct Partition {
     std::size_t vertices_added = 0;            ///< #V(D) − #V(D₀)
     std::vector<VertexId> kept;                ///< the vertices of T that the recovery made D keep
     std::vector<Conflict> resolved;            ///< the conflicts met on the way, in order
+    std::vector<CurveInfo> curves;             ///< #E(D): each curve's kind (geodesic or restricted)
+    std::size_t keep_start_faces = 0;          ///< keeping D: the faces of the valid start (0: not needed)
+    std::size_t keep_rounds = 0;               ///< keeping D: re-embeddings of the network
 };
 
 /// §3 for T and D.

@@ -100,6 +100,27 @@ void write_report(const std::string& path, const InputInfo& input, const Paramet
     j.key("paths").value(P.paths.size()).key("total_length").value(total_length);
     j.key("max_K").value(max_K).key("max_attempts").value(max_attempts).key("windows_created").value(windows);
     j.key("max_snap_distance").value(P.network.max_snap_distance);
+    std::size_t restricted = 0;
+    double restricted_length = 0, excess = 0, separation = 0;
+    for (std::size_t e = 0; e < P.curves.size(); ++e) {
+        if (P.curves[e].kind != partition::CurveKind::restricted) continue;
+        ++restricted;
+        restricted_length += P.paths[e].path.length;
+        excess += P.paths[e].path.length - P.curves[e].geodesic_length;
+        separation = std::max(separation, P.curves[e].separation_bound);
+    }
+    j.key("geodesic_edges").value(P.curves.size() - restricted).key("restricted_edges").value(restricted);
+    j.key("restricted_length").value(restricted_length).key("restricted_excess").value(excess);
+    j.key("max_separation_bound").value(separation).key("keep_start_faces").value(P.keep_start_faces);
+    j.key("restricted").begin_array();
+    for (std::size_t e = 0; e < P.curves.size(); ++e) {
+        const partition::CurveInfo& c = P.curves[e];
+        if (c.kind != partition::CurveKind::restricted) continue;
+        j.begin_object().key("domain_edge").value(e).key("length").value(P.paths[e].path.length);
+        j.key("geodesic_length").value(c.geodesic_length).key("shortest_restricted").value(c.shortest);
+        j.key("separation_bound").value(c.separation_bound).key("reason").value(c.reason).end_object();
+    }
+    j.end_array();
     j.key("refined_vertices").value(p.refined_positions.size()).key("refined_faces").value(p.refined_faces.size());
     j.key("dividing_edges_split").value(p.dividing_edges_split).end_object();
 
@@ -186,7 +207,9 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
         auto& line = lines.emplace_back();
         for (VertexId v : path) line.push_back(v.idx());
     }
-    io::write_obj_polylines(base + "geodesics.obj", P.network.mesh.positions(), lines);
+    std::vector<std::string> kinds;  // each curve's kind (report.json's partition.restricted lists why)
+    for (const partition::CurveInfo& c : P.curves) kinds.push_back(c.kind == partition::CurveKind::geodesic ? "geodesic" : "restricted");
+    io::write_obj_polylines(base + "geodesics.obj", P.network.mesh.positions(), lines, kinds);
     io::write_ply(base + "refined.ply", p.refined_positions, p.refined_faces, p.face_patch);
     exchange::write_param(base + "param.fhrp", to_param_file(p));
     io::write_obj(base + "textured.obj", p.refined_positions, p.refined_faces, atlas_uv(p));

@@ -58,6 +58,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     Stopwatch paths;
     partition::PartitionOptions po;
     po.progress = options.progress;
+    po.keep_domain = options.keep_domain;
     out.partition = partition::partition(T, std::move(D), po);
     timings.stages.emplace_back("geodesic_paths", paths.seconds());
     const partition::Partition& P = out.partition;

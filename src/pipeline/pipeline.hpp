@@ -36,6 +36,7 @@ struct Timings {
 
 struct Options {
     param::PatchMapOptions map;
+    bool keep_domain = true;  ///< §3: keep D (restricted paths where geodesics conflict), else change it
     std::function<void(const std::string&)> progress;  ///< optional: one line per step
 };
 

@@ -1,0 +1,67 @@
+// Beyond the paper (§3): keeping the domain that was asked for. When the geodesics of D's edges
+// break conditions (1) or (2), D is kept and the conflicting edges get restricted shortest paths
+// (partition/restricted.hpp) instead of D being changed.
+//
+// Pseudocode:
+//   valid start: step back along D's decimation history (vertex splits, a quarter more faces a
+//       round) until the geodesics of that finer domain D_i satisfy (1) and (2) (at worst D_i = T,
+//       whose geodesics are its own edges)
+//   redo the undone collapses on the network, in batches whose closed 1-rings are disjoint (they
+//       commute): a collapse v → w is a sequence of flips of v's spokes, each flip [v, u] → [w, y]
+//       replacing the curve by the restricted path from x_w to x_y in the two patches beside [v, u],
+//       until v has valence 3; then v's three patches merge into one face and its curves go
+//   tighten: in passes, edges in the kept order (edges whose geodesic is in no conflict first,
+//       then the others, each group shortest geodesic first), in batches of edges with no face in
+//       common: the curve becomes the restricted path between its ends in its two patches when
+//       that is shorter, and the exact geodesic itself when that is what it found
+//   every round re-embeds the network into T; a conflict there is an internal error (the
+//       separation keeps the curves apart)
+// Decisions and their reasons: paper_notes/partition.md, "Keeping the domain".
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "domain/decimate.hpp"
+#include "geodesic/ellipse.hpp"
+#include "partition/embed.hpp"
+
+namespace fhr::partition {
+
+/// How the curve of a domain edge was found.
+enum class CurveKind : std::uint8_t {
+    geodesic,    ///< the exact shortest geodesic Γ(x_j, x_k) of T (paper §3)
+    restricted,  ///< the restricted shortest path in the region the other curves leave free
+};
+
+/// What the report says of one domain edge's curve.
+struct CurveInfo {
+    CurveKind kind = CurveKind::geodesic;
+    double geodesic_length = 0;   ///< |Γ(x_j, x_k)| on T, unrestricted
+    double shortest = 0;          ///< restricted: the restricted shortest length before separation
+    double separation_bound = 0;  ///< restricted: the bound of what the separation added
+    std::string reason;           ///< restricted: the conflict of its geodesic that forced it
+};
+
+struct KeptNetwork {
+    std::vector<geodesic::GeodesicPath> paths;  ///< #E(D): the curve of D's halfedge (e, 0)
+    std::vector<CurveInfo> info;                ///< #E(D)
+    std::size_t start_faces = 0;                ///< #F(D_i), the valid start
+    std::size_t rounds = 0;                     ///< re-embeddings of the network
+};
+
+/// The network for exactly D.
+/// \pre D's history describes it (domain::history_describes); geodesics[e] is Γ for D's halfedge
+///      (e, 0); `conflicts` are those of their embedding; `geodesics_of` gives the geodesics of any
+///      domain of T (in its edge order).
+/// \throws std::logic_error when a separated curve breaks (1) or (2) (a bug);
+///         PartitionFailure when a curve has no room to be separated.
+KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::EllipsePath> geodesics,
+                        std::span<const Conflict> conflicts,
+                        const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,
+                        const std::function<void(const std::string&)>& progress);
+
+}  // namespace fhr::partition
