@@ -233,3 +233,21 @@ TEST_CASE("INV-IN: an empty soup is refused", "[unit][build]") {
     const auto e = refused(soup({}, {}));
     CHECK_THAT(e.problem(), Catch::Contains("no faces"));
 }
+
+TEST_CASE("INV-IN-13: a flat closed surface (four coplanar points as a tetrahedron) is refused as bad input", "[unit][build]") {
+    // The apex moved into the plane of face 0, inside its triangle: no triangle is degenerate,
+    // but the four faces cover the triangle twice.
+    auto pts = tet_points;
+    pts[3] = (pts[0] + pts[1] + pts[2]) / 3.0;
+    const auto e = refused(soup(pts, tet_faces));
+    CHECK_THAT(e.problem(), Catch::Contains("the closed surface is flat"));
+    CHECK_THAT(e.problem(), Catch::Contains("all 4 vertices"));
+    // Off the plane by the smallest amount the exact predicate sees: accepted.
+    pts[3].z() += 1e-300;
+    CHECK_NOTHROW(build(soup(pts, tet_faces)));
+    // A surface with boundary may be flat (when boundary is allowed).
+    BuildOptions o;
+    o.require_closed = false;
+    const std::vector<std::vector<std::uint32_t>> disk = {{0, 1, 2}};
+    CHECK_NOTHROW(build(soup(tet_points, disk), o));
+}

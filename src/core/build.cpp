@@ -12,6 +12,7 @@
 //   INV-IN-9  every vertex is manifold: its faces form one fan
 //   INV-IN-10 no boundary (the paper's §3 partition needs a closed surface)
 //   INV-IN-11 one connected component
+//   INV-IN-13 a closed surface is not flat (its vertices are not all in one plane)
 #include "core/build.hpp"
 
 #include <algorithm>
@@ -276,6 +277,18 @@ private:
                             vname(static_cast<std::uint32_t>(other)) + " is not connected to vertex " + vname(0) + ")");
             }
         }
+        if (options_.require_closed) check_not_flat(mesh);
+    }
+
+    // INV-IN-13: a closed surface with every vertex in one plane (exact orient3d) encloses no
+    // volume: its faces cover a flat region twice, front and back, which §3 cannot partition.
+    void check_not_flat(const TriMesh& mesh) const {
+        const auto corners = mesh.face_vertices(FaceId(0));
+        const Vec3 &a = mesh.position(corners[0]), &b = mesh.position(corners[1]), &c = mesh.position(corners[2]);
+        for (VertexId v : mesh.vertices())
+            if (orient3d(a, b, c, mesh.position(v)) != 0) return;
+        fail(0, "the closed surface is flat: all " + std::to_string(mesh.n_vertices()) +
+                    " vertices lie in the plane of face 0, so its faces cover a flat region twice");
     }
 };
 
