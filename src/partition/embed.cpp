@@ -40,12 +40,26 @@ using SideMask = std::uint8_t;
 
 class Embedder {
 public:
-    Embedder(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths,
+    // With D: paths[e] runs between the corners x_j, x_k of D's halfedge (e, 0), and (2) is checked.
+    // Without: the corners are the paths' ends (numbered in order of first appearance).
+    Embedder(const TriMesh& T, const domain::Domain* D, std::span<const geodesic::GeodesicPath> paths,
              std::span<const std::uint8_t> unsnapped)
         : T_(T), D_(D), paths_(paths), unsnapped_(unsnapped) {
         Network& n = out_.network;
         n.corner.assign(T.n_vertices(), -1);
-        for (std::size_t j = 0; j < D.t_vertex.size(); ++j) n.corner[D.t_vertex[j].idx()] = static_cast<std::int32_t>(j);
+        if (D) {
+            for (std::size_t j = 0; j < D->t_vertex.size(); ++j) n.corner[D->t_vertex[j].idx()] = static_cast<std::int32_t>(j);
+            ends_ = domain::edge_endpoints(*D);
+        } else {
+            std::int32_t corners = 0;
+            for (const geodesic::GeodesicPath& p : paths) {
+                if (p.points.size() < 2 || p.points.front().kind != SurfacePoint::Kind::vertex || p.points.back().kind != SurfacePoint::Kind::vertex)
+                    throw std::logic_error("embed: a curve does not run between two vertices");
+                ends_.emplace_back(p.points.front().vertex, p.points.back().vertex);
+                for (VertexId x : {p.points.front().vertex, p.points.back().vertex})
+                    if (n.corner[x.idx()] < 0) n.corner[x.idx()] = corners++;
+            }
+        }
         n.on_path.assign(T.n_vertices(), PathPosition{});
         n.origin.resize(T.n_vertices());
         for (VertexId v : T.vertices()) n.origin[v.idx()].vertex = v;
@@ -53,7 +67,7 @@ public:
     }
 
     Embedding run() {
-        if (paths_.size() != D_.mesh.n_edges()) throw std::logic_error("embed: one path per edge of D is needed");
+        if (D_ && paths_.size() != D_->mesh.n_edges()) throw std::logic_error("embed: one path per edge of D is needed");
         for (std::uint32_t e = 0; e < paths_.size(); ++e) add_path(e);
         check_runs();
         std::vector<Triangle> triangles;
@@ -63,13 +77,14 @@ public:
         Network& n = out_.network;
         n.mesh = TriMesh::from_triangles(std::move(positions_), triangles);
         label_paths();
-        check_order();
+        if (D_) check_order();
         return std::move(out_);
     }
 
 private:
     const TriMesh& T_;
-    const domain::Domain& D_;
+    const domain::Domain* D_;
+    std::vector<std::pair<VertexId, VertexId>> ends_;  // per path: x_j, x_k
     std::span<const geodesic::GeodesicPath> paths_;
     std::span<const std::uint8_t> unsnapped_;
     Embedding out_;
@@ -125,8 +140,7 @@ private:
     }
 
     void add_path(std::uint32_t e) {
-        const HalfedgeId dh = TriMesh::halfedge(EdgeId(e), 0);
-        const VertexId xj = D_.t_vertex[D_.mesh.from(dh).idx()], xk = D_.t_vertex[D_.mesh.to(dh).idx()];
+        const auto [xj, xk] = ends_[e];
         const auto& points = paths_[e].points;
         if (points.size() < 2 || points.front().kind != SurfacePoint::Kind::vertex || points.front().vertex != xj ||
             points.back().kind != SurfacePoint::Kind::vertex || points.back().vertex != xk)
@@ -224,6 +238,7 @@ private:
             const auto first = chord;
             while (chord != chords_.end() && chord->face == f) ++chord;
             triangulate_face(f, std::span<const Chord>(first, chord), triangles);
+            out_.network.t_face.resize(triangles.size(), f);
         }
     }
 
@@ -351,10 +366,11 @@ private:
     // (2): around x_j, the paths leave in D's cyclic order of the edges around v_j.
     void check_order() {
         const Network& net = out_.network;
-        for (VertexId vj : D_.mesh.vertices()) {
+        const domain::Domain& D = *D_;
+        for (VertexId vj : D.mesh.vertices()) {
             std::vector<std::int32_t> in_d, in_t;
-            D_.mesh.for_each_outgoing(vj, [&](HalfedgeId h) { in_d.push_back(static_cast<std::int32_t>(h.idx())); });
-            net.mesh.for_each_outgoing(D_.t_vertex[vj.idx()], [&](HalfedgeId h) {
+            D.mesh.for_each_outgoing(vj, [&](HalfedgeId h) { in_d.push_back(static_cast<std::int32_t>(h.idx())); });
+            net.mesh.for_each_outgoing(D.t_vertex[vj.idx()], [&](HalfedgeId h) {
                 if (net.d_halfedge[h.idx()] >= 0) in_t.push_back(net.d_halfedge[h.idx()]);
             });
             // The D edges whose successor around x_j is not their successor around v_j (all of
@@ -402,7 +418,12 @@ std::string Conflict::describe() const {
 Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths,
                 std::span<const std::uint8_t> unsnapped) {
     if (!unsnapped.empty() && unsnapped.size() != paths.size()) throw std::logic_error("embed: one unsnapped flag per path");
-    return Embedder(T, D, paths, unsnapped).run();
+    return Embedder(T, &D, paths, unsnapped).run();
+}
+
+Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath> curves, std::span<const std::uint8_t> unsnapped) {
+    if (!unsnapped.empty() && unsnapped.size() != curves.size()) throw std::logic_error("embed: one unsnapped flag per curve");
+    return Embedder(T, nullptr, curves, unsnapped).run();
 }
 
 }  // namespace fhr::partition

@@ -77,6 +77,7 @@ struct Network {
     std::vector<std::vector<VertexId>> path;        ///< #E(D): vertices of T′ from x_j to x_k along Γ_e
                                                     ///< (direction of D's halfedge (e, 0))
     std::vector<std::int32_t> d_halfedge;           ///< #H(T′): the D halfedge it runs along, or -1
+    std::vector<FaceId> t_face;                     ///< #F(T′): the face of T that holds it
     double max_snap_distance = 0;                   ///< the farthest a node was moved by snapping
 };
 
@@ -96,5 +97,11 @@ struct Embedding {
 /// \throws std::logic_error when a path breaks its contract (not a caller's input error).
 Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths,
                 std::span<const std::uint8_t> unsnapped = {});
+
+/// Embeds curves that are not (yet) a whole domain's network — the few curves around a region of
+/// T′ (partition/region.hpp) — into T, which may have a boundary: as embed(), with the curves'
+/// ends as the corners (numbered in order of first appearance), curve i labelling halfedges 2i
+/// (along it) and 2i + 1, and no condition (2) (there is no D to compare with).
+Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath> curves, std::span<const std::uint8_t> unsnapped = {});
 
 }  // namespace fhr::partition

@@ -18,6 +18,22 @@ namespace {
 using Pair = std::pair<VertexId::Index, VertexId::Index>;
 Pair key_of(VertexId a, VertexId b) { return {std::min(a.idx(), b.idx()), std::max(a.idx(), b.idx())}; }
 
+// A face of D by its vertices of T, in increasing order.
+using Corners = std::array<VertexId::Index, 3>;
+Corners corners_of(const domain::Domain& D, FaceId f) {
+    const auto v = D.mesh.face_vertices(f);
+    Corners c{D.t_vertex[v[0].idx()].idx(), D.t_vertex[v[1].idx()].idx(), D.t_vertex[v[2].idx()].idx()};
+    std::sort(c.begin(), c.end());
+    return c;
+}
+
+std::vector<FaceId> merged(std::vector<FaceId> a, std::span<const FaceId> b) {
+    a.insert(a.end(), b.begin(), b.end());
+    std::sort(a.begin(), a.end());
+    a.erase(std::unique(a.begin(), a.end()), a.end());
+    return a;
+}
+
 geodesic::GeodesicPath reversed(geodesic::GeodesicPath p) {
     std::reverse(p.points.begin(), p.points.end());
     return p;
@@ -30,8 +46,9 @@ struct Curve {
     RestrictedPath restricted{};    // when not exact: how it was found
 };
 
-// The network while D is being made: a domain and one curve per edge, keyed by the edge's ends
-// in T, with its embedding.
+// The network while D is being made: a domain, one curve per edge keyed by the edge's ends in T,
+// and per face of D the faces of T its patch touches (the network is never embedded as a whole
+// again: each change is made in its region, partition/region.hpp).
 class Network_ {
 public:
     Network_(const TriMesh& T, domain::Domain D) : T_(T), D_(std::move(D)) {}
@@ -40,50 +57,36 @@ public:
     const domain::Domain& domain() const { return D_; }
     domain::Domain& domain() { return D_; }
     std::map<Pair, Curve>& curves() { return curves_; }
-    const Network& network() const { return embedding_.network; }
-    const Patches& patches() const { return patches_; }
-    std::size_t rounds() const { return rounds_; }
+    const std::map<Pair, Curve>& curves() const { return curves_; }
+    std::map<Corners, std::vector<FaceId>>& touched() { return touched_; }
 
     VertexId x(VertexId v) const { return D_.t_vertex[v.idx()]; }
 
-    // The curves in D's edge order, each along D's halfedge (e, 0).
-    std::vector<geodesic::GeodesicPath> ordered() const {
-        std::vector<geodesic::GeodesicPath> paths;
-        paths.reserve(D_.mesh.n_edges());
-        for (const auto& [a, b] : domain::edge_endpoints(D_)) {
-            const geodesic::GeodesicPath& p = curves_.at(key_of(a, b)).path;
-            paths.push_back(a.idx() < b.idx() ? p : reversed(p));
+    // The region of D's edge e: its two faces' patches, bounded by their four other curves (the
+    // first with the region on its left when `left`), and the faces of T they touch.
+    struct Quad {
+        std::vector<RegionCurve> curves;
+        bool left = true;
+        std::vector<FaceId> touched;
+    };
+    Quad quad(EdgeId e) const {
+        const TriMesh& m = D_.mesh;
+        const HalfedgeId h = TriMesh::halfedge(e, 0), t = TriMesh::twin(h);
+        Quad q;
+        for (HalfedgeId s : {m.next(h), m.next(m.next(h)), m.next(t), m.next(m.next(t))}) {
+            const Curve& c = curves_.at(key_of(x(m.from(s)), x(m.to(s))));
+            q.curves.push_back(RegionCurve{&c.path, c.exact});
         }
-        return paths;
-    }
-
-    void embed_all() {
-        const auto paths = ordered();
-        std::vector<std::uint8_t> unsnapped;
-        for (const auto& [a, b] : domain::edge_endpoints(D_)) unsnapped.push_back(!curves_.at(key_of(a, b)).exact);
-        embedding_ = embed(T_, D_, paths, unsnapped);
-        ++rounds_;
-        if (!embedding_.conflicts.empty())
-            throw std::logic_error("keeping the domain: a separated curve breaks (1)/(2): " + embedding_.conflicts.front().describe());
-        patches_ = extract_patches(D_, embedding_.network);
-    }
-
-    // The restricted path in the two patches beside D's edge e, between `a` and `b` (vertices of D).
-    RestrictedPath restricted(EdgeId e, VertexId a, VertexId b) const {
-        const HalfedgeId h = TriMesh::halfedge(e, 0);
-        const FaceId region[] = {D_.mesh.face(h), D_.mesh.face(TriMesh::twin(h))};
-        RestrictedPath r = restricted_path(T_, embedding_.network, patches_, region, x(a), x(b), static_cast<std::int32_t>(e.idx()));
-        if (x(a).idx() > x(b).idx()) r.path = reversed(std::move(r.path));
-        return r;
+        q.left = x(m.from(m.next(h))).idx() < x(m.to(m.next(h))).idx();
+        q.touched = merged(touched_.at(corners_of(D_, m.face(h))), touched_.at(corners_of(D_, m.face(t))));
+        return q;
     }
 
 private:
     const TriMesh& T_;
     domain::Domain D_;
     std::map<Pair, Curve> curves_;
-    Embedding embedding_;
-    Patches patches_;
-    std::size_t rounds_ = 0;
+    std::map<Corners, std::vector<FaceId>> touched_;
 };
 
 // The domain with these faces (vertices of T), its vertices in increasing order of T's numbering.
@@ -113,36 +116,78 @@ std::vector<std::array<VertexId, 3>> faces_in_t(const domain::Domain& D) {
     return faces;
 }
 
-// A flip or a tightening: the new curve of D's edge e between D's vertices a and b.
+// A flip or a tightening: the new curve of D's edge e between D's vertices a and b, found in
+// the region of e; taken when it is a flip, an exact geodesic, or shorter than the curve now.
 struct Job {
     EdgeId e;
     VertexId a, b;
-    RestrictedPath result{};
+    double geodesic_length = -1;                 // tightening: |Γ| of the edge; a flip: -1
+    double current = INFINITY;                   // tightening: the length of its curve now
+    std::optional<Curve> curve{};                // the new curve, from a's vertex of T to b's
+    std::vector<FaceId> on_left{}, on_right{};   // the faces of T its two patches touch (sides of
+                                                 // the curve from its smaller vertex of T)
 };
 
-void compute(const Network_& net, std::vector<Job>& jobs) {
-    parallel_for(jobs.size(), 1, [&](std::size_t i) { jobs[i].result = net.restricted(jobs[i].e, jobs[i].a, jobs[i].b); });
+void compute(const Network_& n, std::vector<Job>& jobs) {
+    parallel_for(jobs.size(), 1, [&](std::size_t i) {
+        Job& j = jobs[i];
+        Network_::Quad q = n.quad(j.e);
+        Region region(n.T(), q.touched, q.curves);
+        RestrictedPath r = restricted_path(region, 0, q.left, n.x(j.a), n.x(j.b));
+        const bool exact = r.touches == 0 && j.geodesic_length >= 0 && r.shortest <= j.geodesic_length * (1 + 1e-12);
+        if (!exact && !(r.path.length < j.current * (1 - 1e-9))) return;
+        geodesic::GeodesicPath path = n.x(j.a).idx() < n.x(j.b).idx() ? std::move(r.path) : reversed(std::move(r.path));
+        j.curve = Curve{std::move(path), exact, std::move(r)};
+        region.add(RegionCurve{&j.curve->path, exact});
+        j.on_left = region.t_faces(region.side(4, true));
+        j.on_right = region.t_faces(region.side(4, false));
+    });
+}
+
+// Puts job j's curve in place (after flipping e when the curve joins other vertices).
+void apply(Network_& net, Job& j) {
+    domain::Domain& D = net.domain();
+    const HalfedgeId h = TriMesh::halfedge(j.e, 0);
+    const Pair old = key_of(net.x(D.mesh.from(h)), net.x(D.mesh.to(h))), now = key_of(net.x(j.a), net.x(j.b));
+    net.touched().erase(corners_of(D, D.mesh.face(h)));
+    net.touched().erase(corners_of(D, D.mesh.face(TriMesh::twin(h))));
+    if (old != now) {
+        net.curves().erase(old);
+        D.mesh.flip(j.e);
+    }
+    net.curves()[now] = std::move(*j.curve);
+    const VertexId lo = net.x(j.a).idx() < net.x(j.b).idx() ? j.a : j.b, hi = lo == j.a ? j.b : j.a;
+    const HalfedgeId g = D.mesh.find_halfedge(lo, hi);
+    net.touched()[corners_of(D, D.mesh.face(g))] = std::move(j.on_left);
+    net.touched()[corners_of(D, D.mesh.face(TriMesh::twin(g)))] = std::move(j.on_right);
 }
 
 // Redoes `collapses` (in T's numbering, in their order) on the network.
 void redo(Network_& net, std::span<const domain::Collapse> collapses, const std::function<void(const std::string&)>& say) {
+    domain::Domain& D = net.domain();
+    // Vertices keep their numbers until the end (removed ones become garbage).
+    std::unordered_map<VertexId::Index, VertexId> in_d;  // vertex of T -> vertex of D
+    for (std::size_t j = 0; j < D.t_vertex.size(); ++j) in_d.emplace(D.t_vertex[j].idx(), VertexId(static_cast<VertexId::Index>(j)));
     std::vector<domain::Collapse> left(collapses.begin(), collapses.end());
+    std::vector<std::uint8_t> blocked(D.mesh.n_vertices(), 0);
     while (!left.empty()) {
-        domain::Domain& D = net.domain();
-        std::unordered_map<VertexId::Index, VertexId> in_d;  // vertex of T -> vertex of D
-        for (std::size_t j = 0; j < D.t_vertex.size(); ++j) in_d.emplace(D.t_vertex[j].idx(), VertexId(static_cast<VertexId::Index>(j)));
         // The batch: collapses whose closed 1-rings meet no earlier one's (taken or left), so
         // that they commute with every collapse they overtake.
-        std::vector<std::uint8_t> blocked(D.mesh.n_vertices(), 0);
         std::vector<domain::Collapse> batch, later;
+        std::vector<VertexId> marked;
         for (const domain::Collapse& c : left) {
             const VertexId v = in_d.at(c.removed.idx());
-            std::vector<VertexId> ring{v};
-            D.mesh.for_each_outgoing(v, [&](HalfedgeId h) { ring.push_back(D.mesh.to(h)); });
-            const bool free = std::none_of(ring.begin(), ring.end(), [&](VertexId u) { return blocked[u.idx()] != 0; });
-            for (VertexId u : ring) blocked[u.idx()] = 1;
+            bool free = blocked[v.idx()] == 0;
+            D.mesh.for_each_outgoing(v, [&](HalfedgeId h) { free = free && blocked[D.mesh.to(h).idx()] == 0; });
+            auto mark = [&](VertexId u) {
+                if (!blocked[u.idx()]) marked.push_back(u);
+                blocked[u.idx()] = 1;
+            };
+            mark(v);
+            D.mesh.for_each_outgoing(v, [&](HalfedgeId h) { mark(D.mesh.to(h)); });
             (free ? batch : later).push_back(c);
         }
+        for (VertexId u : marked) blocked[u.idx()] = 0;
         // Flip v's spokes until it has valence 3, all collapses of the batch in step.
         for (;;) {
             std::vector<Job> jobs;
@@ -154,42 +199,42 @@ void redo(Network_& net, std::span<const domain::Collapse> collapses, const std:
                 const HalfedgeId vu = D.mesh.find_halfedge(v, u);
                 const VertexId y = D.mesh.to(D.mesh.next(vu));            // face (v, u, y)
                 if (!D.mesh.is_flip_ok(TriMesh::edge(vu))) throw std::logic_error("keeping the domain: a spoke cannot be flipped");
-                jobs.push_back(Job{TriMesh::edge(vu), w, y});
+                jobs.push_back(Job{.e = TriMesh::edge(vu), .a = w, .b = y});
             }
             if (jobs.empty()) break;
             compute(net, jobs);
-            for (Job& j : jobs) {
-                const HalfedgeId h = TriMesh::halfedge(j.e, 0);
-                net.curves().erase(key_of(net.x(D.mesh.from(h)), net.x(D.mesh.to(h))));
-                D.mesh.flip(j.e);
-                net.curves()[key_of(net.x(j.a), net.x(j.b))] = Curve{std::move(j.result.path), false, j.result};
-            }
-            net.embed_all();
+            for (Job& j : jobs) apply(net, j);
         }
-        // Each v now has valence 3: its three faces become one, its three curves go.
-        std::vector<std::uint8_t> gone(D.mesh.n_vertices(), 0);
-        std::vector<std::array<VertexId, 3>> merged;
+        // Each v now has valence 3: the collapse v -> w merges its three faces into (w, a, b)
+        // and removes its three curves; the new face's patch is the three patches' union.
         for (const domain::Collapse& c : batch) {
             const VertexId v = in_d.at(c.removed.idx()), w = in_d.at(c.kept.idx());
             const HalfedgeId vw = D.mesh.find_halfedge(v, w);
-            const VertexId a = D.mesh.to(D.mesh.next(vw)), b = D.mesh.to(D.mesh.next(TriMesh::twin(vw)));
-            merged.push_back({c.kept, net.x(a), net.x(b)});
-            gone[v.idx()] = 1;
-            for (VertexId u : {w, a, b}) net.curves().erase(key_of(c.removed, net.x(u)));
+            if (!D.mesh.is_collapse_ok(vw)) throw std::logic_error("keeping the domain: a collapse cannot be redone");
+            std::vector<FaceId> touched;
+            D.mesh.for_each_outgoing(v, [&](HalfedgeId h) {
+                const auto it = net.touched().find(corners_of(D, D.mesh.face(h)));
+                touched = merged(std::move(touched), it->second);
+                net.touched().erase(it);
+                net.curves().erase(key_of(c.removed, net.x(D.mesh.to(h))));
+            });
+            Corners k{c.kept.idx(), net.x(D.mesh.to(D.mesh.next(vw))).idx(), net.x(D.mesh.to(D.mesh.next(TriMesh::twin(vw)))).idx()};
+            std::sort(k.begin(), k.end());
+            D.mesh.collapse(vw);
+            net.touched()[k] = std::move(touched);
         }
-        std::vector<std::array<VertexId, 3>> faces;
-        for (const Triangle& t : D.mesh.triangles())
-            if (!gone[t[0]] && !gone[t[1]] && !gone[t[2]]) faces.push_back({D.t_vertex[t[0]], D.t_vertex[t[1]], D.t_vertex[t[2]]});
-        faces.insert(faces.end(), merged.begin(), merged.end());
-        net.domain() = make_domain(net.T(), faces);
-        net.embed_all();
         if (say)
             say("keeping the domain: redid " + std::to_string(batch.size()) + " collapses on the network, " +
-                std::to_string(later.size()) + " to go (" + std::to_string(net.domain().mesh.n_faces()) + " faces)");
+                std::to_string(later.size()) + " to go");
         left = std::move(later);
     }
+    // The removed vertices go.
+    std::vector<VertexId> kept;
+    for (VertexId v : D.mesh.vertices())
+        if (!D.mesh.is_deleted(v)) kept.push_back(D.t_vertex[v.idx()]);
+    D.mesh.compact();
+    D.t_vertex = std::move(kept);
 }
-
 
 // The faces of a domain as triples of vertices of T, each from its smallest vertex, sorted.
 std::vector<std::array<VertexId::Index, 3>> canonical_faces(const domain::Domain& D) {
@@ -213,24 +258,38 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, std::span<con
         if (progress) progress(line);
     };
     const auto ends = domain::edge_endpoints(D);
-    // 1. The valid start: D_i, a quarter more faces a round, until its geodesics satisfy (1), (2).
+    // 1. The valid start: D_i, undoing four times as many collapses a round (a quarter more faces at
+    // first; T itself once D_i would pass 16 |D| faces), until its geodesics satisfy (1) and (2).
     std::size_t undone = 0, faces = D.mesh.n_faces();
     std::optional<Network_> net;
     for (;;) {
-        undone = std::min(D.history.size(), undone + std::max<std::size_t>(1, faces / 8));
+        undone = std::max(4 * undone, std::max<std::size_t>(1, faces / 8));
+        // Past 16 |D| faces (each collapse takes two) the geodesics cost more than redoing from T.
+        if (undone >= D.history.size() || D.mesh.n_faces() + 2 * undone > 16 * D.mesh.n_faces()) undone = D.history.size();
         const domain::Domain Di = domain::undo_collapses(D, T, undone);
         faces = Di.mesh.n_faces();
-        const auto g = geodesics_of(Di);
         std::vector<geodesic::GeodesicPath> paths;
-        for (const auto& p : g) paths.push_back(p.path);
-        if (embed(T, Di, paths).conflicts.empty()) {
+        if (undone == D.history.size()) {
+            // D_i = T: the geodesic of an edge is the edge (a segment is the shortest curve in space).
+            for (const auto& [a, b] : domain::edge_endpoints(Di))
+                paths.push_back(geodesic::GeodesicPath{{SurfacePoint::at_vertex(a), SurfacePoint::at_vertex(b)}, (T.position(a) - T.position(b)).norm()});
+        } else {
+            for (const auto& p : geodesics_of(Di)) paths.push_back(p.path);
+        }
+        const Embedding embedding = embed(T, Di, paths);
+        if (embedding.conflicts.empty()) {
             net.emplace(T, make_domain(T, faces_in_t(Di)));
             const auto di_ends = domain::edge_endpoints(Di);
-            for (std::size_t e = 0; e < g.size(); ++e) {
+            for (std::size_t e = 0; e < paths.size(); ++e) {
                 const auto [a, b] = di_ends[e];
-                net->curves()[key_of(a, b)] = Curve{a.idx() < b.idx() ? g[e].path : reversed(g[e].path), true, {}};
+                net->curves()[key_of(a, b)] = Curve{a.idx() < b.idx() ? paths[e] : reversed(paths[e]), true, {}};
             }
-            net->embed_all();
+            const Patches patches = extract_patches(Di, embedding.network);
+            for (FaceId df : Di.mesh.faces()) {
+                std::vector<FaceId> touched;
+                for (FaceId f : patches.patch[df.idx()].faces) touched.push_back(embedding.network.t_face[f.idx()]);
+                net->touched()[corners_of(Di, df)] = merged(std::move(touched), {});
+            }
             say("keeping the domain: the geodesics of a domain of " + std::to_string(faces) + " faces (" +
                 std::to_string(undone) + " collapses undone) satisfy (1) and (2)");
             break;
@@ -276,22 +335,14 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, std::span<con
                     continue;
                 }
                 used[f.idx()] = used[g.idx()] = 1;
-                jobs.push_back(Job{TriMesh::edge(h), a, b});
+                jobs.push_back(Job{.e = TriMesh::edge(h), .a = a, .b = b, .geodesic_length = geodesic_length.at(k), .current = net->curves().at(k).path.length});
             }
             compute(*net, jobs);
-            for (Job& j : jobs) {
-                const Pair k = key_of(net->x(j.a), net->x(j.b));
-                Curve& c = net->curves().at(k);
-                const double gl = geodesic_length.at(k);
-                if (j.result.touches == 0 && j.result.shortest <= gl * (1 + 1e-12)) {
-                    c = Curve{std::move(j.result.path), true, j.result};  // an exact shortest geodesic of T
-                    ++changed;
-                } else if (j.result.path.length < c.path.length * (1 - 1e-9)) {
-                    c = Curve{std::move(j.result.path), false, j.result};
+            for (Job& j : jobs)
+                if (j.curve) {
+                    apply(*net, j);
                     ++changed;
                 }
-            }
-            net->embed_all();
             left = std::move(later);
         }
         say("keeping the domain: tightening pass " + std::to_string(pass + 1) + ", " + std::to_string(changed) + " curves shortened");
@@ -301,7 +352,6 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, std::span<con
     // 4. The curves in D's edge order.
     KeptNetwork out;
     out.start_faces = faces;
-    out.rounds = net->rounds();
     for (std::size_t e = 0; e < ends.size(); ++e) {
         const auto [a, b] = ends[e];
         const Pair k = key_of(a, b);

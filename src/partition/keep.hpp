@@ -3,9 +3,10 @@
 // (partition/restricted.hpp) instead of D being changed.
 //
 // Pseudocode:
-//   valid start: step back along D's decimation history (vertex splits, a quarter more faces a
-//       round) until the geodesics of that finer domain D_i satisfy (1) and (2) (at worst D_i = T,
-//       whose geodesics are its own edges)
+//   valid start: step back along D's decimation history (undoing a quarter more faces, then four
+//       times as many collapses a round; T itself once the step would pass 16 |D| faces, whose
+//       geodesics are its edges) until the geodesics of that finer domain D_i satisfy (1) and (2);
+//       embed them once, and keep per face of D_i the faces of T its patch touches
 //   redo the undone collapses on the network, in batches whose closed 1-rings are disjoint (they
 //       commute): a collapse v → w is a sequence of flips of v's spokes, each flip [v, u] → [w, y]
 //       replacing the curve by the restricted path from x_w to x_y in the two patches beside [v, u],
@@ -14,8 +15,11 @@
 //       then the others, each group shortest geodesic first), in batches of edges with no face in
 //       common: the curve becomes the restricted path between its ends in its two patches when
 //       that is shorter, and the exact geodesic itself when that is what it found
-//   every round re-embeds the network into T; a conflict there is an internal error (the
-//       separation keeps the curves apart)
+//   every flip and tightening works in its region alone (partition/region.hpp): the faces of T
+//       the two patches touch are cut along the four curves around them, the new curve is found
+//       there, and cutting again along it gives the two new patches' faces of T; a conflict there
+//       is an internal error (the separation keeps the curves apart), and the caller embeds the
+//       final network into T as a whole and checks it again
 // Decisions and their reasons: paper_notes/partition.md, "Keeping the domain".
 #pragma once
 
@@ -50,7 +54,6 @@ struct KeptNetwork {
     std::vector<geodesic::GeodesicPath> paths;  ///< #E(D): the curve of D's halfedge (e, 0)
     std::vector<CurveInfo> info;                ///< #E(D)
     std::size_t start_faces = 0;                ///< #F(D_i), the valid start
-    std::size_t rounds = 0;                     ///< re-embeddings of the network
 };
 
 /// The network for exactly D.

@@ -196,7 +196,6 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             for (std::size_t e = 0; e < kept.paths.size(); ++e) out.paths[e].path = kept.paths[e];
             out.curves = kept.info;
             out.keep_start_faces = kept.start_faces;
-            out.keep_rounds = kept.rounds;
             out.resolved = embedding.conflicts;
             std::vector<std::uint8_t> unsnapped;
             for (const CurveInfo& c : kept.info) unsnapped.push_back(c.kind == CurveKind::restricted);
@@ -215,10 +214,18 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             return out;
         }
         if (!decimated) {
+            // Each pair of domain edges once (a crossing is found in every face where it happens),
+            // and each problem of one edge at one domain vertex once.
+            std::vector<const Conflict*> pairs;
+            for (const Conflict& c : embedding.conflicts)
+                if (std::none_of(pairs.begin(), pairs.end(), [&](const Conflict* p) {
+                        return p->d_edge_a == c.d_edge_a && p->d_edge_b == c.d_edge_b &&
+                               (c.d_edge_a != c.d_edge_b || (p->kind == c.kind && p->d_vertex == c.d_vertex));
+                    }))
+                    pairs.push_back(&c);
             std::string what = "conditions (1)/(2) of §3 fail for the given domain:";
-            for (std::size_t i = 0; i < std::min<std::size_t>(embedding.conflicts.size(), 4); ++i)
-                what += (i ? "; " : " ") + embedding.conflicts[i].describe();
-            if (embedding.conflicts.size() > 4) what += "; and " + std::to_string(embedding.conflicts.size() - 4) + " more";
+            for (std::size_t i = 0; i < std::min<std::size_t>(pairs.size(), 4); ++i) what += (i ? "; " : " ") + pairs[i]->describe();
+            if (pairs.size() > 4) what += "; and " + std::to_string(pairs.size() - 4) + " more";
             throw PartitionFailure(what);
         }
         const std::size_t conflicts = embedding.conflicts.size();

@@ -66,7 +66,6 @@ struct Partition {
     std::vector<Conflict> resolved;            ///< the conflicts met on the way, in order
     std::vector<CurveInfo> curves;             ///< #E(D): each curve's kind (geodesic or restricted)
     std::size_t keep_start_faces = 0;          ///< keeping D: the faces of the valid start (0: not needed)
-    std::size_t keep_rounds = 0;               ///< keeping D: re-embeddings of the network
 };
 
 /// §3 for T and D.

@@ -15,8 +15,9 @@ namespace {
 
 class Restrictor {
 public:
-    Restrictor(const TriMesh& T, const Network& net, const std::vector<std::uint8_t>& mask, std::int32_t removed)
-        : T_(T), net_(net), mask_(mask), removed_(removed) {}
+    // Works on the piece T_S of T around the region and on T′_S (partition/region.hpp).
+    Restrictor(const Region& region, const std::vector<std::uint8_t>& mask)
+        : region_(region), T_(region.sub()), net_(region.cut()), mask_(mask) {}
 
     // The parameter of vertex x of T′ on T's edge E (along halfedge(E, 0)), when x lies on E.
     std::optional<double> param_on(EdgeId E, VertexId x) const {
@@ -51,6 +52,14 @@ public:
         return SurfacePoint::on_edge(TriMesh::halfedge(o.edge, 0), o.t);
     }
 
+    // The vertex of T at (or nearest to) vertex u of T′_S, for messages.
+    VertexId near_in_t(VertexId u) const {
+        const Origin& o = net_.origin[u.idx()];
+        if (o.vertex.valid()) return region_.in_t(o.vertex);
+        const HalfedgeId h = TriMesh::halfedge(o.edge, 0);
+        return region_.in_t(o.t < 0.5 ? T_.from(h) : T_.to(h));
+    }
+
     bool masked(FaceId f) const { return f.valid() && mask_[f.idx()] != 0; }
 
     bool on_boundary(VertexId u) const {
@@ -68,8 +77,8 @@ public:
         RestrictedPath out;
         out.shortest = search.distance(to);
         if (!std::isfinite(out.shortest))
-            throw PartitionFailure("restricted path: vertex " + std::to_string(to.idx()) + " cannot be reached from vertex " +
-                                   std::to_string(from.idx()) + " inside the region the other curves leave free");
+            throw PartitionFailure("restricted path: vertex " + std::to_string(region_.in_t(to).idx()) + " cannot be reached from vertex " +
+                                   std::to_string(region_.in_t(from).idx()) + " inside the region the other curves leave free");
         const geodesic::GeodesicPath star = search.path_to(to);
         const auto& pts = star.points;
         std::vector<SurfacePoint>& nodes = out.path.points;
@@ -115,10 +124,10 @@ public:
     }
 
 private:
+    const Region& region_;
     const TriMesh& T_;
     const Network& net_;
     const std::vector<std::uint8_t>& mask_;
-    std::int32_t removed_;
 
     // Where neighbour point p of vertex u lies in u's fan of outgoing halfedges `fan` (clockwise):
     // 2k for the edge of fan[k], 2k − 1 for the face between fan[k − 1] and fan[k] (face(fan[k])).
@@ -170,30 +179,19 @@ private:
         for (long q = lo + 1; q < hi; ++q) {
             if (q % 2 != 0) continue;
             const HalfedgeId h = fan[static_cast<std::size_t>(q / 2)];
-            VertexId w = m.to(h);
+            const VertexId w = m.to(h);
             const auto E = along(u, w);
             if (!E) continue;  // a chord of a face of T: the points on either side are in that face
             const double su = *param_on(*E, u);
-            // The next vertex of T′ on E that stays: the replaced curve's nodes do not count.
-            VertexId prev = u;
-            while (!net_.origin[w.idx()].vertex.valid() && net_.on_path[w.idx()].d_edge == removed_ && removed_ >= 0) {
-                VertexId next;
-                m.for_each_outgoing(w, [&](HalfedgeId g) {
-                    const VertexId x = m.to(g);
-                    if (x == prev || next.valid()) return;
-                    if (const auto sx = param_on(*E, x); sx && (*sx - *param_on(*E, w)) * (*param_on(*E, w) - su) > 0) next = x;
-                });
-                if (!next.valid()) break;
-                prev = w;
-                w = next;
-            }
+            // The next vertex of T′ on E: the replaced curve is not in T′_S, so it is another curve's
+            // node or the far end of E.
             const double gap = std::abs(*param_on(*E, w) - su);
             // A third of the gap: a curve on the other side of the gap, separated towards u, stays apart.
             const double delta = std::min(separation_fraction, gap / 3);
             const double s = su + (*param_on(*E, w) > su ? delta : -delta);
             if (!(s > 0 && s < 1) || s == su || delta < min_separation)
-                throw PartitionFailure("restricted path: no room to separate the curve from the curve at vertex " +
-                                       std::to_string(u.idx()) + " of T′ (gap " + std::to_string(gap) + " of an edge)");
+                throw PartitionFailure("restricted path: no room to separate the curve from the curve near vertex " +
+                                       std::to_string(near_in_t(u).idx()) + " (gap " + std::to_string(gap) + " of an edge)");
             points.push_back(SurfacePoint::on_edge(TriMesh::halfedge(*E, 0), s));
             const HalfedgeId eh = TriMesh::halfedge(*E, 0);
             r = std::max(r, delta * (T_.position(T_.to(eh)) - T_.position(T_.from(eh))).norm());
@@ -206,12 +204,11 @@ private:
 
 }  // namespace
 
-RestrictedPath restricted_path(const TriMesh& T, const Network& net, const Patches& patches,
-                               std::span<const FaceId> region, VertexId from, VertexId to, std::int32_t removed) {
-    std::vector<std::uint8_t> mask(net.mesh.n_faces(), 0);
-    for (std::size_t f = 0; f < mask.size(); ++f)
-        mask[f] = std::find(region.begin(), region.end(), patches.patch_of_face[f]) != region.end();
-    return Restrictor(T, net, mask, removed).run(from, to);
+RestrictedPath restricted_path(const Region& region, std::size_t curve, bool left, VertexId from, VertexId to) {
+    const std::vector<std::uint8_t> mask = region.side(curve, left);
+    RestrictedPath r = Restrictor(region, mask).run(region.in_sub(from), region.in_sub(to));
+    for (SurfacePoint& p : r.path.points) p = region.in_t(p);
+    return r;
 }
 
 }  // namespace fhr::partition

@@ -4,16 +4,17 @@
 // Paper §3 takes one shortest geodesic per edge of D and needs conditions (1) and (2) to hold. Where
 // they fail, fhr keeps D and gives the edge the shortest curve that stays in the region the other
 // curves leave free: the union of the patches beside it (after a flip, the two patches of the
-// edge's old position). That region is a disk of T′ bounded by other curves; the exact window
-// propagation of src/geodesic runs on T′ masked to it (its boundary vertices are pseudo-sources,
+// edge's old position). That region is a disk of T′ bounded by other curves, cut out on its own
+// (partition/region.hpp: T′_S, the piece of T′ around it); the exact window propagation of
+// src/geodesic runs on T′_S masked to it (its boundary vertices are pseudo-sources,
 // so the shortest path may bend around them). The true restricted shortest curve may touch the
 // boundary, which (1) forbids: each node where it does is replaced by points on the edges of T
 // around it, inside the region, at most separation_fraction of those edges away (the separation).
 //
 // Pseudocode:
-//   mask <- the faces of T′ in the region's patches
-//   Γ* <- exact shortest path from x_a to x_b on T′ masked to the region;  L* <- its length
-//   for each node u of Γ* (on T′):
+//   mask <- the faces of T′_S on the region's side of one of its boundary curves
+//   Γ* <- exact shortest path from x_a to x_b on T′_S masked to the region;  L* <- its length
+//   for each node u of Γ* (on T′_S, finally mapped to T):
 //       an end: x_a or x_b
 //       a point inside an edge of T′: on an edge of T → that point of T; across a chord of a
 //           face of T (T′'s own edge inside it) → dropped (Γ* is straight inside the face of T)
@@ -31,8 +32,7 @@
 #include <span>
 
 #include "geodesic/exact.hpp"
-#include "partition/embed.hpp"
-#include "partition/patches.hpp"
+#include "partition/region.hpp"
 
 namespace fhr::partition {
 
@@ -50,16 +50,14 @@ struct RestrictedPath {
     std::size_t touches = 0;      ///< nodes of the shortest curve on the region's boundary
 };
 
-/// The restricted shortest path from x `from` to x `to` inside the union of the patches of the
-/// D faces `region`, separated from the region's boundary.
-/// \pre `net` and `patches` are the conflict-free embedding of a domain; `from` and `to` are
-///      vertices of T on the region's boundary (corners); `removed` is the D edge whose curve this
-///      one replaces (its nodes do not limit the separation), or -1.
-/// \post path runs from `from` to `to`, with consecutive nodes in a common face of T; inside the
-///       region; touching its boundary only at the ends; path.length ≤ shortest + separation_bound.
+/// The restricted shortest path from x `from` to x `to` inside a region: the side `left` (or
+/// right) of curve `curve` of `region`, separated from the region's boundary.
+/// \pre the region's curves enclose that side, a disk of T′ with `from` and `to` (vertices of T)
+///      on its boundary; no other curve of the network enters it.
+/// \post path runs from `from` to `to` on T, with consecutive nodes in a common face of T; inside
+///       the region; touching its boundary only at the ends; path.length ≤ shortest + separation_bound.
 /// \throws PartitionFailure when `to` cannot be reached inside the region, or when a touched node
 ///         has no room for the separation (less than min_separation of an edge).
-RestrictedPath restricted_path(const TriMesh& T, const Network& net, const Patches& patches,
-                               std::span<const FaceId> region, VertexId from, VertexId to, std::int32_t removed);
+RestrictedPath restricted_path(const Region& region, std::size_t curve, bool left, VertexId from, VertexId to);
 
 }  // namespace fhr::partition
