@@ -2,8 +2,10 @@
 """`./run corpus`: `fhr run` with default settings on every closed manifold mesh of libcgal-demo's
 data/meshes (those `fhr info --json` calls valid, without --triangulate) and on
 ../shared/meshes/{horse,rocker}.off when present; each output is checked by `fhr verify --mesh`.
-Prints one row per mesh (mesh, genus, faces, domain faces requested -> final, §3 retries,
-certified, time), then `K of N certified (P %)` and every failure with its exit code and message.
+Prints one row per mesh (mesh, genus, faces, domain faces requested -> final, §3 retries, domain
+edges that are exact geodesics / restricted shortest paths, certified, time), then
+`K of N certified (P %)`, `D kept on K of N`, the total time, and every failure with its exit code
+and message (a domain that does not keep the requested number of faces is one).
 
 Domain size rule: N = F/100 rounded down to even, at most 1000, at least
 max(24, 2·min_closed_faces(genus)) (twice the fewest faces of a closed surface of that genus), and
@@ -62,7 +64,7 @@ def run_one(path, faces, genus):
     out = os.path.join(out_dir, name)
     target = domain_faces(faces, genus)
     row = {"mesh": name, "genus": genus, "faces": faces, "requested": target, "final": "-", "retries": "-",
-           "certified": False, "seconds": 0.0, "note": "", "failure": None}
+           "curves": "-", "certified": False, "seconds": 0.0, "note": "", "failure": None}
     start = time.monotonic()
     for attempt in range(2):
         try:
@@ -85,8 +87,10 @@ def run_one(path, faces, genus):
     report = os.path.join(out, "report.json")
     if os.path.exists(report) and code in (0, 4):
         with open(report) as f:
-            d = json.load(f)["domain"]
+            r = json.load(f)
+        d, p = r["domain"], r["partition"]
         row["final"], row["retries"] = d["faces"], d["retries"]
+        row["curves"] = "%d / %d" % (p["geodesic_edges"], p["restricted_edges"])
     if code == -1:
         progress = stderr.splitlines()[:-1]
         row["failure"] = "fhr run timed out after %g s; its last line: %s" % (timeout, progress[-1] if progress else "-")
@@ -101,6 +105,8 @@ def run_one(path, faces, genus):
                                                      (verify.stdout.splitlines() or [error_line(verify.stderr)])[0])
         return row
     row["certified"] = True
+    if row["final"] != target:
+        row["failure"] = "the domain changed: %d faces requested, %s delivered" % (target, row["final"])
     return row
 
 
@@ -117,19 +123,22 @@ for path in candidates:
         inputs.append((path, d["faces"], d["genus"]))
 os.makedirs(out_dir, exist_ok=True)
 
-print("%-28s %5s %8s %15s %7s %9s %8s  %s" % ("mesh", "genus", "faces", "domain faces", "retries", "certified",
-                                              "time s", "note"))
+print("%-28s %5s %8s %15s %7s %13s %9s %8s  %s" % ("mesh", "genus", "faces", "domain faces", "retries",
+                                                   "geod / restr", "certified", "time s", "note"))
 rows = []
 for path, faces, genus in inputs:
     row = run_one(path, faces, genus)
     rows.append(row)
-    print("%-28s %5d %8d %15s %7s %9s %8.2f  %s" % (
+    print("%-28s %5d %8d %15s %7s %13s %9s %8.2f  %s" % (
         row["mesh"], row["genus"], row["faces"], "%s -> %s" % (row["requested"], row["final"]), row["retries"],
-        "yes" if row["certified"] else "NO", row["seconds"], row["note"]), flush=True)
+        row["curves"], "yes" if row["certified"] else "NO", row["seconds"], row["note"]), flush=True)
 certified = sum(r["certified"] for r in rows)
+kept = sum(r["final"] == r["requested"] for r in rows)
 print("%d of %d certified (%.1f %%)" % (certified, len(rows), 100.0 * certified / max(len(rows), 1)))
+print("D kept on %d of %d" % (kept, len(rows)))
+print("fhr run: %.1f s in all" % sum(r["seconds"] for r in rows))
 for r in rows:
     if r["failure"]:
         print("FAILED %s (genus %d, %d faces, --faces %s): %s" % (r["mesh"], r["genus"], r["faces"], r["requested"],
                                                                    r["failure"]))
-sys.exit(0 if certified == len(rows) else 1)
+sys.exit(0 if certified == len(rows) and kept == len(rows) else 1)

@@ -44,6 +44,9 @@ struct Curve {
     geodesic::GeodesicPath path;
     bool exact = false;             // the exact geodesic of T between its ends
     RestrictedPath restricted{};    // when not exact: how it was found
+    // A geodesic of the start is snapped as embed() snaps geodesics; a curve found later is placed
+    // as found, since snapping could move it across a curve that it passes closer than snapping.
+    bool snapped = false;
 };
 
 // The network while D is being made: a domain, one curve per edge keyed by the edge's ends in T,
@@ -75,7 +78,7 @@ public:
         Quad q;
         for (HalfedgeId s : {m.next(h), m.next(m.next(h)), m.next(t), m.next(m.next(t))}) {
             const Curve& c = curves_.at(key_of(x(m.from(s)), x(m.to(s))));
-            q.curves.push_back(RegionCurve{&c.path, c.exact});
+            q.curves.push_back(RegionCurve{&c.path, c.snapped});
         }
         q.left = x(m.from(m.next(h))).idx() < x(m.to(m.next(h))).idx();
         q.touched = merged(touched_.at(corners_of(D_, m.face(h))), touched_.at(corners_of(D_, m.face(t))));
@@ -138,7 +141,7 @@ void compute(const Network_& n, std::vector<Job>& jobs) {
         if (!exact && !(r.path.length < j.current * (1 - 1e-9))) return;
         geodesic::GeodesicPath path = n.x(j.a).idx() < n.x(j.b).idx() ? std::move(r.path) : reversed(std::move(r.path));
         j.curve = Curve{std::move(path), exact, std::move(r)};
-        region.add(RegionCurve{&j.curve->path, exact});
+        region.add(RegionCurve{&j.curve->path, false});
         j.on_left = region.t_faces(region.side(4, true));
         j.on_right = region.t_faces(region.side(4, false));
     });
@@ -188,18 +191,24 @@ void redo(Network_& net, std::span<const domain::Collapse> collapses, const std:
             (free ? batch : later).push_back(c);
         }
         for (VertexId u : marked) blocked[u.idx()] = 0;
-        // Flip v's spokes until it has valence 3, all collapses of the batch in step.
+        // Flip v's spokes until it has valence 3, all collapses of the batch in step. The spoke
+        // flipped is next to [v, w] on alternate sides: each new curve may have to pass x_v inside
+        // the one before on its side, so alternating halves how deep they crowd.
         for (;;) {
             std::vector<Job> jobs;
             for (const domain::Collapse& c : batch) {
                 const VertexId v = in_d.at(c.removed.idx()), w = in_d.at(c.kept.idx());
-                if (D.mesh.valence(v) <= 3) continue;
+                const std::size_t valence = D.mesh.valence(v);
+                if (valence <= 3) continue;
+                // Spoke [v, u] in the face (v, w, u), or (w, v, u) on the other side; its other
+                // face (v, u, y), or (u, v, y): the flip makes [w, y].
                 const HalfedgeId vw = D.mesh.find_halfedge(v, w);
-                const VertexId u = D.mesh.to(D.mesh.next(vw));            // face (v, w, u)
-                const HalfedgeId vu = D.mesh.find_halfedge(v, u);
-                const VertexId y = D.mesh.to(D.mesh.next(vu));            // face (v, u, y)
-                if (!D.mesh.is_flip_ok(TriMesh::edge(vu))) throw std::logic_error("keeping the domain: a spoke cannot be flipped");
-                jobs.push_back(Job{.e = TriMesh::edge(vu), .a = w, .b = y});
+                const HalfedgeId side = valence % 2 == 0 ? vw : TriMesh::twin(vw);
+                const VertexId u = D.mesh.to(D.mesh.next(side));
+                const HalfedgeId spoke = valence % 2 == 0 ? D.mesh.find_halfedge(v, u) : D.mesh.find_halfedge(u, v);
+                const VertexId y = D.mesh.to(D.mesh.next(spoke));
+                if (!D.mesh.is_flip_ok(TriMesh::edge(spoke))) throw std::logic_error("keeping the domain: a spoke cannot be flipped");
+                jobs.push_back(Job{.e = TriMesh::edge(spoke), .a = w, .b = y});
             }
             if (jobs.empty()) break;
             compute(net, jobs);
@@ -253,19 +262,22 @@ std::vector<std::array<VertexId::Index, 3>> canonical_faces(const domain::Domain
 KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::EllipsePath> geodesics,
                         std::span<const Conflict> conflicts,
                         const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,
-                        const std::function<void(const std::string&)>& progress) {
+                        const std::function<void(const std::string&)>& progress, Start start) {
     auto say = [&](const std::string& line) {
         if (progress) progress(line);
     };
     const auto ends = domain::edge_endpoints(D);
-    // 1. The valid start: D_i, undoing four times as many collapses a round (a quarter more faces at
-    // first; T itself once D_i would pass 16 |D| faces), until its geodesics satisfy (1) and (2).
+    // 1. The valid start: D_i, until its geodesics satisfy (1) and (2).
     std::size_t undone = 0, faces = D.mesh.n_faces();
     std::optional<Network_> net;
     for (;;) {
-        undone = std::max(4 * undone, std::max<std::size_t>(1, faces / 8));
-        // Past 16 |D| faces (each collapse takes two) the geodesics cost more than redoing from T.
-        if (undone >= D.history.size() || D.mesh.n_faces() + 2 * undone > 16 * D.mesh.n_faces()) undone = D.history.size();
+        if (start == Start::gradual) {
+            undone = std::min(D.history.size(), undone + std::max<std::size_t>(1, faces / 8));
+        } else {
+            undone = std::max(4 * undone, std::max<std::size_t>(1, faces / 8));
+            // Past 16 |D| faces (each collapse takes two) the geodesics cost more than redoing from T.
+            if (undone >= D.history.size() || D.mesh.n_faces() + 2 * undone > 16 * D.mesh.n_faces()) undone = D.history.size();
+        }
         const domain::Domain Di = domain::undo_collapses(D, T, undone);
         faces = Di.mesh.n_faces();
         std::vector<geodesic::GeodesicPath> paths;
@@ -282,7 +294,7 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, std::span<con
             const auto di_ends = domain::edge_endpoints(Di);
             for (std::size_t e = 0; e < paths.size(); ++e) {
                 const auto [a, b] = di_ends[e];
-                net->curves()[key_of(a, b)] = Curve{a.idx() < b.idx() ? paths[e] : reversed(paths[e]), true, {}};
+                net->curves()[key_of(a, b)] = Curve{a.idx() < b.idx() ? paths[e] : reversed(paths[e]), true, {}, true};
             }
             const Patches patches = extract_patches(Di, embedding.network);
             for (FaceId df : Di.mesh.faces()) {
@@ -357,6 +369,7 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, std::span<con
         const Pair k = key_of(a, b);
         const Curve& c = net->curves().at(k);
         out.paths.push_back(a.idx() < b.idx() ? c.path : reversed(c.path));
+        out.unsnapped.push_back(!c.snapped);
         CurveInfo info;
         info.geodesic_length = geodesic_length.at(k);
         if (!c.exact) {

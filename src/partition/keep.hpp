@@ -3,10 +3,11 @@
 // (partition/restricted.hpp) instead of D being changed.
 //
 // Pseudocode:
-//   valid start: step back along D's decimation history (undoing a quarter more faces, then four
-//       times as many collapses a round; T itself once the step would pass 16 |D| faces, whose
-//       geodesics are its edges) until the geodesics of that finer domain D_i satisfy (1) and (2);
-//       embed them once, and keep per face of D_i the faces of T its patch touches
+//   valid start: step back along D's decimation history until the geodesics of that finer domain
+//       D_i satisfy (1) and (2) (at worst D_i = T, whose geodesics are its edges); embed them
+//       once, and keep per face of D_i the faces of T its patch touches. Start::fast undoes a
+//       quarter more faces, then four times as many collapses a round, and takes T itself once
+//       D_i would pass 16 |D| faces; Start::gradual undoes a quarter more faces a round
 //   redo the undone collapses on the network, in batches whose closed 1-rings are disjoint (they
 //       commute): a collapse v → w is a sequence of flips of v's spokes, each flip [v, u] → [w, y]
 //       replacing the curve by the restricted path from x_w to x_y in the two patches beside [v, u],
@@ -53,7 +54,14 @@ struct CurveInfo {
 struct KeptNetwork {
     std::vector<geodesic::GeodesicPath> paths;  ///< #E(D): the curve of D's halfedge (e, 0)
     std::vector<CurveInfo> info;                ///< #E(D)
+    std::vector<std::uint8_t> unsnapped;        ///< #E(D): 1 when embed() must place it as given
     std::size_t start_faces = 0;                ///< #F(D_i), the valid start
+};
+
+/// How far the valid start steps back (see the pseudocode above).
+enum class Start : std::uint8_t {
+    fast,     ///< few steps, often to T: the fewest geodesics computed
+    gradual,  ///< the nearest valid level: the fewest flips, so the least crowded curves
 };
 
 /// The network for exactly D.
@@ -65,6 +73,6 @@ struct KeptNetwork {
 KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::EllipsePath> geodesics,
                         std::span<const Conflict> conflicts,
                         const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,
-                        const std::function<void(const std::string&)>& progress);
+                        const std::function<void(const std::string&)>& progress, Start start = Start::fast);
 
 }  // namespace fhr::partition

@@ -183,12 +183,18 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         std::optional<KeptNetwork> attempt;
         if (!embedding.conflicts.empty() && options.keep_domain && out.retries == 0 && decimated && domain::history_describes(D, T)) {
             // Keeping D (partition/keep.hpp): restricted shortest paths where the geodesics conflict.
-            try {
-                attempt = keep_domain(T, D, out.paths, embedding.conflicts, [&](const domain::Domain& d) { return cache.all(d); },
-                                      options.progress);
-            } catch (const PartitionFailure& e) {
-                // No room to separate two curves: D is changed as the paper-only mode does.
-                if (options.progress) options.progress(std::string("keeping the domain failed (") + e.what() + "); changing D instead");
+            // Redoing many collapses can crowd curves around one point until there is no room to
+            // separate them: then again from the nearest valid level, and failing that D is changed
+            // as the paper-only mode does.
+            for (const Start start : {Start::fast, Start::gradual}) {
+                try {
+                    attempt = keep_domain(T, D, out.paths, embedding.conflicts, [&](const domain::Domain& d) { return cache.all(d); },
+                                          options.progress, start);
+                    break;
+                } catch (const PartitionFailure& e) {
+                    if (options.progress)
+                        options.progress(std::string("keeping the domain failed (") + e.what() + (start == Start::fast ? "); again from the nearest valid level" : "); changing D instead"));
+                }
             }
         }
         if (!embedding.conflicts.empty() && attempt) {
@@ -197,9 +203,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             out.curves = kept.info;
             out.keep_start_faces = kept.start_faces;
             out.resolved = embedding.conflicts;
-            std::vector<std::uint8_t> unsnapped;
-            for (const CurveInfo& c : kept.info) unsnapped.push_back(c.kind == CurveKind::restricted);
-            embedding = embed(T, D, kept.paths, unsnapped);
+            embedding = embed(T, D, kept.paths, kept.unsnapped);
             if (!embedding.conflicts.empty())
                 throw std::logic_error("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
         }

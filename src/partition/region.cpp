@@ -94,7 +94,7 @@ void Region::convert(const RegionCurve& c) {
         if (!h.valid()) throw std::logic_error("region: a curve leaves the faces around the region");
         p.points.push_back(SurfacePoint::on_edge(h, q.t));
     }
-    unsnapped_.push_back(!c.exact);
+    unsnapped_.push_back(!c.snapped);
 }
 
 void Region::recut() {

@@ -31,7 +31,7 @@ namespace fhr::partition {
 /// A curve of the network, on T, from its first point to its last.
 struct RegionCurve {
     const geodesic::GeodesicPath* path = nullptr;
-    bool exact = false;  ///< an exact geodesic (snapped as embed() snaps it); else placed as given
+    bool snapped = false;  ///< placed as embed() places a geodesic (snapped); else exactly as given
 };
 
 class Region {
