@@ -142,7 +142,8 @@ TEST_CASE("CLI-RUN-5: bad input and bad options exit 2 and write nothing", "[cli
 
 TEST_CASE("CLI-RUN-5: a user domain whose paths break (1)/(2) exits 3 naming domain edges", "[cli][run]") {
     // The decimated domain with the points of two far-apart domain vertices swapped: their curves
-    // now cross the others, and a user domain is never changed, so §3 cannot partition.
+    // now cross the others, a user domain is never changed, and no short sequence of flips leads
+    // from T's decimation to it (PART-11), so §3 cannot partition.
     const std::string mesh = fandisk(), domain = temp_path("dom.off");
     REQUIRE(run_fhr({"decimate", mesh, "--faces", "114", "--out", domain}).exit_code == 0);
     const std::string corr = fs::path(domain).replace_extension(".correspondence").string();
@@ -158,6 +159,7 @@ TEST_CASE("CLI-RUN-5: a user domain whose paths break (1)/(2) exits 3 naming dom
     INFO(r.err);
     CHECK(r.exit_code == 3);
     CHECK(r.err.find("domain edge") != std::string::npos);
+    CHECK(r.err.find("the domain cannot be kept: ") != std::string::npos);
     CHECK(!fs::exists(dir + "/param.fhrp"));
     // The unchanged correspondence works.
     CHECK(run_fhr({"run", mesh, "--domain", domain, "--correspondence", corr, "--out", temp_path("run-user-ok")}).exit_code == 0);

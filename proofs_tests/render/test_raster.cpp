@@ -401,12 +401,12 @@ TEST_CASE("REN-13: two panels share one camera, and Figures 6–9 are written as
 
     std::vector<Eigen::Vector2d> uv;
     for (std::size_t f = 0; f < t_triangles.size(); ++f) uv.insert(uv.end(), {{0, 0}, {1, 0}, {0, 1}});
-    const std::vector<std::vector<std::uint32_t>> paths{{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10}};
-    const PathData network{t.positions(), paths};
+    const std::vector<std::vector<std::uint32_t>> paths{{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10}}, restricted_paths{{300, 301, 302, 303, 304, 305, 306, 307}};
+    const PathData network{t.positions(), paths}, restricted{t.positions(), restricted_paths};
     const std::string dir = fhr::test::temp_path("figures");
     std::filesystem::create_directories(dir);
     write_fig6(dir + "/fig6.png", camera, t_data, d_data, size);
-    write_fig7(dir + "/fig7.png", camera, t_data, network, t_data, uv, size);
+    write_fig7(dir + "/fig7.png", camera, t_data, network, restricted, t_data, uv, size);
     write_fig8(dir + "/fig8.png", camera, d_data, t_data, size);
     write_fig9(dir + "/fig9.png", camera, d_data, t_data, size);
     for (const char* name : {"fig6", "fig7", "fig8", "fig9"}) {
@@ -416,18 +416,23 @@ TEST_CASE("REN-13: two panels share one camera, and Figures 6–9 are written as
         CHECK(decoded.image.width == size.width);
         CHECK(decoded.image.height == size.height);
     }
-    // Fig. 7: the network (red) on the left, the checkerboard's dark cells (blue) on the right.
+    // Fig. 7: the geodesics (red) and the restricted curves (gold) on the left, the checkerboard's
+    // dark cells (blue) on the right.
     const Image fig7 = reader::decode_png(fhr::test::read_file(dir + "/fig7.png")).image;
-    int red_left = 0, red_right = 0, dark_right = 0;
+    int red_left = 0, red_right = 0, gold_left = 0, gold_right = 0, dark_right = 0;
     for (int y = 0; y < size.height; ++y)
         for (int x = 0; x < size.width; ++x) {
             const Rgb8 c = fig7.at(x, y);
-            const bool is_red = c.r > 150 && c.g < 90 && c.b < 90, is_dark = c.b > c.r + 40;
+            const bool is_red = c.r > 150 && c.g < 90 && c.b < 90, is_gold = c.r > 150 && c.g > 110 && c.b < 60,
+                       is_dark = c.b > c.r + 40;
             (x < size.width / 2 ? red_left : red_right) += is_red;
+            (x < size.width / 2 ? gold_left : gold_right) += is_gold;
             dark_right += x >= size.width / 2 && is_dark;
         }
     CHECK(red_left > 0);
     CHECK(red_right == 0);
+    CHECK(gold_left > 0);
+    CHECK(gold_right == 0);
     CHECK(dark_right > 0);
 }
 

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <map>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <unordered_map>
 #include <utility>
 
+#include "core/errors.hpp"
 #include "core/parallel.hpp"
 #include "partition/patches.hpp"
 #include "partition/restricted.hpp"
@@ -257,9 +259,103 @@ std::vector<std::array<VertexId::Index, 3>> canonical_faces(const domain::Domain
     return faces;
 }
 
+// Flips the network's domain to D's edges (D has its vertices). Each round flips, in regions with
+// no face in common, the edges not in D whose flip makes an edge of D; when there is none, it
+// searches (iterative deepening, at most four flips, each near a missing edge, edges of D
+// included, at most search_budget meshes looked at) for a sequence after which fewer edges of D
+// are missing, and makes it. Each flip is a
+// restricted path in its region, as in the redo.
+constexpr std::size_t search_budget = 200000;
+
+void flip_to(Network_& net, const domain::Domain& target, const std::function<void(const std::string&)>& say) {
+    std::set<Pair> want;
+    for (const auto& [a, b] : domain::edge_endpoints(target)) want.insert(key_of(a, b));
+    domain::Domain& D = net.domain();
+    auto key = [&](const TriMesh& m, EdgeId e) {
+        const HalfedgeId h = TriMesh::halfedge(e, 0);
+        return key_of(net.x(m.from(h)), net.x(m.to(h)));
+    };
+    auto made = [&](const TriMesh& m, EdgeId e) {  // the edge that flipping e makes
+        const HalfedgeId h = TriMesh::halfedge(e, 0);
+        return key_of(net.x(m.to(m.next(h))), net.x(m.to(m.next(TriMesh::twin(h)))));
+    };
+    auto missing_in = [&](const TriMesh& m) {
+        std::size_t present = 0;
+        for (EdgeId e : m.edges()) present += want.count(key(m, e));
+        return want.size() - present;
+    };
+    auto flip = [&](std::vector<Job> jobs) {
+        compute(net, jobs);
+        for (Job& j : jobs) apply(net, j);
+        return jobs.size();
+    };
+    auto job = [&](EdgeId e) {
+        const HalfedgeId h = TriMesh::halfedge(e, 0);
+        return Job{.e = e, .a = D.mesh.to(D.mesh.next(h)), .b = D.mesh.to(D.mesh.next(TriMesh::twin(h)))};
+    };
+    const std::size_t first = missing_in(D.mesh);
+    std::size_t flips = 0;
+    for (std::size_t missing = first; missing > 0; missing = missing_in(D.mesh)) {
+        if (flips > 4 * first + 16) throw PartitionFailure("keeping the domain: the given domain is not reached by flips from its decimation");
+        std::vector<Job> jobs;
+        std::vector<std::uint8_t> used(D.mesh.n_faces(), 0);
+        std::set<Pair> making;  // two flips of a round must not make the same edge
+        for (EdgeId e : D.mesh.edges()) {
+            const HalfedgeId h = TriMesh::halfedge(e, 0);
+            const FaceId f = D.mesh.face(h), g = D.mesh.face(TriMesh::twin(h));
+            if (used[f.idx()] || used[g.idx()] || want.count(key(D.mesh, e)) || !D.mesh.is_flip_ok(e) || !want.count(made(D.mesh, e)) ||
+                !making.insert(made(D.mesh, e)).second)
+                continue;
+            used[f.idx()] = used[g.idx()] = 1;
+            jobs.push_back(job(e));
+        }
+        if (!jobs.empty()) {
+            flips += flip(std::move(jobs));
+            continue;
+        }
+        // The search, among flips with an end of a missing edge in their quadrilateral.
+        std::vector<std::uint8_t> near(D.mesh.n_vertices(), 0);
+        std::set<Pair> have;
+        for (EdgeId e : D.mesh.edges()) have.insert(key(D.mesh, e));
+        std::unordered_map<VertexId::Index, VertexId> in_d;
+        for (std::size_t j = 0; j < D.t_vertex.size(); ++j) in_d.emplace(D.t_vertex[j].idx(), VertexId(static_cast<VertexId::Index>(j)));
+        for (const Pair& k : want)
+            if (!have.count(k)) near[in_d.at(k.first).idx()] = near[in_d.at(k.second).idx()] = 1;
+        auto candidate = [&](const TriMesh& m, EdgeId e) {
+            const HalfedgeId h = TriMesh::halfedge(e, 0);
+            return (near[m.from(h).idx()] || near[m.to(h).idx()] || near[m.to(m.next(h)).idx()] ||
+                    near[m.to(m.next(TriMesh::twin(h))).idx()]) &&
+                   m.is_flip_ok(e);
+        };
+        std::vector<EdgeId> sequence;
+        std::size_t states = 0;  // meshes looked at: the search gives up past search_budget
+        std::function<bool(const TriMesh&, int)> search = [&](const TriMesh& m, int depth) {
+            if (missing_in(m) < missing) return true;
+            if (depth == 0) return false;
+            for (EdgeId e : m.edges()) {
+                if (!candidate(m, e) || ++states > search_budget) continue;
+                TriMesh next = m;
+                next.flip(e);
+                sequence.push_back(e);
+                if (search(next, depth - 1)) return true;
+                sequence.pop_back();
+            }
+            return false;
+        };
+        bool found = false;
+        for (int depth = 1; depth <= 4 && !found; ++depth) found = search(D.mesh, depth);
+        if (!found)
+            throw PartitionFailure(std::string("keeping the domain: no ") + (states > search_budget ? "short sequence of flips found" : "four flips") +
+                                   " bring the decimation nearer to the given domain");
+        for (EdgeId e : sequence) flips += flip({job(e)});
+    }
+    if (say) say("keeping the domain: " + std::to_string(flips) + " flips from the decimation to the given domain");
+}
+
 }  // namespace
 
-KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::EllipsePath> geodesics,
+KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain::Domain& H,
+                        std::span<const geodesic::EllipsePath> geodesics,
                         std::span<const Conflict> conflicts,
                         const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,
                         const std::function<void(const std::string&)>& progress, Start start) {
@@ -268,20 +364,20 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, std::span<con
     };
     const auto ends = domain::edge_endpoints(D);
     // 1. The valid start: D_i, until its geodesics satisfy (1) and (2).
-    std::size_t undone = 0, faces = D.mesh.n_faces();
+    std::size_t undone = 0, faces = H.mesh.n_faces();
     std::optional<Network_> net;
     for (;;) {
         if (start == Start::gradual) {
-            undone = std::min(D.history.size(), undone + std::max<std::size_t>(1, faces / 8));
+            undone = std::min(H.history.size(), undone + std::max<std::size_t>(1, faces / 8));
         } else {
             undone = std::max(4 * undone, std::max<std::size_t>(1, faces / 8));
             // Past 16 |D| faces (each collapse takes two) the geodesics cost more than redoing from T.
-            if (undone >= D.history.size() || D.mesh.n_faces() + 2 * undone > 16 * D.mesh.n_faces()) undone = D.history.size();
+            if (undone >= H.history.size() || H.mesh.n_faces() + 2 * undone > 16 * H.mesh.n_faces()) undone = H.history.size();
         }
-        const domain::Domain Di = domain::undo_collapses(D, T, undone);
+        const domain::Domain Di = domain::undo_collapses(H, T, undone);
         faces = Di.mesh.n_faces();
         std::vector<geodesic::GeodesicPath> paths;
-        if (undone == D.history.size()) {
+        if (undone == H.history.size()) {
             // D_i = T: the geodesic of an edge is the edge (a segment is the shortest curve in space).
             for (const auto& [a, b] : domain::edge_endpoints(Di))
                 paths.push_back(geodesic::GeodesicPath{{SurfacePoint::at_vertex(a), SurfacePoint::at_vertex(b)}, (T.position(a) - T.position(b)).norm()});
@@ -306,13 +402,20 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, std::span<con
                 std::to_string(undone) + " collapses undone) satisfy (1) and (2)");
             break;
         }
-        if (undone == D.history.size()) throw std::logic_error("keeping the domain: conflicts on D = T, whose paths are T's edges");
+        if (undone == H.history.size()) throw std::logic_error("keeping the domain: conflicts on D = T, whose paths are T's edges");
     }
     // 2. The undone collapses, redone on the network.
-    redo(*net, std::span<const domain::Collapse>(D.history).subspan(D.history.size() - undone), say);
-    if (canonical_faces(net->domain()) != canonical_faces(D)) throw std::logic_error("keeping the domain: the collapses redone do not give D");
+    redo(*net, std::span<const domain::Collapse>(H.history).subspan(H.history.size() - undone), say);
+    if (canonical_faces(net->domain()) != canonical_faces(H)) throw std::logic_error("keeping the domain: the collapses redone do not give the decimation");
+    // 3. A domain given by the user: from the decimation to its edges by flips.
+    if (canonical_faces(H) != canonical_faces(D)) {
+        flip_to(*net, D, say);
+        // With every edge in place, only the orientation can differ: D turned over is not a domain of T.
+        if (canonical_faces(net->domain()) != canonical_faces(D))
+            throw PartitionFailure("keeping the domain: the given domain has the edges of T's decimation but its faces turned over");
+    }
 
-    // 3. Tightening, in the kept order.
+    // 4. Tightening, in the kept order.
     std::map<Pair, double> geodesic_length;
     std::map<Pair, std::string> reason;
     for (std::size_t e = 0; e < ends.size(); ++e) geodesic_length[key_of(ends[e].first, ends[e].second)] = geodesics[e].path.length;
@@ -361,7 +464,7 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, std::span<con
         if (changed == 0) break;
     }
 
-    // 4. The curves in D's edge order.
+    // 5. The curves in D's edge order.
     KeptNetwork out;
     out.start_faces = faces;
     for (std::size_t e = 0; e < ends.size(); ++e) {

@@ -12,6 +12,11 @@
 //       commute): a collapse v → w is a sequence of flips of v's spokes, each flip [v, u] → [w, y]
 //       replacing the curve by the restricted path from x_w to x_y in the two patches beside [v, u],
 //       until v has valence 3; then v's three patches merge into one face and its curves go
+//   a domain given by the user (same vertices as the decimation H, other edges): flip, in
+//       regions with no face in common, the edges not in D whose flip makes an edge of D (a
+//       restricted path in the two patches); when there is none, one edge near a missing edge
+//       whose flip starts at most four flips that end in such a flip; give up (PartitionFailure)
+//       when there is none, or after 4k + 16 flips for k missing edges
 //   tighten: in passes, edges in the kept order (edges whose geodesic is in no conflict first,
 //       then the others, each group shortest geodesic first), in batches of edges with no face in
 //       common: the curve becomes the restricted path between its ends in its two patches when
@@ -65,12 +70,15 @@ enum class Start : std::uint8_t {
 };
 
 /// The network for exactly D.
-/// \pre D's history describes it (domain::history_describes); geodesics[e] is Γ for D's halfedge
+/// \pre H is a decimation of T whose history describes it (domain::history_describes) with D's
+///      vertices (H = D when D is itself that decimation); geodesics[e] is Γ for D's halfedge
 ///      (e, 0); `conflicts` are those of their embedding; `geodesics_of` gives the geodesics of any
 ///      domain of T (in its edge order).
 /// \throws std::logic_error when a separated curve breaks (1) or (2) (a bug);
-///         PartitionFailure when a curve has no room to be separated.
-KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::EllipsePath> geodesics,
+///         PartitionFailure when a curve has no room to be separated, or when no flips lead from H
+///         to D.
+KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain::Domain& H,
+                        std::span<const geodesic::EllipsePath> geodesics,
                         std::span<const Conflict> conflicts,
                         const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,
                         const std::function<void(const std::string&)>& progress, Start start = Start::fast);

@@ -146,6 +146,26 @@ std::size_t flip_over_corners(domain::Domain& D, const std::vector<Conflict>& co
     return flips;
 }
 
+// A decimation of T to exactly the vertices of a domain given by the user (its history is where
+// keeping D starts), or nullopt with the reason when §2 cannot reach them.
+std::optional<domain::Domain> decimation_to_vertices(const TriMesh& T, const domain::Domain& D, std::string& why) {
+    domain::DecimateOptions o;
+    o.target_faces = D.mesh.n_faces();
+    o.keep = D.t_vertex;
+    o.best_effort = true;
+    try {
+        domain::Domain H = domain::decimate(T, o);
+        std::vector<VertexId> a = H.t_vertex, b = D.t_vertex;
+        std::sort(a.begin(), a.end());
+        std::sort(b.begin(), b.end());
+        if (a == b) return H;
+        why = "§2 stops at " + std::to_string(H.mesh.n_vertices()) + " vertices, not the domain's " + std::to_string(b.size());
+    } catch (const InvalidInput& e) {
+        why = std::string("§2 cannot decimate T to the domain's vertices: ") + e.what();
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& options) {
@@ -181,19 +201,27 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         for (const auto& p : out.paths) paths.push_back(p.path);
         Embedding embedding = embed(T, D, paths);
         std::optional<KeptNetwork> attempt;
-        if (!embedding.conflicts.empty() && options.keep_domain && out.retries == 0 && decimated && domain::history_describes(D, T)) {
-            // Keeping D (partition/keep.hpp): restricted shortest paths where the geodesics conflict.
-            // Redoing many collapses can crowd curves around one point until there is no room to
-            // separate them: then again from the nearest valid level, and failing that D is changed
-            // as the paper-only mode does.
+        std::string keep_failure;  // why D could not be kept, for the message of a given domain
+        if (!embedding.conflicts.empty() && options.keep_domain && out.retries == 0) {
+            // Keeping D (partition/keep.hpp): restricted shortest paths where the geodesics conflict,
+            // from D's own decimation, or for a domain given by the user from a decimation of T to
+            // its vertices. Redoing many collapses can crowd curves around one point until there is
+            // no room to separate them: then again from the nearest valid level; failing that, a
+            // decimated D is changed as the paper-only mode does and a given one is refused.
+            std::optional<domain::Domain> H;
+            if (decimated && domain::history_describes(D, T)) H = D;
+            if (!decimated) H = decimation_to_vertices(T, D, keep_failure);
             for (const Start start : {Start::fast, Start::gradual}) {
+                if (!H) break;
                 try {
-                    attempt = keep_domain(T, D, out.paths, embedding.conflicts, [&](const domain::Domain& d) { return cache.all(d); },
+                    attempt = keep_domain(T, D, *H, out.paths, embedding.conflicts, [&](const domain::Domain& d) { return cache.all(d); },
                                           options.progress, start);
                     break;
                 } catch (const PartitionFailure& e) {
+                    keep_failure = e.what();
                     if (options.progress)
-                        options.progress(std::string("keeping the domain failed (") + e.what() + (start == Start::fast ? "); again from the nearest valid level" : "); changing D instead"));
+                        options.progress("keeping the domain failed (" + keep_failure +
+                                         (start == Start::fast ? "); again from the nearest valid level" : "); changing D instead"));
                 }
             }
         }
@@ -230,6 +258,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             std::string what = "conditions (1)/(2) of §3 fail for the given domain:";
             for (std::size_t i = 0; i < std::min<std::size_t>(pairs.size(), 4); ++i) what += (i ? "; " : " ") + pairs[i]->describe();
             if (pairs.size() > 4) what += "; and " + std::to_string(pairs.size() - 4) + " more";
+            if (!keep_failure.empty()) what += "; and the domain cannot be kept: " + keep_failure;
             throw PartitionFailure(what);
         }
         const std::size_t conflicts = embedding.conflicts.size();

@@ -236,17 +236,18 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
     const std::vector<Triangle> t_faces = T.triangles(), d_faces = P.domain.mesh.triangles();
     const render::MeshData t{T.positions(), t_faces}, d{P.domain.mesh.positions(), d_faces};
     render::write_fig6(base + "fig6.png", camera, t, d, size);
-    std::vector<std::vector<std::uint32_t>> lines;
-    for (const auto& path : P.network.path) {
-        auto& line = lines.emplace_back();
-        for (VertexId v : path) line.push_back(v.idx());
+    std::vector<std::vector<std::uint32_t>> geodesic_lines, restricted_lines;  // by each curve's kind
+    for (std::size_t e = 0; e < P.network.path.size(); ++e) {
+        auto& line = (P.curves[e].kind == partition::CurveKind::geodesic ? geodesic_lines : restricted_lines).emplace_back();
+        for (VertexId v : P.network.path[e]) line.push_back(v.idx());
     }
     // The checkerboard coordinates: (β1, β2) of every corner, the same square cells in every patch.
     std::vector<Eigen::Vector2d> uv;
     uv.reserve(3 * p.refined_faces.size());
     for (const auto& face : p.face_beta)
         for (const auto& beta : face) uv.emplace_back(beta[1], beta[2]);
-    render::write_fig7(base + "fig7.png", camera, t, {P.network.mesh.positions(), lines}, {p.refined_positions, p.refined_faces}, uv, size);
+    render::write_fig7(base + "fig7.png", camera, t, {P.network.mesh.positions(), geodesic_lines},
+                       {P.network.mesh.positions(), restricted_lines}, {p.refined_positions, p.refined_faces}, uv, size);
     if (wavelets) {
         // Fig. 8: D^J (the refined domain, flat) and f^J(Ω_D); Fig. 9: two compressed surfaces.
         const wavelet::Refinement r = wavelet::refine(P.domain.mesh, wavelets->levels);

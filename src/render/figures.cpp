@@ -47,13 +47,21 @@ void write_fig6(const std::string& path, const Camera& camera, const MeshData& t
     write_two_panel_png(path, camera, panel_of(shaded(t, false)), panel_of(shaded(d, true)), size.width, size.height);
 }
 
-void write_fig7(const std::string& path, const Camera& camera, const MeshData& t, const PathData& network,
-                const MeshData& t_prime, std::span<const Eigen::Vector2d> corner_uv, const FigureSize& size) {
+void write_fig7(const std::string& path, const Camera& camera, const MeshData& t, const PathData& geodesics,
+                const PathData& restricted, const MeshData& t_prime, std::span<const Eigen::Vector2d> corner_uv,
+                const FigureSize& size) {
     Panel left = panel_of(shaded(t, false));
     PolylineView lines;
-    lines.points = network.points;
-    lines.paths = network.paths;
+    lines.points = geodesics.points;
+    lines.paths = geodesics.paths;
     left.polylines.push_back(lines);
+    if (!restricted.paths.empty()) {
+        PolylineView gold;
+        gold.points = restricted.points;
+        gold.paths = restricted.paths;
+        gold.colour = Colour(0.95, 0.72, 0.05);
+        left.polylines.push_back(gold);
+    }
     MeshView textured = shaded(t_prime, false);
     textured.corner_uv = corner_uv;
     write_two_panel_png(path, camera, left, panel_of(textured), size.width, size.height);

@@ -59,12 +59,13 @@ Camera figure_camera(std::span<const Vec3> positions, const FigureSize& size = {
 void write_fig6(const std::string& path, const Camera& camera, const MeshData& t, const MeshData& d,
                 const FigureSize& size = {});
 
-/// Fig. 7: T flat-shaded with the geodesic network drawn over it (left); T′ flat-shaded with
-/// the checkerboard (8 × 8 cells over the unit square) at the per-corner uv (right).
+/// Fig. 7: T flat-shaded with the network drawn over it (left): the domain edges that are exact
+/// geodesics in red, those that are restricted shortest paths (keeping D) in gold; T′
+/// flat-shaded with the checkerboard (8 × 8 cells over the unit square) at the per-corner uv (right).
 /// \param corner_uv  3·#F(t_prime) coordinates, corner k of triangle f at 3f + k; for patch S_i,
 ///                   the image ψ_i in the unit square, e.g. (β1, β2) of the exchange file.
-void write_fig7(const std::string& path, const Camera& camera, const MeshData& t, const PathData& network,
-                const MeshData& t_prime, std::span<const Eigen::Vector2d> corner_uv, const FigureSize& size = {});
+void write_fig7(const std::string& path, const Camera& camera, const MeshData& t, const PathData& geodesics,
+                const PathData& restricted, const MeshData& t_prime, std::span<const Eigen::Vector2d> corner_uv, const FigureSize& size = {});
 
 /// Fig. 8: D³ flat-shaded with its edges outlined (left), f³(Ω_D) flat-shaded (right).
 void write_fig8(const std::string& path, const Camera& camera, const MeshData& d3, const MeshData& f3,
