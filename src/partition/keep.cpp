@@ -2,6 +2,7 @@
 #include "partition/keep.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <set>
@@ -352,6 +353,238 @@ void flip_to(Network_& net, const domain::Domain& target, const std::function<vo
     if (say) say("keeping the domain: " + std::to_string(flips) + " flips from the decimation to the given domain");
 }
 
+// The curves in D's edge order, each along D's halfedge (e, 0), and which of them embed() must
+// place as given.
+std::pair<std::vector<geodesic::GeodesicPath>, std::vector<std::uint8_t>> in_edge_order(const domain::Domain& D,
+                                                                                         const std::map<Pair, Curve>& curves) {
+    std::pair<std::vector<geodesic::GeodesicPath>, std::vector<std::uint8_t>> out;
+    for (const auto& [a, b] : domain::edge_endpoints(D)) {
+        const Curve& c = curves.at(key_of(a, b));
+        out.first.push_back(a.idx() < b.idx() ? c.path : reversed(c.path));
+        out.second.push_back(!c.snapped);
+    }
+    return out;
+}
+
+// The direct start: keep the geodesics of D that conflict with no kept one, and put each other edge
+// in as a restricted path in the polygon its two faces (and those of other removed edges) leave.
+// nullopt when the kept geodesics do not leave such polygons (disks bounded by kept curves, one
+// region of T each), or when anything on the way fails: the caller then steps back instead.
+std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::EllipsePath> geodesics,
+                               std::span<const Conflict> conflicts, std::span<const Pair> order) {
+    const auto ends = domain::edge_endpoints(D);
+    std::map<Pair, std::size_t> edge_of;
+    for (std::size_t e = 0; e < ends.size(); ++e) edge_of[key_of(ends[e].first, ends[e].second)] = e;
+    // The kept set, in the kept order: no conflict of its own (through a corner, a point twice),
+    // none with a kept edge; the cyclic order (2) is settled among the kept ones below.
+    std::vector<std::uint8_t> kept(ends.size(), 0), alone(ends.size(), 1);
+    std::vector<std::vector<std::size_t>> against(ends.size());
+    for (const Conflict& c : conflicts) {
+        if (c.kind == Conflict::Kind::order) continue;  // settled among the kept ones below
+        if (c.d_edge_a == c.d_edge_b) alone[c.d_edge_a] = 0;
+        against[c.d_edge_a].push_back(c.d_edge_b);
+        against[c.d_edge_b].push_back(c.d_edge_a);
+    }
+    for (const Pair& k : order) {
+        const std::size_t e = edge_of.at(k);
+        kept[e] = alone[e] && std::none_of(against[e].begin(), against[e].end(), [&](std::size_t o) { return kept[o] != 0; });
+    }
+    Network_ net(T, make_domain(T, faces_in_t(D)));
+    const domain::Domain& Dn = net.domain();
+    const TriMesh& m = Dn.mesh;
+    auto in_d = [&](VertexId::Index x) {  // make_domain numbers D's vertices in T's order
+        return VertexId(static_cast<VertexId::Index>(
+            std::lower_bound(Dn.t_vertex.begin(), Dn.t_vertex.end(), VertexId(x)) - Dn.t_vertex.begin()));
+    };
+    auto edge_key = [&](HalfedgeId h) { return key_of(net.x(m.from(h)), net.x(m.to(h))); };
+    auto is_kept = [&](HalfedgeId h) { return kept[edge_of.at(edge_key(h))] != 0; };
+    // The kept geodesics embedded; where the kept curves around a corner are out of D's cyclic
+    // order (embed() checks (2) only once (1) holds), one of them is not kept either, a round at a
+    // time, until they are in order.
+    std::vector<geodesic::GeodesicPath> paths;
+    std::map<Pair, std::size_t> index;
+    Embedding cut;
+    for (int round = 0;; ++round) {
+        paths.clear();
+        index.clear();
+        for (std::size_t e = 0; e < ends.size(); ++e) {
+            if (!kept[e]) continue;
+            const auto [a, b] = ends[e];
+            index[key_of(a, b)] = paths.size();
+            paths.push_back(a.idx() < b.idx() ? geodesics[e].path : reversed(geodesics[e].path));
+        }
+        cut = embed_curves(T, paths);
+        if (!cut.conflicts.empty() || round == 64) return std::nullopt;
+        std::vector<std::size_t> out_of_order;
+        for (VertexId v : m.vertices()) {
+            std::vector<Pair> in_d, in_t;
+            m.for_each_outgoing(v, [&](HalfedgeId h) {
+                if (is_kept(h)) in_d.push_back(edge_key(h));
+            });
+            cut.network.mesh.for_each_outgoing(net.x(v), [&](HalfedgeId h) {
+                const std::int32_t label = cut.network.d_halfedge[h.idx()];
+                if (label < 0) return;
+                const auto& p = paths[static_cast<std::size_t>(label / 2)].points;
+                in_t.push_back(key_of(p.front().vertex, p.back().vertex));
+            });
+            // A curve of another edge through x_v goes; the others must follow D's order.
+            std::vector<Pair> own;
+            for (const Pair& k : in_t) {
+                if (std::find(in_d.begin(), in_d.end(), k) == in_d.end()) out_of_order.push_back(edge_of.at(k));
+                else own.push_back(k);
+            }
+            // In order: the same cyclic sequence. Else the one curve whose removal puts the rest in
+            // order goes (the first such in D's order), or, when no one does, the first of D's.
+            auto same_cycle = [](const std::vector<Pair>& a, const std::vector<Pair>& b) {
+                if (a.size() != b.size()) return false;
+                if (a.empty()) return true;
+                const auto at = std::find(b.begin(), b.end(), a[0]);
+                if (at == b.end()) return false;
+                const std::size_t shift = static_cast<std::size_t>(at - b.begin());
+                for (std::size_t i = 0; i < a.size(); ++i)
+                    if (a[i] != b[(i + shift) % b.size()]) return false;
+                return true;
+            };
+            if (same_cycle(in_d, own)) continue;
+            std::size_t drop = edge_of.at(in_d.front());
+            for (const Pair& k : in_d) {
+                std::vector<Pair> a, b;
+                std::copy_if(in_d.begin(), in_d.end(), std::back_inserter(a), [&](const Pair& x) { return x != k; });
+                std::copy_if(own.begin(), own.end(), std::back_inserter(b), [&](const Pair& x) { return x != k; });
+                if (same_cycle(a, b)) {
+                    drop = edge_of.at(k);
+                    break;
+                }
+            }
+            out_of_order.push_back(drop);
+        }
+        if (out_of_order.empty()) break;
+        for (std::size_t e : out_of_order) kept[e] = 0;
+    }
+    for (const auto& [k, i] : index) net.curves()[k] = Curve{paths[i], true, {}, true};
+    // Groups: D's faces joined across removed edges; each must be a disk (a tree of faces whose
+    // boundary passes each vertex once).
+    std::vector<std::int32_t> group(m.n_faces(), -1);
+    std::vector<std::vector<FaceId>> groups;
+    for (FaceId f : m.faces()) {
+        if (group[f.idx()] >= 0) continue;
+        std::vector<FaceId>& g = groups.emplace_back();
+        std::vector<FaceId> stack{f};
+        group[f.idx()] = static_cast<std::int32_t>(groups.size() - 1);
+        std::size_t inner = 0;
+        while (!stack.empty()) {
+            const FaceId a = stack.back();
+            stack.pop_back();
+            g.push_back(a);
+            HalfedgeId h = m.halfedge(a);
+            for (int i = 0; i < 3; ++i, h = m.next(h)) {
+                if (is_kept(h)) continue;
+                ++inner;
+                const FaceId b = m.face(TriMesh::twin(h));
+                if (group[b.idx()] < 0) {
+                    group[b.idx()] = group[a.idx()];
+                    stack.push_back(b);
+                }
+            }
+        }
+        if (inner != 2 * (g.size() - 1)) return std::nullopt;  // each inner edge seen from both sides
+        std::set<VertexId::Index> seen;
+        for (FaceId a : g) {
+            HalfedgeId h = m.halfedge(a);
+            for (int i = 0; i < 3; ++i, h = m.next(h))
+                if (is_kept(h) && !seen.insert(m.from(h).idx()).second) return std::nullopt;
+        }
+    }
+    // Each group's region of T′, found from one of its boundary curves.
+    const TriMesh& M = cut.network.mesh;
+    std::vector<std::int32_t> region(M.n_faces(), -1);
+    std::vector<std::vector<FaceId>> touched(groups.size());
+    for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+        HalfedgeId boundary;
+        for (FaceId a : groups[gi]) {
+            HalfedgeId h = m.halfedge(a);
+            for (int i = 0; i < 3; ++i, h = m.next(h))
+                if (is_kept(h)) boundary = h;
+        }
+        const auto& path = cut.network.path[index.at(edge_key(boundary))];
+        const HalfedgeId first = M.find_halfedge(path[0], path[1]);
+        const FaceId seed = M.face(net.x(m.from(boundary)).idx() < net.x(m.to(boundary)).idx() ? first : TriMesh::twin(first));
+        if (region[seed.idx()] >= 0) return std::nullopt;
+        std::vector<FaceId> stack{seed};
+        region[seed.idx()] = static_cast<std::int32_t>(gi);
+        while (!stack.empty()) {
+            const FaceId a = stack.back();
+            stack.pop_back();
+            touched[gi].push_back(cut.network.t_face[a.idx()]);
+            HalfedgeId h = M.halfedge(a);
+            for (int i = 0; i < 3; ++i, h = M.next(h)) {
+                if (cut.network.d_halfedge[h.idx()] >= 0) continue;
+                const FaceId b = M.face(TriMesh::twin(h));
+                if (region[b.idx()] == static_cast<std::int32_t>(gi)) continue;
+                if (region[b.idx()] >= 0) return std::nullopt;  // two groups in one region of T′
+                region[b.idx()] = static_cast<std::int32_t>(gi);
+                stack.push_back(b);
+            }
+        }
+        touched[gi] = merged(std::move(touched[gi]), {});
+    }
+    // The removed edges, in the kept order, each a diagonal of its group's polygon: its restricted
+    // path splits the polygon and its faces of T in two.
+    for (const Pair& k : order) {
+        const std::size_t e = edge_of.at(k);
+        if (kept[e]) continue;
+        const VertexId lo = in_d(k.first), hi = in_d(k.second);
+        const HalfedgeId h = m.find_halfedge(lo, hi);
+        const std::int32_t gi = group[m.face(h).idx()];
+        std::vector<RegionCurve> around;
+        bool left = true;
+        for (FaceId a : groups[static_cast<std::size_t>(gi)]) {
+            HalfedgeId g = m.halfedge(a);
+            for (int i = 0; i < 3; ++i, g = m.next(g)) {
+                if (!is_kept(g)) continue;
+                if (around.empty()) left = net.x(m.from(g)).idx() < net.x(m.to(g)).idx();
+                const Curve& c = net.curves().at(edge_key(g));
+                around.push_back(RegionCurve{&c.path, c.snapped});
+            }
+        }
+        Region cut_out(T, touched[static_cast<std::size_t>(gi)], around);
+        RestrictedPath r = restricted_path(cut_out, 0, left, VertexId(k.first), VertexId(k.second));
+        Curve& c = net.curves()[k] = Curve{std::move(r.path), false, r, false};
+        cut_out.add(RegionCurve{&c.path, false});
+        const std::size_t added = around.size();
+        // The group's faces on the left of lo -> hi (with face(h)) and on its right.
+        kept[e] = 1;
+        std::vector<FaceId> side_faces;
+        std::vector<FaceId> stack{m.face(h)};
+        std::vector<std::uint8_t> on_left(m.n_faces(), 0);
+        on_left[m.face(h).idx()] = 1;
+        while (!stack.empty()) {
+            const FaceId a = stack.back();
+            stack.pop_back();
+            HalfedgeId g = m.halfedge(a);
+            for (int i = 0; i < 3; ++i, g = m.next(g)) {
+                const FaceId b = m.face(TriMesh::twin(g));
+                if (is_kept(g) || on_left[b.idx()]) continue;
+                on_left[b.idx()] = 1;
+                stack.push_back(b);
+            }
+        }
+        std::vector<FaceId> left_faces, right_faces;
+        for (FaceId a : groups[static_cast<std::size_t>(gi)]) (on_left[a.idx()] ? left_faces : right_faces).push_back(a);
+        const std::int32_t gj = static_cast<std::int32_t>(groups.size());
+        for (FaceId a : right_faces) group[a.idx()] = gj;
+        touched.push_back(cut_out.t_faces(cut_out.side(added, false)));
+        touched[static_cast<std::size_t>(gi)] = cut_out.t_faces(cut_out.side(added, true));
+        groups[static_cast<std::size_t>(gi)] = std::move(left_faces);
+        groups.push_back(std::move(right_faces));
+    }
+    for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+        if (groups[gi].size() != 1) throw std::logic_error("keeping the domain: a polygon left unsplit");
+        net.touched()[corners_of(Dn, groups[gi][0])] = std::move(touched[gi]);
+    }
+    return net;
+}
+
 }  // namespace
 
 KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain::Domain& H,
@@ -363,10 +596,40 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
         if (progress) progress(line);
     };
     const auto ends = domain::edge_endpoints(D);
-    // 1. The valid start: D_i, until its geodesics satisfy (1) and (2).
+    // The kept order: edges whose geodesic is in no conflict first, then shortest geodesic first.
+    std::map<Pair, double> geodesic_length;
+    std::map<Pair, std::string> reason;
+    for (std::size_t e = 0; e < ends.size(); ++e) geodesic_length[key_of(ends[e].first, ends[e].second)] = geodesics[e].path.length;
+    for (const Conflict& c : conflicts)
+        for (std::uint32_t e : {c.d_edge_a, c.d_edge_b}) reason.emplace(key_of(ends[e].first, ends[e].second), c.describe());
+    std::vector<Pair> order;
+    for (const auto& [k, length] : geodesic_length) order.push_back(k);
+    std::stable_sort(order.begin(), order.end(), [&](const Pair& p, const Pair& q) {
+        const bool cp = reason.count(p) != 0, cq = reason.count(q) != 0;
+        if (cp != cq) return !cp;
+        return geodesic_length.at(p) < geodesic_length.at(q);
+    });
+    // 1. The direct start, when the kept geodesics leave polygons for the others.
     std::size_t undone = 0, faces = H.mesh.n_faces();
     std::optional<Network_> net;
-    for (;;) {
+    if (start == Start::fast) {
+        try {
+            if (std::optional<Network_> found = direct(T, D, geodesics, conflicts, order)) {
+                // Checked as a whole before it is used: (1), (2) and the patches.
+                const auto [paths, unsnapped] = in_edge_order(D, found->curves());
+                const Embedding check = embed(T, D, paths, unsnapped);
+                if (check.conflicts.empty()) {
+                    extract_patches(D, check.network);
+                    net.emplace(std::move(*found));
+                }
+            }
+        } catch (const PartitionFailure&) {  // no room to separate: step back instead
+        } catch (const std::logic_error&) {   // a region that is not what the kept curves promised: the same
+        }
+        if (net) say("keeping the domain: the geodesics that conflict with no kept one are kept, the others restricted");
+    }
+    // 2. Else a valid start: D_i, until its geodesics satisfy (1) and (2).
+    while (!net) {
         if (start == Start::gradual) {
             undone = std::min(H.history.size(), undone + std::max<std::size_t>(1, faces / 8));
         } else {
@@ -404,30 +667,20 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
         }
         if (undone == H.history.size()) throw std::logic_error("keeping the domain: conflicts on D = T, whose paths are T's edges");
     }
-    // 2. The undone collapses, redone on the network.
-    redo(*net, std::span<const domain::Collapse>(H.history).subspan(H.history.size() - undone), say);
-    if (canonical_faces(net->domain()) != canonical_faces(H)) throw std::logic_error("keeping the domain: the collapses redone do not give the decimation");
-    // 3. A domain given by the user: from the decimation to its edges by flips.
-    if (canonical_faces(H) != canonical_faces(D)) {
+    // 3. The undone collapses, redone on the network.
+    if (undone > 0) {
+        redo(*net, std::span<const domain::Collapse>(H.history).subspan(H.history.size() - undone), say);
+        if (canonical_faces(net->domain()) != canonical_faces(H)) throw std::logic_error("keeping the domain: the collapses redone do not give the decimation");
+    }
+    // 4. A domain given by the user: from the decimation to its edges by flips.
+    if (canonical_faces(net->domain()) != canonical_faces(D)) {
         flip_to(*net, D, say);
         // With every edge in place, only the orientation can differ: D turned over is not a domain of T.
         if (canonical_faces(net->domain()) != canonical_faces(D))
             throw PartitionFailure("keeping the domain: the given domain has the edges of T's decimation but its faces turned over");
     }
 
-    // 4. Tightening, in the kept order.
-    std::map<Pair, double> geodesic_length;
-    std::map<Pair, std::string> reason;
-    for (std::size_t e = 0; e < ends.size(); ++e) geodesic_length[key_of(ends[e].first, ends[e].second)] = geodesics[e].path.length;
-    for (const Conflict& c : conflicts)
-        for (std::uint32_t e : {c.d_edge_a, c.d_edge_b}) reason.emplace(key_of(ends[e].first, ends[e].second), c.describe());
-    std::vector<Pair> order;
-    for (const auto& [k, length] : geodesic_length) order.push_back(k);
-    std::stable_sort(order.begin(), order.end(), [&](const Pair& p, const Pair& q) {
-        const bool cp = reason.count(p) != 0, cq = reason.count(q) != 0;
-        if (cp != cq) return !cp;
-        return geodesic_length.at(p) < geodesic_length.at(q);
-    });
+    // 5. Tightening, in the kept order.
     constexpr int max_passes = 3;
     for (int pass = 0; pass < max_passes; ++pass) {
         std::size_t changed = 0;
@@ -464,7 +717,7 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
         if (changed == 0) break;
     }
 
-    // 5. The curves in D's edge order.
+    // 6. The curves in D's edge order.
     KeptNetwork out;
     out.start_faces = faces;
     for (std::size_t e = 0; e < ends.size(); ++e) {
