@@ -385,8 +385,10 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
         against[c.d_edge_a].push_back(c.d_edge_b);
         against[c.d_edge_b].push_back(c.d_edge_a);
     }
+    std::map<Pair, std::size_t> rank;  // place in the kept order
     for (const Pair& k : order) {
         const std::size_t e = edge_of.at(k);
+        rank[k] = rank.size();
         kept[e] = alone[e] && std::none_of(against[e].begin(), against[e].end(), [&](std::size_t o) { return kept[o] != 0; });
     }
     Network_ net(T, make_domain(T, faces_in_t(D)));
@@ -398,6 +400,11 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
     };
     auto edge_key = [&](HalfedgeId h) { return key_of(net.x(m.from(h)), net.x(m.to(h))); };
     auto is_kept = [&](HalfedgeId h) { return kept[edge_of.at(edge_key(h))] != 0; };
+    auto on_boundary = [&](VertexId v) {  // a kept edge at v: v is on the boundary of its groups
+        bool any = false;
+        m.for_each_outgoing(v, [&](HalfedgeId h) { any = any || is_kept(h); });
+        return any;
+    };
     // The kept geodesics embedded; where the kept curves around a corner are out of D's cyclic
     // order (embed() checks (2) only once (1) holds), one of them is not kept either, a round at a
     // time, until they are in order.
@@ -414,7 +421,17 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
             paths.push_back(a.idx() < b.idx() ? geodesics[e].path : reversed(geodesics[e].path));
         }
         cut = embed_curves(T, paths);
-        if (!cut.conflicts.empty() || round == 64) return std::nullopt;
+        if (round == 64) return std::nullopt;
+        if (!cut.conflicts.empty()) {
+            // A conflict the first embedding did not report (it names one pair per shared point):
+            // the later edge of the pair in the kept order goes.
+            for (const Conflict& c : cut.conflicts) {
+                const Pair a = key_of(paths[c.d_edge_a].points.front().vertex, paths[c.d_edge_a].points.back().vertex);
+                const Pair b = key_of(paths[c.d_edge_b].points.front().vertex, paths[c.d_edge_b].points.back().vertex);
+                kept[edge_of.at(rank.at(a) >= rank.at(b) ? a : b)] = 0;
+            }
+            continue;
+        }
         std::vector<std::size_t> out_of_order;
         for (VertexId v : m.vertices()) {
             std::vector<Pair> in_d, in_t;
@@ -462,8 +479,9 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
         for (std::size_t e : out_of_order) kept[e] = 0;
     }
     for (const auto& [k, i] : index) net.curves()[k] = Curve{paths[i], true, {}, true};
-    // Groups: D's faces joined across removed edges; each must be a disk (a tree of faces whose
-    // boundary passes each vertex once).
+    // Groups: D's faces joined across removed edges; each must be a disk, its boundary one closed
+    // walk: with V vertices, E edges, F faces and r repeated boundary vertices, V − E + F = 1 − r
+    // (a vertex met twice pinches the disk there).
     std::vector<std::int32_t> group(m.n_faces(), -1);
     std::vector<std::vector<FaceId>> groups;
     for (FaceId f : m.faces()) {
@@ -487,13 +505,30 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
                 }
             }
         }
-        if (inner != 2 * (g.size() - 1)) return std::nullopt;  // each inner edge seen from both sides
-        std::set<VertexId::Index> seen;
+        std::set<VertexId::Index> vertices;
+        std::size_t boundary = 0;
+        HalfedgeId start;
         for (FaceId a : g) {
             HalfedgeId h = m.halfedge(a);
-            for (int i = 0; i < 3; ++i, h = m.next(h))
-                if (is_kept(h) && !seen.insert(m.from(h).idx()).second) return std::nullopt;
+            for (int i = 0; i < 3; ++i, h = m.next(h)) {
+                vertices.insert(m.from(h).idx());
+                if (is_kept(h)) ++boundary, start = h;
+            }
         }
+        // One closed walk: from a boundary halfedge, the next one turns around its head inside the group.
+        std::size_t walk = 0;
+        std::set<VertexId::Index> met;
+        std::size_t repeated = 0;
+        for (HalfedgeId h = start; start.valid() && (walk == 0 || h != start); ++walk) {
+            repeated += !met.insert(m.to(h).idx()).second;
+            HalfedgeId n = m.next(h);
+            while (!is_kept(n)) n = m.next(TriMesh::twin(n));
+            h = n;
+            if (walk > boundary) return std::nullopt;
+        }
+        // Each inner edge is seen from both sides; χ = V − E + F.
+        const long chi = static_cast<long>(vertices.size()) - static_cast<long>(inner / 2 + boundary) + static_cast<long>(g.size());
+        if (boundary == 0 || walk != boundary || chi != 1 - static_cast<long>(repeated)) return std::nullopt;
     }
     // Each group's region of T′, found from one of its boundary curves.
     const TriMesh& M = cut.network.mesh;
@@ -528,20 +563,33 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
         }
         touched[gi] = merged(std::move(touched[gi]), {});
     }
-    // The removed edges, in the kept order, each a diagonal of its group's polygon: its restricted
-    // path splits the polygon and its faces of T in two.
-    for (const Pair& k : order) {
+    // The removed edges, in the kept order: first those from an inner vertex to the boundary (a
+    // slit: the polygon stays whole, the vertex is on its boundary from then on), then diagonals,
+    // whose restricted paths split their polygon and its faces of T in two.
+    for (;;) {
+        std::optional<Pair> next;
+        for (int slit = 1; slit >= 0 && !next; --slit)
+            for (const Pair& k : order) {
+                if (kept[edge_of.at(k)]) continue;
+                const int ends_on_boundary = on_boundary(in_d(k.first)) + on_boundary(in_d(k.second));
+                if (ends_on_boundary == 2 - slit) {
+                    next = k;
+                    break;
+                }
+            }
+        if (!next) break;
+        const Pair k = *next;
         const std::size_t e = edge_of.at(k);
-        if (kept[e]) continue;
         const VertexId lo = in_d(k.first), hi = in_d(k.second);
         const HalfedgeId h = m.find_halfedge(lo, hi);
         const std::int32_t gi = group[m.face(h).idx()];
         std::vector<RegionCurve> around;
+        std::set<Pair> listed;  // a slit has the polygon on both sides
         bool left = true;
         for (FaceId a : groups[static_cast<std::size_t>(gi)]) {
             HalfedgeId g = m.halfedge(a);
             for (int i = 0; i < 3; ++i, g = m.next(g)) {
-                if (!is_kept(g)) continue;
+                if (!is_kept(g) || !listed.insert(edge_key(g)).second) continue;
                 if (around.empty()) left = net.x(m.from(g)).idx() < net.x(m.to(g)).idx();
                 const Curve& c = net.curves().at(edge_key(g));
                 around.push_back(RegionCurve{&c.path, c.snapped});
@@ -571,6 +619,10 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
         }
         std::vector<FaceId> left_faces, right_faces;
         for (FaceId a : groups[static_cast<std::size_t>(gi)]) (on_left[a.idx()] ? left_faces : right_faces).push_back(a);
+        if (right_faces.empty()) {  // a slit
+            touched[static_cast<std::size_t>(gi)] = cut_out.t_faces(cut_out.side(added, true));
+            continue;
+        }
         const std::int32_t gj = static_cast<std::int32_t>(groups.size());
         for (FaceId a : right_faces) group[a.idx()] = gj;
         touched.push_back(cut_out.t_faces(cut_out.side(added, false)));

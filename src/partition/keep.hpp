@@ -5,9 +5,10 @@
 // Pseudocode:
 //   direct start (tried first): keep the geodesics with no conflict of their own and none with a
 //       kept one (then drop, a round at a time, one curve where the kept ones around a corner are
-//       out of D's cyclic order); when the faces joined across the dropped edges are disks, each
-//       with one region of T′ bounded by kept curves, put each dropped edge in as the restricted
-//       path across its polygon; check the whole network; on any failure take the valid start
+//       out of D's cyclic order); when the faces joined across the dropped edges are disks (maybe
+//       pinched), each with one region of T′ bounded by kept curves, put each dropped edge in as
+//       a restricted path: slits from inner vertices first, then diagonals that split a polygon;
+//       check the whole network; on any failure take the valid start
 //   valid start: step back along D's decimation history until the geodesics of that finer domain
 //       D_i satisfy (1) and (2) (at worst D_i = T, whose geodesics are its edges); embed them
 //       once, and keep per face of D_i the faces of T its patch touches. Start::fast undoes a
