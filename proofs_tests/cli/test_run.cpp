@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -160,6 +161,12 @@ TEST_CASE("CLI-RUN-5: a user domain whose paths break (1)/(2) exits 3 naming dom
     CHECK(r.exit_code == 3);
     CHECK(r.err.find("domain edge") != std::string::npos);
     CHECK(r.err.find("the domain cannot be kept: ") != std::string::npos);
+    // Each pair of domain edges is named once (a crossing is found in every face where it happens).
+    std::set<std::string> pairs;
+    const std::regex pair_re("domain edge ([0-9]+) and domain edge ([0-9]+)");
+    for (auto it = std::sregex_iterator(r.err.begin(), r.err.end(), pair_re); it != std::sregex_iterator(); ++it)
+        CHECK(pairs.insert((*it)[1].str() + "-" + (*it)[2].str()).second);
+    CHECK(!pairs.empty());
     CHECK(!fs::exists(dir + "/param.fhrp"));
     // The unchanged correspondence works.
     CHECK(run_fhr({"run", mesh, "--domain", domain, "--correspondence", corr, "--out", temp_path("run-user-ok")}).exit_code == 0);

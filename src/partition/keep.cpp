@@ -346,8 +346,9 @@ void flip_to(Network_& net, const domain::Domain& target, const std::function<vo
         bool found = false;
         for (int depth = 1; depth <= 4 && !found; ++depth) found = search(D.mesh, depth);
         if (!found)
-            throw PartitionFailure(std::string("keeping the domain: no ") + (states > search_budget ? "short sequence of flips found" : "four flips") +
-                                   " bring the decimation nearer to the given domain");
+            throw PartitionFailure(std::string("keeping the domain: ") +
+                                   (states > search_budget ? "no short sequence of flips found that brings" : "no four flips bring") +
+                                   " the decimation nearer to the given domain");
         for (EdgeId e : sequence) flips += flip({job(e)});
     }
     if (say) say("keeping the domain: " + std::to_string(flips) + " flips from the decimation to the given domain");

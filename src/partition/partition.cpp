@@ -221,7 +221,9 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
                     keep_failure = e.what();
                     if (options.progress)
                         options.progress("keeping the domain failed (" + keep_failure +
-                                         (start == Start::fast ? "); again from the nearest valid level" : "); changing D instead"));
+                                         (start == Start::fast ? "); again from the nearest valid level"
+                                          : decimated          ? "); changing D instead"
+                                                               : "); the given domain is refused"));
                 }
             }
         }
