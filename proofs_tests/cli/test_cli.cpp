@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/common.hpp"
+#include "core/errors.hpp"
 #include "support/test_support.hpp"
 
 using fhr::test::run_fhr;
@@ -297,4 +299,12 @@ TEST_CASE("GEO-E2: fhr geodesic prints the path, and refuses bad vertex indices"
         CHECK(count_lines(e.err) == 1);
         CHECK_THAT(e.err, Catch::Contains(expect));
     }
+}
+
+TEST_CASE("LIB-2: the library's errors carry no exit code; the command maps each kind to spec/cli.md's", "[cli][unit]") {
+    CHECK(fhr::cli::exit_code_of(fhr::InvalidInput("mesh.off", 3, "a face repeats vertex 1")) == 2);
+    CHECK(fhr::cli::exit_code_of(fhr::PartitionFailure("conditions (1)/(2) of §3 fail")) == 3);
+    CHECK(fhr::cli::exit_code_of(fhr::NumericalFailure("the solve missed its tolerance")) == 4);
+    CHECK(fhr::cli::exit_code_of(fhr::InternalError("a patch §3 made is refused by §4")) == 70);
+    CHECK(fhr::cli::exit_code_of(std::logic_error("a broken precondition")) == 70);
 }

@@ -12,6 +12,13 @@ namespace fhr::cli {
 
 void usage_error(const std::string& what) { throw InvalidInput("", 0, what + " (see `fhr help`)"); }
 
+int exit_code_of(const std::exception& e) {
+    if (dynamic_cast<const InvalidInput*>(&e)) return 2;
+    if (dynamic_cast<const PartitionFailure*>(&e)) return 3;
+    if (dynamic_cast<const NumericalFailure*>(&e)) return 4;
+    return 70;
+}
+
 Args::Args(const std::vector<std::string>& argv, const std::vector<std::string>& flags,
            const std::vector<std::string>& valued) {
     auto listed = [](const std::vector<std::string>& names, const std::string& n) {

@@ -2,6 +2,7 @@
 // readers and builder (spec/mesh.md), and writing a mesh by its file extension.
 #pragma once
 
+#include <exception>
 #include <map>
 #include <optional>
 #include <string>
@@ -36,6 +37,10 @@ private:
 
 /// A usage error: InvalidInput without a file (exit code 2).
 [[noreturn]] void usage_error(const std::string& what);
+
+/// spec/cli.md's exit code for an exception the library threw (LIB-2): 2 InvalidInput, 3
+/// PartitionFailure, 4 NumericalFailure, 70 InternalError or anything else (a bug).
+int exit_code_of(const std::exception& e);
 
 /// Prints `fhr: warning: <line>` for each warning of a build.
 void print_warnings(const BuildLog& log);

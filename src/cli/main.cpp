@@ -80,8 +80,9 @@ int main(int argc, char** argv) {
         }
         fhr::cli::usage_error(command.empty() ? "no command given" : "unknown command '" + command + "'");
     } catch (const fhr::Error& e) {
-        std::fprintf(stderr, "fhr: error: %s\n", e.what());
-        return e.exit_code();
+        const int code = fhr::cli::exit_code_of(e);
+        std::fprintf(stderr, code == 70 ? "fhr: internal error (a bug, please report it): %s\n" : "fhr: error: %s\n", e.what());
+        return code;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "fhr: error: out of memory\n");
         return 70;

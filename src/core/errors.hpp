@@ -1,11 +1,13 @@
 // FHR core — the exception taxonomy shared by every stage.
 //
 // The paper (Floater, Hormann, Reimers 2001, §1) assumes a valid closed orientable manifold
-// triangulation T. Everything that can go wrong is one of a few kinds, each mapped to one CLI
-// exit code (spec/cli.md):
-//   InvalidInput      exit 2  the input is not what the paper's method accepts (file, line, element)
-//   NumericalFailure  exit 4  a numerical step could not reach its stated tolerance
-//   PartitionFailure  exit 3  §3 conditions (1)/(2) cannot be met even after recovery
+// triangulation T. Everything that can go wrong is one of a few kinds; the library only throws
+// them, and the `fhr` command maps each to its exit code (src/cli/main.cpp, spec/cli.md):
+//   InvalidInput      the input is not what the paper's method accepts (file, line, element)
+//   PartitionFailure  §3 conditions (1)/(2) cannot be met, and D cannot be kept either
+//   NumericalFailure  a numerical step could not reach its stated tolerance
+//   InternalError     a broken invariant of fhr's own making (a bug), e.g. a patch §3 built that
+//                     §4 refuses
 #pragma once
 
 #include <cstdint>
@@ -15,11 +17,10 @@
 namespace fhr {
 
 /// Base of every error fhr throws on purpose. `what()` is the full one-line message
-/// without the leading "fhr: error: ".
+/// without the leading "fhr: error: ". No exit codes here: those are the command's concern.
 class Error : public std::runtime_error {
 public:
     explicit Error(const std::string& message) : std::runtime_error(message) {}
-    virtual int exit_code() const = 0;
 };
 
 /// Bad input: a file or a request that the method cannot accept.
@@ -32,7 +33,6 @@ public:
     InvalidInput(const std::string& file, std::uint64_t line, const std::string& what)
         : Error(compose(file, line, what)), file_(file), line_(line), problem_(what) {}
 
-    int exit_code() const override { return 2; }
     const std::string& file() const { return file_; }
     std::uint64_t line() const { return line_; }
     const std::string& problem() const { return problem_; }
@@ -54,14 +54,18 @@ private:
 class NumericalFailure : public Error {
 public:
     using Error::Error;
-    int exit_code() const override { return 4; }
 };
 
 /// §3: the geodesic network cannot be made to satisfy conditions (1) and (2).
 class PartitionFailure : public Error {
 public:
     using Error::Error;
-    int exit_code() const override { return 3; }
+};
+
+/// A broken invariant of fhr's own making: a bug, whatever the input.
+class InternalError : public Error {
+public:
+    using Error::Error;
 };
 
 }  // namespace fhr

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/errors.hpp"
 #include "core/parallel.hpp"
 #include "param/dividing_edges.hpp"
 
@@ -75,7 +76,11 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     parallel_for(n_patches, 16, [&](std::size_t i) {
         param::Disk disk = P.patches.patch[i].disk;
         split[i] = param::split_dividing_edges(disk);
-        out.maps[i] = param::map_patch(disk, options.map);
+        try {
+            out.maps[i] = param::map_patch(disk, options.map);
+        } catch (const InvalidInput& e) {  // the patch is fhr's own (§3), not the caller's input
+            throw InternalError("the patch of domain face " + std::to_string(i) + " that §3 made is refused by §4: " + e.problem());
+        }
         out.certificates[i] = param::certify(disk, out.maps[i]);
         out.disks[i] = std::move(disk);
     });
