@@ -181,6 +181,6 @@ int main(int argc, char** argv) {
         return fhr_ok && cgal_ok ? 0 : 1;
     } catch (const fhr::Error& e) {
         std::fprintf(stderr, "fhr: error: %s\n", e.what());
-        return e.exit_code();
+        return 2;  // a bad input file or option
     }
 }

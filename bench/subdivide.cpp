@@ -57,6 +57,6 @@ int main(int argc, char** argv) {
         return 0;
     } catch (const fhr::Error& e) {
         std::fprintf(stderr, "fhr: error: %s\n", e.what());
-        return e.exit_code();
+        return 2;  // a bad input file or option
     }
 }

@@ -61,8 +61,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         return 0;  // the expected refusal: this size cannot be reached under the decimation's rules
     }
     try {
-        pipeline::Timings timings;
-        const pipeline::Parameterization p = pipeline::parameterize(T, std::move(D), options, timings);
+        const pipeline::Parameterization p = pipeline::parameterize(T, std::move(D), options);
         if (!p.certified()) finding(o, target, options, "a patch certificate failed");
         const exchange::VerifyReport oracle = exchange::verify(pipeline::to_param_file(p), &T);
         if (const exchange::CheckResult* bad = oracle.first_failure())

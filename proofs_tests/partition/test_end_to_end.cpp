@@ -31,8 +31,7 @@ double linear_deviation(const std::vector<Vec3>& corners, const std::vector<Tria
     for (std::uint32_t k = 0; k < corners.size(); ++k) D.t_vertex.push_back(VertexId(k));
     pipeline::Options options;
     options.map.weights = weights;
-    pipeline::Timings timings;
-    const pipeline::Parameterization p = pipeline::parameterize(T, D, options, timings);
+    const pipeline::Parameterization p = pipeline::parameterize(T, D, options);
     REQUIRE(p.partition.retries == 0);
     REQUIRE(p.certified());
     const exchange::VerifyReport oracle = exchange::verify(pipeline::to_param_file(p), &T);

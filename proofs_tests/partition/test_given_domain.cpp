@@ -50,8 +50,7 @@ Tally run_mesh(const std::string& name, const TriMesh& T, std::size_t faces) {
             ++t.runs;
             INFO(name << ": " << k << " flips, seed " << seed);
             try {
-                pipeline::Timings timings;
-                const pipeline::Parameterization p = pipeline::parameterize(T, D, {}, timings);
+                const pipeline::Parameterization p = pipeline::parameterize(T, D, {});
                 CHECK(p.certified());
                 CHECK(p.partition.retries == 0);
                 CHECK(p.partition.domain.mesh.triangles() == D.mesh.triangles());

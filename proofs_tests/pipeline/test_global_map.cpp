@@ -15,8 +15,7 @@ TEST_CASE("GlobalMap: φ maps corners to x_j, is continuous across D's edges, an
     const auto path = test::cgal_mesh("fandisk.off");
     if (!path) FAIL("fandisk.off is missing: run ./run demo to extract libcgal-demo's meshes");
     const TriMesh T = test::load_mesh(*path);
-    pipeline::Timings timings;
-    const pipeline::Parameterization p = pipeline::parameterize(T, domain::decimate(T, {.target_faces = 114}), {}, timings);
+    const pipeline::Parameterization p = pipeline::parameterize(T, domain::decimate(T, {.target_faces = 114}), {});
     REQUIRE(p.certified());
     const pipeline::GlobalMap map(p);
     const domain::Domain& D = p.partition.domain;

@@ -29,8 +29,7 @@ TEST_CASE("pipeline: every run on a random mesh of genus 0–3 is certified and 
         options.map.weights = *rc::gen::element(param::Weights::shape_preserving, param::Weights::mean_value,
                                                 param::Weights::uniform);
         RC_LOG() << "domain faces " << target << ", weights " << param::name(options.map.weights) << "\n";
-        pipeline::Timings timings;
-        const pipeline::Parameterization p = pipeline::parameterize(T, std::move(D), options, timings);
+        const pipeline::Parameterization p = pipeline::parameterize(T, std::move(D), options);
         RC_TAG(p.partition.retries > 0 ? "recovered" : "first try");
         RC_ASSERT(p.certified());
         const exchange::VerifyReport oracle = exchange::verify(pipeline::to_param_file(p), &T);

@@ -13,6 +13,16 @@
 
 namespace fhr::pipeline {
 
+/// Wall-clock seconds per stage, in the order run (names: paper §6's timing table): the observer
+/// of a run whose timings.json is written.
+struct Timings final : StageObserver {
+    std::vector<std::pair<std::string, double>> stages;       ///< summed into "total"
+    std::vector<std::pair<std::string, double>> after_total;  ///< written after "total", not summed: measurements of the result
+    void stage(std::string_view name, double seconds, bool in_total) override {
+        (in_total ? stages : after_total).emplace_back(std::string(name), seconds);
+    }
+};
+
 /// The parameterization as the exchange format holds it (spec/param.md).
 exchange::ParamFile to_param_file(const Parameterization& p);
 

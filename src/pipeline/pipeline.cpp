@@ -10,12 +10,6 @@
 
 namespace fhr::pipeline {
 
-double Timings::seconds(std::string_view stage) const {
-    for (const auto& [name, s] : stages)
-        if (name == stage) return s;
-    return 0;
-}
-
 bool Parameterization::certified() const {
     return std::all_of(certificates.begin(), certificates.end(), [](const param::Certificate& c) { return c.passed; });
 }
@@ -48,7 +42,7 @@ private:
 
 }  // namespace
 
-Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options, Timings& timings) {
+Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options) {
     auto say = [&](const std::string& line) {
         if (options.progress) options.progress(line);
     };
@@ -61,7 +55,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     po.progress = options.progress;
     po.keep_domain = options.keep_domain;
     out.partition = partition::partition(T, std::move(D), po);
-    timings.stages.emplace_back("geodesic_paths", paths.seconds());
+    if (options.observer) options.observer->stage("geodesic_paths", paths.seconds(), true);
     const partition::Partition& P = out.partition;
     say("partition: " + std::to_string(P.network.mesh.n_faces()) + " faces in T′, " +
         std::to_string(P.patches.patch.size()) + " patches, " + std::to_string(P.retries) + " retries");
@@ -108,7 +102,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
             out.face_beta.push_back({out.maps[i].beta[t[0]], out.maps[i].beta[t[1]], out.maps[i].beta[t[2]]});
         }
     }
-    timings.stages.emplace_back("parameterization", param.seconds());
+    if (options.observer) options.observer->stage("parameterization", param.seconds(), true);
     const std::size_t failed = static_cast<std::size_t>(
         std::count_if(out.certificates.begin(), out.certificates.end(), [](const param::Certificate& c) { return !c.passed; }));
     say("parameterization: " + std::to_string(n_patches) + " patches, " + std::to_string(out.dividing_edges_split) +

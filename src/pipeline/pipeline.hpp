@@ -27,17 +27,21 @@
 
 namespace fhr::pipeline {
 
-/// Wall-clock seconds per stage, in the order run (names: paper §6's timing table).
-struct Timings {
-    std::vector<std::pair<std::string, double>> stages;       ///< summed into "total"
-    std::vector<std::pair<std::string, double>> after_total;  ///< written after "total", not summed: measurements of the result
-    double seconds(std::string_view stage) const;  ///< 0 when the stage did not run
+/// Told the wall-clock seconds of each stage as it ends (names: paper §6's timing table, spec/cli.md
+/// CLI-RUN-3); `in_total` is false for a measurement of the result rather than a stage of the
+/// method. Called on the thread that called the pipeline. Timings stay out of the algorithms'
+/// signatures: a caller that wants them passes an observer.
+class StageObserver {
+public:
+    virtual ~StageObserver() = default;
+    virtual void stage(std::string_view name, double seconds, bool in_total) = 0;
 };
 
 struct Options {
     param::PatchMapOptions map;
     bool keep_domain = true;  ///< §3: keep D (restricted paths where geodesics conflict), else change it
-    std::function<void(const std::string&)> progress;  ///< optional: one line per step
+    std::function<void(const std::string&)> progress;  ///< optional: one line per step, on the calling thread
+    StageObserver* observer = nullptr;                 ///< optional: the seconds of each stage
 };
 
 /// The parameterization φ: Ω_D → Ω_T as computed, with everything the outputs need.
@@ -75,7 +79,8 @@ private:
 };
 
 /// §3 and §4 for T and a domain D whose vertices are vertices of T.
-/// \throws PartitionFailure (§3 conditions unrecoverable), NumericalFailure (a weight or solve).
-Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options, Timings& timings);
+/// \throws PartitionFailure (§3 conditions unrecoverable), NumericalFailure (a weight or solve),
+///         InternalError (a patch §3 made that §4 refuses).
+Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options);
 
 }  // namespace fhr::pipeline
