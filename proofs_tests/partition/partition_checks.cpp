@@ -141,16 +141,16 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
     std::vector<int> seen(M.n_faces(), 0);
     for (FaceId df : D.mesh.faces())
         for (FaceId f : patches.patch[df.idx()].faces) {
-            if (patches.patch_of_face[f.idx()] != df) return "PART-6: patch_of_face disagrees with the patch's faces";
+            if (patches.patch_of_face[f] != df) return "PART-6: patch_of_face disagrees with the patch's faces";
             ++seen[f.idx()];
         }
     if (std::any_of(seen.begin(), seen.end(), [](int s) { return s != 1; })) return "PART-6: a face of T′ is not in exactly one patch";
     // PART-7: patch adjacency is D's — across every curve edge, the patches of D's two faces.
     for (HalfedgeId h : M.halfedges()) {
         const std::int32_t dh = P.network.d_halfedge[h.idx()];
-        if (dh >= 0 && patches.patch_of_face[M.face(h).idx()] != D.mesh.face(HalfedgeId(static_cast<HalfedgeId::Index>(dh))))
+        if (dh >= 0 && patches.patch_of_face[M.face(h)] != D.mesh.face(HalfedgeId(static_cast<HalfedgeId::Index>(dh))))
             return "PART-7: a patch borders a curve of a domain face it does not belong to";
-        if (dh < 0 && patches.patch_of_face[M.face(h).idx()] != patches.patch_of_face[M.face(TriMesh::twin(h)).idx()])
+        if (dh < 0 && patches.patch_of_face[M.face(h)] != patches.patch_of_face[M.face(TriMesh::twin(h))])
             return "PART-7: two patches meet along an edge that is on no curve";
     }
     // PART-8: each patch is a disk bounded by the three curves of its face, corners at x_j, x_k, x_l.

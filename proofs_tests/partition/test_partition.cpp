@@ -81,9 +81,9 @@ std::string restricted_oracle_violation(const TriMesh& T, const partition::Parti
         std::vector<std::uint8_t> mask(net.mesh.n_faces(), 0);
         std::vector<FaceId> touched;
         for (FaceId f : net.mesh.faces())
-            if (P.patches.patch_of_face[f.idx()] == f1 || P.patches.patch_of_face[f.idx()] == f2) {
+            if (P.patches.patch_of_face[f] == f1 || P.patches.patch_of_face[f] == f2) {
                 mask[f.idx()] = 1;
-                touched.push_back(net.t_face[f.idx()]);
+                touched.push_back(net.t_face[f]);
             }
         std::sort(touched.begin(), touched.end());
         touched.erase(std::unique(touched.begin(), touched.end()), touched.end());

@@ -1,10 +1,12 @@
-// FHR core — strong index types (design.md §2): a VertexId cannot be passed where a FaceId is meant.
+// FHR core — strong index types (design.md §2): a VertexId cannot be passed where a FaceId is meant,
+// and per-element data (IdVector) is indexed by its own id type only.
 #pragma once
 
 #include <compare>
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <vector>
 
 namespace fhr {
 
@@ -49,6 +51,37 @@ public:
 private:
     typename IdT::Index n_;
 };
+
+/// Per-element data: a vector that only its id type indexes, so that a FaceId cannot index
+/// per-vertex data (a compile error, not a silent mix-up). Iterates over its values like a vector.
+template <class IdT, class T>
+class IdVector {
+public:
+    IdVector() = default;
+    explicit IdVector(std::size_t n, const T& value = T()) : data_(n, value) {}
+    T& operator[](IdT id) { return data_[id.idx()]; }
+    const T& operator[](IdT id) const { return data_[id.idx()]; }
+    std::size_t size() const { return data_.size(); }
+    bool empty() const { return data_.empty(); }
+    void resize(std::size_t n, const T& value = T()) { data_.resize(n, value); }
+    void assign(std::size_t n, const T& value) { data_.assign(n, value); }
+    void reserve(std::size_t n) { data_.reserve(n); }
+    void push_back(const T& value) { data_.push_back(value); }
+    IdRange<IdT> ids() const { return IdRange<IdT>(data_.size()); }
+    auto begin() { return data_.begin(); }
+    auto end() { return data_.end(); }
+    auto begin() const { return data_.begin(); }
+    auto end() const { return data_.end(); }
+    bool operator==(const IdVector&) const = default;
+
+private:
+    std::vector<T> data_;
+};
+
+template <class T> using VertexData = IdVector<VertexId, T>;
+template <class T> using HalfedgeData = IdVector<HalfedgeId, T>;
+template <class T> using EdgeData = IdVector<EdgeId, T>;
+template <class T> using FaceData = IdVector<FaceId, T>;
 
 }  // namespace fhr
 

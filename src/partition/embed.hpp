@@ -77,7 +77,7 @@ struct Network {
     std::vector<std::vector<VertexId>> path;        ///< #E(D): vertices of T′ from x_j to x_k along Γ_e
                                                     ///< (direction of D's halfedge (e, 0))
     std::vector<std::int32_t> d_halfedge;           ///< #H(T′): the D halfedge it runs along, or -1
-    std::vector<FaceId> t_face;                     ///< #F(T′): the face of T that holds it
+    FaceData<FaceId> t_face;                        ///< #F(T′): the face of T that holds it
     double max_snap_distance = 0;                   ///< the farthest a node was moved by snapping
 };
 

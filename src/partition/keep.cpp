@@ -551,7 +551,7 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
         while (!stack.empty()) {
             const FaceId a = stack.back();
             stack.pop_back();
-            touched[gi].push_back(cut.network.t_face[a.idx()]);
+            touched[gi].push_back(cut.network.t_face[a]);
             HalfedgeId h = M.halfedge(a);
             for (int i = 0; i < 3; ++i, h = M.next(h)) {
                 if (cut.network.d_halfedge[h.idx()] >= 0) continue;
@@ -711,7 +711,7 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
             const Patches patches = extract_patches(Di, embedding.network);
             for (FaceId df : Di.mesh.faces()) {
                 std::vector<FaceId> touched;
-                for (FaceId f : patches.patch[df.idx()].faces) touched.push_back(embedding.network.t_face[f.idx()]);
+                for (FaceId f : patches.patch[df.idx()].faces) touched.push_back(embedding.network.t_face[f]);
                 net->touched()[corners_of(Di, df)] = merged(std::move(touched), {});
             }
             say("keeping the domain: the geodesics of a domain of " + std::to_string(faces) + " faces (" +

@@ -65,7 +65,7 @@ Patches extract_patches(const domain::Domain& D, const Network& net) {
     out.patch_of_face.resize(M.n_faces());
     for (FaceId f : M.faces()) {
         const FaceId df = region_face[static_cast<std::size_t>(region[f.idx()])];
-        out.patch_of_face[f.idx()] = df;
+        out.patch_of_face[f] = df;
         out.patch[df.idx()].faces.push_back(f);
     }
     std::vector<std::int32_t> local(M.n_vertices(), -1);

@@ -31,7 +31,7 @@ struct Patch {
 /// The patches, indexed by D's faces, and the patch of every face of T′.
 struct Patches {
     std::vector<Patch> patch;           ///< #F(D)
-    std::vector<FaceId> patch_of_face;  ///< #F(T′): the D face whose patch holds it
+    FaceData<FaceId> patch_of_face;     ///< #F(T′): the D face whose patch holds it
 };
 
 /// Cuts T′ along the network into one disk per face of D.

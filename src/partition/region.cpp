@@ -143,8 +143,8 @@ std::vector<std::uint8_t> Region::side(std::size_t curve, bool left) const {
 
 std::vector<FaceId> Region::t_faces(const std::vector<std::uint8_t>& mask) const {
     std::vector<FaceId> faces;
-    for (std::size_t f = 0; f < mask.size(); ++f)
-        if (mask[f]) faces.push_back(t_face_[cut_.network.t_face[f].idx()]);
+    for (FaceId f : cut_.network.t_face.ids())
+        if (mask[f.idx()]) faces.push_back(t_face_[cut_.network.t_face[f].idx()]);
     std::sort(faces.begin(), faces.end());
     faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
     return faces;
