@@ -103,33 +103,39 @@ TEST_CASE("solver names parse and print", "[unit][param]") {
 
 TEST_CASE("MAP-1: invalid disks are refused with the broken rule", "[unit][param]") {
     const Disk good = ear_disk();
-    CHECK(param::disk_violation(good) == "");
-    auto refused = [](const Disk& d, const char* why) {
+    CHECK_FALSE(param::disk_violation(good));
+    // The message names the rule; the structure names the element (LIB-2).
+    auto refused = [](const Disk& d, const char* why, Element element, std::int64_t index) {
         INFO(why);
         CHECK_THROWS_WITH(param::map_patch(d), Catch::Contains("MAP-1") && Catch::Contains(why));
+        const auto broken = param::disk_violation(d);
+        REQUIRE(broken);
+        CHECK(broken->invariant == "MAP-1");
+        CHECK(broken->element == element);
+        CHECK(broken->index == index);
     };
     Disk d = good;
     d.triangles[1] = {0, 3, 2};  // inconsistent orientation
-    refused(d, "directed edge");
+    refused(d, "directed edge", Element::face, 1);
     d = good;
     d.boundary = {0, 3, 2, 1};  // the loop against the triangles' orientation
-    refused(d, "not a boundary edge");
+    refused(d, "not a boundary edge", Element::boundary_position, 0);
     d = good;
     d.corners = {0, 3, 2};
-    refused(d, "corners");
+    refused(d, "corners", Element::corners, -1);
     d = good;
     d.positions.push_back(Vec3(5, 5, 5));  // an unused vertex
-    refused(d, "in no triangle");
+    refused(d, "in no triangle", Element::vertex, static_cast<std::int64_t>(good.positions.size()));
     d = good;
     d.triangles[0] = {0, 1, 4};
-    refused(d, "names vertex 4");
+    refused(d, "names vertex 4", Element::face, 0);
     // Two triangles meeting at a vertex only: not manifold there.
     Disk bowtie;
     bowtie.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(-1, 0, 0), Vec3(0, -1, 0)};
     bowtie.triangles = {{0, 1, 2}, {0, 3, 4}};
     bowtie.boundary = {0, 1, 2};
     bowtie.corners = {0, 1, 2};
-    CHECK(param::disk_violation(bowtie) != "");
+    CHECK(param::disk_violation(bowtie));
     // An annulus (two boundary loops).
     Disk annulus;
     for (int k = 0; k < 3; ++k) {
@@ -184,7 +190,7 @@ TEST_CASE("MAP-4: splitting dividing edges keeps the disk, its boundary, its sur
         const std::size_t split = param::split_dividing_edges(d);
         RC_TAG(split == 0 ? "no split" : "split");
         RC_ASSERT(split == count_dividing(original));
-        RC_ASSERT(param::disk_violation(d) == "");
+        RC_ASSERT(!param::disk_violation(d));
         RC_ASSERT(count_dividing(d) == 0);
         RC_ASSERT(d.boundary == original.boundary);
         RC_ASSERT(d.corners == original.corners);

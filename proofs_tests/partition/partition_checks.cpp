@@ -156,9 +156,8 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
     // PART-8: each patch is a disk bounded by the three curves of its face, corners at x_j, x_k, x_l.
     for (FaceId df : D.mesh.faces()) {
         const partition::Patch& p = patches.patch[df.idx()];
-        const std::string v = param::disk_violation(p.disk);
-        if (!v.empty()) {
-            why << "PART-8: patch " << df.idx() << ": " << v;
+        if (const auto broken = param::disk_violation(p.disk)) {
+            why << "PART-8: patch " << df.idx() << ": " << broken->what;
             return why.str();
         }
         const auto corners = D.mesh.face_vertices(df);

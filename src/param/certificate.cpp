@@ -56,8 +56,8 @@ Certificate certify(const Disk& disk, const PatchMap& psi, const std::array<Vec3
     auto fail = [&](const std::string& why) {
         if (cert.first_failure.empty()) cert.first_failure = why;
     };
-    if (const std::string problem = disk_violation(disk); !problem.empty()) {
-        fail("MAP-1: " + problem);
+    if (const auto broken = disk_violation(disk)) {
+        fail(broken->describe());
         return cert;
     }
     const std::size_t nv = disk.positions.size();

@@ -13,10 +13,12 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/polygon_soup.hpp"
+#include "core/violation.hpp"
 
 namespace fhr::param {
 
@@ -28,15 +30,15 @@ struct Disk {
     std::array<std::size_t, 3> corners;                   ///< positions IN `boundary` of the corners x_j, x_k, x_l; corners[0] == 0, increasing
 };
 
-/// The first broken rule of MAP-1 (spec/patch_map.md) for `disk`, or "" when it is a valid
-/// patch: indices in range, no triangle repeating a vertex, every vertex in a triangle, each
+/// The first broken rule of MAP-1 (spec/patch_map.md) for `disk` — which element, which one, what
+/// is wrong — or nullopt when it is a valid patch: indices in range, no triangle repeating a vertex, every vertex in a triangle, each
 /// directed edge in one triangle and each undirected edge in at most two (traversed in opposite
 /// directions), every vertex's triangles one fan, connected, Euler characteristic 1, and the
 /// edges with one triangle forming exactly the loop `boundary` in its orientation, with
 /// 0 == corners[0] < corners[1] < corners[2] < boundary.size().
-std::string disk_violation(const Disk& disk);
+std::optional<Violation> disk_violation(const Disk& disk);
 
-/// \throws InvalidInput("", 0, "patch: MAP-1: ...") when disk_violation(disk) is not empty.
+/// \throws InvalidInput("", 0, "patch: MAP-1: ...") when disk_violation(disk) finds one.
 void validate(const Disk& disk);
 
 /// Bit c (c = 0, 1, 2) of the result's entry for boundary position p is set when the boundary
