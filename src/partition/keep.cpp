@@ -67,6 +67,13 @@ public:
     std::map<Corners, std::vector<FaceId>>& touched() { return touched_; }
 
     VertexId x(VertexId v) const { return D_.t_vertex[v.idx()]; }
+    // The vertex of D at vertex x of T: D's vertices are numbered in T's order (make_domain), and
+    // keep their numbers through flips and collapses until compacted, which keeps the order.
+    VertexId at(VertexId::Index x) const {
+        const auto it = std::lower_bound(D_.t_vertex.begin(), D_.t_vertex.end(), VertexId(x));
+        if (it == D_.t_vertex.end() || it->idx() != x) throw std::logic_error("keeping the domain: a vertex of T that is not in D");
+        return VertexId(static_cast<VertexId::Index>(it - D_.t_vertex.begin()));
+    }
 
     // The region of D's edge e: its two faces' patches, bounded by their four other curves (the
     // first with the region on its left when `left`), and the faces of T they touch.
@@ -172,8 +179,6 @@ void apply(Network_& net, Job& j) {
 void redo(Network_& net, std::span<const domain::Collapse> collapses, const std::function<void(const std::string&)>& say) {
     domain::Domain& D = net.domain();
     // Vertices keep their numbers until the end (removed ones become garbage).
-    std::unordered_map<VertexId::Index, VertexId> in_d;  // vertex of T -> vertex of D
-    for (std::size_t j = 0; j < D.t_vertex.size(); ++j) in_d.emplace(D.t_vertex[j].idx(), VertexId(static_cast<VertexId::Index>(j)));
     std::vector<domain::Collapse> left(collapses.begin(), collapses.end());
     std::vector<std::uint8_t> blocked(D.mesh.n_vertices(), 0);
     while (!left.empty()) {
@@ -182,7 +187,7 @@ void redo(Network_& net, std::span<const domain::Collapse> collapses, const std:
         std::vector<domain::Collapse> batch, later;
         std::vector<VertexId> marked;
         for (const domain::Collapse& c : left) {
-            const VertexId v = in_d.at(c.removed.idx());
+            const VertexId v = net.at(c.removed.idx());
             bool free = blocked[v.idx()] == 0;
             D.mesh.for_each_outgoing(v, [&](HalfedgeId h) { free = free && blocked[D.mesh.to(h).idx()] == 0; });
             auto mark = [&](VertexId u) {
@@ -200,7 +205,7 @@ void redo(Network_& net, std::span<const domain::Collapse> collapses, const std:
         for (;;) {
             std::vector<Job> jobs;
             for (const domain::Collapse& c : batch) {
-                const VertexId v = in_d.at(c.removed.idx()), w = in_d.at(c.kept.idx());
+                const VertexId v = net.at(c.removed.idx()), w = net.at(c.kept.idx());
                 const std::size_t valence = D.mesh.valence(v);
                 if (valence <= 3) continue;
                 // Spoke [v, u] in the face (v, w, u), or (w, v, u) on the other side; its other
@@ -220,7 +225,7 @@ void redo(Network_& net, std::span<const domain::Collapse> collapses, const std:
         // Each v now has valence 3: the collapse v -> w merges its three faces into (w, a, b)
         // and removes its three curves; the new face's patch is the three patches' union.
         for (const domain::Collapse& c : batch) {
-            const VertexId v = in_d.at(c.removed.idx()), w = in_d.at(c.kept.idx());
+            const VertexId v = net.at(c.removed.idx()), w = net.at(c.kept.idx());
             const HalfedgeId vw = D.mesh.find_halfedge(v, w);
             if (!D.mesh.is_collapse_ok(vw)) throw std::logic_error("keeping the domain: a collapse cannot be redone");
             std::vector<FaceId> touched;
@@ -318,10 +323,8 @@ void flip_to(Network_& net, const domain::Domain& target, const std::function<vo
         std::vector<std::uint8_t> near(D.mesh.n_vertices(), 0);
         std::set<Pair> have;
         for (EdgeId e : D.mesh.edges()) have.insert(key(D.mesh, e));
-        std::unordered_map<VertexId::Index, VertexId> in_d;
-        for (std::size_t j = 0; j < D.t_vertex.size(); ++j) in_d.emplace(D.t_vertex[j].idx(), VertexId(static_cast<VertexId::Index>(j)));
         for (const Pair& k : want)
-            if (!have.count(k)) near[in_d.at(k.first).idx()] = near[in_d.at(k.second).idx()] = 1;
+            if (!have.count(k)) near[net.at(k.first).idx()] = near[net.at(k.second).idx()] = 1;
         auto candidate = [&](const TriMesh& m, EdgeId e) {
             const HalfedgeId h = TriMesh::halfedge(e, 0);
             return (near[m.from(h).idx()] || near[m.to(h).idx()] || near[m.to(m.next(h)).idx()] ||
@@ -395,10 +398,6 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
     Network_ net(T, make_domain(T, faces_in_t(D)));
     const domain::Domain& Dn = net.domain();
     const TriMesh& m = Dn.mesh;
-    auto in_d = [&](VertexId::Index x) {  // make_domain numbers D's vertices in T's order
-        return VertexId(static_cast<VertexId::Index>(
-            std::lower_bound(Dn.t_vertex.begin(), Dn.t_vertex.end(), VertexId(x)) - Dn.t_vertex.begin()));
-    };
     auto edge_key = [&](HalfedgeId h) { return key_of(net.x(m.from(h)), net.x(m.to(h))); };
     auto is_kept = [&](HalfedgeId h) { return kept[edge_of.at(edge_key(h))] != 0; };
     auto on_boundary = [&](VertexId v) {  // a kept edge at v: v is on the boundary of its groups
@@ -572,7 +571,7 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
         for (int slit = 1; slit >= 0 && !next; --slit)
             for (const Pair& k : order) {
                 if (kept[edge_of.at(k)]) continue;
-                const int ends_on_boundary = on_boundary(in_d(k.first)) + on_boundary(in_d(k.second));
+                const int ends_on_boundary = on_boundary(net.at(k.first)) + on_boundary(net.at(k.second));
                 if (ends_on_boundary == 2 - slit) {
                     next = k;
                     break;
@@ -581,7 +580,7 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
         if (!next) break;
         const Pair k = *next;
         const std::size_t e = edge_of.at(k);
-        const VertexId lo = in_d(k.first), hi = in_d(k.second);
+        const VertexId lo = net.at(k.first), hi = net.at(k.second);
         const HalfedgeId h = m.find_halfedge(lo, hi);
         const std::int32_t gi = group[m.face(h).idx()];
         std::vector<RegionCurve> around;
@@ -742,13 +741,11 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
             if (!net->curves().at(k).exact) left.push_back(k);
         while (!left.empty()) {
             const domain::Domain& Dn = net->domain();
-            std::unordered_map<VertexId::Index, VertexId> in_d;
-            for (std::size_t j = 0; j < Dn.t_vertex.size(); ++j) in_d.emplace(Dn.t_vertex[j].idx(), VertexId(static_cast<VertexId::Index>(j)));
             std::vector<std::uint8_t> used(Dn.mesh.n_faces(), 0);
             std::vector<Job> jobs;
             std::vector<Pair> later;
             for (const Pair& k : left) {
-                const VertexId a = in_d.at(k.first), b = in_d.at(k.second);
+                const VertexId a = net->at(k.first), b = net->at(k.second);
                 const HalfedgeId h = Dn.mesh.find_halfedge(a, b);
                 const FaceId f = Dn.mesh.face(h), g = Dn.mesh.face(TriMesh::twin(h));
                 if (used[f.idx()] || used[g.idx()]) {
