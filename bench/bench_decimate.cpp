@@ -60,11 +60,11 @@
 
 #include "bench_support.hpp"
 
-#include "core/build.hpp"
-#include "core/errors.hpp"
-#include "core/topology.hpp"
-#include "domain/decimate.hpp"
-#include "io/read.hpp"
+#include <fhr/core/build.hpp>
+#include <fhr/core/errors.hpp>
+#include <fhr/core/topology.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/io/read.hpp>
 
 namespace {
 

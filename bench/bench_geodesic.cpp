@@ -1,6 +1,6 @@
 // FHR bench — §3 geodesic paths (the paper's timing table row "geodesic paths"): the exact
 // shortest path Γ(x_j, x_k) for every edge of the decimated domain D, by our ellipse search
-// (src/geodesic/ellipse.hpp), against CGAL's Surface_mesh_shortest_path (Epick), which builds
+// (src/fhr/geodesic/ellipse.hpp), against CGAL's Surface_mesh_shortest_path (Epick), which builds
 // the whole single-source tree for every query. CGAL is used only in benchmarks and tests.
 //
 // Usage: bench_geodesic MESH FACES [CGAL_SOURCES]. T is loaded with our strict reader and builder, D is
@@ -28,9 +28,9 @@
 #include <CGAL/Surface_mesh_shortest_path.h>
 
 #include "bench_support.hpp"
-#include "core/errors.hpp"
-#include "domain/decimate.hpp"
-#include "geodesic/ellipse.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/geodesic/ellipse.hpp>
 
 namespace {
 

@@ -9,9 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/build.hpp"
-#include "core/errors.hpp"
-#include "io/read.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/io/read.hpp>
 
 namespace {
 
@@ -29,10 +28,7 @@ long peak_rss_bytes() {
     return kib * 1024L;
 }
 
-std::size_t load(const std::string& path) {
-    fhr::BuildLog log;
-    return fhr::build_trimesh(fhr::io::read_soup(path), {}, log).n_faces();
-}
+std::size_t load(const std::string& path) { return fhr::io::read_mesh(path).n_faces(); }
 
 }  // namespace
 

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "core/build.hpp"
-#include "core/parallel.hpp"
-#include "domain/decimate.hpp"
-#include "io/read.hpp"
-#include "param/certificate.hpp"
-#include "param/dividing_edges.hpp"
-#include "partition/partition.hpp"
+#include <fhr/core/build.hpp>
+#include <fhr/core/detail/parallel.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/io/read.hpp>
+#include <fhr/param/certificate.hpp>
+#include <fhr/param/dividing_edges.hpp>
+#include <fhr/partition/partition.hpp>
 
 using namespace fhr;
 

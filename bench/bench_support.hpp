@@ -10,8 +10,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 
-#include "core/build.hpp"
-#include "io/read.hpp"
+#include <fhr/io/read.hpp>
 
 namespace fhr::bench {
 
@@ -19,10 +18,7 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Mesh = CGAL::Surface_mesh<Point>;
 
-inline TriMesh load(const std::string& path) {
-    BuildLog log;
-    return build_trimesh(io::read_soup(path), {}, log);
-}
+inline TriMesh load(const std::string& path) { return io::read_mesh(path); }
 
 /// The same vertices (same indices) and triangles as a CGAL::Surface_mesh.
 inline Mesh to_cgal(const TriMesh& m) {

@@ -33,15 +33,15 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <CGAL/Polygon_mesh_processing/distance.h>
 #pragma GCC diagnostic pop
-#include "core/errors.hpp"
-#include "core/geometry.hpp"
-#include "domain/decimate.hpp"
-#include "param/locate.hpp"
-#include "pipeline/pipeline.hpp"
-#include "wavelet/compress.hpp"
-#include "wavelet/filter_bank.hpp"
-#include "wavelet/hausdorff.hpp"
-#include "wavelet/refine.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/core/geometry.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/param/locate.hpp>
+#include <fhr/pipeline/pipeline.hpp>
+#include <fhr/wavelet/compress.hpp>
+#include <fhr/wavelet/filter_bank.hpp>
+#include <fhr/wavelet/hausdorff.hpp>
+#include <fhr/wavelet/refine.hpp>
 
 namespace PMP = CGAL::Polygon_mesh_processing;
 using namespace fhr;

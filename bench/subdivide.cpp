@@ -12,10 +12,9 @@
 #include <cstdlib>
 #include <vector>
 
-#include "core/build.hpp"
-#include "core/errors.hpp"
-#include "io/read.hpp"
-#include "io/write.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/io/read.hpp>
+#include <fhr/io/write.hpp>
 
 namespace {
 
@@ -49,8 +48,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        fhr::BuildLog log;
-        fhr::TriMesh T = fhr::build_trimesh(fhr::io::read_soup(argv[1]), {}, log);
+        fhr::TriMesh T = fhr::io::read_mesh(argv[1]);
         for (int round = std::atoi(argv[2]); round > 0; --round) T = subdivide(T);
         fhr::io::write_ply(argv[3], T.positions(), T.triangles());
         std::printf("%s: %zu faces\n", argv[3], T.n_faces());

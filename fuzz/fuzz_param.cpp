@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <string_view>
 
-#include "core/errors.hpp"
-#include "exchange/fhr_param.hpp"
-#include "exchange/verify.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/exchange/fhr_param.hpp>
+#include <fhr/exchange/verify.hpp>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string_view bytes(reinterpret_cast<const char*>(data), size);

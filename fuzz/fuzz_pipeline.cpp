@@ -1,6 +1,6 @@
 // FHR §2–§4 — libFuzzer target for the whole pipeline: the bytes choose a small random closed
 // mesh T with the generator's recipe (genus 0–2, at most min_faces + 300 faces, seed, noise;
-// src/generate), a domain size, the weights and the solver; §2 decimates T to D and
+// src/fhr/generate), a domain size, the weights and the solver; §2 decimates T to D and
 // pipeline::parameterize runs §3 and §4. Every run must end certified (Proposition 1, the
 // per-patch certificate) and accepted by the independent oracle (spec/param.md PARAM-2..11
 // against T). The one expected refusal is InvalidInput from the decimation (the size cannot be
@@ -15,12 +15,12 @@
 #include <cstdio>
 #include <string>
 
-#include "core/errors.hpp"
-#include "domain/decimate.hpp"
-#include "exchange/verify.hpp"
-#include "generate/random_mesh.hpp"
-#include "pipeline/outputs.hpp"
-#include "pipeline/pipeline.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/exchange/verify.hpp>
+#include <fhr/generate/random_mesh.hpp>
+#include <fhr/pipeline/outputs.hpp>
+#include <fhr/pipeline/pipeline.hpp>
 
 namespace {
 

@@ -1,12 +1,12 @@
 // FHR io — fuzz harness body: run one reader on arbitrary bytes and check what it returns
-// against the postconditions of src/io/read.hpp (spec/formats.md).
+// against the postconditions of src/fhr/io/read.hpp (spec/formats.md).
 #include "harness.hpp"
 
 #include <cmath>
 #include <string>
 #include <string_view>
 
-#include "core/errors.hpp"
+#include <fhr/core/errors.hpp>
 
 namespace fhr::fuzz {
 

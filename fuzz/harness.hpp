@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "io/read.hpp"
+#include <fhr/io/read.hpp>
 
 namespace fhr::fuzz {
 

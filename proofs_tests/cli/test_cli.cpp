@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
-#include "core/errors.hpp"
+#include <fhr/core/errors.hpp>
 #include "support/test_support.hpp"
 
 using fhr::test::run_fhr;

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "core/build.hpp"
-#include "io/read.hpp"
+#include <fhr/core/build.hpp>
+#include <fhr/io/read.hpp>
 #include "support/test_support.hpp"
 
 using fhr::test::read_file;

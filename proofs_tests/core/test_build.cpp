@@ -2,10 +2,10 @@
 // it, and the message must name the problem, the element and the line.
 #include <catch2/catch.hpp>
 
-#include "core/build.hpp"
-#include "core/errors.hpp"
-#include "core/geometry.hpp"
-#include "core/topology.hpp"
+#include <fhr/core/build.hpp>
+#include <fhr/core/errors.hpp>
+#include <fhr/core/geometry.hpp>
+#include <fhr/core/topology.hpp>
 
 using namespace fhr;
 

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/geometry.hpp"
-#include "core/topology.hpp"
+#include <fhr/core/geometry.hpp>
+#include <fhr/core/topology.hpp>
 
 using namespace fhr;
 

@@ -3,7 +3,7 @@
 // weight) — what §3's path nodes u_p and Fig. 4's inserted points x_j need.
 #include <catch2/catch.hpp>
 
-#include "core/surface_point.hpp"
+#include <fhr/core/surface_point.hpp>
 
 using namespace fhr;
 

@@ -1,4 +1,4 @@
-// FHR tests — TriMesh (src/core/trimesh.hpp), the halfedge triangulation T of the paper (§1):
+// FHR tests — TriMesh (src/fhr/core/trimesh.hpp), the halfedge triangulation T of the paper (§1):
 // construction, navigation, boundary, the edits the decimation of §2 is built from (flip,
 // split, half-edge collapse with the link condition), compaction, and the invariant checker
 // (spec/mesh.md INV-MESH-0..8). Property tests run random edit sequences on random meshes of
@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/geometry.hpp"
-#include "core/topology.hpp"
-#include "core/trimesh.hpp"
-#include "support/gen_mesh.hpp"
+#include <fhr/core/geometry.hpp>
+#include <fhr/core/topology.hpp>
+#include <fhr/core/trimesh.hpp>
+#include <fhr/testing/rapidcheck.hpp>
 
 using fhr::EdgeId;
 using fhr::FaceId;
@@ -311,6 +311,26 @@ TEST_CASE("no flip is possible on a tetrahedron", "[unit]") {
     for (EdgeId e : m.edges()) CHECK_FALSE(m.is_flip_ok(e));
 }
 
+// LIB-2: a documented precondition broken by the caller is a std::logic_error naming it, in every
+// build with the tests (meson option dchecks), instead of a corrupted mesh.
+TEST_CASE("broken preconditions of the mesh edits throw std::logic_error in test builds (LIB-2)", "[unit]") {
+#if !defined(FHR_DCHECKS)
+    FAIL("the tests are built without FHR_DCHECKS: meson.build turns dchecks on wherever the tests are built");
+#endif
+    TriMesh tetra = tetrahedron();
+    CHECK_THROWS_AS(tetra.flip(EdgeId(0)), std::logic_error);
+    CHECK_THROWS_WITH(tetra.flip(EdgeId(0)), Contains("precondition violated: is_flip_ok(e)"));
+    TriMesh octa = octahedron();
+    octa.collapse(octa.find_halfedge(VertexId(4), VertexId(0)));
+    CHECK_THROWS_AS(fhr::euler_characteristic(octa), std::logic_error);
+    CHECK_THROWS_WITH(fhr::euler_characteristic(octa), Contains("precondition violated: !m.has_garbage()"));
+    TriMesh tetra2 = tetrahedron();  // every collapse of a tetrahedron breaks the link condition
+    const HalfedgeId h = tetra2.find_halfedge(VertexId(0), VertexId(1));
+    CHECK_THROWS_AS(tetra2.collapse(h), std::logic_error);
+    CHECK_THROWS_WITH(tetra2.collapse(h), Contains("precondition violated: is_collapse_ok(h)"));
+    CHECK_NOTHROW(tetra2.validate());  // refused before anything changed
+}
+
 TEST_CASE("split_edge on the tetrahedron", "[unit]") {
     TriMesh m = tetrahedron();
     const HalfedgeId h = m.find_halfedge(VertexId(0), VertexId(1));
@@ -408,7 +428,7 @@ TEST_CASE("from_triangles refuses input that would break the invariants", "[unit
 
 TEST_CASE("random edit sequences keep every invariant, χ and the genus", "[property]") {
     rc::prop("flip / split / collapse", [] {
-        TriMesh m = *fhr::test::gen_closed_mesh(0, 4, 600);
+        TriMesh m = *fhr::testing::gen_closed_mesh(0, 4, 600);
         const long chi = fhr::euler_characteristic(m), g = fhr::genus(m);
         std::size_t faces = m.n_faces();
         const int steps = *rc::gen::inRange(1, 60);
@@ -439,7 +459,7 @@ TEST_CASE("random edit sequences keep every invariant, χ and the genus", "[prop
 
 TEST_CASE("is_collapse_ok is exactly the link condition", "[property]") {
     rc::prop("against neighbour sets of the triangle list", [] {
-        const TriMesh m = *fhr::test::gen_closed_mesh(0, 3, 400);
+        const TriMesh m = *fhr::testing::gen_closed_mesh(0, 3, 400);
         const auto n = neighbours_from_triangles(m);
         for (HalfedgeId h : m.halfedges()) {
             const std::uint32_t v0 = m.from(h).idx(), v1 = m.to(h).idx();
@@ -454,7 +474,7 @@ TEST_CASE("is_collapse_ok is exactly the link condition", "[property]") {
 
 TEST_CASE("is_flip_ok: new diagonal absent and both ends keep valence >= 3", "[property]") {
     rc::prop("against neighbour sets of the triangle list", [] {
-        const TriMesh m = *fhr::test::gen_closed_mesh(0, 3, 400);
+        const TriMesh m = *fhr::testing::gen_closed_mesh(0, 3, 400);
         const auto n = neighbours_from_triangles(m);
         for (EdgeId e : m.edges()) {
             const HalfedgeId h = TriMesh::halfedge(e, 0);
@@ -468,7 +488,7 @@ TEST_CASE("is_flip_ok: new diagonal absent and both ends keep valence >= 3", "[p
 
 TEST_CASE("a flip done twice, and a split undone by collapsing the new vertex, restore the faces", "[property]") {
     rc::prop("edit inverses", [] {
-        TriMesh m = *fhr::test::gen_closed_mesh(0, 3, 400);
+        TriMesh m = *fhr::testing::gen_closed_mesh(0, 3, 400);
         const auto original = canonical(m.triangles());
         const EdgeId e(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(m.n_edges())));
         if (m.is_flip_ok(e)) {
@@ -478,7 +498,7 @@ TEST_CASE("a flip done twice, and a split undone by collapsing the new vertex, r
             m.flip(e);
             RC_ASSERT(canonical(m.triangles()) == original);
         }
-        // The generator's fallback (src/generate): collapsing the new vertex onto to(out(new)).
+        // The generator's fallback (src/fhr/generate): collapsing the new vertex onto to(out(new)).
         const HalfedgeId h = TriMesh::halfedge(e, 0);
         const VertexId added = m.split_edge(e, 0.5 * (m.position(m.from(h)) + m.position(m.to(h))));
         RC_ASSERT(m.is_collapse_ok(m.out(added)));
@@ -491,7 +511,7 @@ TEST_CASE("a flip done twice, and a split undone by collapsing the new vertex, r
 
 TEST_CASE("split_vertex undoes collapse exactly (the vertex split of §2's history)", "[property]") {
     rc::prop("collapse then split_vertex restores the faces, with the removed vertex renumbered last", [] {
-        TriMesh m = *fhr::test::gen_closed_mesh(0, 4, 600);
+        TriMesh m = *fhr::testing::gen_closed_mesh(0, 4, 600);
         const auto original = canonical(m.triangles());
         const HalfedgeId h(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(m.n_halfedges())));
         RC_PRE(m.is_collapse_ok(h));
@@ -518,7 +538,7 @@ TEST_CASE("split_vertex undoes collapse exactly (the vertex split of §2's histo
 
 TEST_CASE("split_face inserts a vertex of valence 3 inside a face (paper Fig. 4)", "[property]") {
     rc::prop("split_face keeps the invariants and adds two faces", [] {
-        TriMesh m = *fhr::test::gen_closed_mesh(0, 4, 600);
+        TriMesh m = *fhr::testing::gen_closed_mesh(0, 4, 600);
         const long chi = fhr::euler_characteristic(m);
         const FaceId f(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(m.n_faces())));
         const auto corners = m.face_vertices(f);

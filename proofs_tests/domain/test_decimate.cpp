@@ -9,14 +9,14 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/build.hpp"
-#include "core/errors.hpp"
-#include "core/geometry.hpp"
-#include "core/predicates.hpp"
-#include "core/topology.hpp"
-#include "domain/decimate.hpp"
-#include "io/read.hpp"
-#include "support/gen_mesh.hpp"
+#include <fhr/core/build.hpp>
+#include <fhr/core/errors.hpp>
+#include <fhr/core/geometry.hpp>
+#include <fhr/core/predicates.hpp>
+#include <fhr/core/topology.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/io/read.hpp>
+#include <fhr/testing/rapidcheck.hpp>
 #include "support/test_support.hpp"
 
 using namespace fhr;
@@ -97,7 +97,7 @@ TEST_CASE("min_closed_faces follows Heawood's bound, with the genus-2 exception"
 
 TEST_CASE("DOM-1..8: decimation of random closed meshes of genus 0-4", "[property][domain]") {
     rc::prop("decimate, check, undo", [] {
-        const test::GeneratedMesh T = *test::gen_closed_mesh(0, 4, 1500);
+        const fhr::testing::GeneratedMesh T = *fhr::testing::gen_closed_mesh(0, 4, 1500);
         // Close to the minimum, the angle and normal rules can leave no valid collapse (DOM-9).
         const std::size_t lowest = std::max(2 * domain::min_closed_faces(T.options.genus), T.n_faces() / 5);
         DecimateOptions o;
@@ -151,7 +151,7 @@ TEST_CASE("DOM-2: meshes of higher genus keep their genus (elephant g = 3, rocke
 
 TEST_CASE("DOM-16: decimating again from an earlier decimation keeps every rule and a consistent history", "[property][domain]") {
     rc::prop("random meshes; a decimation, then more kept vertices and more faces", [] {
-        const test::GeneratedMesh g = *test::gen_closed_mesh(0, 3, 1200);
+        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_closed_mesh(0, 3, 1200);
         const TriMesh& T = g;
         DecimateOptions first;
         first.target_faces = std::max<std::size_t>(domain::min_closed_faces(g.options.genus) + 8, T.n_faces() / 4) & ~std::size_t{1};
@@ -201,7 +201,7 @@ TEST_CASE("DOM-15: a noisy sphere decimated to a tetrahedron stays outward orien
 
 TEST_CASE("DOM-15: random meshes decimated to their fewest faces stay outward oriented", "[property][domain]") {
     rc::prop("decimate to min_closed_faces(genus), best effort", [] {
-        const test::GeneratedMesh T = *test::gen_closed_mesh(0, 2, 600);
+        const fhr::testing::GeneratedMesh T = *fhr::testing::gen_closed_mesh(0, 2, 600);
         DecimateOptions o;
         o.target_faces = domain::min_closed_faces(T.options.genus);
         o.best_effort = true;
@@ -227,7 +227,7 @@ TEST_CASE("DOM-9: requests that cannot be met are refused with a clear message",
 
 TEST_CASE("DOM-14: kept vertices stay in D; best effort stops above an unreachable target instead of throwing", "[property][domain]") {
     rc::prop("random meshes, random kept vertices", [] {
-        const test::GeneratedMesh g = *test::gen_closed_mesh(0, 3, 1200);
+        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_closed_mesh(0, 3, 1200);
         const TriMesh& T = g;
         DecimateOptions o;
         o.target_faces = std::max<std::size_t>(domain::min_closed_faces(g.options.genus) + 8, T.n_faces() / 4) & ~std::size_t{1};

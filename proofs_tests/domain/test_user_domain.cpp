@@ -6,12 +6,12 @@
 
 #include <set>
 
-#include "core/errors.hpp"
-#include "core/geometry.hpp"
-#include "core/topology.hpp"
-#include "domain/user_domain.hpp"
-#include "io/correspondence.hpp"
-#include "support/gen_mesh.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/core/geometry.hpp>
+#include <fhr/core/topology.hpp>
+#include <fhr/domain/user_domain.hpp>
+#include <fhr/io/correspondence.hpp>
+#include <fhr/testing/rapidcheck.hpp>
 #include "support/test_support.hpp"
 
 using namespace fhr;
@@ -47,7 +47,7 @@ const domain::DomainSources names{"d.off", "d.corr"};
 
 TEST_CASE("DOM-10..13: attach_domain inserts face and edge points exactly (Fig. 4)", "[property][domain]") {
     rc::prop("random correspondences", [] {
-        const test::GeneratedMesh G = *test::gen_closed_mesh(0, 3, 800);
+        const fhr::testing::GeneratedMesh G = *fhr::testing::gen_closed_mesh(0, 3, 800);
         Setup s = make_setup(G, std::max<std::size_t>(2 * domain::min_closed_faces(G.options.genus), G.n_faces() / 4) & ~std::size_t(1));
         // Move some entries into faces (several may share one face) or onto edges.
         const std::uint32_t shared_face = *rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(G.n_faces()));

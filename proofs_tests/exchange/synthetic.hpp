@@ -1,5 +1,5 @@
 // FHR tests — valid `fhr-param 1` files built without any parameterization code, so that the
-// oracle (src/exchange/verify.hpp) is tested independently of what it judges (spec/param.md).
+// oracle (src/fhr/exchange/verify.hpp) is tested independently of what it judges (spec/param.md).
 //
 // Take a closed mesh D as the domain and let T′ be D with every face subdivided k-to-k² along
 // the lattice of points with barycentric coordinates (r, p, q)/k, r + p + q = k. Then ψ is the
@@ -14,8 +14,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/trimesh.hpp"
-#include "exchange/fhr_param.hpp"
+#include <fhr/core/trimesh.hpp>
+#include <fhr/exchange/fhr_param.hpp>
 
 namespace fhr::test {
 

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "core/errors.hpp"
-#include "exchange/fhr_param.hpp"
-#include "exchange/verify.hpp"
-#include "generate/random_mesh.hpp"
-#include "support/gen_mesh.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/exchange/fhr_param.hpp>
+#include <fhr/exchange/verify.hpp>
+#include <fhr/generate/random_mesh.hpp>
+#include <fhr/testing/rapidcheck.hpp>
 #include "support/test_support.hpp"
 #include "synthetic.hpp"
 
@@ -50,7 +50,7 @@ bool bitwise_equal(const ParamFile& a, const ParamFile& b) { return format_param
 
 TEST_CASE("PARAM-1: write -> read -> write is byte-identical and gives back every double bit for bit", "[exchange][property]") {
     rc::prop("random domains, k-to-k^2 subdivisions, noisy coordinates", [] {
-        const auto& domain = *fhr::test::gen_closed_mesh(0, 3, 300);
+        const auto& domain = *fhr::testing::gen_closed_mesh(0, 3, 300);
         const int k = *rc::gen::inRange(1, 4);
         ParamFile file = fhr::test::subdivided_param(domain, k);
         // Awkward doubles too: subnormals, negative zero, the largest finite magnitudes.

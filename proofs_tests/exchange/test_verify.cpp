@@ -1,4 +1,4 @@
-// FHR tests — the oracle `verify` (src/exchange/verify.hpp, spec/param.md PARAM-2..11). Valid
+// FHR tests — the oracle `verify` (src/fhr/exchange/verify.hpp, spec/param.md PARAM-2..11). Valid
 // files come from synthetic.hpp (k-to-k² subdivisions of random closed meshes: no
 // parameterization code involved); verify must accept all of them, also against the input mesh,
 // and must reject each deliberate corruption with the invariant it breaks, named first.
@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "core/topology.hpp"
-#include "core/trimesh.hpp"
-#include "exchange/fhr_param.hpp"
-#include "exchange/verify.hpp"
-#include "generate/random_mesh.hpp"
-#include "support/gen_mesh.hpp"
+#include <fhr/core/topology.hpp>
+#include <fhr/core/trimesh.hpp>
+#include <fhr/exchange/fhr_param.hpp>
+#include <fhr/exchange/verify.hpp>
+#include <fhr/generate/random_mesh.hpp>
+#include <fhr/testing/rapidcheck.hpp>
 #include "synthetic.hpp"
 
 using fhr::TriMesh;
@@ -319,7 +319,7 @@ void expect_caught(const Corruption& c, const TriMesh& domain, int k) {
 TEST_CASE("PARAM-2..11: every k-to-k^2 subdivision of a random closed mesh is a valid parameterization over it",
           "[exchange][property]") {
     rc::prop("genus 0-3, k = 1..5, with the domain as the input mesh T", [] {
-        const auto& domain = *fhr::test::gen_closed_mesh(0, 3, 300);
+        const auto& domain = *fhr::testing::gen_closed_mesh(0, 3, 300);
         const int k = *rc::gen::inRange(1, 6);
         const ParamFile file = fhr::test::subdivided_param(domain, k);
         const VerifyReport r = verify(file, &domain);
@@ -360,7 +360,7 @@ TEST_CASE("PARAM-2..11: verify rejects each deliberate corruption, naming the br
 
 TEST_CASE("PARAM-2..11: the corruptions are caught on random domains of genus 0-3", "[exchange][property]") {
     rc::prop("every corruption of the 4-to-16 subdivision of a random domain", [] {
-        const auto& domain = *fhr::test::gen_closed_mesh(0, 3, 200);
+        const auto& domain = *fhr::testing::gen_closed_mesh(0, 3, 200);
         for (const Corruption& c : corruptions()) {
             ParamFile file = fhr::test::subdivided_param(domain, 4);
             TriMesh input = domain;

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "exchange/fhr_param.hpp"
-#include "generate/random_mesh.hpp"
-#include "io/write.hpp"
+#include <fhr/exchange/fhr_param.hpp>
+#include <fhr/generate/random_mesh.hpp>
+#include <fhr/io/write.hpp>
 #include "support/test_support.hpp"
 #include "synthetic.hpp"
 

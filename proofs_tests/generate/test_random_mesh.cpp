@@ -1,4 +1,4 @@
-// FHR tests — the random mesh generator (src/generate) that feeds every property test with
+// FHR tests — the random mesh generator (src/fhr/generate) that feeds every property test with
 // input surfaces T of the paper (§1): properties GEN-1..6 of paper_notes/generator.md, its
 // option errors and its geometric guarantees.
 #include <catch2/catch.hpp>
@@ -13,14 +13,14 @@
 #include <string>
 #include <vector>
 
-#include "core/build.hpp"
-#include "core/errors.hpp"
-#include "core/geometry.hpp"
-#include "core/topology.hpp"
-#include "generate/random_mesh.hpp"
-#include "io/read.hpp"
-#include "io/write.hpp"
-#include "support/gen_mesh.hpp"
+#include <fhr/core/build.hpp>
+#include <fhr/core/errors.hpp>
+#include <fhr/core/geometry.hpp>
+#include <fhr/core/topology.hpp>
+#include <fhr/generate/random_mesh.hpp>
+#include <fhr/io/read.hpp>
+#include <fhr/io/write.hpp>
+#include <fhr/testing/rapidcheck.hpp>
 #include "support/test_support.hpp"
 
 using fhr::TriMesh;
@@ -29,6 +29,14 @@ using fhr::generate::random_closed_mesh;
 using fhr::generate::RandomMeshOptions;
 
 namespace {
+
+/// The mesh as a polygon soup (what a reader would hand to build_trimesh).
+fhr::PolygonSoup to_soup(const TriMesh& m) {
+    fhr::PolygonSoup soup;
+    soup.points = m.positions();
+    for (const fhr::Triangle& t : m.triangles()) soup.add_polygon(t.data(), 3);
+    return soup;
+}
 
 /// Volume of the block the generator starts from: (2g+1)·3 unit cells minus g holes (g >= 1),
 /// the unit cube for g = 0. With noise 0 the edits only re-triangulate its facets.
@@ -90,16 +98,16 @@ TEST_CASE("the smallest meshes exist for genus 0 to 8 (GEN-1..3, GEN-6)", "[unit
 TEST_CASE("generated meshes are valid closed meshes of the requested genus and size (GEN-1, 2, 3, 6)",
           "[property]") {
     rc::prop("GEN-1,2,3,6", [] {
-        const fhr::test::GeneratedMesh m = *fhr::test::gen_closed_mesh(0, 4, 3000);
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_closed_mesh(0, 4, 3000);
         check_generated(m.options, m);
     });
 }
 
 TEST_CASE("without noise the surface is exactly the block: edits only re-triangulate its facets", "[property]") {
     rc::prop("axis-aligned faces, block volume", [] {
-        RandomMeshOptions o = (*fhr::test::gen_closed_mesh(0, 4, 3000)).options;
+        RandomMeshOptions o = (*fhr::testing::gen_closed_mesh(0, 4, 3000)).options;
         o.noise = 0;
-        RC_LOG() << "checked: " << fhr::test::generate_command(o) << "\n";
+        RC_LOG() << "checked: " << fhr::testing::generate_command(o) << "\n";
         const TriMesh m = random_closed_mesh(o);
         // Each face lies in an axis-aligned facet: two components of its normal are exactly zero.
         for (fhr::FaceId f : m.faces()) {
@@ -113,9 +121,9 @@ TEST_CASE("without noise the surface is exactly the block: edits only re-triangu
 
 TEST_CASE("generated meshes pass the strict input builder unchanged (GEN-5)", "[property]") {
     rc::prop("GEN-5", [] {
-        const TriMesh m = *fhr::test::gen_closed_mesh(0, 4, 2000);
+        const TriMesh m = *fhr::testing::gen_closed_mesh(0, 4, 2000);
         fhr::BuildLog log;
-        const TriMesh built = fhr::build_trimesh(fhr::test::to_soup(m), fhr::BuildOptions{}, log);
+        const TriMesh built = fhr::build_trimesh(to_soup(m), fhr::BuildOptions{}, log);
         RC_ASSERT(log.warnings.empty());
         RC_ASSERT(log.reoriented_faces == 0u);
         RC_ASSERT(log.dropped_vertices == 0u);
@@ -128,7 +136,7 @@ TEST_CASE("generated meshes pass the strict input builder unchanged (GEN-5)", "[
 
 TEST_CASE("the same options give bit-identical meshes (GEN-4)", "[property]") {
     rc::prop("GEN-4", [] {
-        const fhr::test::GeneratedMesh m = *fhr::test::gen_closed_mesh(0, 4, 2000);
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_closed_mesh(0, 4, 2000);
         RC_ASSERT(identical(m, random_closed_mesh(m.options)));
     });
 }
@@ -164,7 +172,7 @@ TEST_CASE("different seeds give different meshes", "[unit]") {
 
 TEST_CASE("noise moves vertices by at most noise × their mean edge length, keeping the connectivity", "[property]") {
     rc::prop("jitter bound", [] {
-        const fhr::test::GeneratedMesh noisy = *fhr::test::gen_closed_mesh(0, 3, 2000);
+        const fhr::testing::GeneratedMesh noisy = *fhr::testing::gen_closed_mesh(0, 3, 2000);
         RandomMeshOptions o = noisy.options;
         RC_PRE(o.noise > 0);
         o.noise = 0;
@@ -246,7 +254,7 @@ TEST_CASE("a large mesh: genus 3, 200,000 faces", "[slow]") {
 
 TEST_CASE("generated meshes survive write -> read -> build exactly, in every writable format (FMT-WRITE-2, GEN-5)", "[property]") {
     rc::prop("file round trip", [] {
-        const TriMesh m = *fhr::test::gen_closed_mesh(0, 4, 1500);
+        const TriMesh m = *fhr::testing::gen_closed_mesh(0, 4, 1500);
         for (const char* ext : {"off", "obj", "ply"}) {
             const std::string path = fhr::test::temp_path(std::string("roundtrip.") + ext);
             switch (fhr::io::format_from_extension(path)) {

@@ -9,14 +9,14 @@
 #include <cmath>
 #include <map>
 
-#include "core/build.hpp"
-#include "core/errors.hpp"
-#include "domain/decimate.hpp"
-#include "geodesic/ellipse.hpp"
-#include "geodesic/fast_marching.hpp"
-#include "generate/random_mesh.hpp"
-#include "io/read.hpp"
-#include "support/gen_mesh.hpp"
+#include <fhr/core/build.hpp>
+#include <fhr/core/errors.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/geodesic/ellipse.hpp>
+#include <fhr/geodesic/fast_marching.hpp>
+#include <fhr/generate/random_mesh.hpp>
+#include <fhr/io/read.hpp>
+#include <fhr/testing/rapidcheck.hpp>
 #include "support/test_support.hpp"
 
 using namespace fhr;
@@ -53,7 +53,7 @@ std::vector<std::uint8_t> paper_ellipse(const TriMesh& m, VertexId a, VertexId b
 
 TEST_CASE("GEO-E1: the ellipse path is as short as the unrestricted one (random meshes)", "[property][geodesic]") {
     rc::prop("ellipse vs whole mesh", [] {
-        const TriMesh m = *test::gen_closed_mesh(0, 3, 1200);
+        const TriMesh m = *fhr::testing::gen_closed_mesh(0, 3, 1200);
         const auto n = static_cast<std::uint32_t>(m.n_vertices());
         const VertexId a(*rc::gen::inRange<std::uint32_t>(0, n)), b(*rc::gen::inRange<std::uint32_t>(0, n));
         RC_PRE(a != b);
@@ -102,7 +102,7 @@ TEST_CASE("GEO-E1: the 171 fandisk domain edges (paper §6) by the ellipse searc
 
 TEST_CASE("GEO-E1: any K_0, every certificate agrees with the unrestricted length", "[property][geodesic]") {
     rc::prop("ellipse (K_0 in {1.0001, 1.01, 1.06, 1.3}) vs whole mesh", [] {
-        const TriMesh m = *test::gen_closed_mesh(0, 3, 1200);
+        const TriMesh m = *fhr::testing::gen_closed_mesh(0, 3, 1200);
         const auto n = static_cast<std::uint32_t>(m.n_vertices());
         const VertexId a(*rc::gen::inRange<std::uint32_t>(0, n)), b(*rc::gen::inRange<std::uint32_t>(0, n));
         RC_PRE(a != b);

@@ -23,15 +23,15 @@
 #include <string>
 #include <tuple>
 
-#include "core/build.hpp"
-#include "core/geometry.hpp"
-#include "core/predicates.hpp"
-#include "domain/decimate.hpp"
-#include "geodesic/exact.hpp"
-#include "io/read.hpp"
+#include <fhr/core/build.hpp>
+#include <fhr/core/geometry.hpp>
+#include <fhr/core/predicates.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/geodesic/exact.hpp>
+#include <fhr/io/read.hpp>
 #include "support/analytic_meshes.hpp"
 #include "support/cgal_oracle.hpp"
-#include "support/gen_mesh.hpp"
+#include <fhr/testing/rapidcheck.hpp>
 #include "support/test_support.hpp"
 
 using namespace fhr;
@@ -273,7 +273,7 @@ TEST_CASE("GEO-1 and GEO-4: distances equal CGAL's and paths are geodesics on ra
           "[geodesic][oracle][property]") {
     std::size_t pairs = 0, through_vertex = 0;
     rc::prop("exact == CGAL from a few sources, all vertices as targets", [&] {
-        const test::GeneratedMesh m = *test::gen_closed_mesh(0, 3, 400);
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_closed_mesh(0, 3, 400);
         for (int k = 0; k < 3; ++k) {
             const VertexId s(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(m.n_vertices())));
             ExactGeodesic g(m, s);
@@ -373,7 +373,7 @@ TEST_CASE("GEO-9: needles and obtuse triangles (edges split near an end and then
           "[geodesic][oracle][property]") {
     std::size_t pairs = 0;
     rc::prop("split near an end and lifted, flip, compare", [&] {
-        test::GeneratedMesh g = *test::gen_closed_mesh(0, 3, 300);
+        fhr::testing::GeneratedMesh g = *fhr::testing::gen_closed_mesh(0, 3, 300);
         TriMesh& m = g;
         roughen(m, 12, 0.01, true);
         const VertexId s(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(m.n_vertices())));
@@ -400,7 +400,7 @@ TEST_CASE("GEO-9: needles and obtuse triangles (edges split near an end and then
 TEST_CASE("GEO-5: an edge split exactly keeps its end points |ab| apart through the new vertex",
           "[geodesic][property]") {
     rc::prop("split exactly on edges", [] {
-        test::GeneratedMesh g = *test::gen_closed_mesh(0, 3, 300);
+        fhr::testing::GeneratedMesh g = *fhr::testing::gen_closed_mesh(0, 3, 300);
         TriMesh& m = g;
         for (const auto& [a, b] : roughen(m, 12, 0, false)) {  // a flip would change the surface
             ExactGeodesic geo(m, a);
@@ -415,7 +415,7 @@ TEST_CASE("GEO-5: an edge split exactly keeps its end points |ab| apart through 
 TEST_CASE("GEO-8: early stop gives the targets' final distances; later calls with other targets continue",
           "[geodesic][property]") {
     rc::prop("early stop == full propagation", [] {
-        const test::GeneratedMesh m = *test::gen_closed_mesh(0, 3, 600);
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_closed_mesh(0, 3, 600);
         const auto n = static_cast<std::uint32_t>(m.n_vertices());
         const VertexId a(*rc::gen::inRange<std::uint32_t>(0, n)), b(*rc::gen::inRange<std::uint32_t>(0, n)),
             c(*rc::gen::inRange<std::uint32_t>(0, n)), d(*rc::gen::inRange<std::uint32_t>(0, n));
@@ -434,7 +434,7 @@ TEST_CASE("GEO-8: early stop gives the targets' final distances; later calls wit
 
 TEST_CASE("GEO-2: symmetry; triangle inequality; Euclidean lower and edge-path upper bounds", "[geodesic][property]") {
     rc::prop("metric properties", [] {
-        const test::GeneratedMesh m = *test::gen_closed_mesh(0, 3, 600);
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_closed_mesh(0, 3, 600);
         const auto n = static_cast<std::uint32_t>(m.n_vertices());
         const VertexId a(*rc::gen::inRange<std::uint32_t>(0, n)), b(*rc::gen::inRange<std::uint32_t>(0, n));
         const std::vector<double> da = exact_distances(m, a), db = exact_distances(m, b);
@@ -488,7 +488,7 @@ TEST_CASE("GEO-6: face masks: a path's neighbourhood keeps its length; a cut nev
           "[geodesic][oracle][property]") {
     std::size_t ellipse_pairs = 0;
     rc::prop("masked propagation", [&] {
-        const test::GeneratedMesh m = *test::gen_closed_mesh(0, 3, 600);
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_closed_mesh(0, 3, 600);
         const auto n = static_cast<std::uint32_t>(m.n_vertices());
         const VertexId a(*rc::gen::inRange<std::uint32_t>(0, n)), b(*rc::gen::inRange<std::uint32_t>(0, n));
         ExactGeodesic g(m, a);

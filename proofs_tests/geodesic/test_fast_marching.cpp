@@ -18,12 +18,12 @@
 #include <random>
 #include <sstream>
 
-#include "core/build.hpp"
-#include "core/errors.hpp"
-#include "geodesic/fast_marching.hpp"
-#include "io/read.hpp"
+#include <fhr/core/build.hpp>
+#include <fhr/core/errors.hpp>
+#include <fhr/geodesic/fast_marching.hpp>
+#include <fhr/io/read.hpp>
 #include "support/analytic_meshes.hpp"
-#include "support/gen_mesh.hpp"
+#include <fhr/testing/rapidcheck.hpp>
 #include "support/test_support.hpp"
 
 using namespace fhr;
@@ -388,7 +388,7 @@ TEST_CASE("obtuse triangles: unfolding keeps the error of the acute mesh", "[acc
 
 TEST_CASE("fast marching fields on random closed meshes of genus 0-3", "[property][geodesic]") {
     rc::prop("triangle inequality, chord bound, order, sources", [] {
-        const test::GeneratedMesh m = *test::gen_closed_mesh(0, 3, 2000);
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_closed_mesh(0, 3, 2000);
         const std::vector<VertexId> sources = gen_sources(m);
         FastMarchingOptions o;
         o.unfold = *rc::gen::arbitrary<bool>();
@@ -411,7 +411,7 @@ TEST_CASE("fast marching fields on random closed meshes of genus 0-3", "[propert
 
 TEST_CASE("early stop: the values within max_distance are bitwise those of the full run", "[property][geodesic]") {
     rc::prop("stop at a random radius", [] {
-        const test::GeneratedMesh m = *test::gen_closed_mesh(0, 3, 2000);
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_closed_mesh(0, 3, 2000);
         const std::vector<VertexId> sources = gen_sources(m);
         const DistanceField full = fast_marching(m, sources);
         const double largest = *std::max_element(full.distance.begin(), full.distance.end());
@@ -438,7 +438,7 @@ TEST_CASE("early stop: the values within max_distance are bitwise those of the f
 
 TEST_CASE("deterministic: repeated runs and reordered or repeated sources agree bitwise", "[property][geodesic]") {
     rc::prop("two runs", [] {
-        const test::GeneratedMesh m = *test::gen_closed_mesh(0, 3, 2000);
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_closed_mesh(0, 3, 2000);
         std::vector<VertexId> sources = gen_sources(m);
         const DistanceField a = fast_marching(m, sources), b = fast_marching(m, sources);
         RC_ASSERT(a.distance == b.distance);

@@ -7,7 +7,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "core/errors.hpp"
+#include <fhr/core/errors.hpp>
 
 namespace fhr::test {
 

@@ -3,7 +3,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "io/read.hpp"
+#include <fhr/io/read.hpp>
 #include "refusal.hpp"
 
 using Catch::Matchers::Contains;

@@ -13,9 +13,9 @@
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
-#include "io/atomic_file.hpp"
-#include "io/read.hpp"
-#include "io/write.hpp"
+#include <fhr/io/atomic_file.hpp>
+#include <fhr/io/read.hpp>
+#include <fhr/io/write.hpp>
 #include "refusal.hpp"
 #include "support/test_support.hpp"
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""LIB-1 (issue: fhr as a C++ library): with -Dtests=disabled -Dbench=disabled, configuring fhr needs
+"""LIB-1 (issue: fhr as a C++ library): with -Dtests=false -Dbench=false, configuring fhr needs
 only the library's own dependencies. Configures SOURCE_DIR in a fresh temporary build folder and
 checks that `meson introspect --dependencies` names none of CGAL, Catch2, RapidCheck and
 GeographicLib, and that no test or benchmark is defined. Exit 0 when all hold.
@@ -11,10 +11,10 @@ import tempfile
 
 source = sys.argv[1]
 with tempfile.TemporaryDirectory() as build:
-    setup = subprocess.run(["meson", "setup", build, source, "-Dtests=disabled", "-Dbench=disabled"],
+    setup = subprocess.run(["meson", "setup", build, source, "-Dtests=false", "-Dbench=false"],
                            capture_output=True, text=True)
     if setup.returncode != 0:
-        sys.exit("meson setup -Dtests=disabled -Dbench=disabled failed:\n" + setup.stdout[-3000:] + setup.stderr[-3000:])
+        sys.exit("meson setup -Dtests=false -Dbench=false failed:\n" + setup.stdout[-3000:] + setup.stderr[-3000:])
     deps = json.loads(subprocess.run(["meson", "introspect", build, "--dependencies"], check=True,
                                      capture_output=True, text=True).stdout)
     names = sorted({d["name"].lower() for d in deps})
@@ -25,5 +25,5 @@ with tempfile.TemporaryDirectory() as build:
     if forbidden:
         sys.exit("the library's configuration needs test or benchmark dependencies: " + ", ".join(forbidden))
     if tests:
-        sys.exit("tests are defined although -Dtests=disabled: " + ", ".join(t["name"] for t in tests))
+        sys.exit("tests are defined although -Dtests=false: " + ", ".join(t["name"] for t in tests))
 print("LIB-1: configuring without tests and benchmarks needs none of CGAL, Catch2, RapidCheck, GeographicLib")

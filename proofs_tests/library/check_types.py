@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """LIB-4 (spec/library.md): mixing up element kinds does not compile. Compiles small programs
-against src/core/ids.hpp with the project's compiler (-fsyntax-only): the control (per-vertex data
+against src/fhr/core/ids.hpp with the project's compiler (-fsyntax-only): the control (per-vertex data
 indexed by a VertexId) must compile; indexing per-vertex data with a FaceId or a plain integer,
 and passing a VertexId where a FaceId is meant, must not. Exit 0 when all hold.
 Usage: check_types.py SRC_DIR COMPILER [ARGS...]"""
@@ -10,7 +10,7 @@ import sys
 import tempfile
 
 src, compiler = sys.argv[1], sys.argv[2:]
-prelude = '#include "core/ids.hpp"\nusing namespace fhr;\nvoid takes_face(FaceId) {}\nint main() {\n    VertexData<int> d(3, 7);\n'
+prelude = '#include <fhr/core/ids.hpp>\nusing namespace fhr;\nvoid takes_face(FaceId) {}\nint main() {\n    VertexData<int> d(3, 7);\n'
 cases = [
     ("control: VertexData indexed by a VertexId", True, "    return d[VertexId(1)] - 7;\n"),
     ("per-vertex data indexed by a FaceId", False, "    return d[FaceId(1)];\n"),

@@ -1,5 +1,5 @@
 // FHR §4 tests — patches S_i to parameterize: triangulated disks cut from the random closed
-// meshes of src/generate (paper §1's inputs T), and jittered, flipped triangle lattices that are
+// meshes of src/fhr/generate (paper §1's inputs T), and jittered, flipped triangle lattices that are
 // planar (Proposition 2) or lifted onto a bumpy height field (Proposition 1).
 #pragma once
 
@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/predicates.hpp"
-#include "core/trimesh.hpp"
-#include "param/disk.hpp"
+#include <fhr/core/predicates.hpp>
+#include <fhr/core/trimesh.hpp>
+#include <fhr/param/disk.hpp>
 
 namespace fhr::test {
 

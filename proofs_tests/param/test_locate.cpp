@@ -9,14 +9,14 @@
 #include <limits>
 #include <random>
 
-#include "core/errors.hpp"
-#include "core/predicates.hpp"
-#include "param/certificate.hpp"
-#include "param/dividing_edges.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/core/predicates.hpp>
+#include <fhr/param/certificate.hpp>
+#include <fhr/param/dividing_edges.hpp>
 #include "param/disks.hpp"
-#include "param/locate.hpp"
-#include "param/patch_map.hpp"
-#include "support/gen_mesh.hpp"
+#include <fhr/param/locate.hpp>
+#include <fhr/param/patch_map.hpp>
+#include <fhr/testing/rapidcheck.hpp>
 
 using namespace fhr;
 using param::Disk;
@@ -37,7 +37,7 @@ rc::Gen<Solved> gen_solved() {
     return rc::gen::exec([] {
         Disk d;
         if (*rc::gen::arbitrary<bool>()) {
-            const test::GeneratedMesh m = *test::gen_closed_mesh(0, 2, 1200);
+            const fhr::testing::GeneratedMesh m = *fhr::testing::gen_closed_mesh(0, 2, 1200);
             d = test::disk_from_mesh(m, *rc::gen::inRange<std::uint64_t>(0, 1u << 30),
                                      *rc::gen::inRange<std::size_t>(1, std::min<std::size_t>(500, m.n_faces() / 2)));
         } else {

@@ -12,14 +12,14 @@
 #include <random>
 #include <set>
 
-#include "core/errors.hpp"
-#include "param/certificate.hpp"
-#include "param/disk.hpp"
-#include "param/dividing_edges.hpp"
-#include "param/patch_map.hpp"
-#include "param/weights.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/param/certificate.hpp>
+#include <fhr/param/disk.hpp>
+#include <fhr/param/dividing_edges.hpp>
+#include <fhr/param/patch_map.hpp>
+#include <fhr/param/weights.hpp>
 #include "param/disks.hpp"
-#include "support/gen_mesh.hpp"
+#include <fhr/testing/rapidcheck.hpp>
 
 using namespace fhr;
 using param::Disk;
@@ -68,7 +68,7 @@ double surface_area(const Disk& d) {
 // A disk of up to 600 faces cut from a random closed mesh of genus 0–3, with random corners.
 rc::Gen<Disk> gen_mesh_disk() {
     return rc::gen::exec([] {
-        const test::GeneratedMesh m = *test::gen_closed_mesh(0, 3, 1500);
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_closed_mesh(0, 3, 1500);
         const auto seed = *rc::gen::inRange<std::uint64_t>(0, 1u << 30);
         const auto faces = *rc::gen::inRange<std::size_t>(1, std::min<std::size_t>(600, m.n_faces() / 2));
         return test::disk_from_mesh(m, seed, faces);

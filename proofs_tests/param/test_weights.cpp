@@ -13,8 +13,8 @@
 
 #include <Eigen/Geometry>
 
-#include "core/errors.hpp"
-#include "param/weights.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/param/weights.hpp>
 
 using namespace fhr;
 using param::one_ring_weights;

@@ -1,4 +1,4 @@
-// FHR tests — PART-1..8 of spec/partition.md, independent of how src/partition computes them.
+// FHR tests — PART-1..8 of spec/partition.md, independent of how src/fhr/partition computes them.
 #include "partition/partition_checks.hpp"
 
 
@@ -7,9 +7,9 @@
 #include <set>
 #include <sstream>
 
-#include "core/geometry.hpp"
-#include "core/topology.hpp"
-#include "geodesic/ellipse.hpp"
+#include <fhr/core/geometry.hpp>
+#include <fhr/core/topology.hpp>
+#include <fhr/geodesic/ellipse.hpp>
 
 namespace fhr::test {
 namespace {

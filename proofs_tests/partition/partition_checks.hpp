@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "core/trimesh.hpp"
-#include "partition/partition.hpp"
+#include <fhr/core/trimesh.hpp>
+#include <fhr/partition/partition.hpp>
 
 namespace fhr::test {
 

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "exchange/verify.hpp"
-#include "pipeline/outputs.hpp"
-#include "pipeline/pipeline.hpp"
+#include <fhr/exchange/verify.hpp>
+#include <fhr/pipeline/outputs.hpp>
+#include <fhr/pipeline/pipeline.hpp>
 #include "support/analytic_meshes.hpp"
 
 using namespace fhr;

@@ -11,10 +11,10 @@
 #include <random>
 #include <string>
 
-#include "core/errors.hpp"
-#include "domain/decimate.hpp"
-#include "generate/random_mesh.hpp"
-#include "pipeline/pipeline.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/generate/random_mesh.hpp>
+#include <fhr/pipeline/pipeline.hpp>
 #include "support/test_support.hpp"
 
 using namespace fhr;

@@ -6,17 +6,17 @@
 #include <algorithm>
 #include <sstream>
 
-#include "core/errors.hpp"
-#include "core/geometry.hpp"
-#include "core/topology.hpp"
-#include "domain/decimate.hpp"
-#include "partition/partition.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/core/geometry.hpp>
+#include <fhr/core/topology.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/partition/partition.hpp>
 #include "partition/partition_checks.hpp"
-#include "partition/region.hpp"
-#include "partition/restricted.hpp"
+#include <fhr/partition/detail/region.hpp>
+#include <fhr/partition/detail/restricted.hpp>
 #include "support/gen_domain.hpp"
 #include "support/cgal_oracle.hpp"
-#include "support/gen_mesh.hpp"
+#include <fhr/testing/rapidcheck.hpp>
 #include "support/test_support.hpp"
 
 using namespace fhr;
@@ -222,7 +222,7 @@ TEST_CASE("PART-9: the elephant at 114 faces needs all three remedies and ends f
 
 TEST_CASE("PART-1..9: random meshes of genus 0–3 and random domain sizes partition validly", "[partition][property]") {
     rc::prop("partition of a random closed mesh over a random decimated domain", [] {
-        const test::GeneratedMesh g = *test::gen_closed_mesh(0, 3, 1500);
+        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_closed_mesh(0, 3, 1500);
         const TriMesh& T = g;
         const domain::Domain D = test::random_domain(T, g.options.genus);
         partition::PartitionOptions options;
@@ -252,7 +252,7 @@ TEST_CASE("PART-10: the elephant at 114 faces keeps its domain, conflicting edge
 
 TEST_CASE("PART-10: random meshes of genus 0–3 keep their decimated domain", "[partition][keep][property]") {
     rc::prop("the partition of a random closed mesh keeps its random decimated domain", [] {
-        const test::GeneratedMesh g = *test::gen_closed_mesh(0, 3, 1500);
+        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_closed_mesh(0, 3, 1500);
         const TriMesh& T = g;
         const domain::Domain D = test::random_domain(T, g.options.genus);
         const partition::Partition P = partition::partition(T, D);

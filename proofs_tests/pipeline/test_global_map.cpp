@@ -4,9 +4,9 @@
 
 #include <random>
 
-#include "core/geometry.hpp"
-#include "domain/decimate.hpp"
-#include "pipeline/pipeline.hpp"
+#include <fhr/core/geometry.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/pipeline/pipeline.hpp>
 #include "support/test_support.hpp"
 
 using namespace fhr;

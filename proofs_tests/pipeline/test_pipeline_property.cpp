@@ -9,19 +9,19 @@
 #include <algorithm>
 #include <string>
 
-#include "core/errors.hpp"
-#include "domain/decimate.hpp"
-#include "exchange/verify.hpp"
-#include "pipeline/outputs.hpp"
-#include "pipeline/pipeline.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/exchange/verify.hpp>
+#include <fhr/pipeline/outputs.hpp>
+#include <fhr/pipeline/pipeline.hpp>
 #include "support/gen_domain.hpp"
-#include "support/gen_mesh.hpp"
+#include <fhr/testing/rapidcheck.hpp>
 
 using namespace fhr;
 
 TEST_CASE("pipeline: every run on a random mesh of genus 0–3 is certified and verify-valid", "[pipeline][property]") {
     rc::prop("parameterize(random T, decimated D) is certified and valid", [] {
-        const test::GeneratedMesh g = *test::gen_closed_mesh(0, 3, 1200);
+        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_closed_mesh(0, 3, 1200);
         const TriMesh& T = g;
         domain::Domain D = test::random_domain(T, g.options.genus);
         const std::size_t target = D.mesh.n_faces();

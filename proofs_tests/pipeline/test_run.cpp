@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/errors.hpp"
-#include "pipeline/run.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/pipeline/run.hpp>
 #include "support/test_support.hpp"
 
 using namespace fhr;

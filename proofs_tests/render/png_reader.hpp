@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "render/image.hpp"
-#include "render/png.hpp"
+#include <fhr/render/image.hpp>
+#include <fhr/render/png.hpp>
 
 namespace fhr::render::reader {
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "core/errors.hpp"
-#include "render/png.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/render/png.hpp>
 #include "render/png_reader.hpp"
 #include "support/test_support.hpp"
 

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "core/errors.hpp"
-#include "generate/random_mesh.hpp"
-#include "render/figures.hpp"
-#include "render/png.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/generate/random_mesh.hpp>
+#include <fhr/render/figures.hpp>
+#include <fhr/render/png.hpp>
 #include "render/png_reader.hpp"
-#include "render/raster.hpp"
+#include <fhr/render/raster.hpp>
 #include "support/test_support.hpp"
 
 using namespace fhr;

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/errors.hpp"
-#include "render/svg.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/render/svg.hpp>
 #include "support/test_support.hpp"
 
 using namespace fhr;

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/trimesh.hpp"
+#include <fhr/core/trimesh.hpp>
 
 namespace fhr::test {
 

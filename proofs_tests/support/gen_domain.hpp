@@ -6,8 +6,8 @@
 
 #include <algorithm>
 
-#include "core/errors.hpp"
-#include "domain/decimate.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/domain/decimate.hpp>
 
 namespace fhr::test {
 

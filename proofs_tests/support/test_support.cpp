@@ -13,8 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/build.hpp"
-#include "io/read.hpp"
+#include <fhr/io/read.hpp>
 
 extern char** environ;
 
@@ -54,10 +53,7 @@ const fs::path source_root() { return fs::path(FHR_TEST_DATA).parent_path().pare
 
 }  // namespace
 
-TriMesh load_mesh(const std::string& path) {
-    BuildLog log;
-    return build_trimesh(io::read_soup(path), {}, log);
-}
+TriMesh load_mesh(const std::string& path) { return io::read_mesh(path); }
 
 std::string temp_path(std::string_view file_name) { return (temp_dir() / file_name).string(); }
 

@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/trimesh.hpp"
+#include <fhr/core/trimesh.hpp>
 
 namespace fhr::test {
 

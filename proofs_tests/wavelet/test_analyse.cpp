@@ -5,10 +5,10 @@
 #include <array>
 #include <cmath>
 
-#include "core/errors.hpp"
-#include "core/geometry.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/core/geometry.hpp>
 #include "support/analytic_meshes.hpp"
-#include "wavelet/analyse.hpp"
+#include <fhr/wavelet/analyse.hpp>
 
 using namespace fhr;
 

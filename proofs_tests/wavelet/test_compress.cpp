@@ -10,9 +10,9 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-#include "core/errors.hpp"
-#include "wavelet/compress.hpp"
-#include "wavelet/hausdorff.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/wavelet/compress.hpp>
+#include <fhr/wavelet/hausdorff.hpp>
 #include "wavelet_support.hpp"
 
 using namespace fhr;
@@ -62,7 +62,7 @@ TEST_CASE("WAV-7: kept_count is ⌊p·N/100⌋: 179 and 718 of the fandisk's 3,5
 TEST_CASE("WAV-7: keeping 100 % reconstructs exactly, 0 % gives f^0; the kept ones are the largest", "[property][wavelet]") {
     rc::prop("random D, J, f", [] {
         const int J = *rc::gen::inRange(1, 4);
-        const test::GeneratedMesh D = *test::gen_domain(J == 3 ? 150 : 400);
+        const fhr::testing::GeneratedMesh D = *test::gen_domain(J == 3 ? 150 : 400);
         const Refinement r = wavelet::refine(D, J);
         const FilterBank bank(r);
         const std::vector<Vec3> f = test::random_points(r.finest().n_vertices(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30));
@@ -104,7 +104,7 @@ TEST_CASE("WAV-8: keeping whole levels: ‖f − f^k‖² = Σ_{j ≥ k} ‖g^j�
     // sums positive terms computed to a few ulps: 1e−12 relative.
     rc::prop("random D, J, smooth f with noise", [] {
         const int J = *rc::gen::inRange(1, 4);
-        const test::GeneratedMesh D = *test::gen_domain(J == 3 ? 150 : 400);
+        const fhr::testing::GeneratedMesh D = *test::gen_domain(J == 3 ? 150 : 400);
         const Refinement r = wavelet::refine(D, J);
         const FilterBank bank(r);
         const double noise = *rc::gen::element(0.0, 0.001, 0.01, 0.1);
@@ -151,7 +151,7 @@ TEST_CASE("WAV-8: keeping the largest k: the error is within the Riesz bounds of
     // by the factor (max ρ⁺ / min ρ⁻)^½ between any two k, and the bound itself never increases.
     rc::prop("random D, J ≤ 2, smooth f with noise", [] {
         const int J = *rc::gen::inRange(1, 3);
-        const test::GeneratedMesh D = *test::gen_domain(J == 2 ? 64 : 200);
+        const fhr::testing::GeneratedMesh D = *test::gen_domain(J == 2 ? 64 : 200);
         const Refinement r = wavelet::refine(D, J);
         const FilterBank bank(r);
         const double noise = *rc::gen::element(0.0, 0.01, 0.1);

@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "wavelet/filter_bank.hpp"
+#include <fhr/wavelet/filter_bank.hpp>
 #include "wavelet_support.hpp"
 
 using namespace fhr;
@@ -58,7 +58,7 @@ TEST_CASE("WAV-4: reconstruct(decompose(f)) = f to 1e-12 relative, random f on r
           "[property][wavelet]") {
     rc::prop("random D, J, f (coordinates up to 10^3 away from the origin)", [] {
         const int J = *rc::gen::inRange(1, 5);
-        const test::GeneratedMesh D = *test::gen_domain(max_faces_for(J));
+        const fhr::testing::GeneratedMesh D = *test::gen_domain(max_faces_for(J));
         const Refinement r = wavelet::refine(D, J);
         const FilterBank bank(r);
         const double offset = *rc::gen::element(0.0, 1.0, 1e3);
@@ -83,7 +83,7 @@ TEST_CASE("WAV-4: the coarse part is the orthogonal projection of f^j onto S^{j�
     // Normal equations Pᵀ G (c^j − P c^{j−1}) = 0: each entry sums about 30 terms of size
     // ‖G‖·‖c‖, with c^{j−1} from a solve of residual 1e−13‖c‖: 1e−12 of ‖|Pᵀ| |G|‖_∞‖c‖_∞ bounds it.
     rc::prop("random D, one level", [] {
-        const test::GeneratedMesh D = *test::gen_domain(400);
+        const fhr::testing::GeneratedMesh D = *test::gen_domain(400);
         const int j = *rc::gen::inRange(1, 3);
         const Refinement r = wavelet::refine(D, j);
         const FilterBank bank(r);
@@ -126,7 +126,7 @@ TEST_CASE("WAV-6: a function already in S^k has every wavelet coefficient at lev
     rc::prop("random D, J, k < J, c^k", [] {
         const int J = *rc::gen::inRange(1, 4);
         const int k = *rc::gen::inRange(0, J);
-        const test::GeneratedMesh D = *test::gen_domain(max_faces_for(J));
+        const fhr::testing::GeneratedMesh D = *test::gen_domain(max_faces_for(J));
         const Refinement r = wavelet::refine(D, J);
         const FilterBank bank(r);
         const std::vector<Vec3> ck = test::random_points(r.levels[k].n_vertices(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30));

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "support/analytic_meshes.hpp"
-#include "wavelet/hausdorff.hpp"
+#include <fhr/wavelet/hausdorff.hpp>
 #include "wavelet_support.hpp"
 
 using namespace fhr;
@@ -53,7 +53,7 @@ TEST_CASE("WAV-9: the closest point lies on the triangle and no point of a dense
 
 TEST_CASE("WAV-9: the tree's closest point equals brute force over all triangles", "[property][wavelet]") {
     rc::prop("random closed meshes, random query points and hints", [] {
-        const test::GeneratedMesh m = *test::gen_domain(600);
+        const fhr::testing::GeneratedMesh m = *test::gen_domain(600);
         const std::vector<Vec3>& x = m.positions();
         const std::vector<Triangle> t = m.triangles();
         const TriangleTree tree(x, t);

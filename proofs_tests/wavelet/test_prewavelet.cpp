@@ -12,8 +12,8 @@
 #include <map>
 #include <set>
 
-#include "wavelet/prewavelet.hpp"
-#include "wavelet/refine.hpp"
+#include <fhr/wavelet/prewavelet.hpp>
+#include <fhr/wavelet/refine.hpp>
 #include "wavelet_support.hpp"
 
 using namespace fhr;
@@ -173,7 +173,7 @@ TEST_CASE("WAV-3: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on bipyramids of v
 
 TEST_CASE("WAV-3: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on random domains, in double and 100 digits", "[property][wavelet]") {
     rc::prop("random closed D (genus 0..2), levels 1..2", [] {
-        const test::GeneratedMesh D = *test::gen_domain(160);
+        const fhr::testing::GeneratedMesh D = *test::gen_domain(160);
         const int j = *rc::gen::inRange(1, 3);
         const wavelet::Refinement r = wavelet::refine(D, j);
         const Orthogonality d = orthogonality<double>(r.levels[j - 1], r.levels[j], j);

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <map>
 
-#include "core/errors.hpp"
-#include "core/topology.hpp"
-#include "wavelet/refine.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/core/topology.hpp>
+#include <fhr/wavelet/refine.hpp>
 #include "wavelet_support.hpp"
 
 using namespace fhr;
@@ -109,7 +109,7 @@ void check_locations(const TriMesh& D, const Refinement& r) {
 
 TEST_CASE("WAV-1, WAV-2: refinement counts, numbering and exact locations on random domains, J = 0..3", "[property][wavelet]") {
     rc::prop("random closed D (genus 0..2)", [] {
-        const test::GeneratedMesh D = *test::gen_domain(200);
+        const fhr::testing::GeneratedMesh D = *test::gen_domain(200);
         const int J = *rc::gen::inRange(0, 4);
         const Refinement r = wavelet::refine(D, J);
         check_counts(D, r, J);

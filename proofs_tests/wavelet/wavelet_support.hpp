@@ -1,5 +1,5 @@
 // FHR §5 tests — what the wavelet suites share: closed meshes with a vertex of each valence 3..12
-// (bipyramids), random domains from src/generate, and random functions in S^j.
+// (bipyramids), random domains from src/fhr/generate, and random functions in S^j.
 #pragma once
 
 #include <rapidcheck.h>
@@ -9,9 +9,9 @@
 #include <random>
 #include <vector>
 
-#include "core/trimesh.hpp"
-#include "support/gen_mesh.hpp"
-#include "wavelet/refine.hpp"
+#include <fhr/core/trimesh.hpp>
+#include <fhr/testing/rapidcheck.hpp>
+#include <fhr/wavelet/refine.hpp>
 
 namespace fhr::test {
 
@@ -36,10 +36,10 @@ inline TriMesh bipyramid(unsigned n) {
 /// A random closed domain D: genus 0..2 (as far as `max_faces` allows: generate::min_faces), at
 /// most `max_faces` faces (shown as its `fhr generate` command in a counterexample).
 /// \pre max_faces ≥ 12.
-inline rc::Gen<GeneratedMesh> gen_domain(std::size_t max_faces) {
+inline rc::Gen<testing::GeneratedMesh> gen_domain(std::size_t max_faces) {
     int genus = 2;
     while (genus > 0 && generate::min_faces(genus) > max_faces) --genus;
-    return gen_closed_mesh(0, genus, max_faces);
+    return testing::gen_closed_mesh(0, genus, max_faces);
 }
 
 /// n random points with coordinates uniform in [−1, 1] (scaled by `scale`, shifted by `offset`).

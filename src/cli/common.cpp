@@ -4,9 +4,9 @@
 #include <charconv>
 #include <cstdio>
 
-#include "core/errors.hpp"
-#include "io/read.hpp"
-#include "io/write.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/io/read.hpp>
+#include <fhr/io/write.hpp>
 
 namespace fhr::cli {
 
@@ -93,20 +93,11 @@ void print_warnings(const BuildLog& log) {
 
 TriMesh load_mesh(const std::string& path, const BuildOptions& options) {
     BuildLog log;
-    TriMesh mesh = build_trimesh(io::read_soup(path), options, log);
+    TriMesh mesh = io::read_mesh(path, options, &log);
     print_warnings(log);
     return mesh;
 }
 
-void save_mesh(const std::string& path, const TriMesh& mesh) {
-    const std::vector<Triangle> tris = mesh.triangles();
-    switch (io::format_from_extension(path)) {
-        case io::Format::off: io::write_off(path, mesh.positions(), tris); return;
-        case io::Format::obj: io::write_obj(path, mesh.positions(), tris); return;
-        case io::Format::ply: io::write_ply(path, mesh.positions(), tris); return;
-        case io::Format::stl: break;
-    }
-    throw InvalidInput(path, 0, "cannot write STL (it has no shared vertices): use .off, .obj or .ply");
-}
+void save_mesh(const std::string& path, const TriMesh& mesh) { io::write_mesh(path, mesh.positions(), mesh.triangles()); }
 
 }  // namespace fhr::cli

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/build.hpp"
-#include "core/trimesh.hpp"
+#include <fhr/core/build.hpp>
+#include <fhr/core/trimesh.hpp>
 
 namespace fhr::cli {
 

@@ -1,12 +1,12 @@
 // FHR cli — `fhr geodesic MESH SRC DST`: one shortest geodesic Γ(x_j, x_k) of paper §3 (eq. 1),
-// found by the ellipse search (src/geodesic/ellipse.hpp): its exact length, its points, the K that
+// found by the ellipse search (src/fhr/geodesic/ellipse.hpp): its exact length, its points, the K that
 // was used and the work done.
 #include <charconv>
 #include <cstdio>
 
 #include "cli/common.hpp"
-#include "io/json.hpp"
-#include "geodesic/ellipse.hpp"
+#include <fhr/io/detail/json.hpp>
+#include <fhr/geodesic/ellipse.hpp>
 
 namespace fhr::cli {
 namespace {

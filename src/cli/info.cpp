@@ -5,11 +5,11 @@
 #include <optional>
 
 #include "cli/common.hpp"
-#include "io/json.hpp"
-#include "core/errors.hpp"
-#include "core/geometry.hpp"
-#include "core/topology.hpp"
-#include "io/read.hpp"
+#include <fhr/io/detail/json.hpp>
+#include <fhr/core/errors.hpp>
+#include <fhr/core/geometry.hpp>
+#include <fhr/core/topology.hpp>
+#include <fhr/io/read.hpp>
 
 namespace fhr::cli {
 namespace {

@@ -1,5 +1,5 @@
 // FHR cli — the `fhr` command. Subcommands follow the paper's pipeline (§2–§6); this file only
-// dispatches and maps the error taxonomy (src/core/errors.hpp) to exit codes (spec/cli.md):
+// dispatches and maps the error taxonomy (src/fhr/core/errors.hpp) to exit codes (spec/cli.md):
 // 0 success, 2 invalid input or usage, 3 partition failure, 4 numerical failure, 70 internal error.
 #include <cstdio>
 #include <exception>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
-#include "core/errors.hpp"
+#include <fhr/core/errors.hpp>
 
 namespace {
 

@@ -4,12 +4,12 @@
 #include <filesystem>
 
 #include "cli/common.hpp"
-#include "core/topology.hpp"
-#include "domain/decimate.hpp"
-#include "domain/user_domain.hpp"
-#include "io/read.hpp"
-#include "generate/random_mesh.hpp"
-#include "io/atomic_file.hpp"
+#include <fhr/core/topology.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/domain/user_domain.hpp>
+#include <fhr/io/read.hpp>
+#include <fhr/generate/random_mesh.hpp>
+#include <fhr/io/atomic_file.hpp>
 
 namespace fhr::cli {
 

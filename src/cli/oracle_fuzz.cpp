@@ -1,8 +1,8 @@
 // FHR cli — `fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--genus-max G] [--seed S]
 // [--keep DIR] [--timeout SECONDS]`: fuzzing another implementation of the paper with fhr's oracle
-// (spec/cli.md CLI-ORACLE-*). Random closed meshes T (§1's input class, src/generate) go to the
+// (spec/cli.md CLI-ORACLE-*). Random closed meshes T (§1's input class, src/fhr/generate) go to the
 // program; whatever it writes must be a `fhr-param 1` file that `fhr verify --mesh T` accepts
-// (PARAM-1..11, src/exchange). Each failure is kept with its reason and shrunk.
+// (PARAM-1..11, src/fhr/exchange). Each failure is kept with its reason and shrunk.
 //
 // Pseudocode:
 //   for i in 0 .. N−1:
@@ -35,12 +35,12 @@
 #include <vector>
 
 #include "cli/common.hpp"
-#include "core/errors.hpp"
-#include "exchange/fhr_param.hpp"
-#include "exchange/verify.hpp"
-#include "generate/random_mesh.hpp"
-#include "io/atomic_file.hpp"
-#include "io/read.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/exchange/fhr_param.hpp>
+#include <fhr/exchange/verify.hpp>
+#include <fhr/generate/random_mesh.hpp>
+#include <fhr/io/atomic_file.hpp>
+#include <fhr/io/read.hpp>
 
 extern char** environ;
 

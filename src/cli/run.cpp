@@ -6,13 +6,13 @@
 #include <optional>
 
 #include "cli/common.hpp"
-#include "core/errors.hpp"
-#include "core/topology.hpp"
-#include "domain/user_domain.hpp"
-#include "io/correspondence.hpp"
-#include "io/read.hpp"
-#include "pipeline/outputs.hpp"
-#include "pipeline/run.hpp"
+#include <fhr/core/errors.hpp>
+#include <fhr/core/topology.hpp>
+#include <fhr/domain/user_domain.hpp>
+#include <fhr/io/correspondence.hpp>
+#include <fhr/io/read.hpp>
+#include <fhr/pipeline/outputs.hpp>
+#include <fhr/pipeline/run.hpp>
 
 namespace fhr::cli {
 namespace {

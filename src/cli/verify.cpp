@@ -1,6 +1,6 @@
 // FHR cli — `fhr verify PARAM.fhrp [--mesh INPUT] [--json]`: the oracle for any producer of a
 // parameterization (spec/cli.md CLI-VERIFY-*, spec/param.md). It reads the file with the strict
-// reader (PARAM-1), checks PARAM-2..10 and, with the input mesh T, PARAM-11 (src/exchange/verify.hpp),
+// reader (PARAM-1), checks PARAM-2..10 and, with the input mesh T, PARAM-11 (src/fhr/exchange/verify.hpp),
 // and prints a verdict and one line per check, or one JSON object.
 // Exit codes: 0 valid, 1 invalid (a check failed), 2 unreadable (the file or the mesh).
 #include <cstdio>
@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "cli/common.hpp"
-#include "io/json.hpp"
-#include "core/errors.hpp"
-#include "exchange/fhr_param.hpp"
-#include "exchange/verify.hpp"
+#include <fhr/io/detail/json.hpp>
+#include <fhr/core/errors.hpp>
+#include <fhr/exchange/fhr_param.hpp>
+#include <fhr/exchange/verify.hpp>
 
 namespace fhr::cli {
 namespace {

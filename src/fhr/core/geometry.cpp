@@ -1,0 +1,128 @@
+// FHR core — geometry helpers (see geometry.hpp).
+#include <fhr/core/geometry.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace fhr {
+
+Vec3 edge_vector(const TriMesh& m, HalfedgeId h) { return m.position(m.to(h)) - m.position(m.from(h)); }
+
+double edge_length(const TriMesh& m, EdgeId e) { return edge_vector(m, TriMesh::halfedge(e, 0)).norm(); }
+
+static Vec3 face_cross(const TriMesh& m, FaceId f) {
+    const auto v = m.face_vertices(f);
+    return (m.position(v[1]) - m.position(v[0])).cross(m.position(v[2]) - m.position(v[0]));
+}
+
+double face_area(const TriMesh& m, FaceId f) { return 0.5 * face_cross(m, f).norm(); }
+
+Vec3 face_normal(const TriMesh& m, FaceId f) {
+    const Vec3 n = face_cross(m, f);
+    const double len = n.norm();
+    return len > 0 ? Vec3(n / len) : Vec3::Zero();
+}
+
+double corner_angle(const TriMesh& m, HalfedgeId h) {
+    const Vec3 a = edge_vector(m, h);
+    const Vec3 b = -edge_vector(m, m.prev(h));
+    return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+Vec3 vertex_normal(const TriMesh& m, VertexId v) {
+    Vec3 n = Vec3::Zero();
+    m.for_each_outgoing(v, [&](HalfedgeId h) {
+        if (!m.is_boundary(h)) n += corner_angle(m, h) * face_normal(m, m.face(h));
+    });
+    const double len = n.norm();
+    return len > 0 ? Vec3(n / len) : Vec3::Zero();
+}
+
+double angle_sum(const TriMesh& m, VertexId v) {
+    double s = 0;
+    m.for_each_outgoing(v, [&](HalfedgeId h) {
+        if (!m.is_boundary(h)) s += corner_angle(m, h);
+    });
+    return s;
+}
+
+BoundingBox bounding_box(const TriMesh& m) {
+    BoundingBox b{Vec3::Constant(INFINITY), Vec3::Constant(-INFINITY)};
+    for (const Vec3& p : m.positions()) {
+        b.min = b.min.cwiseMin(p);
+        b.max = b.max.cwiseMax(p);
+    }
+    return b;
+}
+
+double signed_volume(const TriMesh& m) {
+    // Tetrahedra from the box centre: the same volume for a closed surface, less cancellation.
+    const BoundingBox box = bounding_box(m);
+    const Vec3 c = 0.5 * (box.min + box.max);
+    double six_v = 0;
+    for (FaceId f : m.faces()) {
+        const auto v = m.face_vertices(f);
+        six_v += (m.position(v[0]) - c).dot((m.position(v[1]) - c).cross(m.position(v[2]) - c));
+    }
+    return six_v / 6;
+}
+
+EdgeLengthStats edge_length_stats(const TriMesh& m) {
+    std::vector<double> len;
+    len.reserve(m.n_edges());
+    for (EdgeId e : m.edges()) len.push_back(edge_length(m, e));
+    EdgeLengthStats s;
+    if (len.empty()) return s;
+    std::sort(len.begin(), len.end());
+    double sum = 0;
+    for (double l : len) sum += l;
+    s.min = len.front();
+    s.max = len.back();
+    s.mean = sum / static_cast<double>(len.size());
+    const std::size_t n = len.size();
+    s.median = n % 2 ? len[n / 2] : 0.5 * (len[n / 2 - 1] + len[n / 2]);
+    return s;
+}
+
+namespace {
+
+Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 ab = b - a;
+    const double len2 = ab.squaredNorm();
+    if (!(len2 > 0)) return a;
+    const double t = std::clamp((p - a).dot(ab) / len2, 0.0, 1.0);
+    return a + t * ab;
+}
+
+}  // namespace
+
+/// (degenerate triangles included: a zero-length edge is its end point.)
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) return a;
+    const Vec3 bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) return b;
+    const Vec3 cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) return c;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return closest_on_segment(p, a, b);
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return closest_on_segment(p, a, c);
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return closest_on_segment(p, b, c);
+    const double sum = va + vb + vc;
+    if (!(sum > 0)) {
+        // Degenerate (zero-area) triangle: the nearest of its three edges.
+        const Vec3 q[3] = {closest_on_segment(p, a, b), closest_on_segment(p, b, c), closest_on_segment(p, c, a)};
+        const Vec3* best = &q[0];
+        for (const Vec3& x : q)
+            if ((x - p).squaredNorm() < (*best - p).squaredNorm()) best = &x;
+        return *best;
+    }
+    return a + (vb / sum) * ab + (vc / sum) * ac;
+}
+
+}  // namespace fhr

@@ -1,0 +1,41 @@
+// FHR core — geometry helpers on T: lengths, angles, areas, normals, bounding box, volume.
+// Used by §2 (decimation quality), §3 (edge lengths for geodesics), §4 (the 3-D angles of
+// Floater's shape-preserving weights) and the reports.
+#pragma once
+
+#include <fhr/core/trimesh.hpp>
+
+namespace fhr {
+
+double edge_length(const TriMesh& m, EdgeId e);
+Vec3 edge_vector(const TriMesh& m, HalfedgeId h);  ///< position(to(h)) − position(from(h))
+double face_area(const TriMesh& m, FaceId f);
+/// Unit normal of a face, counter-clockwise orientation; zero vector for a degenerate face.
+Vec3 face_normal(const TriMesh& m, FaceId f);
+/// The interior angle of h's face at from(h), in [0, π] (atan2 form, accurate for small angles).
+double corner_angle(const TriMesh& m, HalfedgeId h);
+/// Angle-weighted unit vertex normal.
+Vec3 vertex_normal(const TriMesh& m, VertexId v);
+/// Sum of the angles at v of its faces (2π at a flat interior vertex).
+double angle_sum(const TriMesh& m, VertexId v);
+
+struct BoundingBox {
+    Vec3 min, max;
+    double diagonal() const { return (max - min).norm(); }
+};
+BoundingBox bounding_box(const TriMesh& m);
+
+/// Signed volume enclosed by a closed mesh (positive for outward orientation).
+double signed_volume(const TriMesh& m);
+
+struct EdgeLengthStats {
+    double min = 0, max = 0, mean = 0, median = 0;
+};
+EdgeLengthStats edge_length_stats(const TriMesh& m);
+
+/// The point of triangle abc closest to p (Ericson 2005, "Real-Time Collision Detection", §5.1.5:
+/// the Voronoi regions of the vertices, then of the edges, else the face). Shared by the oracle's
+/// PARAM-11 (src/fhr/exchange) and the Hausdorff distance of §5 (src/fhr/wavelet).
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+}  // namespace fhr

@@ -1,0 +1,54 @@
+// FHR core — SurfacePoint: a point of Ω_T given combinatorially (design.md §2). The paper's
+// geodesic Γ(x_j, x_k) (§3, eq. 1) is a polyline u_1 … u_r whose nodes lie on edges of T or at
+// its vertices, and a domain vertex may correspond to a point inside a face or on an edge (§3,
+// Fig. 4); a SurfacePoint names exactly such a location without rounding it to coordinates.
+#pragma once
+
+#include <array>
+
+#include <fhr/core/trimesh.hpp>
+
+namespace fhr {
+
+struct SurfacePoint {
+    enum class Kind { vertex, edge, face };
+    Kind kind = Kind::vertex;
+    VertexId vertex;                ///< kind == vertex
+    HalfedgeId halfedge;            ///< kind == edge: the point (1 − t)·from + t·to of this halfedge
+    double t = 0;                   ///< kind == edge, in [0, 1]
+    FaceId face;                    ///< kind == face
+    std::array<double, 3> bary{};   ///< kind == face: weights of face_vertices(face), summing to 1
+
+    static SurfacePoint at_vertex(VertexId v) {
+        SurfacePoint p;
+        p.vertex = v;
+        return p;
+    }
+    static SurfacePoint on_edge(HalfedgeId h, double t) {
+        SurfacePoint p;
+        p.kind = Kind::edge;
+        p.halfedge = h;
+        p.t = t;
+        return p;
+    }
+    static SurfacePoint in_face(FaceId f, const std::array<double, 3>& bary) {
+        SurfacePoint p;
+        p.kind = Kind::face;
+        p.face = f;
+        p.bary = bary;
+        return p;
+    }
+};
+
+/// The point's coordinates in R^3.
+Vec3 position(const TriMesh& mesh, const SurfacePoint& p);
+
+/// The same point in its simplest form: an edge point with t = 0 or 1 becomes a vertex, a face
+/// point with a zero weight becomes an edge point (or a vertex), so that equal locations compare
+/// equal. Exact: no tolerance is applied.
+SurfacePoint canonical(const TriMesh& mesh, const SurfacePoint& p);
+
+/// True when both name the same location (after canonical()).
+bool same_location(const TriMesh& mesh, const SurfacePoint& a, const SurfacePoint& b);
+
+}  // namespace fhr

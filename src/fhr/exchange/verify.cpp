@@ -1,0 +1,868 @@
+// FHR exchange — `fhr verify`: the invariants PARAM-2..11 of spec/param.md, checked in order on a
+// `fhr-param 1` file (design.md §4). Why these checks together certify the paper's claim that
+// φ = ψ⁻¹ is a parameterization of Ω_T over Ω_D is argued in paper_notes/exchange.md; in short:
+//
+//   PARAM-2   finite numbers, indices in range                      (so the rest can index safely)
+//   PARAM-3   D and T′ closed, connected, orientable manifolds       (§1; spec/mesh.md INV-IN-*)
+//   PARAM-4   χ(T′) = χ(D)                                           (§2: same topology)
+//   PARAM-5   every β is a barycentric triple                        (§4 eq. (2))
+//   PARAM-6   every patch S_d is a non-empty disk                    (§3: S_i a triangular region)
+//   PARAM-7   ψ continuous: each vertex of T′ has one image in Ω_D   (§4: ψ continuous over ∪ S_i),
+//             on one carrier (vertex, edge or face of D) exactly     (§3 conditions (1), (2))
+//   PARAM-8   exact orient2d > 0 of every image triangle; image areas sum to the triangle's
+//   PARAM-9   ∂S_d → ∂T_d monotone and bijective, corners on corners (§4 Prop. 1, Floater 2003)
+//   PARAM-10  chord length along every curve Γ(x_j, x_k)             (§4, the boundary map)
+//   PARAM-11  with T: Ω_T′ = Ω_T (T's vertices kept bit for bit, T′ on T, equal area, equal χ) (§3)
+//
+// Theorem (degree argument, paper_notes/exchange.md): if PARAM-6, 7, 8 and 9 hold, ψ: Ω_T′ → Ω_D
+// is a homeomorphism — each ψ_d maps S_d one-to-one onto T_d (all image triangles positive and
+// the boundary mapped homeomorphically onto ∂T_d, so every interior point of T_d is covered
+// exactly winding-number = 1 times), and continuity glues the ψ_d.
+//
+// Cost: linear in the file (each check is one or two passes over faces, halfedges or vertices),
+// plus sorting for PARAM-11; 500k faces verify in about a second.
+#include <fhr/exchange/verify.hpp>
+
+#include <fhr/core/geometry.hpp>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <initializer_list>
+#include <limits>
+#include <numeric>
+#include <optional>
+#include <utility>
+
+#include <fhr/core/build.hpp>
+#include <fhr/core/errors.hpp>
+#include <fhr/core/predicates.hpp>
+#include <fhr/core/topology.hpp>
+
+namespace fhr::exchange {
+
+const char* to_string(CheckStatus status) {
+    switch (status) {
+        case CheckStatus::pass: return "pass";
+        case CheckStatus::fail: return "fail";
+        case CheckStatus::skipped: return "skipped";
+    }
+    return "?";
+}
+
+bool VerifyReport::valid() const { return first_failure() == nullptr; }
+
+const CheckResult* VerifyReport::first_failure() const {
+    for (const CheckResult& c : checks)
+        if (c.status != CheckStatus::pass) return &c;
+    return nullptr;
+}
+
+namespace {
+
+/// Unit roundoff u = 2^-53 of IEEE double arithmetic.
+constexpr double unit_roundoff = std::numeric_limits<double>::epsilon() / 2;
+constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+
+std::string num(double x) {
+    char buffer[32];
+    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
+    return std::string(buffer, end);
+}
+
+std::string str(const Beta& b) { return "(" + num(b[0]) + ", " + num(b[1]) + ", " + num(b[2]) + ")"; }
+
+std::string str(const Vec3& p) { return "(" + num(p.x()) + ", " + num(p.y()) + ", " + num(p.z()) + ")"; }
+
+/// The unit vector e_r: β of corner r.
+bool is_corner(const Beta& b, int r) {
+    for (int k = 0; k < 3; ++k)
+        if (b[k] != (k == r ? 1.0 : 0.0)) return false;
+    return true;
+}
+
+/// Neumaier's compensated summation: the error is at most 2u|S| + O(n u²) Σ|x_i|, independent of
+/// the order and of n to first order (Higham 2002, §4.3).
+class CompensatedSum {
+public:
+    void add(double x) {
+        const double t = sum_ + x;
+        compensation_ += std::fabs(sum_) >= std::fabs(x) ? (sum_ - t) + x : (x - t) + sum_;
+        sum_ = t;
+    }
+    double value() const { return sum_ + compensation_; }
+
+private:
+    double sum_ = 0, compensation_ = 0;
+};
+
+/// Builds one CheckResult: counts failures, keeps the first one's description and location.
+class Recorder {
+public:
+    Recorder(const char* id, const char* title) {
+        result_.id = id;
+        result_.title = title;
+    }
+    void examined(std::uint64_t n) { result_.checked += n; }
+    /// Records one failure; `describe()` is called for the first one only.
+    template <class Describe>
+    void fail(Describe&& describe, std::int64_t face = -1, std::int64_t vertex = -1, std::int64_t patch = -1) {
+        if (result_.failures++ != 0) return;
+        result_.first_failure = describe();
+        result_.face = face;
+        result_.vertex = vertex;
+        result_.patch = patch;
+    }
+    std::uint64_t failures() const { return result_.failures; }
+    CheckResult done() {
+        result_.status = result_.failures == 0 ? CheckStatus::pass : CheckStatus::fail;
+        return std::move(result_);
+    }
+
+private:
+    CheckResult result_;
+};
+
+CheckResult skipped(const char* id, const char* title, const std::string& reason) {
+    CheckResult r;
+    r.id = id;
+    r.title = title;
+    r.status = CheckStatus::skipped;
+    r.first_failure = "not checked: " + reason;
+    return r;
+}
+
+constexpr const char* title_2 = "numbers finite, indices in range";
+constexpr const char* title_3 = "D and T' are closed, connected, orientable manifolds";
+constexpr const char* title_4 = "T' and D have the same Euler characteristic";
+constexpr const char* title_5 = "every beta is a barycentric triple";
+constexpr const char* title_6 = "every patch is a non-empty topological disk";
+constexpr const char* title_7 = "psi is continuous across patches";
+constexpr const char* title_8 = "psi is one-to-one: exact orientation, image areas";
+constexpr const char* title_9 = "patch boundaries map monotonically onto the triangle sides";
+constexpr const char* title_10 = "chord-length parameter along every domain edge";
+constexpr const char* title_11 = "T' has the geometry of the input mesh T";
+
+/// One side of one patch boundary, as walked by PARAM-9: from corner r to corner r+1 (mod 3) of
+/// domain face `patch`; its vertices and their parameters t = β_{r+1} are run_vertex/run_t[begin, end).
+struct SideRun {
+    std::uint32_t patch;
+    int side;
+    std::size_t begin, end;
+};
+
+class Verifier {
+public:
+    Verifier(const ParamFile& file, const TriMesh* input) : f_(file), input_(input) {}
+
+    VerifyReport run() {
+        VerifyReport report;
+        auto& checks = report.checks;
+        checks.push_back(check_ranges());
+        if (checks.back().status != CheckStatus::pass) {
+            const std::string why = "needs PARAM-2 (indices and numbers)";
+            const std::initializer_list<std::pair<const char*, const char*>> later{
+                {"PARAM-3", title_3}, {"PARAM-4", title_4}, {"PARAM-5", title_5}, {"PARAM-6", title_6},
+                {"PARAM-7", title_7}, {"PARAM-8", title_8}, {"PARAM-9", title_9}, {"PARAM-10", title_10}};
+            for (const auto& [id, title] : later)
+                checks.push_back(skipped(id, title, why));
+            if (input_) checks.push_back(skipped("PARAM-11", title_11, why));
+            return report;
+        }
+        checks.push_back(check_manifolds());
+        const std::string needs_surface = "needs PARAM-3 (T' a closed manifold)";
+        checks.push_back(domain_ && surface_ ? check_euler() : skipped("PARAM-4", title_4, "needs PARAM-3"));
+        checks.push_back(check_betas());
+        checks.push_back(surface_ ? check_disks() : skipped("PARAM-6", title_6, needs_surface));
+        const bool disks = checks.back().status == CheckStatus::pass;
+        checks.push_back(check_continuity());
+        checks.push_back(check_orientation());
+        checks.push_back(disks ? check_boundaries() : skipped("PARAM-9", title_9, "needs PARAM-6 (patches are disks)"));
+        const bool sides = checks.back().status == CheckStatus::pass;
+        checks.push_back(sides ? check_chord_lengths()
+                               : skipped("PARAM-10", title_10, "needs PARAM-9 (the sides of every patch)"));
+        if (input_) checks.push_back(surface_ ? check_geometry() : skipped("PARAM-11", title_11, needs_surface));
+        return report;
+    }
+
+private:
+    const ParamFile& f_;
+    const TriMesh* input_;
+    std::optional<TriMesh> domain_, surface_;  // built by PARAM-3 when valid
+    std::vector<std::uint32_t> run_vertex_;    // PARAM-9 → PARAM-10
+    std::vector<double> run_t_;
+    std::vector<SideRun> runs_;
+
+    std::uint32_t patch(FaceId f) const { return f_.surface_faces[f.idx()].patch; }
+
+    /// β of surface vertex v in face f. \pre v is a corner of f.
+    const Beta& beta_at(std::uint32_t f, std::uint32_t v) const {
+        const ParamFace& face = f_.surface_faces[f];
+        return face.beta[face.v[0] == v ? 0 : face.v[1] == v ? 1 : 2];
+    }
+
+    std::string side_name(std::uint32_t d, int r) const {
+        const Triangle& t = f_.domain_faces[d];
+        return "side (" + std::to_string(t[r]) + ", " + std::to_string(t[(r + 1) % 3]) + ")";
+    }
+
+    // ---- PARAM-2 ---------------------------------------------------------------------------
+    CheckResult check_ranges() const {
+        Recorder rec("PARAM-2", title_2);
+        // INV-IN-1: |x| <= 1e150 keeps every squared length, area and determinant finite.
+        auto bad_point = [](const Vec3& p) { return !p.allFinite() || p.cwiseAbs().maxCoeff() > max_coordinate; };
+        const std::size_t n = f_.domain_vertices.size(), m = f_.domain_faces.size(), p = f_.surface_vertices.size();
+        for (std::size_t i = 0; i < n; ++i)
+            if (bad_point(f_.domain_vertices[i]))
+                rec.fail([&] { return "domain vertex " + std::to_string(i) + " " + str(f_.domain_vertices[i]) +
+                                      " is not finite or exceeds 1e150 in magnitude"; });
+        for (std::size_t i = 0; i < p; ++i)
+            if (bad_point(f_.surface_vertices[i]))
+                rec.fail([&] { return "surface vertex " + std::to_string(i) + " " + str(f_.surface_vertices[i]) +
+                                      " is not finite or exceeds 1e150 in magnitude"; },
+                         -1, static_cast<std::int64_t>(i));
+        for (std::size_t d = 0; d < m; ++d)
+            for (std::uint32_t v : f_.domain_faces[d])
+                if (v >= n)
+                    rec.fail([&] { return "domain face " + std::to_string(d) + ": vertex index " + std::to_string(v) +
+                                          " out of range (" + std::to_string(n) + " domain vertices)"; },
+                             -1, -1, static_cast<std::int64_t>(d));
+        for (std::size_t f = 0; f < f_.surface_faces.size(); ++f) {
+            const ParamFace& face = f_.surface_faces[f];
+            const auto fi = static_cast<std::int64_t>(f);
+            for (std::uint32_t v : face.v)
+                if (v >= p)
+                    rec.fail([&] { return "surface face " + std::to_string(f) + ": vertex index " + std::to_string(v) +
+                                          " out of range (" + std::to_string(p) + " surface vertices)"; },
+                             fi);
+            if (face.patch >= m)
+                rec.fail([&] { return "surface face " + std::to_string(f) + ": patch " + std::to_string(face.patch) +
+                                      " out of range (" + std::to_string(m) + " domain faces)"; },
+                         fi);
+            for (int c = 0; c < 3; ++c)
+                for (double x : face.beta[c])
+                    if (!std::isfinite(x))
+                        rec.fail([&] { return "surface face " + std::to_string(f) + ", corner " + std::to_string(c) +
+                                              ": beta " + str(face.beta[c]) + " is not finite"; },
+                                 fi, face.v[c]);
+        }
+        rec.examined(n + m + p + f_.surface_faces.size());
+        return rec.done();
+    }
+
+    // ---- PARAM-3 ---------------------------------------------------------------------------
+    /// build_trimesh with every rule of spec/mesh.md strict; a file must need no repair: no
+    /// isolated vertex (a vertex of T′ in no face has no ψ) and no face turned (the orientation
+    /// is part of the contract: PARAM-8 reads it).
+    std::optional<TriMesh> build(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
+                                 const char* what, Recorder& rec) const {
+        PolygonSoup soup;
+        soup.points = points;
+        soup.indices.reserve(3 * triangles.size());
+        soup.offsets.reserve(triangles.size() + 1);
+        for (const Triangle& t : triangles) soup.add_polygon(t.data(), 3);
+        BuildLog log;
+        try {
+            TriMesh mesh = build_trimesh(soup, BuildOptions{}, log);
+            if (log.dropped_vertices == 0 && log.reoriented_faces == 0) return mesh;
+            rec.fail([&] {
+                std::string warning = log.warnings.front();  // ": dropped …" or ": re-oriented …" (no file name)
+                if (warning.rfind(": ", 0) == 0) warning.erase(0, 2);
+                return std::string(what) + (log.dropped_vertices ? " has vertices in no face: "
+                                                                 : " is not oriented counter-clockwise seen from outside: ") +
+                       warning;
+            });
+        } catch (const InvalidInput& e) {
+            rec.fail([&] { return std::string(what) + ": " + e.problem(); });
+        }
+        return std::nullopt;
+    }
+
+    CheckResult check_manifolds() {
+        Recorder rec("PARAM-3", title_3);
+        domain_ = build(f_.domain_vertices, f_.domain_faces, "domain D", rec);
+        std::vector<Triangle> triangles(f_.surface_faces.size());
+        for (std::size_t f = 0; f < triangles.size(); ++f) triangles[f] = f_.surface_faces[f].v;
+        surface_ = build(f_.surface_vertices, triangles, "surface T'", rec);
+        rec.examined(2);
+        return rec.done();
+    }
+
+    // ---- PARAM-4 ---------------------------------------------------------------------------
+    CheckResult check_euler() const {
+        Recorder rec("PARAM-4", title_4);
+        const long chi_d = euler_characteristic(*domain_), chi_t = euler_characteristic(*surface_);
+        if (chi_d != chi_t)
+            rec.fail([&] { return "chi(T') = " + std::to_string(chi_t) + " but chi(D) = " + std::to_string(chi_d); });
+        rec.examined(1);
+        return rec.done();
+    }
+
+    // ---- PARAM-5 ---------------------------------------------------------------------------
+    CheckResult check_betas() const {
+        Recorder rec("PARAM-5", title_5);
+        for (std::size_t f = 0; f < f_.surface_faces.size(); ++f) {
+            const ParamFace& face = f_.surface_faces[f];
+            for (int c = 0; c < 3; ++c) {
+                const Beta& b = face.beta[c];
+                // The sum of three numbers in [0, 1] is computed with error <= 2u ≈ 2.2e-16, far
+                // below the contract's 1e-12 (which absorbs the producer's rounding).
+                const bool in_range = b[0] >= 0 && b[0] <= 1 && b[1] >= 0 && b[1] <= 1 && b[2] >= 0 && b[2] <= 1;
+                const double sum = b[0] + b[1] + b[2];
+                if (!in_range || std::fabs(sum - 1) > beta_sum_tolerance)
+                    rec.fail([&] { return "surface face " + std::to_string(f) + " (patch " + std::to_string(face.patch) +
+                                          "), vertex " + std::to_string(face.v[c]) + ": beta " + str(b) +
+                                          (in_range ? " sums to " + num(sum) + " (1 within 1e-12 is required)"
+                                                    : " has a component outside [0, 1]"); },
+                             static_cast<std::int64_t>(f), face.v[c], face.patch);
+            }
+        }
+        rec.examined(3 * f_.surface_faces.size());
+        return rec.done();
+    }
+
+    // ---- PARAM-6 ---------------------------------------------------------------------------
+    /// A finite 2-complex is a disk iff it is connected, every vertex's faces form one fan (a
+    /// surface with boundary), and χ = 1: a connected orientable surface has χ = 2 − 2g − b,
+    /// and 2 − 2g − b = 1 forces g = 0, b = 1. Subcomplexes of the orientable T′ are orientable.
+    CheckResult check_disks() const {
+        Recorder rec("PARAM-6", title_6);
+        const TriMesh& mesh = *surface_;
+        const std::size_t m = f_.domain_faces.size(), q = mesh.n_faces();
+        std::vector<std::int64_t> chi(m, 0);
+        std::vector<std::uint32_t> first_face(m, none), components(m, 0), pinch(m, none);
+        std::vector<std::uint32_t> parent(q);
+        std::iota(parent.begin(), parent.end(), 0u);
+        auto find = [&](std::uint32_t x) {
+            while (parent[x] != x) x = parent[x] = parent[parent[x]];
+            return x;
+        };
+        for (FaceId f : mesh.faces()) {
+            ++chi[patch(f)];
+            if (first_face[patch(f)] == none) first_face[patch(f)] = f.idx();
+        }
+        for (EdgeId e : mesh.edges()) {  // an edge inside a patch counts once, one between patches once for each
+            const FaceId f0 = mesh.face(TriMesh::halfedge(e, 0)), f1 = mesh.face(TriMesh::halfedge(e, 1));
+            --chi[patch(f0)];
+            if (patch(f0) == patch(f1)) parent[find(f0.idx())] = find(f1.idx());
+            else --chi[patch(f1)];
+        }
+        for (FaceId f : mesh.faces())
+            if (find(f.idx()) == f.idx()) ++components[patch(f)];
+        std::vector<std::uint32_t> ring;
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> fans;  // (patch, fans of it) at one vertex
+        for (VertexId v : mesh.vertices()) {
+            ring.clear();
+            mesh.for_each_outgoing(v, [&](HalfedgeId h) { ring.push_back(patch(mesh.face(h))); });
+            fans.clear();
+            for (std::size_t k = 0; k < ring.size(); ++k) {
+                const std::uint32_t d = ring[k], before = ring[(k + ring.size() - 1) % ring.size()];
+                if (d == before) continue;  // not the start of a fan of d
+                auto it = std::find_if(fans.begin(), fans.end(), [&](const auto& x) { return x.first == d; });
+                if (it == fans.end()) fans.emplace_back(d, 1);
+                else ++it->second;
+            }
+            if (fans.empty()) ++chi[ring[0]];  // interior vertex of one patch
+            for (const auto& [d, count] : fans) {
+                ++chi[d];
+                if (count > 1 && pinch[d] == none) pinch[d] = v.idx();
+            }
+        }
+        for (std::uint32_t d = 0; d < m; ++d) {
+            const auto pd = static_cast<std::int64_t>(d);
+            const std::int64_t face = first_face[d] == none ? -1 : first_face[d];
+            if (first_face[d] == none)
+                rec.fail([&] { return "patch " + std::to_string(d) + " holds no face of T'"; }, -1, -1, pd);
+            else if (components[d] != 1)
+                rec.fail([&] { return "patch " + std::to_string(d) + " is not connected: its faces form " +
+                                      std::to_string(components[d]) + " pieces"; }, face, -1, pd);
+            else if (pinch[d] != none)
+                rec.fail([&] { return "patch " + std::to_string(d) + " is pinched at surface vertex " +
+                                      std::to_string(pinch[d]) + ": its faces there form several fans"; },
+                         face, pinch[d], pd);
+            else if (chi[d] != 1)
+                rec.fail([&] { return "patch " + std::to_string(d) + " has Euler characteristic " + std::to_string(chi[d]) +
+                                      " (a disk has 1): it has holes or handles"; }, face, -1, pd);
+        }
+        rec.examined(m);
+        return rec.done();
+    }
+
+    // ---- PARAM-7 ---------------------------------------------------------------------------
+    /// Largest difference between the points of Ω_D given by two (face, corner) incidences, each
+    /// written as weights on the domain vertices of its face: a domain vertex of one face that is
+    /// not a corner of the other has weight 0 there, so points on a shared domain edge or vertex
+    /// are compared across the two faces' different corner orders. +inf when the carriers differ:
+    /// the domain vertices with a non-zero weight (the vertex, edge or face of D whose relative
+    /// interior holds the point) must be the same from both, exactly.
+    double difference(std::uint64_t c1, std::uint64_t c2) const {
+        const ParamFace& a = f_.surface_faces[c1 / 3];
+        const ParamFace& b = f_.surface_faces[c2 / 3];
+        const Beta& ba = a.beta[c1 % 3];
+        const Beta& bb = b.beta[c2 % 3];
+        const Triangle& da = f_.domain_faces[a.patch];
+        const Triangle& db = f_.domain_faces[b.patch];
+        double diff = 0;
+        for (int r = 0; r < 3; ++r) {
+            double other = 0;
+            for (int s = 0; s < 3; ++s)
+                if (db[s] == da[r]) other = bb[s];
+            if ((ba[r] == 0) != (other == 0)) return std::numeric_limits<double>::infinity();
+            diff = std::max(diff, std::fabs(ba[r] - other));
+        }
+        for (int s = 0; s < 3; ++s)
+            if (db[s] != da[0] && db[s] != da[1] && db[s] != da[2] && bb[s] != 0)
+                return std::numeric_limits<double>::infinity();
+        return diff;
+    }
+
+    std::string point_of(std::uint64_t c) const {
+        const ParamFace& face = f_.surface_faces[c / 3];
+        const Triangle& t = f_.domain_faces[face.patch];
+        const Beta& b = face.beta[c % 3];
+        return num(b[0]) + " v" + std::to_string(t[0]) + " + " + num(b[1]) + " v" + std::to_string(t[1]) + " + " +
+               num(b[2]) + " v" + std::to_string(t[2]);
+    }
+
+    CheckResult check_continuity() const {
+        Recorder rec("PARAM-7", title_7);
+        const std::size_t p = f_.surface_vertices.size();
+        std::vector<std::uint64_t> first(p, std::numeric_limits<std::uint64_t>::max());  // 3·face + corner
+        std::vector<std::uint8_t> broken(p, 0);
+        for (std::size_t f = 0; f < f_.surface_faces.size(); ++f) {
+            for (int c = 0; c < 3; ++c) {
+                const std::uint32_t v = f_.surface_faces[f].v[c];
+                const std::uint64_t here = 3 * f + c;
+                if (first[v] == std::numeric_limits<std::uint64_t>::max()) {
+                    first[v] = here;
+                    continue;
+                }
+                if (broken[v]) continue;
+                const double diff = difference(first[v], here);
+                if (diff > continuity_tolerance) {
+                    broken[v] = 1;
+                    const std::uint64_t f0 = first[v] / 3;
+                    rec.fail([&] {
+                        return "surface vertex " + std::to_string(v) + ": face " + std::to_string(f0) + " (patch " +
+                               std::to_string(f_.surface_faces[f0].patch) + ") maps it to " + point_of(first[v]) +
+                               ", face " + std::to_string(f) + " (patch " + std::to_string(f_.surface_faces[f].patch) +
+                               ") to " + point_of(here) +
+                               (std::isinf(diff) ? std::string(": not the same vertex, edge or face of D (the non-zero "
+                                                               "weights must be on the same domain vertices)")
+                                                 : ": they differ by " + num(diff) + " (more than 1e-12)");
+                    }, static_cast<std::int64_t>(f), v, f_.surface_faces[f].patch);
+                }
+            }
+        }
+        rec.examined(p);
+        return rec.done();
+    }
+
+    // ---- PARAM-8 ---------------------------------------------------------------------------
+    CheckResult check_orientation() const {
+        Recorder rec("PARAM-8", title_8);
+        const std::size_t m = f_.domain_faces.size();
+        std::vector<CompensatedSum> area(m);
+        std::vector<double> magnitude(m, 0.0);
+        for (std::size_t f = 0; f < f_.surface_faces.size(); ++f) {
+            const ParamFace& face = f_.surface_faces[f];
+            // The (β1, β2) plane: domain corners i, j, k sit at (0,0), (1,0), (0,1), counter-
+            // clockwise, and the affine map to the domain triangle preserves orientation.
+            const Eigen::Vector2d a(face.beta[0][1], face.beta[0][2]), b(face.beta[1][1], face.beta[1][2]),
+                c(face.beta[2][1], face.beta[2][2]);
+            // Theorem (Floater 2003, Thm 6.1 / Prop. 1): one-to-one needs every image triangle
+            // strictly counter-clockwise; exact predicate, so round-off cannot hide a fold.
+            if (const int o = orient2d(a, b, c); o <= 0)
+                rec.fail([&] { return "surface face " + std::to_string(f) + " (patch " + std::to_string(face.patch) +
+                                      "): its image is " + (o < 0 ? "clockwise" : "degenerate") +
+                                      " (exact orient2d = " + std::to_string(o) + ")"; },
+                         static_cast<std::int64_t>(f), -1, face.patch);
+            const double t1 = (b.x() - a.x()) * (c.y() - a.y()), t2 = (b.y() - a.y()) * (c.x() - a.x());
+            area[face.patch].add(t1 - t2);
+            magnitude[face.patch] += std::fabs(t1) + std::fabs(t2);
+        }
+        for (std::size_t d = 0; d < m; ++d) {
+            // Doubled areas in the (β1, β2) plane: the domain triangle has exactly 1. Evaluating
+            // each t1 − t2 errs by at most 4u(|t1| + |t2|) and the compensated sum by 2u|S| + O(nu²),
+            // so 4u·magnitude + 3u bounds the rounding; 1e-12 is the contract's allowance for β that
+            // differ by up to 1e-12 between faces (PARAM-7).
+            const double s = area[d].value();
+            const double tolerance = area_tolerance + 4 * unit_roundoff * magnitude[d] + 3 * unit_roundoff;
+            if (!(std::fabs(s - 1) <= tolerance))
+                rec.fail([&] { return "patch " + std::to_string(d) + ": its image triangles cover " + num(s) +
+                                      " times the domain triangle's area (overlap or gap)"; },
+                         -1, -1, static_cast<std::int64_t>(d));
+        }
+        rec.examined(f_.surface_faces.size() + m);
+        return rec.done();
+    }
+
+    // ---- PARAM-9 ---------------------------------------------------------------------------
+    CheckResult check_boundaries() {
+        Recorder rec("PARAM-9", title_9);
+        const TriMesh& mesh = *surface_;
+        const std::size_t m = f_.domain_faces.size();
+        // Faces and boundary halfedges of each patch, bucketed by patch (counting sort).
+        std::vector<std::size_t> face_begin(m + 1, 0), he_begin(m + 1, 0);
+        for (FaceId f : mesh.faces()) ++face_begin[patch(f) + 1];
+        auto on_boundary = [&](HalfedgeId h) { return patch(mesh.face(h)) != patch(mesh.face(TriMesh::twin(h))); };
+        for (HalfedgeId h : mesh.halfedges())
+            if (on_boundary(h)) ++he_begin[patch(mesh.face(h)) + 1];
+        std::partial_sum(face_begin.begin(), face_begin.end(), face_begin.begin());
+        std::partial_sum(he_begin.begin(), he_begin.end(), he_begin.begin());
+        std::vector<std::uint32_t> faces(mesh.n_faces()), boundary(he_begin[m]);
+        {
+            std::vector<std::size_t> fill_f(face_begin.begin(), face_begin.end() - 1),
+                fill_h(he_begin.begin(), he_begin.end() - 1);
+            for (FaceId f : mesh.faces()) faces[fill_f[patch(f)]++] = f.idx();
+            for (HalfedgeId h : mesh.halfedges())
+                if (on_boundary(h)) boundary[fill_h[patch(mesh.face(h))]++] = h.idx();
+        }
+        // Per boundary vertex of the current patch: its outgoing boundary halfedge, and where it
+        // lies (side r: 0..2; corner r: 3 + r). Reset after each patch.
+        std::vector<std::uint32_t> out(mesh.n_vertices(), none);
+        std::vector<std::uint8_t> place(mesh.n_vertices(), 0xff);
+        for (std::uint32_t d = 0; d < m; ++d) {
+            const std::size_t hb = he_begin[d], he = he_begin[d + 1];
+            for (std::size_t i = hb; i < he; ++i) out[mesh.from(HalfedgeId(boundary[i])).idx()] = boundary[i];
+            const std::size_t runs_before = runs_.size(), vertices_before = run_vertex_.size();
+            bool ok = walk_boundary(d, boundary.data() + hb, he - hb, out, place, rec);
+            // Every incidence of a boundary vertex must lie on its side, exactly.
+            for (std::size_t i = face_begin[d]; ok && i < face_begin[d + 1]; ++i)
+                ok = check_incidences(d, faces[i], place, rec);
+            if (!ok) {  // the patch counts as one failure; PARAM-10 will not run
+                runs_.resize(runs_before);
+                run_vertex_.resize(vertices_before);
+                run_t_.resize(vertices_before);
+            }
+            for (std::size_t i = hb; i < he; ++i) {
+                const std::uint32_t v = mesh.from(HalfedgeId(boundary[i])).idx();
+                out[v] = none;
+                place[v] = 0xff;
+            }
+        }
+        rec.examined(m);
+        return rec.done();
+    }
+
+    /// Walks the boundary loop of patch d from its corner 0 (counter-clockwise, the orientation of
+    /// T′'s faces): side 0 → 1, corner 1, side 1 → 2, corner 2, side 2 → 0, back to corner 0.
+    /// Each vertex strictly inside side r → s has β_o = 0 exactly (o the opposite corner),
+    /// β_r, β_s > 0, and β_s strictly increasing: monotone and bijective onto the side.
+    bool walk_boundary(std::uint32_t d, const std::uint32_t* boundary, std::size_t count,
+                       const std::vector<std::uint32_t>& out, std::vector<std::uint8_t>& place, Recorder& rec) {
+        const TriMesh& mesh = *surface_;
+        const auto pd = static_cast<std::int64_t>(d);
+        const Triangle& dv = f_.domain_faces[d];
+        std::uint32_t corner[3] = {none, none, none};
+        for (std::size_t i = 0; i < count; ++i) {
+            const HalfedgeId h(boundary[i]);
+            const std::uint32_t v = mesh.from(h).idx(), f = mesh.face(h).idx();
+            for (int r = 0; r < 3; ++r) {
+                if (!is_corner(beta_at(f, v), r)) continue;
+                if (corner[r] != none) {
+                    rec.fail([&] { return "patch " + std::to_string(d) + ": surface vertices " + std::to_string(corner[r]) +
+                                          " and " + std::to_string(v) + " both map to its corner " + std::to_string(r) +
+                                          " (domain vertex " + std::to_string(dv[r]) + ")"; }, f, v, pd);
+                    return false;
+                }
+                corner[r] = v;
+            }
+        }
+        for (int r = 0; r < 3; ++r)
+            if (corner[r] == none) {
+                rec.fail([&] { return "patch " + std::to_string(d) + ": no boundary vertex maps to its corner " +
+                                      std::to_string(r) + " (domain vertex " + std::to_string(dv[r]) + ")"; },
+                         -1, -1, pd);
+                return false;
+            }
+        int side = 0;
+        double t_previous = 0;
+        std::uint32_t v = corner[0];
+        place[v] = 3;
+        runs_.push_back({d, 0, run_vertex_.size(), 0});
+        run_vertex_.push_back(v);
+        run_t_.push_back(0);
+        for (std::size_t steps = 1; steps <= count && out[v] != none; ++steps) {
+            const HalfedgeId h(out[v]);
+            const std::uint32_t w = mesh.to(h).idx(), f = mesh.face(h).idx();
+            const Beta& b = beta_at(f, w);
+            const int r = side, s = (side + 1) % 3, o = (side + 2) % 3;
+            const auto fi = static_cast<std::int64_t>(f);
+            if (is_corner(b, s)) {
+                run_vertex_.push_back(w);
+                run_t_.push_back(1);
+                runs_.back().end = run_vertex_.size();
+                if (s == 0) {
+                    if (steps == count) return true;
+                    rec.fail([&] { return "patch " + std::to_string(d) + ": its boundary has more than one loop"; },
+                             fi, w, pd);
+                    return false;
+                }
+                side = s;
+                t_previous = 0;
+                place[w] = static_cast<std::uint8_t>(3 + s);
+                runs_.push_back({d, s, run_vertex_.size(), 0});
+                run_vertex_.push_back(w);
+                run_t_.push_back(0);
+            } else if (is_corner(b, r) || is_corner(b, o)) {
+                rec.fail([&] { return "patch " + std::to_string(d) + ": walking its boundary counter-clockwise from "
+                                      "corner 0, surface vertex " + std::to_string(w) + " maps to a corner out of order "
+                                      "(beta " + str(b) + " after corner " + std::to_string(r) + ")"; }, fi, w, pd);
+                return false;
+            } else if (b[o] != 0 || !(b[r] > 0) || !(b[s] > 0)) {
+                rec.fail([&] { return "patch " + std::to_string(d) + ": boundary vertex " + std::to_string(w) +
+                                      " is not on the " + side_name(d, r) + " of the triangle (beta " + str(b) +
+                                      " in face " + std::to_string(f) + "; its coordinate " + std::to_string(o) +
+                                      " must be exactly 0)"; }, fi, w, pd);
+                return false;
+            } else if (!(b[s] > t_previous)) {
+                rec.fail([&] { return "patch " + std::to_string(d) + ": boundary vertex " + std::to_string(w) + " on the " +
+                                      side_name(d, r) + " is not monotone: its parameter " + num(b[s]) +
+                                      " does not exceed the previous one, " + num(t_previous); }, fi, w, pd);
+                return false;
+            } else {
+                t_previous = b[s];
+                place[w] = static_cast<std::uint8_t>(r);
+                run_vertex_.push_back(w);
+                run_t_.push_back(b[s]);
+            }
+            v = w;
+        }
+        rec.fail([&] { return "patch " + std::to_string(d) + ": its boundary does not return to corner 0"; }, -1, -1, pd);
+        return false;
+    }
+
+    /// Every face of patch d gives each boundary vertex the β the walk found: exactly e_r at
+    /// corner r, and exactly 0 at the corner opposite the vertex's side. False at a failure.
+    bool check_incidences(std::uint32_t d, std::uint32_t f, const std::vector<std::uint8_t>& place, Recorder& rec) const {
+        const ParamFace& face = f_.surface_faces[f];
+        for (int c = 0; c < 3; ++c) {
+            const std::uint8_t where = place[face.v[c]];
+            if (where == 0xff) continue;
+            const Beta& b = face.beta[c];
+            const bool ok = where >= 3 ? is_corner(b, where - 3) : b[(where + 2) % 3] == 0;
+            if (!ok)
+                rec.fail([&] { return "patch " + std::to_string(d) + ": boundary vertex " + std::to_string(face.v[c]) +
+                                      (where >= 3 ? " is its corner " + std::to_string(where - 3)
+                                                  : " lies on the " + side_name(d, where)) +
+                                      ", but face " + std::to_string(f) + " gives it beta " + str(b) + ", off that " +
+                                      (where >= 3 ? "corner" : "side"); },
+                         f, face.v[c], d);
+            if (!ok) return false;
+        }
+        return true;
+    }
+
+    // ---- PARAM-10 --------------------------------------------------------------------------
+    CheckResult check_chord_lengths() const {
+        Recorder rec("PARAM-10", title_10);
+        std::vector<double> length;
+        for (const SideRun& run : runs_) {
+            // FHR §4: ψ(u_p) = (1 − λ_p) ψ(u_1) + λ_p ψ(u_r), λ_p = L_p / L_r, L_p the length of
+            // the polygon u_1 … u_p. The parameter along the side is β of its end corner.
+            length.assign(1, 0.0);
+            CompensatedSum sum;
+            for (std::size_t i = run.begin + 1; i < run.end; ++i) {
+                sum.add((f_.surface_vertices[run_vertex_[i]] - f_.surface_vertices[run_vertex_[i - 1]]).norm());
+                length.push_back(sum.value());
+            }
+            const double total = length.back();  // > 0: T′ has no degenerate triangle (PARAM-3)
+            for (std::size_t i = run.begin + 1; i + 1 < run.end; ++i) {
+                const double lambda = length[i - run.begin] / total, t = run_t_[i];
+                rec.examined(1);
+                if (std::fabs(t - lambda) > chord_tolerance)
+                    rec.fail([&] { return "patch " + std::to_string(run.patch) + ": boundary vertex " +
+                                          std::to_string(run_vertex_[i]) + " on the " + side_name(run.patch, run.side) +
+                                          " has parameter " + num(t) + " but chord length " + num(lambda) +
+                                          " (difference " + num(t - lambda) + ", more than 1e-9)"; },
+                             -1, run_vertex_[i], run.patch);
+            }
+        }
+        return rec.done();
+    }
+
+    // ---- PARAM-11 --------------------------------------------------------------------------
+    CheckResult check_geometry() const;
+};
+
+// ---- PARAM-11: Ω_T′ = Ω_T ------------------------------------------------------------------
+
+using Bits = std::array<std::uint64_t, 3>;
+
+Bits bits(const Vec3& p) {
+    Bits b;
+    for (int c = 0; c < 3; ++c) std::memcpy(&b[c], &p[c], sizeof(double));
+    return b;
+}
+
+/// A uniform grid over the faces of T, stored sparsely as sorted (cell, face) pairs: each face is
+/// listed in every cell its bounding box, grown by `tolerance`, meets. Then a point within
+/// `tolerance` of a face finds that face in its own cell.
+class FaceGrid {
+public:
+    FaceGrid(const TriMesh& mesh, double tolerance) : mesh_(mesh), tolerance_(tolerance) {
+        for (const Triangle& t : mesh.triangles()) triangles_.push_back(t);
+        min_ = max_ = mesh.position(VertexId(0));
+        double area = 0;
+        for (const Triangle& t : triangles_) {
+            const Vec3 &a = pos(t[0]), &b = pos(t[1]), &c = pos(t[2]);
+            area += 0.5 * (b - a).cross(c - a).norm();
+        }
+        for (const Vec3& p : mesh.positions()) {
+            min_ = min_.cwiseMin(p);
+            max_ = max_.cwiseMax(p);
+        }
+        min_.array() -= tolerance;
+        max_.array() += tolerance;
+        // Cells about twice the typical edge length, at most 2^20 per axis (keys of 21 bits), and
+        // coarsened until the faces are listed at most 16 times each on average.
+        const double extent = (max_ - min_).maxCoeff();
+        cell_ = std::max({2 * std::sqrt(area / static_cast<double>(triangles_.size())), extent / (1 << 20),
+                          4 * tolerance, std::numeric_limits<double>::min()});
+        double listed = listings();
+        while (listed > 16.0 * static_cast<double>(triangles_.size()) + 1024) {
+            cell_ *= 2;
+            listed = listings();
+        }
+        std::vector<std::pair<std::uint64_t, std::uint32_t>> entries;
+        entries.reserve(static_cast<std::size_t>(listed));
+        for (std::uint32_t f = 0; f < triangles_.size(); ++f) {
+            const auto [lo, hi] = cell_range(f);
+            for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+                for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+                    for (std::int64_t z = lo[2]; z <= hi[2]; ++z) entries.emplace_back(key(x, y, z), f);
+        }
+        std::sort(entries.begin(), entries.end());
+        keys_.reserve(entries.size());
+        faces_.reserve(entries.size());
+        for (const auto& [k, f] : entries) {
+            keys_.push_back(k);
+            faces_.push_back(f);
+        }
+    }
+
+    /// The distance from p to the nearest face of T listed in p's cell, or +inf when there is
+    /// none (then p is farther than the tolerance from T).
+    double distance(const Vec3& p) const {
+        if ((p.array() < min_.array()).any() || (p.array() > max_.array()).any())
+            return std::numeric_limits<double>::infinity();
+        const auto c = cell(p);
+        const std::uint64_t k = key(c[0], c[1], c[2]);
+        const auto [first, last] = std::equal_range(keys_.begin(), keys_.end(), k);
+        double best = std::numeric_limits<double>::infinity();
+        for (auto it = first; it != last; ++it) {
+            const Triangle& t = triangles_[faces_[it - keys_.begin()]];
+            best = std::min(best, (closest_point_on_triangle(p, pos(t[0]), pos(t[1]), pos(t[2])) - p).norm());
+        }
+        return best;
+    }
+
+private:
+    const TriMesh& mesh_;
+    double tolerance_;
+    std::vector<Triangle> triangles_;
+    Vec3 min_, max_;
+    double cell_ = 0;
+    std::vector<std::uint64_t> keys_;
+    std::vector<std::uint32_t> faces_;
+
+    const Vec3& pos(std::uint32_t v) const { return mesh_.position(VertexId(v)); }
+
+    std::array<std::int64_t, 3> cell(const Vec3& p) const {
+        std::array<std::int64_t, 3> c;
+        for (int k = 0; k < 3; ++k) {
+            const double x = std::floor((p[k] - min_[k]) / cell_);
+            c[k] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::min(x, 1048575.0)), 0, (1 << 20) - 1);
+        }
+        return c;
+    }
+
+    std::pair<std::array<std::int64_t, 3>, std::array<std::int64_t, 3>> cell_range(std::uint32_t f) const {
+        const Triangle& t = triangles_[f];
+        const Vec3 lo = pos(t[0]).cwiseMin(pos(t[1])).cwiseMin(pos(t[2])).array() - tolerance_;
+        const Vec3 hi = pos(t[0]).cwiseMax(pos(t[1])).cwiseMax(pos(t[2])).array() + tolerance_;
+        return {cell(lo), cell(hi)};
+    }
+
+    /// How many (cell, face) pairs the grid lists (a double: up to 2^60 cells per face).
+    double listings() const {
+        double n = 0;
+        for (std::uint32_t f = 0; f < triangles_.size(); ++f) {
+            const auto [lo, hi] = cell_range(f);
+            n += static_cast<double>(hi[0] - lo[0] + 1) * static_cast<double>(hi[1] - lo[1] + 1) *
+                 static_cast<double>(hi[2] - lo[2] + 1);
+        }
+        return n;
+    }
+
+    static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
+        return static_cast<std::uint64_t>(x) << 42 | static_cast<std::uint64_t>(y) << 21 | static_cast<std::uint64_t>(z);
+    }
+};
+
+double total_area(const TriMesh& mesh) {
+    CompensatedSum sum;
+    for (const Triangle& t : mesh.triangles()) {
+        const Vec3 &a = mesh.position(VertexId(t[0])), &b = mesh.position(VertexId(t[1])),
+                   &c = mesh.position(VertexId(t[2]));
+        sum.add(0.5 * (b - a).cross(c - a).norm());
+    }
+    return sum.value();
+}
+
+CheckResult Verifier::check_geometry() const {
+    Recorder rec("PARAM-11", title_11);
+    const TriMesh& t = *input_;
+    const TriMesh& refined = *surface_;
+    // §3: T′ refines T, so it has T's topology ...
+    const long chi_t = euler_characteristic(t), chi_r = euler_characteristic(refined);
+    if (chi_t != chi_r)
+        rec.fail([&] { return "chi(T') = " + std::to_string(chi_r) + " but chi(T) = " + std::to_string(chi_t); });
+    // ... keeps every vertex of T where it is (T′ only inserts points; bitwise, as written) ...
+    std::vector<Bits> refined_bits;
+    refined_bits.reserve(refined.n_vertices());
+    for (const Vec3& p : refined.positions()) refined_bits.push_back(bits(p));
+    std::sort(refined_bits.begin(), refined_bits.end());
+    for (VertexId v : t.vertices())
+        if (!std::binary_search(refined_bits.begin(), refined_bits.end(), bits(t.position(v))))
+            rec.fail([&] { return "vertex " + std::to_string(v.idx()) + " of T " + str(t.position(v)) +
+                                  " is not a vertex of T' (no vertex with bitwise-identical coordinates)"; },
+                     -1, v.idx());
+    // ... inserts points only on T: within 1e-9 of the bounding-box diagonal, plus 64u·|x|max for
+    // the rounding of a point computed on an edge or face of T (a few u·|x| per coordinate, by
+    // the producer and again by closest_point) when T lies far from the origin ...
+    double max_abs = 0;
+    for (const Vec3& p : t.positions()) max_abs = std::max(max_abs, p.cwiseAbs().maxCoeff());
+    Vec3 lo = t.position(VertexId(0)), hi = lo;
+    for (const Vec3& p : t.positions()) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    const double tolerance = geometry_tolerance * (hi - lo).norm() + 64 * unit_roundoff * max_abs;
+    const FaceGrid grid(t, tolerance);
+    for (VertexId v : refined.vertices()) {
+        const double d = grid.distance(refined.position(v));
+        if (!(d <= tolerance))
+            rec.fail([&] { return "surface vertex " + std::to_string(v.idx()) + " " + str(refined.position(v)) +
+                                  " is not on T (distance " + (std::isinf(d) ? std::string("> ") + num(tolerance) : num(d)) +
+                                  ", tolerance " + num(tolerance) + ")"; },
+                     -1, v.idx());
+    }
+    // ... and covers the same area. Both sums are compensated; the difference comes from the
+    // rounding of the inserted points (≈ u·|x| each, times an edge length), far below 1e-9.
+    const double area_t = total_area(t), area_r = total_area(refined);
+    if (!(std::fabs(area_r - area_t) <= geometry_tolerance * area_t))
+        rec.fail([&] { return "the area of T' is " + num(area_r) + " but T's is " + num(area_t) + " (relative difference " +
+                              num((area_r - area_t) / area_t) + ", more than 1e-9)"; });
+    rec.examined(2 + t.n_vertices() + refined.n_vertices());
+    return rec.done();
+}
+
+}  // namespace
+
+VerifyReport verify(const ParamFile& file, const TriMesh* input_mesh) { return Verifier(file, input_mesh).run(); }
+
+}  // namespace fhr::exchange

@@ -1,0 +1,68 @@
+// FHR exchange — the oracle: does a `fhr-param 1` file describe a valid parameterization in the
+// sense of the paper? It checks the invariants PARAM-2..11 of spec/param.md (PARAM-1, the
+// grammar, is parse_param's): the surfaces are closed manifolds of one topology (§1, §2), every
+// patch S_i is a disk (§3), ψ is continuous across patch boundaries (§4), one-to-one on each patch
+// (§4, Proposition 1: exact orientation of every image triangle, and the patch boundary mapped
+// monotonically onto the triangle's boundary), chord length along every curve (§4), and with the
+// input mesh T, Ω_T′ = Ω_T (§3).
+//
+// Independence: this module uses only src/fhr/core (mesh building, exact predicates) and the file
+// value; it shares no code with the parameterization it judges (src/fhr/param, src/fhr/partition).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <fhr/core/trimesh.hpp>
+#include <fhr/exchange/fhr_param.hpp>
+
+namespace fhr::exchange {
+
+enum class CheckStatus {
+    pass,     ///< every element satisfies the invariant
+    fail,     ///< `failures` elements break it; the first is described
+    skipped,  ///< not checked because a check it relies on failed (named in `first_failure`)
+};
+
+/// "pass", "fail" or "skipped".
+const char* to_string(CheckStatus status);
+
+/// The result of one invariant.
+struct CheckResult {
+    std::string id;              ///< "PARAM-7"
+    std::string title;           ///< what it checks, a few words
+    CheckStatus status = CheckStatus::skipped;
+    std::uint64_t checked = 0;   ///< elements examined (faces, vertices, patches, …; see spec/param.md)
+    std::uint64_t failures = 0;  ///< elements that break the invariant
+    std::string first_failure;   ///< one line naming the first broken element ("" when it passed)
+    /// Where the first failure is, as indices into the file (surface face, surface vertex, patch =
+    /// domain face); −1 when not applicable. PARAM-11's "vertex of T missing" names T's vertex.
+    std::int64_t face = -1, vertex = -1, patch = -1;
+};
+
+struct VerifyReport {
+    /// PARAM-2 … PARAM-10, and PARAM-11 when an input mesh was given, in this order.
+    std::vector<CheckResult> checks;
+    /// True iff every check passed.
+    bool valid() const;
+    /// The first check that did not pass, or nullptr.
+    const CheckResult* first_failure() const;
+};
+
+/// Tolerances of spec/param.md (each derived there and at its use in verify.cpp).
+inline constexpr double beta_sum_tolerance = 1e-12;     ///< PARAM-5
+inline constexpr double continuity_tolerance = 1e-12;   ///< PARAM-7
+inline constexpr double area_tolerance = 1e-12;         ///< PARAM-8 (relative)
+inline constexpr double chord_tolerance = 1e-9;         ///< PARAM-10
+inline constexpr double geometry_tolerance = 1e-9;      ///< PARAM-11 (relative to T's bounding box)
+
+/// Checks `file` against PARAM-2..10 of spec/param.md, and PARAM-11 against `input_mesh` when it
+/// is not null. Every check runs unless one it relies on failed; each counts its failures and
+/// names the first one.
+/// \pre input_mesh, when given, is a valid mesh (built by build_trimesh).
+/// \post never throws InvalidInput for any file: a broken file gives failed checks. Runs in time
+///       O(size of the file · log), plus O(|T| log |T|) with an input mesh.
+VerifyReport verify(const ParamFile& file, const TriMesh* input_mesh);
+
+}  // namespace fhr::exchange

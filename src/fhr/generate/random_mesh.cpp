@@ -1,0 +1,398 @@
+// FHR generate — random closed orientable manifold meshes of genus g with an exact face count
+// (the input class T of the paper, §1), for the property tests, the fuzzers and `fhr generate`.
+// The full argument is in paper_notes/generator.md; in short:
+//
+//   1. Block: the solid (2g+1) x 3 x 1 unit cells with g unit holes in a row (a unit cube for g = 0),
+//      cut into a lattice of nx x ny x nz boxes per unit cell, nx, ny, nz in {r, r+1}. Its surface
+//      has Q(nx, ny, nz) lattice rectangles. Resolution: the largest (nx, ny, nz) on the chain
+//      (1,1,1) → (2,1,1) → (2,2,1) → (2,2,2) → (3,2,2) → … with 2Q <= F. One step multiplies Q
+//      by at most 2, so F < 4Q.
+//   2. Triangulate: k = F/2 − Q randomly chosen rectangles get a centre vertex (4 triangles), the
+//      others a random diagonal (2 triangles): exactly 2(Q − k) + 4k = F faces, every corner >= 26.5°.
+//   3. Randomize the connectivity without changing the surface, in one sweep over the edges:
+//      flips of coplanar pairs, and pairs "split an edge at its midpoint, then half-edge collapse
+//      a nearby vertex interior to a flat facet" (face count unchanged; if no collapse is allowed
+//      the split is undone). Every edit is kept only if all triangles it creates keep their
+//      corners >= 20° and lie in the facet of the triangles they replace (normals unchanged), so
+//      the surface stays the embedded polyhedron of step 1 and the face count never drifts.
+//   4. Jitter (noise > 0): each vertex moves by at most noise × (mean length of its edges before
+//      the jitter) in a random direction; a move is refused if a triangle would get a corner < 20°
+//      or tilt by more than 60° from its un-jittered normal.
+//   5. Rebuild from the triangles: the result is exactly what reading its written file gives.
+//
+// Reproducibility: std::mt19937_64 is fully specified by the standard, our uniform mappings are
+// our own (the std::uniform_*_distribution outputs differ between libraries), and every decision
+// uses only +, −, ×, / and sqrt in a fixed order (correctly rounded in IEEE double arithmetic;
+// the project builds with -ffp-contract=off, so no FMA changes a rounding), so the output is
+// bit-identical on every conforming compiler.
+#include <fhr/generate/random_mesh.hpp>
+
+#include <array>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <fhr/core/errors.hpp>
+
+namespace fhr::generate {
+namespace {
+
+[[noreturn]] void invalid(const std::string& what) { throw InvalidInput("", 0, what); }
+
+// --- deterministic randomness --------------------------------------------------------------
+
+class Random {
+public:
+    explicit Random(std::uint64_t seed) : engine_(seed) {}
+    /// Uniform in [0, n), n > 0: draws below 2^64 mod n are rejected, leaving a multiple of n values.
+    std::uint64_t below(std::uint64_t n) {
+        const std::uint64_t threshold = (0 - n) % n;
+        for (;;) {
+            const std::uint64_t x = engine_();
+            if (x >= threshold) return x % n;
+        }
+    }
+    /// Uniform in [−1, 1) on a grid of 2^−52.
+    double symmetric() { return static_cast<double>(engine_() >> 11) * 0x1.0p-52 - 1.0; }
+    bool coin() { return (engine_() >> 63) != 0; }
+
+private:
+    std::mt19937_64 engine_;
+};
+
+// --- geometry with a fixed evaluation order (reproducible decisions) -------------------------
+
+double dot(const Vec3& a, const Vec3& b) { return a.x() * b.x() + a.y() * b.y() + a.z() * b.z(); }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+    return Vec3(a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x());
+}
+double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
+Vec3 normal(const Vec3& a, const Vec3& b, const Vec3& c) { return cross(b - a, c - a); }
+
+// sin and cos of min_corner_angle_degrees (20°), correctly rounded.
+constexpr double sin_min_angle = 0.34202014332566873;
+constexpr double cos_min_angle = 0.93969262078590838;
+
+/// Every corner angle φ of (a, b, c) is >= 20°: sin(φ − 20°) >= 0, i.e.
+/// |u × v| cos 20° − (u · v) sin 20° >= 0 for the two edge vectors u, v at the corner. A
+/// triangle passing this is far from degenerate (its corners are not collinear).
+bool well_shaped(const Vec3& a, const Vec3& b, const Vec3& c) {
+    auto corner_ok = [](const Vec3& u, const Vec3& v) {
+        const double s = length(cross(u, v));
+        return s > 0 && s * cos_min_angle - dot(u, v) * sin_min_angle >= 0;
+    };
+    return corner_ok(b - a, c - a) && corner_ok(c - b, a - b) && corner_ok(a - c, b - c);
+}
+
+/// Angle between n and reference at most acos(cos_limit) (neither may be zero).
+bool within_angle(const Vec3& n, const Vec3& reference, double cos_limit) {
+    return dot(n, reference) >= cos_limit * length(n) * length(reference);
+}
+
+/// Before jitter every facet of the block is axis-aligned, and all edits keep its vertices'
+/// constant coordinate exactly (midpoints of equal numbers are exact), so normals of coplanar
+/// triangles have exactly the same direction and this test is exact for them; a tilt of more
+/// than ~1.4e−6 rad fails it.
+constexpr double cos_coplanar = 1 - 1e-12;
+/// Jitter may tilt a triangle by at most 60° from its un-jittered normal (no fold-over).
+constexpr double cos_max_tilt = 0.5;
+
+// --- step 1: the block and its resolution ----------------------------------------------------
+
+struct Block {
+    int genus;
+    std::uint64_t W, H;  // unit cells along x and y; the block is 1 unit thick (z)
+    std::array<std::uint64_t, 3> n{1, 1, 1};  // lattice boxes per unit cell along x, y, z
+
+    explicit Block(int g) : genus(g), W(g == 0 ? 1 : 2 * static_cast<std::uint64_t>(g) + 1), H(g == 0 ? 1 : 3) {}
+
+    // The g holes are the cells (1, 1), (3, 1), …, (2g − 1, 1).
+    bool solid_cell(std::uint64_t cx, std::uint64_t cy) const {
+        return cx < W && cy < H && !(genus > 0 && cy == 1 && cx % 2 == 1);
+    }
+    std::uint64_t px() const { return W * n[0]; }  // pixels of the footprint along x
+    std::uint64_t py() const { return H * n[1]; }
+    bool solid_pixel(std::int64_t i, std::int64_t j) const {
+        return i >= 0 && j >= 0 && solid_cell(static_cast<std::uint64_t>(i) / n[0], static_cast<std::uint64_t>(j) / n[1]);
+    }
+    /// Lattice rectangles on the surface: top and bottom, outer walls, hole walls.
+    std::uint64_t quad_count(const std::array<std::uint64_t, 3>& m) const {
+        const std::uint64_t g = static_cast<std::uint64_t>(genus);
+        return 2 * m[0] * m[1] * (W * H - g) + 2 * m[2] * (W * m[0] + H * m[1]) + 2 * g * m[2] * (m[0] + m[1]);
+    }
+    std::uint64_t quad_count() const { return quad_count(n); }
+
+    /// The largest resolution on the chain (1,1,1) → (2,1,1) → (2,2,1) → (2,2,2) → … with
+    /// 2Q <= faces. Theorem: Q is a sum of monomials of degree <= 1 in each of nx, ny, nz, so
+    /// raising one of them from r to r + 1 multiplies Q by at most (r + 1)/r <= 2; hence the next
+    /// resolution's 2Q' > faces gives faces < 4Q, i.e. fewer than Q centre splits are needed.
+    void choose_resolution(std::uint64_t faces) {
+        for (std::size_t axis = 0;; axis = (axis + 1) % 3) {
+            std::array<std::uint64_t, 3> next = n;
+            ++next[axis];
+            if (2 * quad_count(next) > faces) return;
+            n = next;
+        }
+    }
+};
+
+/// The surface vertices of the block, numbered column by column: lattice column (i, j) holds
+/// the bottom and top vertex when it touches a solid pixel, and every layer's vertex when it is
+/// on the footprint's outline (touching solid and empty pixels), where the walls are.
+class Lattice {
+public:
+    explicit Lattice(const Block& b) : b_(b), first_((b.px() + 1) * (b.py() + 1) + 1, 0) {
+        const std::uint64_t nz = b.n[2];
+        for (std::uint64_t i = 0; i <= b.px(); ++i)
+            for (std::uint64_t j = 0; j <= b.py(); ++j) {
+                int solid = 0;
+                for (std::int64_t di = -1; di <= 0; ++di)
+                    for (std::int64_t dj = -1; dj <= 0; ++dj)
+                        solid += b.solid_pixel(static_cast<std::int64_t>(i) + di, static_cast<std::int64_t>(j) + dj);
+                const std::uint64_t count = solid == 0 ? 0 : solid == 4 ? 2 : nz + 1;
+                first_[column(i, j) + 1] = first_[column(i, j)] + count;
+            }
+    }
+    std::uint64_t size() const { return first_.back(); }
+    std::uint32_t index(std::uint64_t i, std::uint64_t j, std::uint64_t k) const {
+        const std::uint64_t c = column(i, j);
+        const std::uint64_t count = first_[c + 1] - first_[c];
+        return static_cast<std::uint32_t>(first_[c] + (count == 2 ? (k == 0 ? 0 : 1) : k));
+    }
+    /// The block, centred at the origin; a vertex's constant coordinate on its facet depends
+    /// only on that lattice index, so facets are exactly planar.
+    Vec3 position(std::uint64_t i, std::uint64_t j, std::uint64_t k) const {
+        return Vec3(static_cast<double>(i) / static_cast<double>(b_.n[0]) - 0.5 * static_cast<double>(b_.W),
+                    static_cast<double>(j) / static_cast<double>(b_.n[1]) - 0.5 * static_cast<double>(b_.H),
+                    static_cast<double>(k) / static_cast<double>(b_.n[2]) - 0.5);
+    }
+
+private:
+    const Block& b_;
+    std::vector<std::uint64_t> first_;  // first vertex of each column, and the total at the end
+    std::uint64_t column(std::uint64_t i, std::uint64_t j) const { return i * (b_.py() + 1) + j; }
+};
+
+using Corner = std::array<std::uint64_t, 3>;
+
+/// Calls quad(p, u, v) for every surface rectangle p, p+u, p+u+v, p+v of the block, with
+/// u × v its outward normal, so the corners run counter-clockwise seen from outside.
+template <class F>
+void for_each_quad(const Block& b, F&& quad) {
+    const Corner X{1, 0, 0}, Y{0, 1, 0}, Z{0, 0, 1};
+    const std::uint64_t nz = b.n[2];
+    for (std::uint64_t i = 0; i < b.px(); ++i)
+        for (std::uint64_t j = 0; j < b.py(); ++j) {
+            const auto si = static_cast<std::int64_t>(i), sj = static_cast<std::int64_t>(j);
+            if (!b.solid_pixel(si, sj)) continue;
+            quad(Corner{i, j, nz}, X, Y);  // top, +z
+            quad(Corner{i, j, 0}, Y, X);   // bottom, −z
+            const bool wall[4] = {!b.solid_pixel(si + 1, sj), !b.solid_pixel(si - 1, sj), !b.solid_pixel(si, sj + 1),
+                                  !b.solid_pixel(si, sj - 1)};
+            for (std::uint64_t k = 0; k < nz && (wall[0] || wall[1] || wall[2] || wall[3]); ++k) {
+                if (wall[0]) quad(Corner{i + 1, j, k}, Y, Z);  // +x
+                if (wall[1]) quad(Corner{i, j, k}, Z, Y);      // −x
+                if (wall[2]) quad(Corner{i, j + 1, k}, Z, X);  // +y
+                if (wall[3]) quad(Corner{i, j, k}, X, Z);      // −y
+            }
+        }
+}
+
+// --- step 2: triangulate --------------------------------------------------------------------
+
+TriMesh triangulated_block(const Block& b, std::uint64_t faces, Random& rng) {
+    const Lattice lattice(b);
+    const std::uint64_t n_quads = b.quad_count();
+    std::uint64_t to_split = faces / 2 - n_quads;  // centre splits still to place
+    std::uint64_t quads_left = n_quads;
+    std::vector<Vec3> positions;
+    positions.reserve(lattice.size() + to_split);
+    positions.resize(lattice.size());
+    std::vector<Triangle> triangles;
+    triangles.reserve(faces);
+    for_each_quad(b, [&](const Corner& p, const Corner& u, const Corner& v) {
+        std::array<std::uint32_t, 4> c;
+        for (std::size_t q = 0; q < 4; ++q) {
+            const std::uint64_t su = q == 1 || q == 2, sv = q >= 2;
+            const Corner l{p[0] + su * u[0] + sv * v[0], p[1] + su * u[1] + sv * v[1], p[2] + su * u[2] + sv * v[2]};
+            c[q] = lattice.index(l[0], l[1], l[2]);
+            positions[c[q]] = lattice.position(l[0], l[1], l[2]);
+        }
+        // Selection sampling (Knuth, TAOCP 3.4.2, Algorithm S): a uniform k-subset of the quads.
+        if (rng.below(quads_left--) < to_split) {
+            --to_split;
+            const auto m = static_cast<std::uint32_t>(positions.size());
+            positions.push_back(0.5 * (positions[c[0]] + positions[c[2]]));
+            for (std::size_t q = 0; q < 4; ++q) triangles.push_back({c[q], c[(q + 1) % 4], m});
+        } else if (rng.coin()) {
+            triangles.push_back({c[0], c[1], c[2]});
+            triangles.push_back({c[0], c[2], c[3]});
+        } else {
+            triangles.push_back({c[1], c[2], c[3]});
+            triangles.push_back({c[1], c[3], c[0]});
+        }
+    });
+    return TriMesh::from_triangles(std::move(positions), triangles);
+}
+
+// --- step 3: random connectivity edits on the fixed surface ----------------------------------
+
+class Randomizer {
+public:
+    Randomizer(TriMesh& m, Random& rng) : m_(m), rng_(rng) {}
+
+    /// One sweep over the edges in index order (neighbouring edges have close indices, so the
+    /// sweep walks the memory in order): each edge is flipped with probability 1/2, or split
+    /// and paired with a collapse nearby with probability 1/8, when the edit keeps the shape.
+    void run() {
+        const std::size_t n = m_.n_edges();
+        for (std::size_t i = 0; i < n; ++i) {
+            const EdgeId e(static_cast<EdgeId::Index>(i));
+            if (m_.is_deleted(e)) continue;
+            const std::uint64_t pick = rng_.below(8);
+            if (pick < 4 && flip_keeps_shape(e)) m_.flip(e);
+            if (pick == 4) split_then_collapse(e);
+        }
+    }
+
+private:
+    static constexpr int max_attempts = 16;  // collapse candidates tried around a split
+    TriMesh& m_;
+    Random& rng_;
+
+    const Vec3& pos(VertexId v) const { return m_.position(v); }
+
+    HalfedgeId random_outgoing(VertexId v) {
+        std::uint64_t steps = rng_.below(m_.valence(v));
+        HalfedgeId h = m_.out(v);
+        while (steps-- > 0) h = m_.cw_rotated(h);
+        return h;
+    }
+
+    // Faces (a, b, c) and (b, a, d) of e become (a, d, c) and (d, b, c): allowed when the four
+    // points are coplanar and the quadrilateral is strictly convex (new normals unchanged).
+    bool flip_keeps_shape(EdgeId e) const {
+        const HalfedgeId h = TriMesh::halfedge(e, 0), o = TriMesh::halfedge(e, 1);
+        const Vec3 &a = pos(m_.from(h)), &b = pos(m_.to(h)), &c = pos(m_.to(m_.next(h))), &d = pos(m_.to(m_.next(o)));
+        const Vec3 n = normal(a, b, c);
+        return within_angle(normal(b, a, d), n, cos_coplanar) && within_angle(normal(a, d, c), n, cos_coplanar) &&
+               within_angle(normal(d, b, c), n, cos_coplanar) && well_shaped(a, d, c) && well_shaped(d, b, c) &&
+               m_.is_flip_ok(e);
+    }
+
+    // The midpoint of (a, b) lies exactly on the facet (or on the crease) of both faces of e,
+    // so the four new triangles keep their faces' normals; only their shape is checked.
+    bool split_keeps_shape(EdgeId e, const Vec3& mid) const {
+        const HalfedgeId h = TriMesh::halfedge(e, 0), o = TriMesh::halfedge(e, 1);
+        const Vec3 &a = pos(m_.from(h)), &b = pos(m_.to(h)), &c = pos(m_.to(m_.next(h))), &d = pos(m_.to(m_.next(o)));
+        return well_shaped(a, mid, c) && well_shaped(mid, b, c) && well_shaped(b, mid, d) && well_shaped(mid, a, d);
+    }
+
+    // from(h) must be interior to a flat facet (all its faces coplanar), and its faces other than
+    // the two removed ones, moved to to(h), must stay in that facet and be well shaped: then the
+    // collapse only re-triangulates the facet. The link condition keeps the topology.
+    bool collapse_keeps_shape(HalfedgeId h) const {
+        const VertexId v0 = m_.from(h);
+        const Vec3& target = pos(m_.to(h));
+        const Vec3 n = normal(pos(v0), target, pos(m_.to(m_.next(h))));
+        const FaceId gone0 = m_.face(h), gone1 = m_.face(TriMesh::twin(h));
+        bool ok = true;
+        m_.for_each_outgoing(v0, [&](HalfedgeId g) {
+            const Vec3 &b = pos(m_.to(g)), &c = pos(m_.to(m_.next(g)));
+            ok = ok && within_angle(normal(pos(v0), b, c), n, cos_coplanar);
+            if (ok && m_.face(g) != gone0 && m_.face(g) != gone1)
+                ok = within_angle(normal(target, b, c), n, cos_coplanar) && well_shaped(target, b, c);
+        });
+        return ok && m_.is_collapse_ok(h);
+    }
+
+    // Splits e at its midpoint, then collapses a random halfedge leaving a random neighbour of
+    // the new vertex, so that the face count and the local vertex density stay the same.
+    void split_then_collapse(EdgeId e) {
+        const HalfedgeId h = TriMesh::halfedge(e, 0);
+        const Vec3 mid = 0.5 * (pos(m_.from(h)) + pos(m_.to(h)));
+        if (!split_keeps_shape(e, mid)) return;
+        const VertexId added = m_.split_edge(e, mid);
+        for (int t = 0; t < max_attempts; ++t) {
+            const HalfedgeId g = random_outgoing(m_.to(random_outgoing(added)));
+            if (collapse_keeps_shape(g)) {
+                m_.collapse(g);
+                return;
+            }
+        }
+        // No candidate found: undo the split by collapsing the new vertex onto the old end of its
+        // outgoing halfedge. Theorem: its only common neighbours with that end are the two opposite
+        // vertices (link condition), and the collapse restores the two original triangles exactly.
+        m_.collapse(m_.out(added));
+    }
+};
+
+// --- step 4: jitter ---------------------------------------------------------------------------
+
+void jitter(TriMesh& m, double noise, Random& rng) {
+    // Normals and step lengths of the un-jittered mesh, so no move depends on an earlier one's size.
+    std::vector<Vec3> reference(m.n_faces());
+    for (FaceId f : m.faces()) {
+        const auto v = m.face_vertices(f);
+        reference[f.idx()] = normal(m.position(v[0]), m.position(v[1]), m.position(v[2]));
+    }
+    std::vector<double> step(m.n_vertices());
+    for (VertexId v : m.vertices()) {
+        double sum = 0;
+        std::size_t count = 0;
+        m.for_each_outgoing(v, [&](HalfedgeId h) {
+            sum += length(m.position(m.to(h)) - m.position(v));
+            ++count;
+        });
+        step[v.idx()] = noise * sum / static_cast<double>(count);
+    }
+    for (VertexId v : m.vertices()) {
+        Vec3 direction;  // uniform in the unit ball (rejection from the cube)
+        do {
+            for (int k = 0; k < 3; ++k) direction[k] = rng.symmetric();  // in order (not as arguments)
+        } while (dot(direction, direction) > 1);
+        const Vec3 moved = m.position(v) + step[v.idx()] * direction;
+        bool ok = true;
+        m.for_each_outgoing(v, [&](HalfedgeId h) {
+            const Vec3 &b = m.position(m.to(h)), &c = m.position(m.to(m.next(h)));
+            ok = ok && well_shaped(moved, b, c) &&
+                 within_angle(normal(moved, b, c), reference[m.face(h).idx()], cos_max_tilt);
+        });
+        if (ok) m.position(v) = moved;
+    }
+}
+
+}  // namespace
+
+std::size_t min_faces(int genus) {
+    if (genus < 0) invalid("the genus must be >= 0 (got " + std::to_string(genus) + ")");
+    const Block b(genus);
+    return 2 * b.quad_count();
+}
+
+TriMesh random_closed_mesh(const RandomMeshOptions& options) {
+    const std::size_t faces = options.faces, least = min_faces(options.genus);
+    if (faces % 2 != 0)
+        invalid("the face count must be even (got " + std::to_string(faces) +
+                "): a closed triangle mesh has 3F/2 edges");
+    if (faces < least)
+        invalid("genus " + std::to_string(options.genus) + " needs at least " + std::to_string(least) +
+                " faces (got " + std::to_string(faces) + ")");
+    if (faces > max_faces)
+        invalid("at most " + std::to_string(max_faces) + " faces can be generated (got " + std::to_string(faces) + ")");
+    if (!(options.noise >= 0 && options.noise < 0.5))
+        invalid("the noise must be in [0, 0.5) (got " + std::to_string(options.noise) + ")");
+    Random rng(options.seed);
+    Block block(options.genus);
+    block.choose_resolution(faces);
+    TriMesh mesh = triangulated_block(block, faces, rng);
+    Randomizer(mesh, rng).run();
+    mesh.compact();
+    if (options.noise > 0) jitter(mesh, options.noise, rng);
+    // Step 5: rebuilt from its own triangles, the mesh is exactly the one a reader gives for its
+    // written file (same halfedge numbering), so a failing test reproduces from the file.
+    return TriMesh::from_triangles(mesh.positions(), mesh.triangles());
+}
+
+}  // namespace fhr::generate

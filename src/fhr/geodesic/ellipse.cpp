@@ -1,0 +1,128 @@
+// FHR §3 — the ellipse search for Γ(x_j, x_k) (see ellipse.hpp and paper_notes/ellipse.md).
+#include <fhr/geodesic/ellipse.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <fhr/core/errors.hpp>
+#include <fhr/geodesic/fast_marching.hpp>
+#include <fhr/geodesic/detail/scratch.hpp>
+
+namespace fhr::geodesic {
+namespace {
+
+/// The certificate search compares lengths of two runs of the exact algorithm, each carrying a
+/// relative rounding error of about k·2⁻⁵² after k unfoldings (k <= 10⁴ on our meshes, so
+/// <= 2.3·10⁻¹²): it prunes above L(1 + margin) and calls a path shorter only below L(1 − margin),
+/// the exact algorithm's own filter_tolerance (paper_notes/exact_geodesics.md, "Tolerances").
+constexpr double certificate_margin = 1e-11;
+
+// A face is outside T_jk when the mask leaves it out (a real hole of T is not outside).
+bool outside(const TriMesh& mesh, const std::vector<std::uint8_t>& mask, HalfedgeId h) {
+    return !mesh.is_boundary(h) && !mask[mesh.face(h).idx()];
+}
+
+// The paper's test: the path touches a vertex of the artificial boundary, or runs along an edge
+// next to a left-out face.
+bool touches_boundary(const TriMesh& mesh, const std::vector<std::uint8_t>& mask, const GeodesicPath& path) {
+    for (const SurfacePoint& p : path.points) {
+        if (p.kind == SurfacePoint::Kind::vertex) {
+            bool touches = false;
+            mesh.for_each_outgoing(p.vertex, [&](HalfedgeId h) { touches = touches || outside(mesh, mask, h); });
+            if (touches) return true;
+        } else if (p.kind == SurfacePoint::Kind::edge) {
+            if (outside(mesh, mask, p.halfedge) || outside(mesh, mask, TriMesh::twin(p.halfedge))) return true;
+        }
+    }
+    return false;
+}
+
+// The face mask of T_jk, borrowed clean (all zero) from a per-thread pool (scratch.hpp): an
+// array of #F entries per path would cost more than the ellipse on a large mesh. `in` lists the
+// faces set to 1. The ellipse only grows with K (the fields are fixed, the bound grows), so the
+// mask is only ever added to.
+struct MaskScratch {
+    std::vector<std::uint8_t> mask;
+    std::vector<std::uint32_t> in;
+    void fit(std::size_t n) { mask.resize(n, 0); }  // clean, so shrinking or growing keeps it clean
+    void reset() {
+        for (std::uint32_t f : in) mask[f] = 0;
+        detail::clear_buffer(in);
+    }
+};
+
+}  // namespace
+
+EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, const EllipseOptions& options) {
+    const std::size_t nv = mesh.n_vertices();
+    if (a.idx() >= nv || b.idx() >= nv)
+        throw InvalidInput("", 0, "vertex " + std::to_string(std::max(a.idx(), b.idx())) + " is out of range (the mesh has " +
+                                      std::to_string(nv) + " vertices)");
+    if (a == b) throw InvalidInput("", 0, "the two vertices are the same (" + std::to_string(a.idx()) + ")");
+    if (!(options.K > 1)) throw InvalidInput("", 0, "K must be greater than 1");
+    // d_a(a, b): the run from a, stopped once b is final, then continued for the ellipse.
+    FastMarching from_a(mesh, std::span(&a, 1));
+    const double d_ab = from_a.advance_to(b);
+    if (!std::isfinite(d_ab)) throw InvalidInput("", 0, "the two vertices are not connected");
+    FastMarching from_b(mesh, std::span(&b, 1));
+    const detail::Borrowed<MaskScratch> scratch = detail::borrow<MaskScratch>(mesh.n_faces());
+    std::vector<std::uint8_t>& mask = scratch->mask;
+    EllipsePath result;
+    for (double K = options.K;; K = 1 + 2 * (K - 1)) {
+        const double bound = K * d_ab;
+        from_a.advance(bound);
+        from_b.advance(bound);
+        // T_jk: the faces around every vertex with d_a(v, a) + d_a(v, b) <= K·D_a. Such a vertex
+        // has d_a(v, a) <= K·D_a, so from_a has reached it. Earlier attempts' faces stay in.
+        for (VertexId v : from_a.finalized()) {
+            if (!(from_a.distance(v) + from_b.distance(v) <= bound)) continue;
+            mesh.for_each_outgoing(v, [&](HalfedgeId h) {
+                if (mesh.is_boundary(h)) return;
+                std::uint8_t& in = mask[mesh.face(h).idx()];
+                if (!in) scratch->in.push_back(mesh.face(h).idx());
+                in = 1;
+            });
+        }
+        const std::size_t faces = scratch->in.size();
+        const bool everything = faces == mesh.n_faces();
+        ExactGeodesic restricted(mesh, a, {everything ? nullptr : &mask});
+        restricted.propagate(std::span(&b, 1));
+        GeodesicPath path = restricted.path_to(b);
+        const double L = path.length;
+        result.attempts += 1;
+        result.windows_created += restricted.stats().windows_created;
+        result.K = K;
+        result.ellipse_faces = faces;
+        if (everything) {
+            result.path = std::move(path);
+            result.certificate = EllipsePath::Certificate::whole_mesh;
+            return result;
+        }
+        if (!std::isfinite(L) || touches_boundary(mesh, mask, path)) continue;  // the paper's rule: grow K
+        // Certificate 1 (paper_notes/ellipse.md): every path that leaves T_jk is at least
+        // min(border_key, stop_key) long.
+        if (std::min(restricted.stats().border_key, restricted.stats().stop_key) >= L) {
+            result.path = std::move(path);
+            result.certificate = EllipsePath::Certificate::border;
+            return result;
+        }
+        // Certificate 2: the exact search on all of T, pruned above L (1 + filter margin), sees only
+        // {p : d(a, p) + |p − b| <= L(1 + margin)}; what it finds shorter than L is the distance on T.
+        ExactOptions whole;
+        whole.prune_above = L * (1 + certificate_margin);
+        ExactGeodesic search(mesh, a, whole);
+        search.propagate(std::span(&b, 1));
+        result.certificate_windows = search.stats().windows_created;
+        if (search.distance(b) < L * (1 - certificate_margin)) {
+            result.path = search.path_to(b);
+            result.certificate = EllipsePath::Certificate::replaced;
+        } else {
+            result.path = std::move(path);
+            result.certificate = EllipsePath::Certificate::search;
+        }
+        return result;
+    }
+}
+
+}  // namespace fhr::geodesic

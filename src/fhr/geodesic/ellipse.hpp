@@ -1,0 +1,64 @@
+// FHR §3 — the shortest geodesic Γ(x_j, x_k) searched inside the "ellipse" sub-mesh T_jk.
+//
+// Paper §3: "we compute the geodesic Γ(x_j, x_k) by restricting the search to a small
+// subtriangulation T_jk of T … the set of all triangles in T containing a vertex v such that
+// d_a(v, x_j) + d_a(v, x_k) <= K d_a(x_j, x_k)", d_a by Kimmel–Sethian fast marching, K = 1.06;
+// "in the event that the path is not contained in Ω_Tjk, we simply increase K".
+//
+// Pseudocode:
+//   FM_a <- fast marching from x_j, run until x_k is final: D_a = d_a(x_j, x_k)
+//   FM_b <- fast marching from x_k
+//   K <- K_0
+//   loop:
+//       continue FM_a and FM_b up to K·D_a (one run each over all attempts: cost ∝ the ellipse)
+//       T_jk <- faces with a vertex v: d_a(v, x_j) + d_a(v, x_k) <= K·D_a
+//       Γ <- exact shortest path from x_j to x_k inside T_jk (window propagation, early stop at
+//            x_k), L its length; B <- the smallest key (lower bound of a path to x_k through it)
+//            of anything that search brought to T_jk's artificial boundary or left queued
+//       if T_jk is all of T: return Γ (no artificial boundary)
+//       if Γ exists and touches no vertex or edge of T_jk's artificial boundary (the paper's test):
+//           if B >= L: return Γ                                  (certificate 1: the border)
+//           S <- exact search from x_j on all of T, early stop at x_k, pruned above L
+//           if S finds no path shorter than L: return Γ          (certificate 2: the search)
+//           return S's path (Γ was not the shortest path of T: the ellipse missed it)
+//       K <- 1 + 2(K − 1)                                        (the paper's rule)
+// Why this is safe (a theorem and its proof): paper_notes/ellipse.md.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include <fhr/geodesic/exact.hpp>
+
+namespace fhr::geodesic {
+
+struct EllipseOptions {
+    double K = 1.06;  ///< the paper's constant; must be > 1
+};
+
+struct EllipsePath {
+    /// How the returned path is known to be a shortest path of all of T.
+    enum class Certificate : std::uint8_t {
+        whole_mesh,  ///< T_jk grew to all of T: no artificial boundary
+        border,      ///< nothing the restricted search brought to T_jk's border can be shorter
+        search,      ///< the exact search on all of T, pruned above L, found nothing shorter
+        replaced,    ///< that search found a shorter path (outside T_jk): its path is returned
+    };
+    GeodesicPath path;
+    double K = 0;                     ///< the K of the last ellipse (the one that gave the path,
+                                      ///< except for Certificate::replaced)
+    std::size_t attempts = 0;         ///< ellipses tried (1 when K_0 sufficed)
+    std::size_t ellipse_faces = 0;    ///< faces of the final T_jk
+    std::size_t windows_created = 0;  ///< by the restricted searches, over all attempts
+    Certificate certificate = Certificate::whole_mesh;
+    std::size_t certificate_windows = 0;  ///< by the certificate search (0 unless it ran)
+};
+
+/// Γ(a, b) by the ellipse search. \pre mesh valid, closed, connected; a != b.
+/// \post path.length is the exact polyhedral distance on the whole mesh (up to the rounding of
+///       the exact algorithm, paper_notes/exact_geodesics.md): the sub-mesh's path is returned
+///       only when certified, and a certificate that fails yields the whole-mesh search's path.
+/// \throws InvalidInput for vertex indices out of range, a == b, K <= 1, or a and b not connected.
+EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, const EllipseOptions& options = {});
+
+}  // namespace fhr::geodesic

@@ -1,0 +1,152 @@
+// FHR §3/§4 — the patch S_i as a disk: its validity rules (MAP-1) and its sides.
+#include <fhr/core/detail/contract.hpp>
+#include <fhr/param/disk.hpp>
+
+#include <numeric>
+
+#include <fhr/core/errors.hpp>
+#include <fhr/param/detail/disk_topology.hpp>
+
+namespace fhr::param {
+namespace detail {
+
+DirectedEdges directed_edges(const Disk& disk) {
+    DirectedEdges table;
+    table.reserve(3 * disk.triangles.size());
+    for (std::uint32_t t = 0; t < disk.triangles.size(); ++t) {
+        const auto& f = disk.triangles[t];
+        for (int k = 0; k < 3; ++k) table.emplace(edge_key(f[k], f[(k + 1) % 3]), t);
+    }
+    return table;
+}
+
+}  // namespace detail
+
+namespace {
+
+std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+}
+
+}  // namespace
+
+std::optional<Violation> disk_violation(const Disk& disk) {
+    auto broken = [](Element element, std::int64_t index, std::string what) {
+        return Violation{"MAP-1", element, index, std::move(what)};
+    };
+    const std::size_t nv = disk.positions.size();
+    const std::size_t nt = disk.triangles.size();
+    if (nt == 0) return broken(Element::whole, -1, "no triangles");
+    if (nv >= std::uint32_t(-1)) return broken(Element::whole, -1, "too many vertices");
+    std::vector<std::uint32_t> incident(nv, 0);
+    detail::DirectedEdges edges;
+    edges.reserve(3 * nt);
+    for (std::size_t t = 0; t < nt; ++t) {
+        const auto& f = disk.triangles[t];
+        for (int k = 0; k < 3; ++k)
+            if (f[k] >= nv) return broken(Element::face, t, "triangle " + std::to_string(t) + " names vertex " + std::to_string(f[k]) + " of " + std::to_string(nv));
+        if (f[0] == f[1] || f[1] == f[2] || f[2] == f[0]) return broken(Element::face, t, "triangle " + std::to_string(t) + " repeats a vertex");
+        for (int k = 0; k < 3; ++k) {
+            ++incident[f[k]];
+            if (!edges.emplace(detail::edge_key(f[k], f[(k + 1) % 3]), static_cast<std::uint32_t>(t)).second)
+                return broken(Element::face, static_cast<std::int64_t>(t), "directed edge (" + std::to_string(f[k]) + ", " +
+                                  std::to_string(f[(k + 1) % 3]) + ") is in two triangles (inconsistent orientation or a non-manifold edge)");
+        }
+    }
+    for (std::size_t v = 0; v < nv; ++v)
+        if (incident[v] == 0) return broken(Element::vertex, v, "vertex " + std::to_string(v) + " is in no triangle");
+
+    // Boundary edges: directed edges without their reverse. Each vertex starts at most one.
+    constexpr std::uint32_t none = std::uint32_t(-1);
+    std::vector<std::uint32_t> boundary_next(nv, none), boundary_prev(nv, none);
+    std::size_t n_boundary_edges = 0, n_edges = 0;
+    for (const auto& [key, t] : edges) {
+        const auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key);
+        if (edges.count(detail::edge_key(b, a)) != 0) {
+            if (a < b) ++n_edges;
+            continue;
+        }
+        ++n_edges;
+        ++n_boundary_edges;
+        if (boundary_next[a] != none) return broken(Element::vertex, a, "vertex " + std::to_string(a) + " starts two boundary edges (not a disk)");
+        boundary_next[a] = b;
+        boundary_prev[b] = a;
+    }
+
+    // Every vertex's triangles form one fan. From an edge (v, w), the triangle traversing (w, v)
+    // is (v, y, w) after rotation; the walk continues with (v, y). At an interior vertex it comes
+    // back to its start; at a boundary vertex it starts at the incoming boundary edge (a, v) and
+    // stops at the outgoing one, which no triangle traverses backwards. Either way it must visit
+    // every triangle at v.
+    std::vector<std::uint32_t> some_neighbour(nv, none);  // w with (v, w) traversed by a triangle
+    for (const auto& f : disk.triangles)
+        for (int k = 0; k < 3; ++k)
+            if (some_neighbour[f[k]] == none) some_neighbour[f[k]] = f[(k + 1) % 3];
+    for (std::uint32_t v = 0; v < nv; ++v) {
+        std::uint32_t w = boundary_prev[v] != none ? boundary_prev[v] : some_neighbour[v];
+        const std::uint32_t first = w;
+        std::uint32_t visited = 0;
+        while (visited <= incident[v]) {
+            const auto it = edges.find(detail::edge_key(w, v));
+            if (it == edges.end()) break;
+            ++visited;
+            const auto& f = disk.triangles[it->second];
+            const int k = f[0] == v ? 0 : f[1] == v ? 1 : 2;
+            w = f[(k + 1) % 3];
+            if (w == first) break;
+        }
+        if (visited != incident[v]) return broken(Element::vertex, v, "vertex " + std::to_string(v) + " is not manifold (its triangles form more than one fan)");
+    }
+
+    // The boundary loop is exactly `boundary`.
+    const auto& loop = disk.boundary;
+    if (loop.size() < 3) return broken(Element::boundary_position, -1, "boundary loop has " + std::to_string(loop.size()) + " vertices (needs 3 corners)");
+    if (loop.size() != n_boundary_edges)
+        return broken(Element::boundary_position, -1, "the triangles have " + std::to_string(n_boundary_edges) + " boundary edges but the loop has " +
+                                                 std::to_string(loop.size()) + " (more than one boundary loop?)");
+    std::vector<char> on_loop(nv, 0);
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+        const std::uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
+        if (a >= nv || boundary_next[a] != b)
+            return broken(Element::boundary_position, static_cast<std::int64_t>(i), "boundary position " + std::to_string(i) + ": (" + std::to_string(a) + ", " +
+                                                  std::to_string(b) + ") is not a boundary edge in the triangles' orientation");
+        if (on_loop[a]++) return broken(Element::boundary_position, static_cast<std::int64_t>(i), "boundary position " + std::to_string(i) + " repeats vertex " + std::to_string(a));
+    }
+    // Distinct vertices, each starting one boundary edge, as many as there are boundary edges:
+    // the loop holds every boundary edge.
+
+    // Connected, and χ = V − E + F = 1: with one boundary loop and manifold vertices, a disk.
+    std::vector<std::uint32_t> parent(nv);
+    std::iota(parent.begin(), parent.end(), 0u);
+    for (const auto& f : disk.triangles)
+        for (int k = 1; k < 3; ++k) parent[find_root(parent, f[k])] = find_root(parent, f[0]);
+    for (std::uint32_t v = 1; v < nv; ++v)
+        if (find_root(parent, v) != find_root(parent, 0)) return broken(Element::vertex, v, "not connected (vertex " + std::to_string(v) + ")");
+    const long chi = static_cast<long>(nv) - static_cast<long>(n_edges) + static_cast<long>(nt);
+    if (chi != 1) return broken(Element::whole, -1, "Euler characteristic " + std::to_string(chi) + " (a disk has 1)");
+
+    const auto& c = disk.corners;
+    if (!(c[0] == 0 && c[0] < c[1] && c[1] < c[2] && c[2] < loop.size()))
+        return broken(Element::corners, -1, "corners (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) +
+                                                ") are not 0 < c1 < c2 < " + std::to_string(loop.size()));
+    return std::nullopt;
+}
+
+void validate(const Disk& disk) {
+    if (const auto broken = disk_violation(disk)) throw InvalidInput("", 0, "patch: " + broken->describe());
+}
+
+std::vector<unsigned> boundary_sides(const Disk& disk) {
+    FHR_DCHECK(disk.corners[0] == 0 && disk.corners[0] < disk.corners[1] && disk.corners[1] < disk.corners[2] &&
+               disk.corners[2] < disk.boundary.size());
+    const std::size_t n = disk.boundary.size();
+    std::vector<unsigned> sides(n, 0);
+    for (unsigned c = 0; c < 3; ++c) {
+        const std::size_t from = disk.corners[c], to = c == 2 ? n : disk.corners[c + 1];
+        for (std::size_t p = from; p <= to; ++p) sides[p % n] |= 1u << c;
+    }
+    return sides;
+}
+
+}  // namespace fhr::param

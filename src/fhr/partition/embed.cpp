@@ -1,0 +1,429 @@
+// FHR §3 — embedding the geodesic network into T (eq. 1, Fig. 3); conditions (1) and (2).
+// See embed.hpp for the pseudocode and paper_notes/partition.md for the decisions.
+#include <fhr/partition/embed.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace fhr::partition {
+namespace {
+
+using Kind = Conflict::Kind;
+
+// A node of a path on T: a vertex, or the point at parameter t of T's halfedge(edge, 0).
+struct Node {
+    VertexId vertex;
+    EdgeId edge;
+    double t = 0;
+};
+
+// A chord: a segment of path `d_edge` across face `face` of T between two vertices of T′.
+struct Chord {
+    FaceId face;
+    VertexId a, b;
+    std::uint32_t d_edge;
+};
+
+// A piece of path `d_edge` along T's edge `edge`, between parameters t0 < t1.
+struct Run {
+    EdgeId edge;
+    double t0, t1;
+    std::uint32_t d_edge;
+};
+
+// Bit s is set when a point of a face's boundary lies on the face's side s (side s runs from
+// corner s to corner s + 1); corners lie on two sides.
+using SideMask = std::uint8_t;
+
+class Embedder {
+public:
+    // With D: paths[e] runs between the corners x_j, x_k of D's halfedge (e, 0), and (2) is checked.
+    // Without: the corners are the paths' ends (numbered in order of first appearance).
+    Embedder(const TriMesh& T, const domain::Domain* D, std::span<const geodesic::GeodesicPath> paths,
+             std::span<const std::uint8_t> unsnapped)
+        : T_(T), D_(D), paths_(paths), unsnapped_(unsnapped) {
+        Network& n = out_.network;
+        n.corner.assign(T.n_vertices(), -1);
+        if (D) {
+            for (std::size_t j = 0; j < D->t_vertex.size(); ++j) n.corner[D->t_vertex[j].idx()] = static_cast<std::int32_t>(j);
+            ends_ = domain::edge_endpoints(*D);
+        } else {
+            std::int32_t corners = 0;
+            for (const geodesic::GeodesicPath& p : paths) {
+                if (p.points.size() < 2 || p.points.front().kind != SurfacePoint::Kind::vertex || p.points.back().kind != SurfacePoint::Kind::vertex)
+                    throw std::logic_error("embed: a curve does not run between two vertices");
+                ends_.emplace_back(p.points.front().vertex, p.points.back().vertex);
+                for (VertexId x : {p.points.front().vertex, p.points.back().vertex})
+                    if (n.corner[x.idx()] < 0) n.corner[x.idx()] = corners++;
+            }
+        }
+        n.on_path.assign(T.n_vertices(), PathPosition{});
+        n.origin.resize(T.n_vertices());
+        for (VertexId v : T.vertices()) n.origin[v.idx()].vertex = v;
+        positions_.assign(T.positions().begin(), T.positions().end());
+    }
+
+    Embedding run() {
+        if (D_ && paths_.size() != D_->mesh.n_edges()) throw std::logic_error("embed: one path per edge of D is needed");
+        for (std::uint32_t e = 0; e < paths_.size(); ++e) add_path(e);
+        check_runs();
+        std::vector<Triangle> triangles;
+        triangles.reserve(T_.n_faces() + 2 * chords_.size());
+        triangulate_faces(triangles);
+        if (!out_.conflicts.empty()) return std::move(out_);
+        Network& n = out_.network;
+        n.mesh = TriMesh::from_triangles(std::move(positions_), triangles);
+        label_paths();
+        if (D_) check_order();
+        return std::move(out_);
+    }
+
+private:
+    const TriMesh& T_;
+    const domain::Domain* D_;
+    std::vector<std::pair<VertexId, VertexId>> ends_;  // per path: x_j, x_k
+    std::span<const geodesic::GeodesicPath> paths_;
+    std::span<const std::uint8_t> unsnapped_;
+    Embedding out_;
+    std::vector<Vec3> positions_;
+    // Per edge of T: its nodes as (t, vertex of T′), in order of registration.
+    std::unordered_map<std::uint32_t, std::vector<std::pair<double, VertexId>>> on_edge_;
+    std::vector<Chord> chords_;
+    std::vector<Run> runs_;
+
+    void conflict(Kind kind, std::uint32_t a, std::uint32_t b, std::array<VertexId, 3> near, std::uint32_t d_vertex = 0) {
+        out_.conflicts.push_back(Conflict{kind, std::min(a, b), std::max(a, b), d_vertex, near});
+    }
+
+    // The vertex of T nearest to vertex v of T′: itself, or the nearer end of its edge of T.
+    VertexId nearest(VertexId v) const {
+        const Origin& o = out_.network.origin[v.idx()];
+        if (o.vertex.valid()) return o.vertex;
+        const HalfedgeId h = TriMesh::halfedge(o.edge, 0);
+        return o.t < 0.5 ? T_.from(h) : T_.to(h);
+    }
+
+    // The path's node as a vertex or an edge point of T (canonical edge direction), snapped.
+    Node node_of(const SurfacePoint& p, bool snap) {
+        if (p.kind == SurfacePoint::Kind::vertex) return Node{p.vertex, {}, 0};
+        if (p.kind != SurfacePoint::Kind::edge) throw std::logic_error("embed: a path node inside a face");
+        const EdgeId e = TriMesh::edge(p.halfedge);
+        const double t = (p.halfedge.idx() & 1u) ? 1 - p.t : p.t;
+        const HalfedgeId h = TriMesh::halfedge(e, 0);
+        if (snap && (t <= snap_fraction || t >= 1 - snap_fraction)) {
+            const VertexId v = t <= snap_fraction ? T_.from(h) : T_.to(h);
+            const double moved = (T_.position(v) - position(T_, p)).norm();
+            out_.network.max_snap_distance = std::max(out_.network.max_snap_distance, moved);
+            return Node{v, {}, 0};
+        }
+        return Node{{}, e, t};
+    }
+
+    // The vertex of T′ at a node, created on first use.
+    VertexId vertex_of(const Node& n) {
+        if (n.vertex.valid()) return n.vertex;
+        auto& list = on_edge_[n.edge.idx()];
+        for (const auto& [t, v] : list)
+            if (t == n.t) return v;
+        const VertexId v(static_cast<VertexId::Index>(positions_.size()));
+        const HalfedgeId h = TriMesh::halfedge(n.edge, 0);
+        positions_.push_back((1 - n.t) * T_.position(T_.from(h)) + n.t * T_.position(T_.to(h)));
+        Network& net = out_.network;
+        net.origin.push_back(Origin{{}, n.edge, n.t});
+        net.on_path.push_back(PathPosition{});
+        net.corner.push_back(-1);
+        list.emplace_back(n.t, v);
+        return v;
+    }
+
+    void add_path(std::uint32_t e) {
+        const auto [xj, xk] = ends_[e];
+        const auto& points = paths_[e].points;
+        if (points.size() < 2 || points.front().kind != SurfacePoint::Kind::vertex || points.front().vertex != xj ||
+            points.back().kind != SurfacePoint::Kind::vertex || points.back().vertex != xk)
+            throw std::logic_error("embed: the path of D edge " + std::to_string(e) + " does not run from x_j to x_k");
+        std::vector<Node> nodes;
+        for (const SurfacePoint& p : points) {
+            const Node n = node_of(p, unsnapped_.empty() || !unsnapped_[e]);
+            if (nodes.empty() || !same(nodes.back(), n)) nodes.push_back(n);
+        }
+        Network& net = out_.network;
+        std::vector<VertexId>& path = net.path.emplace_back();
+        for (const Node& n : nodes) path.push_back(vertex_of(n));
+        for (std::size_t i = 1; i + 1 < nodes.size(); ++i) {
+            const VertexId v = path[i];
+            if (net.corner[v.idx()] >= 0) {
+                // Γ(x_j, x_k) runs over x_m: D needs vertices beside x_m on it (paper_notes/partition.md).
+                conflict(Kind::through_corner, e, e, {nearest(path[i - 1]), nearest(path[i + 1]), {}},
+                         static_cast<std::uint32_t>(net.corner[v.idx()]));
+            } else if (net.on_path[v.idx()].d_edge >= 0) {
+                conflict(Kind::shared_node, static_cast<std::uint32_t>(net.on_path[v.idx()].d_edge), e, {nearest(v), {}, {}});
+            } else {
+                net.on_path[v.idx()] = PathPosition{static_cast<std::int32_t>(e), static_cast<std::uint32_t>(i)};
+            }
+        }
+        for (std::size_t i = 0; i + 1 < nodes.size(); ++i) add_segment(nodes[i], nodes[i + 1], path[i], path[i + 1], e);
+    }
+
+    static bool same(const Node& a, const Node& b) {
+        return a.vertex.valid() ? a.vertex == b.vertex : (!b.vertex.valid() && a.edge == b.edge && a.t == b.t);
+    }
+
+    // Parameter of vertex v of T along T's halfedge(e, 0), or NaN when v is not an end of e.
+    double end_parameter(EdgeId e, VertexId v) const {
+        const HalfedgeId h = TriMesh::halfedge(e, 0);
+        if (T_.from(h) == v) return 0;
+        if (T_.to(h) == v) return 1;
+        return std::numeric_limits<double>::quiet_NaN();
+    }
+
+    // Segment [a, b] of path e: a run along an edge of T or a chord of a face of T.
+    void add_segment(const Node& a, const Node& b, VertexId va, VertexId vb, std::uint32_t e) {
+        auto run = [&](EdgeId edge, double ta, double tb) {
+            runs_.push_back(Run{edge, std::min(ta, tb), std::max(ta, tb), e});
+        };
+        if (a.vertex.valid() && b.vertex.valid()) {
+            const HalfedgeId h = T_.find_halfedge(a.vertex, b.vertex);
+            if (!h.valid()) throw std::logic_error("embed: consecutive path vertices are not adjacent (D edge " + std::to_string(e) + ")");
+            const EdgeId edge = TriMesh::edge(h);
+            return run(edge, end_parameter(edge, a.vertex), end_parameter(edge, b.vertex));
+        }
+        if (!a.vertex.valid() && !b.vertex.valid() && a.edge == b.edge) return run(a.edge, a.t, b.t);
+        const Node& p = a.vertex.valid() ? b : a;  // an edge node
+        const Node& q = a.vertex.valid() ? a : b;  // a vertex, or another edge node
+        if (q.vertex.valid() && !std::isnan(end_parameter(p.edge, q.vertex))) return run(p.edge, p.t, end_parameter(p.edge, q.vertex));
+        for (unsigned side = 0; side < 2; ++side) {
+            const HalfedgeId h = TriMesh::halfedge(p.edge, side);
+            const HalfedgeId h1 = T_.next(h), h2 = T_.next(h1);
+            const bool holds = q.vertex.valid() ? T_.to(h1) == q.vertex
+                                                : (TriMesh::edge(h1) == q.edge || TriMesh::edge(h2) == q.edge);
+            if (holds) return chords_.push_back(Chord{T_.face(h), va, vb, e});
+        }
+        throw std::logic_error("embed: consecutive path nodes share no face (D edge " + std::to_string(e) + ")");
+    }
+
+    // (1) along edges: a path running along a piece of an edge of T must not contain another
+    // path's node (which would be a crossing or an overlap).
+    void check_runs() {
+        const Network& net = out_.network;
+        for (const Run& r : runs_) {
+            const auto it = on_edge_.find(r.edge.idx());
+            if (it == on_edge_.end()) continue;
+            for (const auto& [t, v] : it->second) {
+                if (t > r.t0 && t < r.t1)
+                    conflict(Kind::shared_node, r.d_edge, static_cast<std::uint32_t>(net.on_path[v.idx()].d_edge), {nearest(v), {}, {}});
+            }
+        }
+    }
+
+    // The nodes on T's halfedge h in the direction of h.
+    std::vector<VertexId> nodes_along(HalfedgeId h) {
+        const auto it = on_edge_.find(TriMesh::edge(h).idx());
+        if (it == on_edge_.end()) return {};
+        std::vector<std::pair<double, VertexId>> list = it->second;
+        std::sort(list.begin(), list.end());
+        if (h.idx() & 1u) std::reverse(list.begin(), list.end());
+        std::vector<VertexId> r;
+        for (const auto& [t, v] : list) r.push_back(v);
+        return r;
+    }
+
+    void triangulate_faces(std::vector<Triangle>& triangles) {
+        std::sort(chords_.begin(), chords_.end(), [](const Chord& x, const Chord& y) { return x.face.idx() < y.face.idx(); });
+        auto chord = chords_.begin();
+        for (FaceId f : T_.faces()) {
+            const auto first = chord;
+            while (chord != chords_.end() && chord->face == f) ++chord;
+            triangulate_face(f, std::span<const Chord>(first, chord), triangles);
+            out_.network.t_face.resize(triangles.size(), f);
+        }
+    }
+
+    // Face f of T cut along its chords (Fig. 3), triangulated.
+    void triangulate_face(FaceId f, std::span<const Chord> chords, std::vector<Triangle>& triangles) {
+        std::vector<VertexId> poly;
+        std::vector<SideMask> mask;
+        HalfedgeId h = T_.halfedge(f);
+        for (unsigned s = 0; s < 3; ++s, h = T_.next(h)) {
+            poly.push_back(T_.from(h));
+            mask.push_back(static_cast<SideMask>((1u << s) | (1u << ((s + 2) % 3))));
+            for (VertexId v : nodes_along(h)) {
+                poly.push_back(v);
+                mask.push_back(static_cast<SideMask>(1u << s));
+            }
+        }
+        if (poly.size() == 3 && chords.empty()) {
+            triangles.push_back({poly[0].idx(), poly[1].idx(), poly[2].idx()});
+            return;
+        }
+        auto index_of = [&](VertexId v) {
+            return static_cast<std::size_t>(std::find(poly.begin(), poly.end(), v) - poly.begin());
+        };
+        std::vector<std::pair<std::size_t, std::size_t>> cuts;
+        for (const Chord& c : chords) {
+            std::size_t a = index_of(c.a), b = index_of(c.b);
+            if (a == poly.size() || b == poly.size()) throw std::logic_error("embed: a chord's end is not on its face");
+            cuts.emplace_back(std::min(a, b), std::max(a, b));
+        }
+        // Theorem: two chords of a convex polygon cross iff their ends interleave along its boundary.
+        for (std::size_t i = 0; i < cuts.size(); ++i)
+            for (std::size_t k = i + 1; k < cuts.size(); ++k) {
+                const auto [a, b] = cuts[i];
+                const auto [c, d] = cuts[k];
+                if ((a < c && c < b && b < d) || (c < a && a < d && d < b))
+                    conflict(Kind::crossing, chords[i].d_edge, chords[k].d_edge, T_.face_vertices(f));
+            }
+        if (!out_.conflicts.empty()) return;
+        // The chords cut the polygon into convex pieces: split the piece holding each chord.
+        std::vector<std::vector<std::size_t>> pieces(1);
+        for (std::size_t i = 0; i < poly.size(); ++i) pieces[0].push_back(i);
+        for (const auto& [a, b] : cuts) {
+            for (std::size_t p = 0; p < pieces.size(); ++p) {
+                std::vector<std::size_t>& piece = pieces[p];
+                auto ia = std::find(piece.begin(), piece.end(), a), ib = std::find(piece.begin(), piece.end(), b);
+                if (ia == piece.end() || ib == piece.end()) continue;
+                if (ib < ia) std::swap(ia, ib);  // a piece is a cyclic sequence: either end may come first
+                const std::size_t d = static_cast<std::size_t>(ib - ia);
+                if (d == 1 || d == piece.size() - 1) break;  // already a side of this piece
+                std::vector<std::size_t> inner(ia, ib + 1), outer(ib, piece.end());
+                outer.insert(outer.end(), piece.begin(), ia + 1);
+                piece = std::move(inner);
+                pieces.push_back(std::move(outer));
+                break;
+            }
+        }
+        for (const auto& piece : pieces) triangulate_convex(poly, mask, piece, triangles);
+    }
+
+    // Smallest angle of triangle (a, b, c) of T′, or −1 when its corners lie on one side of the
+    // face of T (collinear: a triangle of zero area).
+    double quality(const std::vector<VertexId>& poly, const std::vector<SideMask>& mask, std::size_t a, std::size_t b,
+                   std::size_t c) const {
+        if (mask[a] & mask[b] & mask[c]) return -1;
+        const Vec3 &pa = positions_[poly[a].idx()], &pb = positions_[poly[b].idx()], &pc = positions_[poly[c].idx()];
+        auto angle = [](const Vec3& o, const Vec3& x, const Vec3& y) {
+            const Vec3 u = x - o, w = y - o;
+            return std::atan2(u.cross(w).norm(), u.dot(w));
+        };
+        return std::min({angle(pa, pb, pc), angle(pb, pc, pa), angle(pc, pa, pb)});
+    }
+
+    // The triangulation of a convex piece (indices into poly, in boundary order) that maximizes
+    // the smallest angle (Klincsek's dynamic programme over sub-polygons, O(m³)); the Fig. 3
+    // "either diagonal" choice, made for shape.
+    void triangulate_convex(const std::vector<VertexId>& poly, const std::vector<SideMask>& mask,
+                            const std::vector<std::size_t>& piece, std::vector<Triangle>& triangles) const {
+        const std::size_t m = piece.size();
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        std::vector<double> best(m * m, inf);
+        std::vector<std::size_t> apex(m * m, 0);
+        for (std::size_t len = 2; len < m; ++len)
+            for (std::size_t i = 0; i + len < m; ++i) {
+                const std::size_t j = i + len;
+                double& b = best[i * m + j];
+                b = -inf;
+                for (std::size_t k = i + 1; k < j; ++k) {
+                    const double q = std::min({best[i * m + k], best[k * m + j], quality(poly, mask, piece[i], piece[k], piece[j])});
+                    if (q > b) {
+                        b = q;
+                        apex[i * m + j] = k;
+                    }
+                }
+            }
+        // Theorem (paper_notes/partition.md): a convex piece always has a triangulation without
+        // collinear triangles, so the optimum is positive.
+        if (!(best[m - 1] > 0)) throw std::logic_error("embed: a piece of a face has no proper triangulation");
+        std::vector<std::pair<std::size_t, std::size_t>> stack{{0, m - 1}};
+        while (!stack.empty()) {
+            const auto [i, j] = stack.back();
+            stack.pop_back();
+            if (j < i + 2) continue;
+            const std::size_t k = apex[i * m + j];
+            triangles.push_back({poly[piece[i]].idx(), poly[piece[k]].idx(), poly[piece[j]].idx()});
+            stack.emplace_back(i, k);
+            stack.emplace_back(k, j);
+        }
+    }
+
+    // Every segment is an edge of T′: label it with its D halfedge.
+    void label_paths() {
+        Network& net = out_.network;
+        net.d_halfedge.assign(net.mesh.n_halfedges(), -1);
+        for (std::uint32_t e = 0; e < net.path.size(); ++e) {
+            const auto& path = net.path[e];
+            for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+                const HalfedgeId h = net.mesh.find_halfedge(path[i], path[i + 1]);
+                if (!h.valid() || net.d_halfedge[h.idx()] >= 0) throw std::logic_error("embed: a path segment is not an edge of T′");
+                net.d_halfedge[h.idx()] = static_cast<std::int32_t>(2 * e);
+                net.d_halfedge[TriMesh::twin(h).idx()] = static_cast<std::int32_t>(2 * e + 1);
+            }
+        }
+    }
+
+    // (2): around x_j, the paths leave in D's cyclic order of the edges around v_j.
+    void check_order() {
+        const Network& net = out_.network;
+        const domain::Domain& D = *D_;
+        for (VertexId vj : D.mesh.vertices()) {
+            std::vector<std::int32_t> in_d, in_t;
+            D.mesh.for_each_outgoing(vj, [&](HalfedgeId h) { in_d.push_back(static_cast<std::int32_t>(h.idx())); });
+            net.mesh.for_each_outgoing(D.t_vertex[vj.idx()], [&](HalfedgeId h) {
+                if (net.d_halfedge[h.idx()] >= 0) in_t.push_back(net.d_halfedge[h.idx()]);
+            });
+            // The D edges whose successor around x_j is not their successor around v_j (all of
+            // them when the curves at x_j are not exactly D's edges).
+            const std::size_t n = in_d.size();
+            std::vector<std::uint8_t> wrong(n, in_t.size() != n);
+            for (std::size_t k = 0; k < n && in_t.size() == n; ++k) {
+                const auto at = std::find(in_t.begin(), in_t.end(), in_d[k]);
+                if (at == in_t.end()) {
+                    std::fill(wrong.begin(), wrong.end(), 1);
+                    break;
+                }
+                if (in_t[(static_cast<std::size_t>(at - in_t.begin()) + 1) % n] != in_d[(k + 1) % n]) wrong[k] = wrong[(k + 1) % n] = 1;
+            }
+            for (std::size_t k = 0; k < n; ++k) {
+                if (!wrong[k]) continue;
+                // The curve's first node after x_j: a vertex of D there puts it in its place.
+                const std::uint32_t e = static_cast<std::uint32_t>(in_d[k]) / 2;
+                const auto& path = net.path[e];
+                const VertexId first = (in_d[k] & 1) ? path[path.size() - 2] : path[1];
+                conflict(Kind::order, e, e, {nearest(first), {}, {}}, vj.idx());
+            }
+        }
+    }
+};
+
+}  // namespace
+
+std::string Conflict::describe() const {
+    const std::string a = "domain edge " + std::to_string(d_edge_a), b = "domain edge " + std::to_string(d_edge_b);
+    switch (kind) {
+        case Kind::shared_node:
+            return d_edge_a == d_edge_b ? "the path of " + a + " passes a point twice"
+                                        : "the paths of " + a + " and " + b + " meet at a point that is not a common end";
+        case Kind::crossing: return "the paths of " + a + " and " + b + " cross";
+        case Kind::through_corner:
+            return "the path of " + a + " passes through the corner of domain vertex " + std::to_string(d_vertex);
+        case Kind::order:
+            return "around domain vertex " + std::to_string(d_vertex) + " the path of " + a +
+                   " is out of the domain's cyclic order";
+    }
+    return {};
+}
+
+Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths,
+                std::span<const std::uint8_t> unsnapped) {
+    if (!unsnapped.empty() && unsnapped.size() != paths.size()) throw std::logic_error("embed: one unsnapped flag per path");
+    return Embedder(T, &D, paths, unsnapped).run();
+}
+
+Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath> curves, std::span<const std::uint8_t> unsnapped) {
+    if (!unsnapped.empty() && unsnapped.size() != curves.size()) throw std::logic_error("embed: one unsnapped flag per curve");
+    return Embedder(T, nullptr, curves, unsnapped).run();
+}
+
+}  // namespace fhr::partition

@@ -1,0 +1,92 @@
+// Beyond the paper (§3): keeping the domain that was asked for. When the geodesics of D's edges
+// break conditions (1) or (2), D is kept and the conflicting edges get restricted shortest paths
+// (partition/restricted.hpp) instead of D being changed.
+//
+// Pseudocode:
+//   direct start (tried first): keep the geodesics with no conflict of their own and none with a
+//       kept one (then drop, a round at a time, one curve where the kept ones around a corner are
+//       out of D's cyclic order); when the faces joined across the dropped edges are disks (maybe
+//       pinched), each with one region of T′ bounded by kept curves, put each dropped edge in as
+//       a restricted path: slits from inner vertices first, then diagonals that split a polygon;
+//       check the whole network; on any failure take the valid start
+//   valid start: step back along D's decimation history until the geodesics of that finer domain
+//       D_i satisfy (1) and (2) (at worst D_i = T, whose geodesics are its edges); embed them
+//       once, and keep per face of D_i the faces of T its patch touches. Start::fast undoes a
+//       quarter more faces, then four times as many collapses a round, and takes T itself once
+//       D_i would pass 16 |D| faces; Start::gradual undoes a quarter more faces a round
+//   redo the undone collapses on the network, in batches whose closed 1-rings are disjoint (they
+//       commute): a collapse v → w is a sequence of flips of v's spokes, each flip [v, u] → [w, y]
+//       replacing the curve by the restricted path from x_w to x_y in the two patches beside [v, u],
+//       until v has valence 3; then v's three patches merge into one face and its curves go
+//   a domain given by the user (same vertices as the decimation H, other edges): flip, in
+//       regions with no face in common, the edges not in D whose flip makes an edge of D (a
+//       restricted path in the two patches); when there is none, one edge near a missing edge
+//       whose flip starts at most four flips that end in such a flip; give up (PartitionFailure)
+//       when there is none, or after 4k + 16 flips for k missing edges
+//   tighten: in passes, edges in the kept order (edges whose geodesic is in no conflict first,
+//       then the others, each group shortest geodesic first), in batches of edges with no face in
+//       common: the curve becomes the restricted path between its ends in its two patches when
+//       that is shorter, and the exact geodesic itself when that is what it found
+//   every flip and tightening works in its region alone (partition/region.hpp): the faces of T
+//       the two patches touch are cut along the four curves around them, the new curve is found
+//       there, and cutting again along it gives the two new patches' faces of T; a conflict there
+//       is an internal error (the separation keeps the curves apart), and the caller embeds the
+//       final network into T as a whole and checks it again
+// Decisions and their reasons: paper_notes/partition.md, "Keeping the domain".
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <fhr/domain/decimate.hpp>
+#include <fhr/geodesic/ellipse.hpp>
+#include <fhr/partition/embed.hpp>
+
+namespace fhr::partition {
+
+/// How the curve of a domain edge was found.
+enum class CurveKind : std::uint8_t {
+    geodesic,    ///< the exact shortest geodesic Γ(x_j, x_k) of T (paper §3)
+    restricted,  ///< the restricted shortest path in the region the other curves leave free
+};
+
+/// What the report says of one domain edge's curve.
+struct CurveInfo {
+    CurveKind kind = CurveKind::geodesic;
+    double geodesic_length = 0;   ///< |Γ(x_j, x_k)| on T, unrestricted
+    double shortest = 0;          ///< restricted: the restricted shortest length before separation
+    double separation_bound = 0;  ///< restricted: the bound of what the separation added
+    std::string reason;           ///< restricted: the conflict of its geodesic that forced it
+};
+
+struct KeptNetwork {
+    std::vector<geodesic::GeodesicPath> paths;  ///< #E(D): the curve of D's halfedge (e, 0)
+    std::vector<CurveInfo> info;                ///< #E(D)
+    std::vector<std::uint8_t> unsnapped;        ///< #E(D): 1 when embed() must place it as given
+    std::size_t start_faces = 0;                ///< #F(D_i), the valid start
+};
+
+/// How far the valid start steps back (see the pseudocode above).
+enum class Start : std::uint8_t {
+    fast,     ///< few steps, often to T: the fewest geodesics computed
+    gradual,  ///< the nearest valid level: the fewest flips, so the least crowded curves
+};
+
+/// The network for exactly D.
+/// \pre H is a decimation of T whose history describes it (domain::history_describes) with D's
+///      vertices (H = D when D is itself that decimation); geodesics[e] is Γ for D's halfedge
+///      (e, 0); `conflicts` are those of their embedding; `geodesics_of` gives the geodesics of any
+///      domain of T (in its edge order).
+/// \throws std::logic_error when a separated curve breaks (1) or (2) (a bug);
+///         PartitionFailure when a curve has no room to be separated, or when no flips lead from H
+///         to D.
+KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain::Domain& H,
+                        std::span<const geodesic::EllipsePath> geodesics,
+                        std::span<const Conflict> conflicts,
+                        const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,
+                        const std::function<void(const std::string&)>& progress, Start start = Start::fast);
+
+}  // namespace fhr::partition

@@ -1,0 +1,311 @@
+// FHR §3 — the partition with recovery (see partition.hpp for the pseudocode).
+#include <fhr/partition/partition.hpp>
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+
+#include <fhr/core/errors.hpp>
+#include <fhr/core/detail/parallel.hpp>
+
+namespace fhr::partition {
+namespace {
+
+// Γ(a, b) for every edge of D, reusing the paths of edges whose ends are unchanged.
+class PathCache {
+public:
+    explicit PathCache(const TriMesh& T, const geodesic::EllipseOptions& options) : T_(T), options_(options) {}
+
+    std::vector<geodesic::EllipsePath> all(const domain::Domain& D) {
+        const auto ends = domain::edge_endpoints(D);
+        // The paths not known yet, computed in parallel (core/parallel.hpp).
+        std::vector<Key> missing;
+        for (const auto& [a, b] : ends) {
+            const Key key = key_of(a, b);
+            if (!cache_.count(key) && std::find(missing.begin(), missing.end(), key) == missing.end()) missing.push_back(key);
+        }
+        std::vector<geodesic::EllipsePath> found(missing.size());
+        parallel_for(missing.size(), 8, [&](std::size_t i) {
+            found[i] = geodesic::ellipse_shortest_path(T_, VertexId(missing[i].first), VertexId(missing[i].second), options_);
+        });
+        for (std::size_t i = 0; i < missing.size(); ++i) cache_.emplace(missing[i], std::move(found[i]));
+        std::vector<geodesic::EllipsePath> paths;
+        paths.reserve(ends.size());
+        for (const auto& [a, b] : ends) {
+            geodesic::EllipsePath p = cache_.at(key_of(a, b));
+            if (a.idx() > b.idx()) std::reverse(p.path.points.begin(), p.path.points.end());
+            paths.push_back(std::move(p));
+        }
+        return paths;
+    }
+
+private:
+    using Key = std::pair<VertexId::Index, VertexId::Index>;
+    static Key key_of(VertexId a, VertexId b) { return {std::min(a.idx(), b.idx()), std::max(a.idx(), b.idx())}; }
+    const TriMesh& T_;
+    geodesic::EllipseOptions options_;
+    std::map<Key, geodesic::EllipsePath> cache_;
+};
+
+// The vertices of T that D should keep to resolve the conflicts: those at the conflicts' places
+// (paper_notes/partition.md); when all of them are D's already, the middle node of each
+// conflicting curve. Only vertices not yet in D and not yet kept are returned.
+std::vector<VertexId> new_keep(const TriMesh& T, const domain::Domain& D, const Embedding& embedding,
+                               std::vector<std::uint8_t>& kept) {
+    std::vector<std::uint8_t> in_d(T.n_vertices(), 0);
+    for (VertexId x : D.t_vertex) in_d[x.idx()] = 1;
+    std::vector<VertexId> keep;
+    auto add = [&](VertexId v) {
+        if (v.valid() && !in_d[v.idx()] && !kept[v.idx()]) {
+            kept[v.idx()] = 1;
+            keep.push_back(v);
+        }
+    };
+    for (const Conflict& c : embedding.conflicts)
+        for (VertexId v : c.near) add(v);
+    if (!keep.empty()) return keep;
+    // All at the conflicts is kept already: the middle node of each conflicting curve; failing
+    // that both ends of the edges of T its nodes lie on; failing that the neighbours in T of the
+    // conflicts' places.
+    const Network& net = embedding.network;
+    auto nearest = [&](VertexId v) {
+        const Origin& o = net.origin[v.idx()];
+        return o.vertex.valid() ? o.vertex : T.from(TriMesh::halfedge(o.edge, o.t < 0.5 ? 0 : 1));
+    };
+    for (const Conflict& c : embedding.conflicts)
+        for (std::uint32_t e : {c.d_edge_a, c.d_edge_b}) add(nearest(net.path[e][net.path[e].size() / 2]));
+    if (!keep.empty()) return keep;
+    for (const Conflict& c : embedding.conflicts)
+        for (std::uint32_t e : {c.d_edge_a, c.d_edge_b})
+            for (VertexId v : net.path[e]) {
+                const Origin& o = net.origin[v.idx()];
+                if (o.vertex.valid()) continue;
+                add(T.from(TriMesh::halfedge(o.edge, 0)));
+                add(T.to(TriMesh::halfedge(o.edge, 0)));
+            }
+    if (!keep.empty()) return keep;
+    // Last, the neighbours in T of the conflicts' places.
+    for (const Conflict& c : embedding.conflicts)
+        for (VertexId v : c.near)
+            if (v.valid()) T.for_each_outgoing(v, [&](HalfedgeId h) { add(T.to(h)); });
+    return keep;
+}
+
+// A curve Γ(x_j, x_k) that runs over a corner x_m of one of the two faces at [v_j, v_k] says that
+// this face is flat in the geodesic sense; the edge's flip [v_m, v_n] replaces it by Γ(x_m, x_n)
+// and keeps Γ(x_j, x_m), Γ(x_m, x_k). An edge made by a flip is never flipped again (`made`, as
+// pairs of vertices of T, each with the pair it replaced), so flips cannot cycle. Returns the
+// number of edges flipped.
+using VertexPair = std::pair<VertexId::Index, VertexId::Index>;
+using Flips = std::map<VertexPair, VertexPair>;  // edge made -> edge replaced, as vertices of T
+VertexPair pair_of(const domain::Domain& D, VertexId a, VertexId b) {
+    const VertexId::Index x = D.t_vertex[a.idx()].idx(), y = D.t_vertex[b.idx()].idx();
+    return {std::min(x, y), std::max(x, y)};
+}
+
+// After D is decimated again or stepped back, the flips made before where they apply again: the
+// replaced edge is in D with the made edge's ends opposite it (the same two faces). The paths of
+// such an edge ran over a corner before and would again. Returns the number of edges flipped.
+std::size_t reapply_flips(domain::Domain& D, const Flips& made) {
+    std::map<VertexId::Index, VertexId> vertex;  // vertex of T -> vertex of D
+    for (std::size_t j = 0; j < D.t_vertex.size(); ++j) vertex.emplace(D.t_vertex[j].idx(), VertexId(static_cast<VertexId::Index>(j)));
+    std::size_t flips = 0;
+    for (const auto& [to, from] : made) {
+        const auto a = vertex.find(from.first), b = vertex.find(from.second);
+        if (a == vertex.end() || b == vertex.end()) continue;
+        const HalfedgeId h = D.mesh.find_halfedge(a->second, b->second);
+        if (!h.valid() || !D.mesh.is_flip_ok(TriMesh::edge(h))) continue;
+        if (pair_of(D, D.mesh.to(D.mesh.next(h)), D.mesh.to(D.mesh.next(TriMesh::twin(h)))) != to) continue;
+        D.mesh.flip(TriMesh::edge(h));
+        ++flips;
+    }
+    return flips;
+}
+
+std::size_t flip_over_corners(domain::Domain& D, const std::vector<Conflict>& conflicts, Flips& made) {
+    std::vector<std::uint8_t> touched(D.mesh.n_edges(), 0);
+    std::size_t flips = 0;
+    for (const Conflict& c : conflicts) {
+        if (c.kind != Conflict::Kind::through_corner || touched[c.d_edge_a]) continue;
+        const EdgeId e(c.d_edge_a);
+        const HalfedgeId h = TriMesh::halfedge(e, 0);
+        const VertexId m(c.d_vertex);
+        if (D.mesh.to(D.mesh.next(h)) != m && D.mesh.to(D.mesh.next(TriMesh::twin(h))) != m) continue;
+        const VertexPair replaced = pair_of(D, D.mesh.from(h), D.mesh.to(h));
+        if (!D.mesh.is_flip_ok(e) || made.count(replaced)) continue;
+        // The four edges of the two faces change their faces: none of them may flip this round.
+        for (HalfedgeId g : {h, TriMesh::twin(h)})
+            for (HalfedgeId k = D.mesh.next(g); k != g; k = D.mesh.next(k)) touched[TriMesh::edge(k).idx()] = 1;
+        touched[e.idx()] = 1;
+        D.mesh.flip(e);
+        made.emplace(pair_of(D, D.mesh.from(h), D.mesh.to(h)), replaced);
+        ++flips;
+    }
+    return flips;
+}
+
+// A decimation of T to exactly the vertices of a domain given by the user (its history is where
+// keeping D starts), or nullopt with the reason when §2 cannot reach them.
+std::optional<domain::Domain> decimation_to_vertices(const TriMesh& T, const domain::Domain& D, std::string& why) {
+    domain::DecimateOptions o;
+    o.target_faces = D.mesh.n_faces();
+    o.keep = D.t_vertex;
+    o.best_effort = true;
+    try {
+        domain::Domain H = domain::decimate(T, o);
+        std::vector<VertexId> a = H.t_vertex, b = D.t_vertex;
+        std::sort(a.begin(), a.end());
+        std::sort(b.begin(), b.end());
+        if (a == b) return H;
+        why = "§2 stops at " + std::to_string(H.mesh.n_vertices()) + " vertices, not the domain's " + std::to_string(b.size());
+    } catch (const InvalidInput& e) {
+        why = std::string("§2 cannot decimate T to the domain's vertices: ") + e.what();
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& options) {
+    const domain::Domain D0 = D;
+    const bool decimated = !D.history.empty();
+    const std::size_t vertices0 = D.mesh.n_vertices();
+    std::vector<VertexId> keep;
+    std::vector<std::uint8_t> kept(T.n_vertices(), 0);
+    Flips flipped;                 // edges made by flips
+    // The last decimation, from which the recovery decimates again or steps back: D itself when
+    // its history describes it, else (D changed after its decimation) T decimated afresh to D's
+    // size when first needed.
+    std::optional<domain::Domain> base;
+    auto last_decimation = [&]() -> domain::Domain& {
+        if (!base) {
+            if (domain::history_describes(D0, T)) {
+                base = D0;
+            } else {
+                domain::DecimateOptions o;
+                o.target_faces = D0.mesh.n_faces();
+                o.best_effort = true;
+                base = domain::decimate(T, o);
+            }
+        }
+        return *base;
+    };
+    PathCache cache(T, options.ellipse);
+    Partition out;
+    for (;;) {
+        out.paths = cache.all(D);
+        std::vector<geodesic::GeodesicPath> paths;
+        paths.reserve(out.paths.size());
+        for (const auto& p : out.paths) paths.push_back(p.path);
+        Embedding embedding = embed(T, D, paths);
+        std::optional<KeptNetwork> attempt;
+        std::string keep_failure;  // why D could not be kept, for the message of a given domain
+        if (!embedding.conflicts.empty() && options.keep_domain && out.retries == 0) {
+            // Keeping D (partition/keep.hpp): restricted shortest paths where the geodesics conflict,
+            // from D's own decimation, or for a domain given by the user from a decimation of T to
+            // its vertices. Redoing many collapses can crowd curves around one point until there is
+            // no room to separate them: then again from the nearest valid level; failing that, a
+            // decimated D is changed as the paper-only mode does and a given one is refused.
+            std::optional<domain::Domain> H;
+            if (decimated && domain::history_describes(D, T)) H = D;
+            if (!decimated) H = decimation_to_vertices(T, D, keep_failure);
+            for (const Start start : {Start::fast, Start::gradual}) {
+                if (!H) break;
+                try {
+                    attempt = keep_domain(T, D, *H, out.paths, embedding.conflicts, [&](const domain::Domain& d) { return cache.all(d); },
+                                          options.progress, start);
+                    break;
+                } catch (const PartitionFailure& e) {
+                    keep_failure = e.what();
+                    if (options.progress)
+                        options.progress("keeping the domain failed (" + keep_failure +
+                                         (start == Start::fast ? "); again from the nearest valid level"
+                                          : decimated          ? "); changing D instead"
+                                                               : "); the given domain is refused"));
+                }
+            }
+        }
+        if (!embedding.conflicts.empty() && attempt) {
+            const KeptNetwork& kept = *attempt;
+            for (std::size_t e = 0; e < kept.paths.size(); ++e) out.paths[e].path = kept.paths[e];
+            out.curves = kept.info;
+            out.keep_start_faces = kept.start_faces;
+            out.resolved = embedding.conflicts;
+            embedding = embed(T, D, kept.paths, kept.unsnapped);
+            if (!embedding.conflicts.empty())
+                throw std::logic_error("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
+        }
+        if (embedding.conflicts.empty()) {
+            if (out.curves.empty())
+                for (const auto& p : out.paths) out.curves.push_back(CurveInfo{CurveKind::geodesic, p.path.length, 0, 0, {}});
+            out.patches = extract_patches(D, embedding.network);
+            out.network = std::move(embedding.network);
+            out.vertices_added = D.mesh.n_vertices() - vertices0;
+            out.kept = std::move(keep);
+            out.domain = std::move(D);
+            return out;
+        }
+        if (!decimated) {
+            // Each pair of domain edges once (a crossing is found in every face where it happens),
+            // and each problem of one edge at one domain vertex once.
+            std::vector<const Conflict*> pairs;
+            for (const Conflict& c : embedding.conflicts)
+                if (std::none_of(pairs.begin(), pairs.end(), [&](const Conflict* p) {
+                        return p->d_edge_a == c.d_edge_a && p->d_edge_b == c.d_edge_b &&
+                               (c.d_edge_a != c.d_edge_b || (p->kind == c.kind && p->d_vertex == c.d_vertex));
+                    }))
+                    pairs.push_back(&c);
+            std::string what = "conditions (1)/(2) of §3 fail for the given domain:";
+            for (std::size_t i = 0; i < std::min<std::size_t>(pairs.size(), 4); ++i) what += (i ? "; " : " ") + pairs[i]->describe();
+            if (pairs.size() > 4) what += "; and " + std::to_string(pairs.size() - 4) + " more";
+            if (!keep_failure.empty()) what += "; and the domain cannot be kept: " + keep_failure;
+            throw PartitionFailure(what);
+        }
+        const std::size_t conflicts = embedding.conflicts.size();
+        const std::string first = embedding.conflicts.front().describe();
+        out.resolved.insert(out.resolved.end(), embedding.conflicts.begin(), embedding.conflicts.end());
+        ++out.retries;
+        if (const std::size_t flips = flip_over_corners(D, embedding.conflicts, flipped)) {
+            if (options.progress)
+                options.progress("partition: " + std::to_string(conflicts) + " conflicts (" + first + "); flipped " +
+                                 std::to_string(flips) + " domain edges that ran over a corner");
+            continue;
+        }
+        // Local: decimate T again to two more faces per new vertex to keep, keeping the vertices at
+        // the conflicts — when they are few: at most an eighth of D's faces (a quarter more faces).
+        const std::vector<VertexId> more = new_keep(T, D, embedding, kept);
+        if (!more.empty() && 8 * more.size() <= D.mesh.n_faces()) {
+            keep.insert(keep.end(), more.begin(), more.end());
+            domain::DecimateOptions o;
+            o.target_faces = std::min(T.n_faces(), D.mesh.n_faces() + 2 * more.size());
+            o.keep = keep;
+            o.best_effort = true;
+            base = domain::decimate_again(T, last_decimation(), o);
+            D = *base;
+            const std::size_t again = reapply_flips(D, flipped);
+            if (options.progress)
+                options.progress("partition: " + std::to_string(conflicts) + " conflicts (" + first +
+                                 "); decimating again keeping " + std::to_string(keep.size()) + " vertices: " +
+                                 std::to_string(D.mesh.n_faces()) + " faces, " + std::to_string(again) + " earlier flips made again");
+            continue;
+        }
+        for (VertexId v : more) kept[v.idx()] = 0;  // not kept after all: candidates again later
+        // Global: step back along the last decimation, undoing its last collapses until D has a
+        // quarter more faces; at the end of the history D = T, whose paths are T's own edges, so
+        // (1) and (2) hold and the loop ends.
+        domain::Domain& last = last_decimation();
+        if (last.history.empty()) throw std::logic_error("partition: conflicts on D = T, whose paths are T's edges");
+        const std::size_t undo = std::min(last.history.size(), std::max<std::size_t>(1, D.mesh.n_faces() / 8));
+        base = domain::undo_collapses(last, T, undo);
+        D = *base;
+        const std::size_t again = reapply_flips(D, flipped);
+        if (options.progress)
+            options.progress("partition: " + std::to_string(conflicts) + " conflicts (" + first + "); stepping back " +
+                             std::to_string(undo) + " collapses of the decimation: " + std::to_string(D.mesh.n_faces()) +
+                             " faces, " + std::to_string(again) + " earlier flips made again");
+    }
+}
+
+}  // namespace fhr::partition

@@ -1,0 +1,77 @@
+// FHR §3 — the partition of Ω_T into triangular patches S_i: one exact shortest geodesic per edge
+// of D, embedded into T′, conditions (1) and (2), the patches — and recovery when the conditions fail.
+//
+// Paper §3 requires "a parameter domain Ω_D and a vertex correspondence with the property that
+// conditions (1) and (2) hold", found always to hold in its examples, and notes that they "could
+// be made part of the stopping criterion" of the decimation. We do that after the fact: when they
+// fail, D is changed where they fail — an edge flipped, or T decimated again keeping the vertices
+// at the conflicts — or, when that would add too much, refined everywhere by undoing the last
+// collapses of its decimation; the paths are recomputed (only those of new edges are new work).
+//
+// Pseudocode:
+//   base <- D (when its history describes it, else T decimated afresh to D's size)
+//   loop:
+//       for each edge [v_j, v_k] of D: Γ(x_j, x_k) by the ellipse search (cached by its ends)
+//       embed the paths into T -> T′, with the conflicts against (1) and (2)
+//       if no conflict: cut T′ into the patches; return
+//       if keeping D (the default) and D's history describes it, on the first round:
+//           restricted shortest paths where the geodesics conflict (partition/keep.hpp); return
+//           (no room to separate two curves: go on below, changing D)
+//       if D was given by the user: PartitionFailure naming the conflicting domain edges
+//       if some curve runs over a corner of a face beside its edge: flip those edges; next round
+//           (the flips are made again, where they apply, after each new D below)
+//       more <- the vertices of T at the conflicts not in D (a shared node; beside a corner a
+//               curve runs over; a crossing face's corners; the first node of a curve out of
+//               order), or when all are in D already, the middle node of each conflicting curve,
+//               or the ends of the edges its nodes lie on, or the neighbours of the places
+//       if more is not empty and 8·|more| ≤ #F(D):
+//           keep += more; base <- decimate_again(T, base, #F(D) + 2·|more| faces, keeping
+//           `keep`, stopping early if it must: base's collapses are reused up to its first
+//           that removes a vertex now kept); D <- base
+//       else: base <- base with its last max(1, #F(D)/8) collapses undone; D <- base
+//           (at the end of the history D = T, whose paths are T's own edges: (1), (2) hold)
+// Decisions and their reasons: paper_notes/partition.md.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <fhr/domain/decimate.hpp>
+#include <fhr/geodesic/ellipse.hpp>
+#include <fhr/partition/embed.hpp>
+#include <fhr/partition/keep.hpp>
+#include <fhr/partition/patches.hpp>
+
+namespace fhr::partition {
+
+struct PartitionOptions {
+    geodesic::EllipseOptions ellipse;
+    /// true (the default): D is kept, conflicting edges get restricted shortest paths
+    /// (partition/keep.hpp); false: the paper's geodesics only, D changed where they conflict.
+    bool keep_domain = true;
+    std::function<void(const std::string&)> progress;  ///< optional: one line per round
+};
+
+/// The result of §3: the (possibly refined) domain, its paths, T′ and the patches.
+struct Partition {
+    domain::Domain domain;                     ///< D after recovery (unchanged when none was needed)
+    std::vector<geodesic::EllipsePath> paths;  ///< #E(D): Γ for D's halfedge (e, 0), from x_j to x_k
+    Network network;                           ///< T′ with the paths embedded
+    Patches patches;                           ///< one disk per face of D
+    std::size_t retries = 0;                   ///< rounds that found conflicts and decimated again
+    std::size_t vertices_added = 0;            ///< #V(D) − #V(D₀)
+    std::vector<VertexId> kept;                ///< the vertices of T that the recovery made D keep
+    std::vector<Conflict> resolved;            ///< the conflicts met on the way, in order
+    std::vector<CurveInfo> curves;             ///< #E(D): each curve's kind (geodesic or restricted)
+    std::size_t keep_start_faces = 0;          ///< keeping D: the faces of the valid start (0: not needed)
+};
+
+/// §3 for T and D.
+/// \pre T valid, closed, connected; D's vertices are vertices of T (decimate or attach_domain).
+/// \throws PartitionFailure when (1)/(2) fail for a user-given domain (one without decimation
+///         history); the message names the conflicting domain edges.
+Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& options = {});
+
+}  // namespace fhr::partition

@@ -1,0 +1,153 @@
+// Beyond the paper (§3, keeping the domain): a region of T′ cut out on its own (see region.hpp).
+#include <fhr/partition/detail/region.hpp>
+
+#include <algorithm>
+#include <iterator>
+#include <stdexcept>
+
+namespace fhr::partition {
+namespace {
+
+// The faces of S: `touched`, the faces around their vertices, and all faces of any vertex whose
+// faces in S form more than one fan (sorted).
+std::vector<FaceId> closed_faces(const TriMesh& T, std::span<const FaceId> touched) {
+    std::vector<FaceId> faces;
+    auto add_star = [&](VertexId v) {
+        T.for_each_outgoing(v, [&](HalfedgeId h) {
+            if (T.face(h).valid()) faces.push_back(T.face(h));
+        });
+    };
+    std::vector<VertexId> whole;  // the vertices whose stars are in S (sorted)
+    for (FaceId f : touched)
+        for (VertexId v : T.face_vertices(f)) whole.push_back(v);
+    std::sort(whole.begin(), whole.end());
+    whole.erase(std::unique(whole.begin(), whole.end()), whole.end());
+    for (VertexId v : whole) add_star(v);
+    for (bool grown = true; grown;) {
+        std::sort(faces.begin(), faces.end());
+        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+        // Only a vertex whose star was not added whole can have several fans.
+        std::vector<VertexId> all, vertices;
+        for (FaceId f : faces)
+            for (VertexId v : T.face_vertices(f)) all.push_back(v);
+        std::sort(all.begin(), all.end());
+        all.erase(std::unique(all.begin(), all.end()), all.end());
+        std::set_difference(all.begin(), all.end(), whole.begin(), whole.end(), std::back_inserter(vertices));
+        const std::size_t before = faces.size();
+        for (VertexId v : vertices) {
+            // Fans: the faces in S that follow a face not in S around v.
+            std::size_t fans = 0;
+            bool previous = false, first = false, seen = false;
+            T.for_each_outgoing(v, [&](HalfedgeId h) {
+                const FaceId f = T.face(h);
+                const bool in = f.valid() && std::binary_search(faces.begin(), faces.begin() + static_cast<std::ptrdiff_t>(before), f);
+                if (!seen) first = in, seen = true;
+                else if (in && !previous) ++fans;
+                previous = in;
+            });
+            if (first && !previous) ++fans;
+            if (fans > 1) add_star(v);
+        }
+        grown = faces.size() > before;
+    }
+    return faces;
+}
+
+}  // namespace
+
+Region::Region(const TriMesh& T, std::span<const FaceId> touched, std::span<const RegionCurve> curves) : T_(T) {
+    t_face_ = closed_faces(T, touched);
+    for (FaceId f : t_face_)
+        for (VertexId v : T.face_vertices(f)) sub_of_.emplace_back(v.idx(), 0);
+    std::sort(sub_of_.begin(), sub_of_.end());
+    sub_of_.erase(std::unique(sub_of_.begin(), sub_of_.end()), sub_of_.end());
+    std::vector<Vec3> positions;
+    for (std::size_t i = 0; i < sub_of_.size(); ++i) {
+        sub_of_[i].second = static_cast<VertexId::Index>(i);
+        t_vertex_.emplace_back(sub_of_[i].first);
+        positions.push_back(T.position(t_vertex_.back()));
+    }
+    std::vector<Triangle> triangles;
+    for (FaceId f : t_face_) {
+        const auto v = T.face_vertices(f);
+        triangles.push_back({in_sub(v[0]).idx(), in_sub(v[1]).idx(), in_sub(v[2]).idx()});
+    }
+    sub_ = TriMesh::from_triangles(std::move(positions), triangles);
+    for (const RegionCurve& c : curves) convert(c);
+    recut();
+}
+
+void Region::add(const RegionCurve& curve) {
+    convert(curve);
+    recut();
+}
+
+void Region::convert(const RegionCurve& c) {
+    geodesic::GeodesicPath& p = curves_.emplace_back();
+    p.length = c.path->length;
+    for (const SurfacePoint& q : c.path->points) {
+        if (q.kind == SurfacePoint::Kind::vertex) {
+            p.points.push_back(SurfacePoint::at_vertex(in_sub(q.vertex)));
+            continue;
+        }
+        const HalfedgeId h = q.kind == SurfacePoint::Kind::edge ? sub_.find_halfedge(in_sub(T_.from(q.halfedge)), in_sub(T_.to(q.halfedge))) : HalfedgeId{};
+        if (!h.valid()) throw std::logic_error("region: a curve leaves the faces around the region");
+        p.points.push_back(SurfacePoint::on_edge(h, q.t));
+    }
+    unsnapped_.push_back(!c.snapped);
+}
+
+void Region::recut() {
+    cut_ = embed_curves(sub_, curves_, unsnapped_);
+    if (!cut_.conflicts.empty()) throw std::logic_error("region: the curves around a region conflict: " + cut_.conflicts.front().describe());
+}
+
+VertexId Region::in_sub(VertexId v) const {
+    const auto it = std::lower_bound(sub_of_.begin(), sub_of_.end(), std::make_pair(v.idx(), VertexId::Index{0}));
+    if (it == sub_of_.end() || it->first != v.idx()) throw std::logic_error("region: a vertex of T outside the faces around the region");
+    return VertexId(it->second);
+}
+
+SurfacePoint Region::in_t(const SurfacePoint& p) const {
+    if (p.kind == SurfacePoint::Kind::vertex) return SurfacePoint::at_vertex(in_t(p.vertex));
+    if (p.kind != SurfacePoint::Kind::edge) throw std::logic_error("region: a point inside a face");
+    return SurfacePoint::on_edge(T_.find_halfedge(in_t(sub_.from(p.halfedge)), in_t(sub_.to(p.halfedge))), p.t);
+}
+
+std::vector<std::uint8_t> Region::side(std::size_t curve, bool left) const {
+    const Network& net = cut_.network;
+    const TriMesh& M = net.mesh;
+    const auto& path = net.path.at(curve);
+    const HalfedgeId h = M.find_halfedge(path[0], path[1]);
+    const FaceId seed = M.face(left ? h : TriMesh::twin(h));
+    std::vector<std::uint8_t> mask(M.n_faces(), 0);
+    std::vector<FaceId> stack{seed};
+    if (!seed.valid()) throw std::logic_error("region: a curve on the border of the faces around the region");
+    mask[seed.idx()] = 1;
+    while (!stack.empty()) {
+        const FaceId f = stack.back();
+        stack.pop_back();
+        HalfedgeId g = M.halfedge(f);
+        for (int i = 0; i < 3; ++i, g = M.next(g)) {
+            if (net.d_halfedge[g.idx()] >= 0) continue;
+            const FaceId n = M.face(TriMesh::twin(g));
+            if (!n.valid()) throw std::logic_error("region: the curves do not enclose the region");
+            if (!mask[n.idx()]) {
+                mask[n.idx()] = 1;
+                stack.push_back(n);
+            }
+        }
+    }
+    return mask;
+}
+
+std::vector<FaceId> Region::t_faces(const std::vector<std::uint8_t>& mask) const {
+    std::vector<FaceId> faces;
+    for (FaceId f : cut_.network.t_face.ids())
+        if (mask[f.idx()]) faces.push_back(t_face_[cut_.network.t_face[f].idx()]);
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    return faces;
+}
+
+}  // namespace fhr::partition

@@ -1,0 +1,279 @@
+// FHR §6 — the files of `fhr run` (see outputs.hpp).
+#include <fhr/pipeline/outputs.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include <fhr/core/errors.hpp>
+#include <fhr/io/atomic_file.hpp>
+#include <fhr/io/detail/json.hpp>
+#include <fhr/io/detail/number_text.hpp>
+#include <fhr/io/write.hpp>
+#include <fhr/render/figures.hpp>
+#include <fhr/render/svg.hpp>
+#include <fhr/wavelet/compress.hpp>
+#include <fhr/wavelet/filter_bank.hpp>
+
+namespace fhr::pipeline {
+
+exchange::ParamFile to_param_file(const Parameterization& p) {
+    const domain::Domain& D = p.partition.domain;
+    exchange::ParamFile f;
+    f.domain_vertices.assign(D.mesh.positions().begin(), D.mesh.positions().end());
+    f.domain_faces = D.mesh.triangles();
+    f.surface_vertices = p.refined_positions;
+    f.surface_faces.reserve(p.refined_faces.size());
+    for (std::size_t i = 0; i < p.refined_faces.size(); ++i) f.surface_faces.push_back({p.refined_faces[i], p.face_patch[i], p.face_beta[i]});
+    return f;
+}
+
+namespace {
+
+// The patches laid out as an atlas in [0, 1]²: patch i's triangle (equilateral, corners
+// e_0, e_1, e_2 at its lower left, lower right and top) in cell i of a G × G grid, with a margin.
+std::vector<io::Vec2> atlas_uv(const Parameterization& p) {
+    const std::size_t n = p.disks.size();
+    const std::size_t G = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(n))));
+    const double cell = 1.0 / static_cast<double>(G), size = 0.9 * cell;
+    const std::array<io::Vec2, 3> corner{io::Vec2(0, 0), io::Vec2(1, 0), io::Vec2(0.5, std::sqrt(3.0) / 2)};
+    std::vector<io::Vec2> uv;
+    uv.reserve(3 * p.refined_faces.size());
+    for (std::size_t f = 0; f < p.refined_faces.size(); ++f) {
+        const std::size_t i = p.face_patch[f];
+        const io::Vec2 origin(static_cast<double>(i % G) * cell + 0.05 * cell, static_cast<double>(i / G) * cell + 0.05 * cell);
+        for (const auto& beta : p.face_beta[f])
+            uv.push_back(origin + size * (beta[0] * corner[0] + beta[1] * corner[1] + beta[2] * corner[2]));
+    }
+    return uv;
+}
+
+// The percentage as a file-name part: 5 -> "5", 2.5 -> "2.5".
+std::string percent_name(double p) {
+    std::string s;
+    io::append_number(s, p);
+    return s;
+}
+
+void write_wavelet_report(io::JsonWriter& j, const wavelet::WaveletResult& w) {
+    j.key("remesh").begin_object();
+    j.key("level").value(w.levels).key("vertices").value(w.remesh_positions.size()).key("faces").value(w.remesh_faces.size());
+    j.key("hausdorff").value(w.remesh_hausdorff.lower()).key("hausdorff_upper_bound").value(w.remesh_hausdorff.upper());
+    j.key("hausdorff_relative_to_bbox_diagonal").value(w.hausdorff_relative).end_object();
+    j.key("wavelet").begin_object();
+    j.key("coefficients").value(w.coefficients).key("reconstruction_max_error").value(w.reconstruction_max_error);
+    j.key("reconstruction_max_error_relative").value(w.max_abs_coordinate > 0 ? w.reconstruction_max_error / w.max_abs_coordinate : 0.0);
+    j.key("kept").begin_array();
+    for (const auto& k : w.kept) {
+        j.begin_object().key("percent").value(k.percent).key("count").value(k.count).key("l2_error").value(k.l2_error);
+        j.key("hausdorff").value(k.hausdorff.lower()).key("hausdorff_upper_bound").value(k.hausdorff.upper()).end_object();
+    }
+    j.end_array().end_object();
+}
+
+void write_report(const std::string& path, const InputInfo& input, const Parameterization& p,
+                  const exchange::VerifyReport& oracle, const Options& options, const wavelet::WaveletResult* wavelets) {
+    const partition::Partition& P = p.partition;
+    const TriMesh& D = P.domain.mesh;
+    io::JsonWriter j;
+    j.begin_object();
+    j.key("input").begin_object();
+    j.key("path").value(input.path).key("vertices").value(input.vertices).key("faces").value(input.faces);
+    j.key("genus").value(input.genus).end_object();
+
+    j.key("domain").begin_object();
+    j.key("vertices").value(D.n_vertices()).key("edges").value(D.n_edges()).key("faces").value(D.n_faces());
+    j.key("faces_requested").value(input.domain_faces_requested);
+    j.key("retries").value(P.retries).key("vertices_added").value(P.vertices_added).key("kept_vertices").value(P.kept.size());
+    j.key("conflicts_resolved").value(P.resolved.size()).end_object();
+
+    std::size_t windows = 0, max_attempts = 0;
+    double max_K = 0, total_length = 0;
+    for (const auto& path : P.paths) {
+        windows += path.windows_created;
+        max_attempts = std::max(max_attempts, path.attempts);
+        max_K = std::max(max_K, path.K);
+        total_length += path.path.length;
+    }
+    j.key("partition").begin_object();
+    j.key("paths").value(P.paths.size()).key("total_length").value(total_length);
+    j.key("max_K").value(max_K).key("max_attempts").value(max_attempts).key("windows_created").value(windows);
+    j.key("max_snap_distance").value(P.network.max_snap_distance);
+    std::size_t restricted = 0;
+    double restricted_length = 0, excess = 0, separation = 0;
+    for (std::size_t e = 0; e < P.curves.size(); ++e) {
+        if (P.curves[e].kind != partition::CurveKind::restricted) continue;
+        ++restricted;
+        restricted_length += P.paths[e].path.length;
+        excess += P.paths[e].path.length - P.curves[e].geodesic_length;
+        separation = std::max(separation, P.curves[e].separation_bound);
+    }
+    j.key("geodesic_edges").value(P.curves.size() - restricted).key("restricted_edges").value(restricted);
+    j.key("restricted_length").value(restricted_length).key("restricted_excess").value(excess);
+    j.key("max_separation_bound").value(separation).key("keep_start_faces").value(P.keep_start_faces);
+    j.key("restricted").begin_array();
+    for (std::size_t e = 0; e < P.curves.size(); ++e) {
+        const partition::CurveInfo& c = P.curves[e];
+        if (c.kind != partition::CurveKind::restricted) continue;
+        j.begin_object().key("domain_edge").value(e).key("length").value(P.paths[e].path.length);
+        j.key("geodesic_length").value(c.geodesic_length).key("shortest_restricted").value(c.shortest);
+        j.key("separation_bound").value(c.separation_bound).key("reason").value(c.reason).end_object();
+    }
+    j.end_array();
+    j.key("refined_vertices").value(p.refined_positions.size()).key("refined_faces").value(p.refined_faces.size());
+    j.key("dividing_edges_split").value(p.dividing_edges_split).end_object();
+
+    std::size_t flipped = 0, boundary = 0;
+    double min_angle = std::numeric_limits<double>::infinity();
+    for (const auto& c : p.certificates) {
+        flipped += c.flipped_triangles;
+        boundary += c.boundary_violations;
+        min_angle = std::min(min_angle, c.min_image_angle_degrees);
+    }
+    j.key("parameterization").begin_object();
+    j.key("patches").value(p.disks.size());
+    j.key("weights").value(param::name(options.map.weights)).key("solver").value(param::name(options.map.solver));
+    j.key("certified").value(p.certified() && oracle.valid());
+    j.key("flipped_triangles").value(flipped).key("boundary_violations").value(boundary);
+    j.key("min_image_angle_degrees").value(min_angle);
+    const auto first = std::find_if(p.certificates.begin(), p.certificates.end(), [](const auto& c) { return !c.passed; });
+    if (first != p.certificates.end())
+        j.key("first_failure").value("patch " + std::to_string(first - p.certificates.begin()) + ": " + first->first_failure);
+    j.key("oracle").begin_object();
+    j.key("valid").value(oracle.valid()).key("checks").begin_array();
+    for (const auto& c : oracle.checks) {
+        j.begin_object().key("id").value(c.id).key("status").value(exchange::to_string(c.status));
+        j.key("checked").value(c.checked).key("failures").value(c.failures);
+        if (!c.first_failure.empty()) j.key("first_failure").value(c.first_failure);
+        j.end_object();
+    }
+    j.end_array().end_object().end_object();
+    if (wavelets) write_wavelet_report(j, *wavelets);
+    j.end_object();
+    io::write_file_atomically(path, j.str());
+}
+
+void write_timings(const std::string& path, const Timings& timings) {
+    io::JsonWriter j;
+    j.begin_object();
+    double total = 0;
+    for (const auto& [stage, seconds] : timings.stages) {
+        j.key(stage).value(seconds);
+        total += seconds;
+    }
+    j.key("total").value(total);
+    for (const auto& [measure, seconds] : timings.after_total) j.key(measure).value(seconds);
+    j.end_object();
+    io::write_file_atomically(path, j.str());
+}
+
+// §6's rate–distortion curve (REN-14): at each of 1, 2, 5, 10, 20, 50, 100 % and the requested
+// percentages (each once), the L2 and Hausdorff errors of the reconstruction from the largest
+// ⌊p·N/100⌋ coefficients. The requested points are analyse's own; the others are made the same
+// way (keep_largest, reconstruct, rms_distance, hausdorff at analyse's default resolution).
+std::vector<render::RatePoint> rate_curve(const wavelet::Refinement& r, const TriMesh& T, const wavelet::WaveletResult& w) {
+    std::vector<render::RatePoint> points;
+    const auto has = [&](double p) { return std::any_of(points.begin(), points.end(), [&](const auto& q) { return q.kept_percent == p; }); };
+    for (const auto& k : w.kept)
+        if (!has(k.percent)) points.push_back({k.percent, k.l2_error, k.hausdorff.lower()});
+    const wavelet::FilterBank bank(r);
+    const wavelet::Decomposition d = bank.decompose(w.remesh_positions);
+    const std::vector<Triangle> t_faces = T.triangles();
+    wavelet::HausdorffOptions ho;
+    ho.resolution = 1e-4 * w.bbox_diagonal;
+    for (const double p : {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0}) {
+        if (has(p)) continue;
+        const std::vector<Vec3> f = bank.reconstruct(wavelet::keep_largest(bank, d, wavelet::kept_count(w.coefficients, p)));
+        points.push_back({p, wavelet::rms_distance(w.remesh_positions, f),
+                          wavelet::hausdorff(T.positions(), t_faces, f, w.remesh_faces, ho).lower()});
+    }
+    return points;
+}
+
+}  // namespace
+
+void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
+                   const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
+                   const wavelet::WaveletResult* wavelets) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw InvalidInput(dir, 0, "cannot create the output folder: " + ec.message());
+    const std::string base = dir + "/";
+    const partition::Partition& P = p.partition;
+    io::write_off(base + "domain.off", P.domain.mesh.positions(), P.domain.mesh.triangles());
+    std::vector<std::vector<std::uint32_t>> lines;
+    for (const auto& path : P.network.path) {
+        auto& line = lines.emplace_back();
+        for (VertexId v : path) line.push_back(v.idx());
+    }
+    std::vector<std::string> kinds;  // each curve's kind (report.json's partition.restricted lists why)
+    for (const partition::CurveInfo& c : P.curves) kinds.push_back(c.kind == partition::CurveKind::geodesic ? "geodesic" : "restricted");
+    io::write_obj_polylines(base + "geodesics.obj", P.network.mesh.positions(), lines, kinds);
+    io::write_ply(base + "refined.ply", p.refined_positions, p.refined_faces, p.face_patch);
+    exchange::write_param(base + "param.fhrp", to_param_file(p));
+    io::write_obj(base + "textured.obj", p.refined_positions, p.refined_faces, atlas_uv(p));
+    if (wavelets) {
+        io::write_off(base + "remesh_L" + std::to_string(wavelets->levels) + ".off", wavelets->remesh_positions, wavelets->remesh_faces);
+        for (const auto& k : wavelets->kept)
+            io::write_off(base + "wavelet_keep" + percent_name(k.percent) + ".off", k.positions, wavelets->remesh_faces);
+    }
+    write_report(base + "report.json", input, p, oracle, options, wavelets);
+    write_timings(base + "timings.json", timings);
+}
+
+void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis,
+                   const wavelet::WaveletResult* wavelets) {
+    const std::string base = dir + "/figures/";
+    std::error_code ec;
+    std::filesystem::create_directories(base, ec);
+    if (ec) throw InvalidInput(base, 0, "cannot create the figures folder: " + ec.message());
+    const partition::Partition& P = p.partition;
+    const render::FigureSize size;
+    render::ViewDirection view;
+    view.up_axis = up_axis;
+    const render::Camera camera = render::figure_camera(T.positions(), size, view);
+    const std::vector<Triangle> t_faces = T.triangles(), d_faces = P.domain.mesh.triangles();
+    const render::MeshData t{T.positions(), t_faces}, d{P.domain.mesh.positions(), d_faces};
+    render::write_fig6(base + "fig6.png", camera, t, d, size);
+    std::vector<std::vector<std::uint32_t>> geodesic_lines, restricted_lines;  // by each curve's kind
+    for (std::size_t e = 0; e < P.network.path.size(); ++e) {
+        auto& line = (P.curves[e].kind == partition::CurveKind::geodesic ? geodesic_lines : restricted_lines).emplace_back();
+        for (VertexId v : P.network.path[e]) line.push_back(v.idx());
+    }
+    // The checkerboard coordinates: (β1, β2) of every corner, the same square cells in every patch.
+    std::vector<Eigen::Vector2d> uv;
+    uv.reserve(3 * p.refined_faces.size());
+    for (const auto& face : p.face_beta)
+        for (const auto& beta : face) uv.emplace_back(beta[1], beta[2]);
+    render::write_fig7(base + "fig7.png", camera, t, {P.network.mesh.positions(), geodesic_lines},
+                       {P.network.mesh.positions(), restricted_lines}, {p.refined_positions, p.refined_faces}, uv, size);
+    if (wavelets) {
+        // Fig. 8: D^J (the refined domain, flat) and f^J(Ω_D); Fig. 9: two compressed surfaces.
+        const wavelet::Refinement r = wavelet::refine(P.domain.mesh, wavelets->levels);
+        const TriMesh& dj = r.levels.back();
+        const std::vector<Triangle> dj_faces = dj.triangles();
+        render::write_fig8(base + "fig8.png", camera, {dj.positions(), dj_faces}, {wavelets->remesh_positions, wavelets->remesh_faces}, size);
+        if (wavelets->kept.size() >= 2)
+            render::write_fig9(base + "fig9.png", camera, {wavelets->kept[0].positions, wavelets->remesh_faces},
+                               {wavelets->kept[1].positions, wavelets->remesh_faces}, size);
+        render::RatePlotLabels labels;
+        labels.title = "Rate–distortion: f^" + std::to_string(wavelets->levels) + " from the largest of " +
+                       std::to_string(wavelets->coefficients) + " wavelet coefficients";
+        labels.y = "error (L2: RMS over the vertices of D^J; Hausdorff: to T)";
+        render::write_rate_distortion_svg(base + "rate_distortion.svg", rate_curve(r, T, *wavelets), labels);
+    }
+    // ψ_i(S_i) inside an equilateral triangle for the first patch and the one with the most faces.
+    const std::array<Eigen::Vector2d, 3> corners{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0.5, std::sqrt(3.0) / 2)};
+    std::size_t largest = 0;
+    for (std::size_t i = 0; i < p.disks.size(); ++i)
+        if (p.disks[i].triangles.size() > p.disks[largest].triangles.size()) largest = i;
+    for (std::size_t i : {std::size_t{0}, largest}) {
+        std::vector<render::ImageTriangle> image;
+        for (std::size_t f = 0; f < p.face_patch.size(); ++f)
+            if (p.face_patch[f] == i) image.push_back(p.face_beta[f]);
+        render::write_patch_svg(base + "patch" + std::to_string(i) + ".svg", corners, image);
+    }
+}
+
+}  // namespace fhr::pipeline

@@ -1,0 +1,55 @@
+// FHR §6 — what `fhr run` writes (spec/cli.md, spec/formats.md): the domain, the geodesic network,
+// T′ with its patches, the `fhr-param 1` exchange file, a textured T′ for any mesh viewer, the
+// report and the timings. Every file is written atomically; everything but timings.json is
+// byte-identical across runs.
+#pragma once
+
+#include <string>
+
+#include <fhr/core/trimesh.hpp>
+#include <fhr/exchange/verify.hpp>
+#include <fhr/pipeline/pipeline.hpp>
+#include <fhr/wavelet/analyse.hpp>
+
+namespace fhr::pipeline {
+
+/// Wall-clock seconds per stage, in the order run (names: paper §6's timing table): the observer
+/// of a run whose timings.json is written.
+struct Timings final : StageObserver {
+    std::vector<std::pair<std::string, double>> stages;       ///< summed into "total"
+    std::vector<std::pair<std::string, double>> after_total;  ///< written after "total", not summed: measurements of the result
+    void stage(std::string_view name, double seconds, bool in_total) override {
+        (in_total ? stages : after_total).emplace_back(std::string(name), seconds);
+    }
+};
+
+/// The parameterization as the exchange format holds it (spec/param.md).
+exchange::ParamFile to_param_file(const Parameterization& p);
+
+/// What the report says about the input.
+struct InputInfo {
+    std::string path;
+    std::size_t vertices = 0, faces = 0;
+    long genus = 0;
+    std::size_t domain_faces_requested = 0;  ///< the domain's faces before §3's recovery
+};
+
+/// Writes DIR/{domain.off, geodesics.obj, refined.ply, param.fhrp, textured.obj, report.json,
+/// timings.json}; `oracle` is fhr verify's judgement of param.fhrp against T. With §5's result
+/// (`wavelets` not null) also remesh_L{J}.off, wavelet_keep{p}.off and the report's `remesh`
+/// and `wavelet` sections.
+void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
+                   const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
+                   const wavelet::WaveletResult* wavelets);
+
+/// The paper's Figures 6 and 7 (fig6.png: T and D; fig7.png: the geodesic network on T, and T′
+/// with a checkerboard over every patch through ψ) and one SVG per chosen patch (ψ_i(S_i) in its
+/// triangle: the first patch and the one with the most faces) into DIR/figures/, all from one camera
+/// with `up_axis` (0, 1, 2) up; with §5's result also fig8.png (D^J and f^J(Ω_D)) and, with two
+/// or more kept percentages, fig9.png (the first two reconstructions), and rate_distortion.svg
+/// (§6's compression: L2 and Hausdorff errors at 1, 2, 5, 10, 20, 50, 100 % and the kept
+/// percentages; REN-14). Deterministic bytes.
+void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis,
+                   const wavelet::WaveletResult* wavelets);
+
+}  // namespace fhr::pipeline

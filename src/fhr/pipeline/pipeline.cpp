@@ -1,0 +1,115 @@
+// FHR §2–§4 — the method end to end (see pipeline.hpp for the pseudocode).
+#include <fhr/core/detail/contract.hpp>
+#include <fhr/pipeline/pipeline.hpp>
+
+#include <algorithm>
+#include <chrono>
+
+#include <fhr/core/errors.hpp>
+#include <fhr/core/detail/parallel.hpp>
+#include <fhr/param/dividing_edges.hpp>
+
+namespace fhr::pipeline {
+
+bool Parameterization::certified() const {
+    return std::all_of(certificates.begin(), certificates.end(), [](const param::Certificate& c) { return c.passed; });
+}
+
+GlobalMap::GlobalMap(const Parameterization& p) : p_(p) {
+    FHR_DCHECK(p.certified());
+    locators_.reserve(p.disks.size());
+    for (std::size_t i = 0; i < p.disks.size(); ++i) locators_.emplace_back(p.disks[i], p.maps[i]);
+}
+
+Vec3 GlobalMap::phi(FaceId d, const std::array<double, 3>& beta) const { return locators_.at(d.idx()).phi(beta); }
+
+std::pair<FaceId, std::array<double, 3>> GlobalMap::psi(std::size_t f, const std::array<double, 3>& w) const {
+    // ψ is linear on every face of T′ (eq. 2): the weights of its corners' images.
+    std::array<double, 3> beta{0, 0, 0};
+    for (int k = 0; k < 3; ++k)
+        for (int r = 0; r < 3; ++r) beta[r] += w[k] * p_.face_beta[f][k][r];
+    return {FaceId(p_.face_patch[f]), beta};
+}
+
+namespace {
+
+class Stopwatch {
+public:
+    Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+    double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+private:
+    std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options) {
+    auto say = [&](const std::string& line) {
+        if (options.progress) options.progress(line);
+    };
+    Parameterization out;
+
+    // §3: one geodesic per edge of D, T′, conditions (1) and (2), the patches.
+    say("geodesic paths: " + std::to_string(D.mesh.n_edges()) + " domain edges");
+    Stopwatch paths;
+    partition::PartitionOptions po;
+    po.progress = options.progress;
+    po.keep_domain = options.keep_domain;
+    out.partition = partition::partition(T, std::move(D), po);
+    if (options.observer) options.observer->stage("geodesic_paths", paths.seconds(), true);
+    const partition::Partition& P = out.partition;
+    say("partition: " + std::to_string(P.network.mesh.n_faces()) + " faces in T′, " +
+        std::to_string(P.patches.patch.size()) + " patches, " + std::to_string(P.retries) + " retries");
+
+    // §4: each patch onto its triangle, certified.
+    Stopwatch param;
+    const std::size_t n_patches = P.patches.patch.size();
+    out.disks.resize(n_patches);
+    out.maps.resize(n_patches);
+    out.certificates.resize(n_patches);
+    std::vector<std::size_t> split(n_patches, 0);
+    parallel_for(n_patches, 16, [&](std::size_t i) {
+        param::Disk disk = P.patches.patch[i].disk;
+        split[i] = param::split_dividing_edges(disk);
+        try {
+            out.maps[i] = param::map_patch(disk, options.map);
+        } catch (const InvalidInput& e) {  // the patch is fhr's own (§3), not the caller's input
+            throw InternalError("the patch of domain face " + std::to_string(i) + " that §3 made is refused by §4: " + e.problem());
+        }
+        out.certificates[i] = param::certify(disk, out.maps[i]);
+        out.disks[i] = std::move(disk);
+    });
+    for (std::size_t s : split) out.dividing_edges_split += s;
+    // The final T′: the vertices of T′ of §3, then each patch's dividing-edge midpoints; faces
+    // patch by patch, each with the β of its corners.
+    const TriMesh& M = P.network.mesh;
+    out.refined_positions.assign(M.positions().begin(), M.positions().end());
+    out.refined_faces.reserve(M.n_faces() + 2 * out.dividing_edges_split);
+    for (std::uint32_t i = 0; i < n_patches; ++i) {
+        const param::Disk& disk = out.disks[i];
+        const partition::Patch& patch = P.patches.patch[i];
+        std::vector<std::uint32_t> global(disk.positions.size());
+        for (std::size_t v = 0; v < disk.positions.size(); ++v) {
+            if (v < patch.vertices.size()) {
+                global[v] = patch.vertices[v].idx();
+            } else {
+                global[v] = static_cast<std::uint32_t>(out.refined_positions.size());
+                out.refined_positions.push_back(disk.positions[v]);
+            }
+        }
+        for (const auto& t : disk.triangles) {
+            out.refined_faces.push_back({global[t[0]], global[t[1]], global[t[2]]});
+            out.face_patch.push_back(i);
+            out.face_beta.push_back({out.maps[i].beta[t[0]], out.maps[i].beta[t[1]], out.maps[i].beta[t[2]]});
+        }
+    }
+    if (options.observer) options.observer->stage("parameterization", param.seconds(), true);
+    const std::size_t failed = static_cast<std::size_t>(
+        std::count_if(out.certificates.begin(), out.certificates.end(), [](const param::Certificate& c) { return !c.passed; }));
+    say("parameterization: " + std::to_string(n_patches) + " patches, " + std::to_string(out.dividing_edges_split) +
+        " dividing edges split, " + (failed ? std::to_string(failed) + " NOT certified" : std::string("all certified")));
+    return out;
+}
+
+}  // namespace fhr::pipeline

@@ -1,0 +1,86 @@
+// FHR §2–§4 — the method end to end, in memory: the domain D (§2), the partition of T into
+// patches by geodesics (§3), and one convex-combination map per patch (§4), certified.
+//
+// Pseudocode (paper §6 runs exactly these stages; their names are the timing table's):
+//   mesh_reduction:   D <- decimate(T) (or the user's D, attached to T)
+//   geodesic_paths:   paths, T′, patches <- partition(T, D)       (D may be refined: §3 recovery)
+//   parameterization: for each patch S_i: split its dividing edges (Floater 2003, Thm 6.1);
+//                     ψ_i <- chord-length boundary + convex combinations inside (eq. 2);
+//                     certify ψ_i (exact orientation, boundary monotone, areas)
+//   the final T′ (with the dividing-edge midpoints) and, per face, its patch and the β of ψ
+//   at its corners: the `fhr-param 1` content (spec/param.md)
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <fhr/core/trimesh.hpp>
+#include <fhr/domain/decimate.hpp>
+#include <fhr/param/certificate.hpp>
+#include <fhr/param/locate.hpp>
+#include <fhr/param/patch_map.hpp>
+#include <fhr/partition/partition.hpp>
+
+namespace fhr::pipeline {
+
+/// Told the wall-clock seconds of each stage as it ends (names: paper §6's timing table, spec/cli.md
+/// CLI-RUN-3); `in_total` is false for a measurement of the result rather than a stage of the
+/// method. Called on the thread that called the pipeline. Timings stay out of the algorithms'
+/// signatures: a caller that wants them passes an observer.
+class StageObserver {
+public:
+    virtual ~StageObserver() = default;
+    virtual void stage(std::string_view name, double seconds, bool in_total) = 0;
+};
+
+struct Options {
+    param::PatchMapOptions map;
+    bool keep_domain = true;  ///< §3: keep D (restricted paths where geodesics conflict), else change it
+    std::function<void(const std::string&)> progress;  ///< optional: one line per step, on the calling thread
+    StageObserver* observer = nullptr;                 ///< optional: the seconds of each stage
+};
+
+/// The parameterization φ: Ω_D → Ω_T as computed, with everything the outputs need.
+struct Parameterization {
+    partition::Partition partition;                 ///< D (final), paths, T′ before §4, patches
+    std::vector<param::Disk> disks;                 ///< #F(D): each patch after its dividing edges were split
+    std::vector<param::PatchMap> maps;              ///< #F(D): ψ_i at the disk's vertices
+    std::vector<param::Certificate> certificates;   ///< #F(D)
+    std::size_t dividing_edges_split = 0;
+    // The final T′: T′ of §3 plus the dividing-edge midpoints.
+    std::vector<Vec3> refined_positions;
+    std::vector<Triangle> refined_faces;
+    std::vector<std::uint32_t> face_patch;                      ///< per face: the D face of its patch
+    std::vector<std::array<std::array<double, 3>, 3>> face_beta;  ///< per face corner: β of ψ
+    bool certified() const;                          ///< every patch's certificate passed
+};
+
+/// The global maps of §4: φ = ψ⁻¹ from any point of Ω_D (a face of D and barycentric coordinates
+/// in its corner order) to Ω_T, and ψ from any point of T′ (a face of the final T′ and barycentric
+/// coordinates in its corner order) to Ω_D. A point on an edge of D gives the same point of T from
+/// both faces, bit for bit (the patches' sides are parameterized from a canonical end, MAP-11).
+class GlobalMap {
+public:
+    /// \pre p is certified (every patch one-to-one); p outlives this object.
+    explicit GlobalMap(const Parameterization& p);
+    /// φ(d, β): the point of Ω_T whose image under ψ is β in domain face d.
+    /// \throws InvalidInput for β outside the triangle (beyond 1e−12), as PatchLocator.
+    Vec3 phi(FaceId d, const std::array<double, 3>& beta) const;
+    /// ψ(f, w): the domain face and β of the point Σ w_k · (corner k of face f of T′).
+    std::pair<FaceId, std::array<double, 3>> psi(std::size_t f, const std::array<double, 3>& w) const;
+
+private:
+    const Parameterization& p_;
+    std::vector<param::PatchLocator> locators_;
+};
+
+/// §3 and §4 for T and a domain D whose vertices are vertices of T.
+/// \throws PartitionFailure (§3 conditions unrecoverable), NumericalFailure (a weight or solve),
+///         InternalError (a patch §3 made that §4 refuses).
+Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options);
+
+}  // namespace fhr::pipeline

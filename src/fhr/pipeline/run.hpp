@@ -1,0 +1,51 @@
+// FHR §2–§5 — one call for the whole method, in memory: the domain D (§2), the partition and the
+// certified parameterization (§3, §4), the independent oracle's verdict on it, and optionally the
+// remesh, the prewavelet decomposition and its compression (§5). `fhr run` is this call between
+// parsing its arguments and writing its files (src/cli/run.cpp, src/fhr/pipeline/outputs.hpp).
+//
+// Pseudocode:
+//   mesh_reduction:   D <- decimate(T) to `faces`, or the domain given (already attached to T)
+//   geodesic_paths, parameterization: parameterize(T, D)                  (pipeline.hpp)
+//   verification:     the oracle (src/fhr/exchange) on exactly what param.fhrp would hold
+//   with J = levels > 0: refinement, decomposition, reconstruction: D^J sampled through φ, its
+//                     prewavelet coefficients, the kept percentages reconstructed (src/fhr/wavelet)
+// Thread safety: run() keeps no state between calls; concurrent calls (on the same T too) are safe.
+// Its progress lines and stage times are reported on the calling thread. (A caller-owned executor
+// and workspace will join the options with the performance work.)
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include <fhr/domain/decimate.hpp>
+#include <fhr/exchange/verify.hpp>
+#include <fhr/pipeline/pipeline.hpp>
+#include <fhr/wavelet/analyse.hpp>
+
+namespace fhr::pipeline {
+
+struct RunOptions {
+    std::size_t faces = 0;                 ///< §2: decimate T to exactly this many faces, or 0 with `domain`
+    std::optional<domain::Domain> domain;  ///< §2: a domain given by the user, attached to T (domain::attach_domain)
+    Options method;                        ///< §3–§4: weights, solver, keeping D, progress, stage observer
+    int levels = 0;                        ///< §5: J ≥ 1 to remesh and decompose; 0 for none
+    std::vector<double> keep;              ///< §5: the percentages of coefficients to keep, each in (0, 100]
+};
+
+struct RunResult {
+    Parameterization parameterization;              ///< D (final), T′, ψ, certificates
+    exchange::VerifyReport oracle;                  ///< fhr verify's judgement of it against T
+    std::optional<wavelet::WaveletResult> wavelets; ///< with levels > 0
+    std::size_t domain_faces_requested = 0;         ///< D's faces before §3 (equal to the final ones when D is kept)
+    bool certified() const { return parameterization.certified() && oracle.valid(); }
+};
+
+/// The method end to end. A result that is not certified is returned, not thrown: its files can
+/// still be written and inspected.
+/// \pre T is valid, closed and connected (build_trimesh); exactly one of faces > 0 and domain.
+/// \throws InvalidInput (a face count §2 cannot reach, levels or keep out of range),
+///         PartitionFailure, NumericalFailure, InternalError (see parameterize).
+RunResult run(const TriMesh& T, RunOptions options);
+
+}  // namespace fhr::pipeline

@@ -1,0 +1,81 @@
+// FHR §6 — Figures 6–9 as two-panel PNGs (see figures.hpp and paper_notes/figures.md).
+#include <fhr/render/figures.hpp>
+
+#include <fhr/core/errors.hpp>
+#include <fhr/render/png.hpp>
+
+namespace fhr::render {
+namespace {
+
+MeshView shaded(const MeshData& mesh, bool outline) {
+    MeshView view;
+    view.positions = mesh.positions;
+    view.triangles = mesh.triangles;
+    view.outline = outline;
+    return view;
+}
+
+Panel panel_of(const MeshView& mesh) { return Panel{{mesh}, {}}; }
+
+}  // namespace
+
+Image render_two_panels(const Camera& camera, const Panel& left, const Panel& right, int width, int height,
+                        const RenderStyle& style) {
+    if (width < 2) throw InvalidInput("", 0, "render: a two-panel figure needs a width ≥ 2");
+    const int left_width = width / 2, right_width = width - left_width;
+    const Image a = render_panel(left, camera, left_width, height, style);
+    const Image b = render_panel(right, camera, right_width, height, style);
+    Image out(width, height, Rgb8{});
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < left_width; ++x) out.set(x, y, a.at(x, y));
+        for (int x = 0; x < right_width; ++x) out.set(left_width + x, y, b.at(x, y));
+    }
+    return out;
+}
+
+void write_two_panel_png(const std::string& path, const Camera& camera, const Panel& left, const Panel& right,
+                         int width, int height, const RenderStyle& style) {
+    write_png(path, render_two_panels(camera, left, right, width, height, style));
+}
+
+Camera figure_camera(std::span<const Vec3> positions, const FigureSize& size, const ViewDirection& view) {
+    return camera_for(bounds_of(positions), size.panel_aspect(), view);
+}
+
+void write_fig6(const std::string& path, const Camera& camera, const MeshData& t, const MeshData& d,
+                const FigureSize& size) {
+    write_two_panel_png(path, camera, panel_of(shaded(t, false)), panel_of(shaded(d, true)), size.width, size.height);
+}
+
+void write_fig7(const std::string& path, const Camera& camera, const MeshData& t, const PathData& geodesics,
+                const PathData& restricted, const MeshData& t_prime, std::span<const Eigen::Vector2d> corner_uv,
+                const FigureSize& size) {
+    Panel left = panel_of(shaded(t, false));
+    PolylineView lines;
+    lines.points = geodesics.points;
+    lines.paths = geodesics.paths;
+    left.polylines.push_back(lines);
+    if (!restricted.paths.empty()) {
+        PolylineView gold;
+        gold.points = restricted.points;
+        gold.paths = restricted.paths;
+        gold.colour = Colour(0.95, 0.72, 0.05);
+        left.polylines.push_back(gold);
+    }
+    MeshView textured = shaded(t_prime, false);
+    textured.corner_uv = corner_uv;
+    write_two_panel_png(path, camera, left, panel_of(textured), size.width, size.height);
+}
+
+void write_fig8(const std::string& path, const Camera& camera, const MeshData& d3, const MeshData& f3,
+                const FigureSize& size) {
+    write_two_panel_png(path, camera, panel_of(shaded(d3, true)), panel_of(shaded(f3, false)), size.width, size.height);
+}
+
+void write_fig9(const std::string& path, const Camera& camera, const MeshData& left, const MeshData& right,
+                const FigureSize& size) {
+    write_two_panel_png(path, camera, panel_of(shaded(left, false)), panel_of(shaded(right, false)), size.width,
+                        size.height);
+}
+
+}  // namespace fhr::render

@@ -1,0 +1,78 @@
+// FHR §5–§6 — the wavelet stage end to end (see analyse.hpp).
+#include <fhr/wavelet/analyse.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <fhr/core/geometry.hpp>
+#include <fhr/core/detail/parallel.hpp>
+#include <fhr/wavelet/compress.hpp>
+#include <fhr/wavelet/filter_bank.hpp>
+
+namespace fhr::wavelet {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::span<const double> keep_percent,
+                      const TriMesh& T, const HausdorffOptions& hausdorff_options) {
+    WaveletResult out;
+    out.levels = levels;
+    for (double p : keep_percent) kept_count(0, p);  // refuse a bad percentage before any work
+
+    auto start = std::chrono::steady_clock::now();
+    const Refinement r = refine(D, levels);
+    out.remesh_positions = sample(r, phi);
+    out.refinement_seconds = seconds_since(start);
+
+    start = std::chrono::steady_clock::now();
+    const FilterBank bank(r);
+    const Decomposition d = bank.decompose(out.remesh_positions);
+    out.decomposition_seconds = seconds_since(start);
+
+    start = std::chrono::steady_clock::now();
+    const std::vector<Vec3> round_trip = bank.reconstruct(d);
+    out.reconstruction_seconds = seconds_since(start);
+
+    for (std::size_t v = 0; v < round_trip.size(); ++v) {
+        out.reconstruction_max_error =
+            std::max(out.reconstruction_max_error, (round_trip[v] - out.remesh_positions[v]).cwiseAbs().maxCoeff());
+        out.max_abs_coordinate = std::max(out.max_abs_coordinate, out.remesh_positions[v].cwiseAbs().maxCoeff());
+    }
+    for (const LevelSolve& s : d.solves) out.cg_iterations.push_back(s.iterations);
+    out.coefficients = d.coefficient_count();
+    for (const TriMesh& level : r.levels) out.remesh_level_faces.push_back(level.triangles());
+    out.remesh_faces = out.remesh_level_faces.back();
+
+    const std::vector<Triangle> t_faces = T.triangles();
+    out.bbox_diagonal = bounding_box(T).diagonal();
+    HausdorffOptions ho = hausdorff_options;
+    if (ho.resolution <= 0) ho.resolution = 1e-4 * out.bbox_diagonal;
+    for (double p : keep_percent) {
+        KeptResult k;
+        k.percent = p;
+        k.count = kept_count(out.coefficients, p);
+        start = std::chrono::steady_clock::now();
+        k.positions = bank.reconstruct(keep_largest(bank, d, k.count));
+        out.reconstruction_seconds += seconds_since(start);
+        k.l2_error = rms_distance(out.remesh_positions, k.positions);
+        out.kept.push_back(std::move(k));
+    }
+    // The Hausdorff brackets of D^J's f^J and of each reconstruction, independent of each other:
+    // one task each on all cores (core/parallel.hpp; each result is the single-threaded one).
+    start = std::chrono::steady_clock::now();
+    parallel_for(1 + out.kept.size(), 1, [&](std::size_t i) {
+        const std::vector<Vec3>& positions = i == 0 ? out.remesh_positions : out.kept[i - 1].positions;
+        (i == 0 ? out.remesh_hausdorff : out.kept[i - 1].hausdorff) = hausdorff(T.positions(), t_faces, positions, out.remesh_faces, ho);
+    });
+    out.hausdorff_seconds = seconds_since(start);
+    out.hausdorff_relative = out.remesh_hausdorff.lower() / out.bbox_diagonal;
+    return out;
+}
+
+}  // namespace fhr::wavelet

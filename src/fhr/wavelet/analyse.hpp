@@ -1,0 +1,60 @@
+// FHR §5–§6 — the wavelet stage end to end, for the pipeline (`fhr run --levels J --keep …`):
+//
+//   refinement:      D^J <- refine(D, J); f^J(v) <- φ(v) at every vertex of D^J        (§5, Fig. 8)
+//   decomposition:   the filter bank's operators; f^J -> f^0 + g^0 + … + g^{J−1}      (§5, eq. 3)
+//   reconstruction:  f^J again from all coefficients (the round trip)
+//   then, untimed:   the Hausdorff distance between Ω_T and f^J(Ω_D); for each kept percentage p:
+//                    keep the largest ⌊p·N/100⌋ coefficients, reconstruct, L2 and Hausdorff
+//                    errors                                                          (§6, Fig. 9)
+// The three timed stages are the rows `refinement`, `decomposition`, `reconstruction` of the
+// paper's timing table (§6).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <fhr/wavelet/hausdorff.hpp>
+#include <fhr/wavelet/refine.hpp>
+
+namespace fhr::wavelet {
+
+/// One compressed reconstruction.
+struct KeptResult {
+    double percent = 0;           ///< p as requested
+    std::size_t count = 0;        ///< ⌊p·N/100⌋ coefficients kept (N = coefficients)
+    std::vector<Vec3> positions;  ///< #V(D^J): the reconstruction (triangles: WaveletResult::remesh_faces)
+    double l2_error = 0;          ///< RMS over the vertices of D^J of |f^J(v) − reconstruction(v)|
+    Hausdorff hausdorff;          ///< between Ω_T and the reconstruction
+};
+
+struct WaveletResult {
+    int levels = 0;                       ///< J
+    std::vector<Vec3> remesh_positions;   ///< f^J at the vertices of D^J (#V(D^J))
+    std::vector<Triangle> remesh_faces;   ///< the faces of D^J (#F(D^J) = 4^J #F(D))
+    /// The first #V(D^j) positions with these faces are f^j(Ω_D) on D^j: remesh_level_faces[j], j = 0..J.
+    std::vector<std::vector<Triangle>> remesh_level_faces;
+    Hausdorff remesh_hausdorff;           ///< between Ω_T and f^J(Ω_D)
+    double bbox_diagonal = 0;             ///< of T
+    double hausdorff_relative = 0;        ///< remesh_hausdorff.lower() / bbox_diagonal
+    std::size_t coefficients = 0;         ///< #V(D^J) − #V(D)
+    double reconstruction_max_error = 0;  ///< max_v |f^J(v) − reconstruct(decompose(f^J))(v)|_∞ (absolute)
+    double max_abs_coordinate = 0;        ///< ‖f^J‖_∞, to read the error relatively
+    std::vector<int> cg_iterations;       ///< per level j = 1..J: CG steps of the decomposition's solve
+    std::vector<KeptResult> kept;         ///< one per requested percentage, in the order given
+    double refinement_seconds = 0;        ///< refine + sample φ (steady_clock)
+    double decomposition_seconds = 0;     ///< build the filter bank + decompose
+    double reconstruction_seconds = 0;    ///< the round trip's reconstruction and, per kept percentage, choosing the coefficients and reconstructing
+    double hausdorff_seconds = 0;         ///< all Hausdorff brackets (an error measure, not a stage of the paper)
+};
+
+/// The §5 wavelet stage for a closed domain D, φ: Ω_D → Ω_T and the input surface T. Hausdorff
+/// distances use `hausdorff_options`; a resolution of 0 there means 1e−4 of T's bounding-box
+/// diagonal (the bracket [lower, upper] of each distance is then that narrow).
+/// \pre D closed with every valence ≥ 3; phi defined on all of Ω_D (DomainMap); 0 ≤ levels with
+///      4^levels·#F(D) ≤ max_refined_faces; each keep_percent in [0, 100]; T has a face.
+/// \throws InvalidInput for a bad level or percentage, NumericalFailure when the decomposition's
+///         solve fails (filter_bank.hpp), and whatever phi throws.
+WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::span<const double> keep_percent,
+                      const TriMesh& T, const HausdorffOptions& hausdorff_options = {});
+
+}  // namespace fhr::wavelet

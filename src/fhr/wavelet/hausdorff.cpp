@@ -1,0 +1,374 @@
+// FHR §5 — Hausdorff distance between triangle meshes, bracketed (see hausdorff.hpp).
+#include <fhr/core/detail/contract.hpp>
+#include <fhr/wavelet/hausdorff.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fhr::wavelet {
+namespace {
+
+// Squared distance from p to the box [lo, hi] (0 inside).
+double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+    double d2 = 0;
+    for (int i = 0; i < 3; ++i) {
+        const double d = p[i] < lo[i] ? lo[i] - p[i] : p[i] > hi[i] ? p[i] - hi[i] : 0.0;
+        d2 += d * d;
+    }
+    return d2;
+}
+
+constexpr std::uint32_t leaf_size = 4;
+
+}  // namespace
+
+TriangleTree::TriangleTree(std::span<const Vec3> positions, std::span<const Triangle> triangles)
+    : positions_(positions.begin(), positions.end()), triangles_(triangles.begin(), triangles.end()) {
+    order_.resize(triangles_.size());
+    std::vector<Vec3> centroid(triangles_.size());
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
+        order_[t] = t;
+        const Triangle& f = triangles_[t];
+        centroid[t] = (positions_[f[0]] + positions_[f[1]] + positions_[f[2]]) / 3.0;
+    }
+    nodes_.reserve(2 * triangles_.size() / leaf_size + 2);
+    if (!triangles_.empty()) build(0, static_cast<std::uint32_t>(triangles_.size()), centroid);
+    fan_start_.assign(positions_.size() + 1, 0);
+    for (const Triangle& f : triangles_)
+        for (std::uint32_t v : f) ++fan_start_[v + 1];
+    for (std::size_t v = 0; v < positions_.size(); ++v) fan_start_[v + 1] += fan_start_[v];
+    fan_.resize(fan_start_.back());
+    std::vector<std::uint32_t> next(fan_start_.begin(), fan_start_.end() - 1);
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        for (std::uint32_t v : triangles_[t]) fan_[next[v]++] = t;
+}
+
+std::uint32_t TriangleTree::build(std::uint32_t first, std::uint32_t count, std::vector<Vec3>& centroid) {
+    const auto id = static_cast<std::uint32_t>(nodes_.size());
+    nodes_.push_back(Node{});
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (std::uint32_t i = first; i < first + count; ++i)
+        for (std::uint32_t v : triangles_[order_[i]]) {
+            lo = lo.cwiseMin(positions_[v]);
+            hi = hi.cwiseMax(positions_[v]);
+        }
+    nodes_[id].lo = lo;
+    nodes_[id].hi = hi;
+    if (count <= leaf_size) {
+        nodes_[id].first = first;
+        nodes_[id].count = count;
+        return id;
+    }
+    int axis = 0;
+    (hi - lo).maxCoeff(&axis);
+    const std::uint32_t half = count / 2;
+    std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
+                     [&](std::uint32_t x, std::uint32_t y) {
+                         return centroid[x][axis] < centroid[y][axis] || (centroid[x][axis] == centroid[y][axis] && x < y);
+                     });
+    const std::uint32_t left = build(first, half, centroid);
+    const std::uint32_t right = build(first + half, count - half, centroid);
+    nodes_[id].first = first;
+    nodes_[id].count = 0;
+    nodes_[id].left = left;
+    nodes_[id].right = right;
+    return id;
+}
+
+TriangleTree::Hit TriangleTree::closest(const Vec3& p, std::uint32_t hint) const {
+    FHR_DCHECK(!triangles_.empty());
+    auto at = [&](std::uint32_t t) {
+        const Triangle& f = triangles_[t];
+        return closest_point_on_triangle(p, positions_[f[0]], positions_[f[1]], positions_[f[2]]);
+    };
+    Hit best{0, hint < triangles_.size() ? hint : 0, Vec3::Zero()};
+    best.point = at(best.triangle);
+    double best2 = (best.point - p).squaredNorm();
+    // Best-first descent with an explicit stack: the nearer child is visited first, a box no
+    // nearer than the best so far is skipped.
+    std::uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& n = nodes_[stack[--top]];
+        if (box_distance2(p, n.lo, n.hi) >= best2) continue;
+        if (n.count > 0) {
+            for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+                const Vec3 q = at(order_[i]);
+                const double d2 = (q - p).squaredNorm();
+                if (d2 < best2) best2 = d2, best.point = q, best.triangle = order_[i];
+            }
+            continue;
+        }
+        const double dl = box_distance2(p, nodes_[n.left].lo, nodes_[n.left].hi);
+        const double dr = box_distance2(p, nodes_[n.right].lo, nodes_[n.right].hi);
+        // Push the farther child first so that the nearer one is popped next.
+        if (dl <= dr) {
+            stack[top++] = n.right;
+            stack[top++] = n.left;
+        } else {
+            stack[top++] = n.left;
+            stack[top++] = n.right;
+        }
+    }
+    best.distance = std::sqrt(best2);
+    return best;
+}
+
+double TriangleTree::distance_to(const Vec3& p, std::uint32_t t) const {
+    const Triangle& f = triangles_[t];
+    return (closest_point_on_triangle(p, positions_[f[0]], positions_[f[1]], positions_[f[2]]) - p).norm();
+}
+
+double TriangleTree::pair_bound(const Vec3 (&x)[3], std::uint32_t t1, std::uint32_t t2) const {
+    constexpr double none = std::numeric_limits<double>::infinity();
+    const Triangle& f = triangles_[t1];
+    const Triangle& g = triangles_[t2];
+    // τ₁ = (a, b, c) with ab the edge shared with τ₂; d is τ₂'s other corner.
+    int shared = 0, c_at = -1, d_at = -1;
+    for (int i = 0; i < 3; ++i) {
+        const bool in_g = f[i] == g[0] || f[i] == g[1] || f[i] == g[2];
+        const bool in_f = g[i] == f[0] || g[i] == f[1] || g[i] == f[2];
+        shared += in_g;
+        if (!in_g) c_at = i;
+        if (!in_f) d_at = i;
+    }
+    if (shared != 2 || c_at < 0 || d_at < 0) return none;
+    const Vec3& a = positions_[f[(c_at + 1) % 3]];
+    const Vec3& b = positions_[f[(c_at + 2) % 3]];
+    const Vec3& c = positions_[f[c_at]];
+    const Vec3& d = positions_[g[d_at]];
+    const Vec3 normal = (b - a).cross(c - a);
+    const double twice_area = normal.norm();
+    if (!(twice_area > 0)) return none;
+    const Vec3 n = normal / twice_area;
+    const double lift = n.dot(d - a);
+    const Vec3 d_flat = d - lift * n;
+    // Q = a d' b c is convex when d' and c are on opposite sides of ab and a and b on opposite
+    // sides of cd'; each signed area must clear a margin far above its rounding error.
+    const double margin = 1e-9 * (b - a).squaredNorm() + 1e-9 * (d - c).squaredNorm();
+    const double side_d = n.dot((b - a).cross(d_flat - a));
+    const double side_a = n.dot((d_flat - c).cross(a - c)), side_b = n.dot((d_flat - c).cross(b - c));
+    if (!(side_d < -margin) || !((side_a > margin && side_b < -margin) || (side_a < -margin && side_b > margin))) return none;
+    // The rounding in d' moves it by a few ulps of |d|: h covers it with the same relative margin.
+    const double h = std::abs(lift) + 1e-12 * (d - a).norm();
+    double sup = 0;
+    for (const Vec3& p : x) {
+        const double to_first = (closest_point_on_triangle(p, a, b, c) - p).norm();
+        const double to_second = (closest_point_on_triangle(p, b, a, d_flat) - p).norm();
+        sup = std::max(sup, std::min(to_first, to_second));
+    }
+    return sup + h;
+}
+
+double TriangleTree::fan_bound(const Vec3 (&x)[3], std::uint32_t v) const {
+    constexpr double none = std::numeric_limits<double>::infinity();
+    const std::uint32_t first = fan_start_[v], count = fan_start_[v + 1] - first;
+    if (count < 3) return none;
+    // The link as one closed cycle: triangle (v, p, q) in its own orientation gives p -> q.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> link;
+    link.reserve(count);
+    for (std::uint32_t i = first; i < first + count; ++i) {
+        const Triangle& f = triangles_[fan_[i]];
+        const int at = f[0] == v ? 0 : f[1] == v ? 1 : 2;
+        link.emplace_back(f[(at + 1) % 3], f[(at + 2) % 3]);
+    }
+    std::vector<std::uint32_t> cycle{link[0].first};
+    for (std::uint32_t step = 0; step < count; ++step) {
+        const std::uint32_t from = cycle.back();
+        auto it = std::find_if(link.begin(), link.end(), [&](const auto& e) { return e.first == from; });
+        if (it == link.end()) return none;
+        cycle.push_back(it->second);
+    }
+    if (cycle.back() != cycle.front()) return none;
+    cycle.pop_back();
+    for (std::size_t i = 0; i < cycle.size(); ++i)
+        for (std::size_t j = i + 1; j < cycle.size(); ++j)
+            if (cycle[i] == cycle[j]) return none;  // not a simple cycle: not a disk
+    // Flatten into the plane through v normal to the fan's area-weighted normal.
+    const Vec3& o = positions_[v];
+    Vec3 normal = Vec3::Zero();
+    double scale = 0;
+    for (std::size_t i = 0; i < cycle.size(); ++i) {
+        const Vec3 &p = positions_[cycle[i]], &q = positions_[cycle[(i + 1) % cycle.size()]];
+        normal += (p - o).cross(q - o);
+        scale = std::max(scale, (p - o).norm());
+    }
+    if (!(normal.norm() > 0)) return none;
+    const Vec3 n = normal.normalized();
+    const double slack = 1e-12 * scale;  // rounding in the flattening and the measures below
+    std::vector<Vec3> w(cycle.size());
+    double lift = 0;
+    for (std::size_t i = 0; i < cycle.size(); ++i) {
+        const Vec3& p = positions_[cycle[i]];
+        const double l = n.dot(p - o);
+        lift = std::max(lift, std::abs(l));
+        w[i] = p - l * n;
+    }
+    const std::size_t k = w.size();
+    auto turn = [&](const Vec3& a, const Vec3& b, const Vec3& c) { return n.dot((b - a).cross(c - b)); };
+    for (std::size_t i = 0; i < k; ++i)  // the flat fan's triangles keep their orientation
+        if (!(n.dot((w[i] - o).cross(w[(i + 1) % k] - o)) > 1e-9 * (w[i] - o).norm() * (w[(i + 1) % k] - o).norm())) return none;
+    // Corners: the link points that turn left by more than 1e−9 (sine); a right turn beyond it is reflex.
+    std::vector<std::size_t> corners;
+    for (std::size_t i = 0; i < k; ++i) {
+        const Vec3 &a = w[(i + k - 1) % k], &b = w[i], &c = w[(i + 1) % k];
+        const double t = turn(a, b, c), tol = 1e-9 * (b - a).norm() * (c - b).norm();
+        if (t < -tol) return none;
+        if (t > tol) corners.push_back(i);
+    }
+    if (corners.size() < 3) return none;
+    // Straight points onto their corners' chord (ε), and the corners' polygon convex.
+    double eps = 0;
+    const std::size_t m = corners.size();
+    for (std::size_t j = 0; j < m; ++j) {
+        const Vec3 &a = w[corners[j]], &b = w[corners[(j + 1) % m]], &c = w[corners[(j + 2) % m]];
+        if (!(turn(a, b, c) > 1e-9 * (b - a).norm() * (c - b).norm())) return none;
+        for (std::size_t i = (corners[j] + 1) % k; i != corners[(j + 1) % m]; i = (i + 1) % k)
+            eps = std::max(eps, (b - a).cross(w[i] - a).norm() / (b - a).norm());
+    }
+    double sup = 0;
+    for (const Vec3& p : x) {
+        double d = std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j < m; ++j)
+            d = std::min(d, (closest_point_on_triangle(p, o, w[corners[j]], w[corners[(j + 1) % m]]) - p).norm());
+        sup = std::max(sup, d);
+    }
+    return sup + lift + eps + slack;
+}
+
+DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles,
+                                     const TriangleTree& B, const HausdorffOptions& options) {
+    DirectedHausdorff h;
+    std::uint32_t hint = 0;
+    auto query = [&](const Vec3& p) {
+        const TriangleTree::Hit hit = B.closest(p, hint);
+        hint = hit.triangle;
+        ++h.samples;
+        if (hit.distance > h.lower) h.lower = hit.distance, h.farthest = p;
+        return hit;
+    };
+    // The vertices first: they give the search a good lower bound to prune with.
+    std::vector<TriangleTree::Hit> at_vertex(a_positions.size(), TriangleTree::Hit{0, 0, Vec3::Zero()});
+    std::vector<char> used(a_positions.size(), 0);
+    for (const Triangle& t : a_triangles)
+        for (std::uint32_t v : t) used[v] = 1;
+    for (std::size_t v = 0; v < a_positions.size(); ++v)
+        if (used[v]) at_vertex[v] = query(a_positions[v]);
+
+    struct Piece {
+        Vec3 x[3];
+        double d[3];            // d(x_k, B)
+        std::uint32_t near[3];  // the triangle of B closest to x_k
+        unsigned depth;
+    };
+    const double root3 = std::sqrt(3.0);
+    auto bound = [&](const Piece& q, double ell) {
+        double b = std::max({q.d[0], q.d[1], q.d[2]}) + ell / root3;  // Lipschitz
+        for (std::uint32_t t : q.near)                                  // convexity
+            b = std::min(b, std::max({B.distance_to(q.x[0], t), B.distance_to(q.x[1], t), B.distance_to(q.x[2], t)}));
+        for (int i = 0; i < 3; ++i)                                     // two triangles
+            if (const std::uint32_t s = q.near[i], t = q.near[(i + 1) % 3]; s != t) b = std::min(b, B.pair_bound(q.x, s, t));
+        if (q.near[0] != q.near[1] || q.near[1] != q.near[2])  // a vertex fan: at a vertex common to them all
+            for (std::uint32_t v : B.triangle(q.near[0]))
+                if (std::count(B.triangle(q.near[1]).begin(), B.triangle(q.near[1]).end(), v) &&
+                    std::count(B.triangle(q.near[2]).begin(), B.triangle(q.near[2]).end(), v))
+                    b = std::min(b, B.fan_bound(q.x, v));
+        return b;
+    };
+    // Not settled by the corners' triangles: the triangle closest to the centroid too, alone and
+    // with each corner's (where A lies on B across a crease, the corners' closest triangles can
+    // be on the other side of it; the centroid's is the one under the piece).
+    auto centroid_bound = [&](const Piece& q) {
+        const Vec3 c = (q.x[0] + q.x[1] + q.x[2]) / 3.0;
+        const std::uint32_t t = query(c).triangle;
+        double b = std::max({B.distance_to(q.x[0], t), B.distance_to(q.x[1], t), B.distance_to(q.x[2], t)});
+        for (std::uint32_t s : q.near)
+            if (s != t) b = std::min(b, B.pair_bound(q.x, s, t));
+        return b;
+    };
+    // The triangles with the farthest corner first: they raise lower soonest.
+    std::vector<std::uint32_t> order(a_triangles.size());
+    std::vector<double> corner_max(a_triangles.size());
+    for (std::uint32_t i = 0; i < order.size(); ++i) {
+        const Triangle& t = a_triangles[i];
+        order[i] = i;
+        corner_max[i] = std::max({at_vertex[t[0]].distance, at_vertex[t[1]].distance, at_vertex[t[2]].distance});
+    }
+    std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
+        return corner_max[x] > corner_max[y] || (corner_max[x] == corner_max[y] && x < y);
+    });
+    std::vector<Piece> stack;
+    for (std::uint32_t i : order) {
+        const Triangle& t = a_triangles[i];
+        Piece root{};
+        for (int k = 0; k < 3; ++k) {
+            root.x[k] = a_positions[t[k]];
+            root.d[k] = at_vertex[t[k]].distance;
+            root.near[k] = at_vertex[t[k]].triangle;
+        }
+        stack.push_back(root);
+        while (!stack.empty()) {
+            const Piece q = stack.back();
+            stack.pop_back();
+            const double ell = std::max({(q.x[1] - q.x[0]).norm(), (q.x[2] - q.x[1]).norm(), (q.x[0] - q.x[2]).norm()});
+            const double dmax = std::max({q.d[0], q.d[1], q.d[2]});
+            double b = bound(q, ell);
+            if (b > h.lower && b - dmax > options.resolution) b = std::min(b, centroid_bound(q));
+            if (b <= h.lower) continue;
+            if (b - dmax <= options.resolution || q.depth >= options.max_depth) {
+                h.upper = std::max(h.upper, b);
+                continue;
+            }
+            // 1-to-4 split; m_k is the midpoint of the side opposite corner k.
+            Piece mid{};
+            for (int k = 0; k < 3; ++k) {
+                mid.x[k] = 0.5 * (q.x[(k + 1) % 3] + q.x[(k + 2) % 3]);
+                const TriangleTree::Hit hit = query(mid.x[k]);
+                mid.d[k] = hit.distance;
+                mid.near[k] = hit.triangle;
+            }
+            mid.depth = q.depth + 1;
+            for (int k = 0; k < 3; ++k) {  // the corner piece at x_k: x_k, m_{k+2}, m_{k+1}
+                Piece c = mid;
+                const int a = (k + 2) % 3, e = (k + 1) % 3;
+                c.x[0] = q.x[k], c.d[0] = q.d[k], c.near[0] = q.near[k];
+                c.x[1] = mid.x[a], c.d[1] = mid.d[a], c.near[1] = mid.near[a];
+                c.x[2] = mid.x[e], c.d[2] = mid.d[e], c.near[2] = mid.near[e];
+                stack.push_back(c);
+            }
+            stack.push_back(mid);
+        }
+    }
+    h.upper = std::max(h.upper, h.lower);
+    return h;
+}
+
+Hausdorff hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles,
+                    std::span<const Vec3> b_positions, std::span<const Triangle> b_triangles, const HausdorffOptions& options) {
+    HausdorffOptions o = options;
+    if (o.resolution <= 0) {
+        Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        for (const auto* set : {&a_positions, &b_positions})
+            for (const Vec3& p : *set) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+        o.resolution = 1e-4 * (hi - lo).norm();
+        // All points equal: any positive δ will do.
+        if (!(o.resolution > 0)) o.resolution = 1;
+    }
+    Hausdorff h;
+    h.resolution = o.resolution;
+    const TriangleTree A(a_positions, a_triangles), B(b_positions, b_triangles);
+    h.a_to_b = directed_hausdorff(a_positions, a_triangles, B, o);
+    h.b_to_a = directed_hausdorff(b_positions, b_triangles, A, o);
+    return h;
+}
+
+double rms_distance(std::span<const Vec3> a, std::span<const Vec3> b) {
+    FHR_DCHECK(a.size() == b.size() && !a.empty());
+    double sum = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) sum += (a[i] - b[i]).squaredNorm();
+    return std::sqrt(sum / static_cast<double>(a.size()));
+}
+
+}  // namespace fhr::wavelet
