@@ -27,10 +27,10 @@
 
 #include <CGAL/Surface_mesh_shortest_path.h>
 
-#include "bench_support.hpp"
 #include <fhr/core/errors.hpp>
 #include <fhr/domain/decimate.hpp>
 #include <fhr/geodesic/ellipse.hpp>
+#include "bench_support.hpp"
 
 namespace {
 

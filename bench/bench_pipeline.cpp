@@ -7,8 +7,7 @@
 #include <string>
 #include <vector>
 
-#include <fhr/core/build.hpp>
-#include <fhr/core/detail/parallel.hpp>
+#include <fhr/core/executor.hpp>
 #include <fhr/domain/decimate.hpp>
 #include <fhr/io/read.hpp>
 #include <fhr/param/certificate.hpp>
@@ -38,8 +37,7 @@ int main(int argc, char** argv) {
     const std::string path = argv[1];
     const std::size_t faces = std::stoul(argv[2]);
     const int runs = argc > 3 ? std::stoi(argv[3]) : 5;
-    BuildLog log;
-    const TriMesh T = build_trimesh(io::read_soup(path), {}, log);
+    const TriMesh T = io::read_mesh(path);
     const partition::Partition P = partition::partition(T, domain::decimate(T, {.target_faces = faces}));
     std::vector<geodesic::GeodesicPath> paths;
     for (const auto& p : P.paths) paths.push_back(p.path);
@@ -52,7 +50,7 @@ int main(int argc, char** argv) {
         embed_s.push_back(seconds_since(t));
         t = std::chrono::steady_clock::now();
         std::vector<param::Certificate> c(patches.patch.size());
-        parallel_for(patches.patch.size(), 16, [&](std::size_t i) {
+        default_executor().for_each(patches.patch.size(), 16, [&](std::size_t i) {
             param::Disk disk = patches.patch[i].disk;
             param::split_dividing_edges(disk);
             c[i] = param::certify(disk, param::map_patch(disk));

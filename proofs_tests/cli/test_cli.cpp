@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "cli/common.hpp"
 #include <fhr/core/errors.hpp>
+#include "cli/common.hpp"
 #include "support/test_support.hpp"
 
 using fhr::test::run_fhr;

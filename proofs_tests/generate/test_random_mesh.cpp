@@ -172,12 +172,13 @@ TEST_CASE("different seeds give different meshes", "[unit]") {
 
 TEST_CASE("noise moves vertices by at most noise × their mean edge length, keeping the connectivity", "[property]") {
     rc::prop("jitter bound", [] {
-        const fhr::testing::GeneratedMesh noisy = *fhr::testing::gen_closed_mesh(0, 3, 2000);
-        RandomMeshOptions o = noisy.options;
-        RC_PRE(o.noise > 0);
-        o.noise = 0;
-        const TriMesh flat = random_closed_mesh(o);
-        o.noise = noisy.options.noise;
+        RandomMeshOptions o = *fhr::testing::gen_mesh_options(0, 3, 2000);
+        o.noise = *rc::gen::element(0.05, 0.1, 0.25);
+        RC_LOG() << "checked: " << fhr::testing::generate_command(o) << "\n";
+        const TriMesh noisy = random_closed_mesh(o);
+        RandomMeshOptions without = o;
+        without.noise = 0;
+        const TriMesh flat = random_closed_mesh(without);
         // The jitter is the last step: same random stream before it, so the same triangles.
         RC_ASSERT(noisy.triangles() == flat.triangles());
         std::size_t moved = 0;
@@ -270,4 +271,38 @@ TEST_CASE("generated meshes survive write -> read -> build exactly, in every wri
             RC_ASSERT(fhr::euler_characteristic(back) == fhr::euler_characteristic(m));
         }
     });
+}
+
+// LIB-7: the public RapidCheck generator (<fhr/testing/rapidcheck.hpp>) draws recipes within its
+// bounds, and every shrink is a smaller recipe, down to the smallest one: lowest genus, fewest
+// faces, seed 0, no noise.
+TEST_CASE("LIB-7: fhr::testing recipes stay in bounds and shrink toward the smallest recipe", "[unit][library]") {
+    const auto gen = fhr::testing::gen_mesh_options(1, 3, 800);
+    const auto in_bounds = [](const RandomMeshOptions& o) {
+        return 1 <= o.genus && o.genus <= 3 && o.faces >= min_faces(o.genus) && o.faces <= 800 && o.faces % 2 == 0;
+    };
+    const auto smaller = [](const RandomMeshOptions& s, const RandomMeshOptions& o) {
+        const bool no_larger = s.genus <= o.genus && s.seed <= o.seed && s.noise <= o.noise &&
+                               (s.genus < o.genus || s.faces <= o.faces);
+        return no_larger && (s.genus < o.genus || s.faces < o.faces || s.seed < o.seed || s.noise < o.noise);
+    };
+    for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+        rc::Shrinkable<RandomMeshOptions> current = gen(rc::Random(seed), 100);
+        REQUIRE(in_bounds(current.value()));
+        for (int steps = 0;; ++steps) {
+            REQUIRE(steps < 1000);
+            auto shrinks = current.shrinks();
+            const auto first = shrinks.next();
+            if (!first) break;
+            INFO(fhr::testing::generate_command(current.value()) << " -> " << fhr::testing::generate_command(first->value()));
+            CHECK(in_bounds(first->value()));
+            CHECK(smaller(first->value(), current.value()));
+            current = *first;
+        }
+        const RandomMeshOptions last = current.value();
+        CHECK(last.genus == 1);
+        CHECK(last.faces == min_faces(1));
+        CHECK(last.seed == 0);
+        CHECK(last.noise == 0);
+    }
 }

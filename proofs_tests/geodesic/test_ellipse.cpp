@@ -12,9 +12,9 @@
 #include <fhr/core/build.hpp>
 #include <fhr/core/errors.hpp>
 #include <fhr/domain/decimate.hpp>
+#include <fhr/generate/random_mesh.hpp>
 #include <fhr/geodesic/ellipse.hpp>
 #include <fhr/geodesic/fast_marching.hpp>
-#include <fhr/generate/random_mesh.hpp>
 #include <fhr/io/read.hpp>
 #include <fhr/testing/rapidcheck.hpp>
 #include "support/test_support.hpp"

@@ -29,9 +29,9 @@
 #include <fhr/domain/decimate.hpp>
 #include <fhr/geodesic/exact.hpp>
 #include <fhr/io/read.hpp>
+#include <fhr/testing/rapidcheck.hpp>
 #include "support/analytic_meshes.hpp"
 #include "support/cgal_oracle.hpp"
-#include <fhr/testing/rapidcheck.hpp>
 #include "support/test_support.hpp"
 
 using namespace fhr;

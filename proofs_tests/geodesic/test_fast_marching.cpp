@@ -22,8 +22,8 @@
 #include <fhr/core/errors.hpp>
 #include <fhr/geodesic/fast_marching.hpp>
 #include <fhr/io/read.hpp>
-#include "support/analytic_meshes.hpp"
 #include <fhr/testing/rapidcheck.hpp>
+#include "support/analytic_meshes.hpp"
 #include "support/test_support.hpp"
 
 using namespace fhr;

@@ -9,8 +9,8 @@
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
-#include <fhr/io/read.hpp>
 #include <fhr/io/detail/text_scanner.hpp>
+#include <fhr/io/read.hpp>
 #include "refusal.hpp"
 #include "support/test_support.hpp"
 

@@ -13,10 +13,10 @@
 #include <fhr/core/predicates.hpp>
 #include <fhr/param/certificate.hpp>
 #include <fhr/param/dividing_edges.hpp>
-#include "param/disks.hpp"
 #include <fhr/param/locate.hpp>
 #include <fhr/param/patch_map.hpp>
 #include <fhr/testing/rapidcheck.hpp>
+#include "param/disks.hpp"
 
 using namespace fhr;
 using param::Disk;

@@ -18,8 +18,8 @@
 #include <fhr/param/dividing_edges.hpp>
 #include <fhr/param/patch_map.hpp>
 #include <fhr/param/weights.hpp>
-#include "param/disks.hpp"
 #include <fhr/testing/rapidcheck.hpp>
+#include "param/disks.hpp"
 
 using namespace fhr;
 using param::Disk;
@@ -164,7 +164,10 @@ TEST_CASE("MAP-4, MAP-9: a triangle with all three vertices on one side cannot c
     const param::Certificate before = param::certify(d, param::map_patch(d));
     CHECK_FALSE(before.passed);
     CHECK(before.flipped_triangles == 1);
-    CHECK_THAT(before.first_failure, Catch::Contains("MAP-8 orientation"));
+    REQUIRE(before.first_failure);
+    CHECK(before.first_failure->invariant == "MAP-8");
+    CHECK(before.first_failure->element == fhr::Element::face);
+    CHECK_THAT(before.first_failure->what, Catch::Contains("orientation"));
     // The split puts M = (A + B)/2 inside, joined to A, P, B, C.
     CHECK(param::split_dividing_edges(d) == 1);
     CHECK(d.positions.size() == 5);
@@ -174,7 +177,7 @@ TEST_CASE("MAP-4, MAP-9: a triangle with all three vertices on one side cannot c
     for (Weights kind : all_kinds) {
         const PatchMap psi = param::map_patch(d, {kind, Solver::sparse_lu});
         const param::Certificate after = param::certify(d, psi);
-        INFO(after.first_failure);
+        INFO((after.first_failure ? after.first_failure->describe() : ""));
         CHECK(after.passed);
         CHECK(after.flipped_triangles == 0);
         CHECK(psi.beta[4][2] > 0);  // M is strictly inside, off side 0
@@ -316,7 +319,7 @@ TEST_CASE("MAP-8: Proposition 1 — every split disk maps one-to-one with every 
         RC_TAG(split == 0 ? "no split" : "split");
         for (Weights kind : all_kinds) {
             const param::Certificate cert = param::certify(d, param::map_patch(d, {kind, Solver::sparse_lu}));
-            RC_LOG() << param::name(kind) << ": " << cert.first_failure << "\n";
+            RC_LOG() << param::name(kind) << ": " << (cert.first_failure ? cert.first_failure->describe() : "") << "\n";
             RC_ASSERT(cert.passed);
             RC_ASSERT(cert.flipped_triangles == 0);
             RC_ASSERT(cert.boundary_violations == 0);
@@ -358,7 +361,16 @@ TEST_CASE("MAP-9: the certificate rejects corrupted maps", "[unit][param]") {
         const param::Certificate cert = param::certify(d, bad);
         CHECK_FALSE(cert.passed);
         CHECK(cert.flipped_triangles >= 2);
-        CHECK_THAT(cert.first_failure, Catch::Contains("MAP-8 orientation"));
+        REQUIRE(cert.first_failure);
+        CHECK(cert.first_failure->invariant == "MAP-8");
+        CHECK(cert.first_failure->element == fhr::Element::face);
+        // the face named is one whose image is folded: (β1, β2) of its corners not counter-clockwise
+        const auto& named = d.triangles.at(static_cast<std::size_t>(cert.first_failure->index));
+        const auto& ba = bad.beta[named[0]];
+        const auto& bb = bad.beta[named[1]];
+        const auto& bc = bad.beta[named[2]];
+        CHECK((bb[1] - ba[1]) * (bc[2] - ba[2]) - (bb[2] - ba[2]) * (bc[1] - ba[1]) <= 0);
+        CHECK_THAT(cert.first_failure->what, Catch::Contains("orientation"));
     }
     SECTION("a boundary vertex moved off its side") {
         PatchMap bad = psi;
@@ -367,7 +379,11 @@ TEST_CASE("MAP-9: the certificate rejects corrupted maps", "[unit][param]") {
         const param::Certificate cert = param::certify(d, bad);
         CHECK_FALSE(cert.passed);
         CHECK(cert.boundary_violations == 1);
-        CHECK_THAT(cert.first_failure, Catch::Contains("not on side 0"));
+        REQUIRE(cert.first_failure);
+        CHECK(cert.first_failure->invariant == "MAP-8");
+        CHECK(cert.first_failure->element == fhr::Element::boundary_position);
+        CHECK(cert.first_failure->index == 2);
+        CHECK_THAT(cert.first_failure->what, Catch::Contains("not on side 0"));
     }
     SECTION("two boundary vertices out of order along their side") {
         PatchMap bad = psi;
@@ -386,7 +402,11 @@ TEST_CASE("MAP-9: the certificate rejects corrupted maps", "[unit][param]") {
     SECTION("β not summing to one, or missing") {
         PatchMap bad = psi;
         bad.beta[0][0] += 1e-9;
-        CHECK_THAT(param::certify(d, bad).first_failure, Catch::Contains("MAP-6"));
+        const param::Certificate cert = param::certify(d, bad);
+        REQUIRE(cert.first_failure);
+        CHECK(cert.first_failure->invariant == "MAP-6");
+        CHECK(cert.first_failure->element == fhr::Element::vertex);
+        CHECK(cert.first_failure->index == 0);
         bad = psi;
         bad.beta.pop_back();
         CHECK_FALSE(param::certify(d, bad).passed);

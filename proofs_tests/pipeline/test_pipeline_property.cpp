@@ -14,8 +14,8 @@
 #include <fhr/exchange/verify.hpp>
 #include <fhr/pipeline/outputs.hpp>
 #include <fhr/pipeline/pipeline.hpp>
-#include "support/gen_domain.hpp"
 #include <fhr/testing/rapidcheck.hpp>
+#include "support/gen_domain.hpp"
 
 using namespace fhr;
 

@@ -15,8 +15,8 @@
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/render/figures.hpp>
 #include <fhr/render/png.hpp>
-#include "render/png_reader.hpp"
 #include <fhr/render/raster.hpp>
+#include "render/png_reader.hpp"
 #include "support/test_support.hpp"
 
 using namespace fhr;

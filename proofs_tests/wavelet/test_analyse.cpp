@@ -7,8 +7,8 @@
 
 #include <fhr/core/errors.hpp>
 #include <fhr/core/geometry.hpp>
-#include "support/analytic_meshes.hpp"
 #include <fhr/wavelet/analyse.hpp>
+#include "support/analytic_meshes.hpp"
 
 using namespace fhr;
 

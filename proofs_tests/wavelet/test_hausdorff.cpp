@@ -7,8 +7,8 @@
 #include <cmath>
 #include <random>
 
-#include "support/analytic_meshes.hpp"
 #include <fhr/wavelet/hausdorff.hpp>
+#include "support/analytic_meshes.hpp"
 #include "wavelet_support.hpp"
 
 using namespace fhr;

@@ -4,9 +4,9 @@
 #include <charconv>
 #include <cstdio>
 
-#include "cli/common.hpp"
-#include <fhr/io/detail/json.hpp>
 #include <fhr/geodesic/ellipse.hpp>
+#include <fhr/io/detail/json.hpp>
+#include "cli/common.hpp"
 
 namespace fhr::cli {
 namespace {

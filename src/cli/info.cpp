@@ -4,12 +4,12 @@
 #include <cstdio>
 #include <optional>
 
-#include "cli/common.hpp"
-#include <fhr/io/detail/json.hpp>
 #include <fhr/core/errors.hpp>
 #include <fhr/core/geometry.hpp>
 #include <fhr/core/topology.hpp>
+#include <fhr/io/detail/json.hpp>
 #include <fhr/io/read.hpp>
+#include "cli/common.hpp"
 
 namespace fhr::cli {
 namespace {

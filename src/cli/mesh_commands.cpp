@@ -3,13 +3,13 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "cli/common.hpp"
 #include <fhr/core/topology.hpp>
 #include <fhr/domain/decimate.hpp>
 #include <fhr/domain/user_domain.hpp>
-#include <fhr/io/read.hpp>
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/io/atomic_file.hpp>
+#include <fhr/io/read.hpp>
+#include "cli/common.hpp"
 
 namespace fhr::cli {
 

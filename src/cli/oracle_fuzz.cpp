@@ -34,13 +34,13 @@
 #include <thread>
 #include <vector>
 
-#include "cli/common.hpp"
 #include <fhr/core/errors.hpp>
 #include <fhr/exchange/fhr_param.hpp>
 #include <fhr/exchange/verify.hpp>
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/io/atomic_file.hpp>
 #include <fhr/io/read.hpp>
+#include "cli/common.hpp"
 
 extern char** environ;
 

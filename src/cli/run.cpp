@@ -5,7 +5,6 @@
 #include <cstdlib>
 #include <optional>
 
-#include "cli/common.hpp"
 #include <fhr/core/errors.hpp>
 #include <fhr/core/topology.hpp>
 #include <fhr/domain/user_domain.hpp>
@@ -13,6 +12,7 @@
 #include <fhr/io/read.hpp>
 #include <fhr/pipeline/outputs.hpp>
 #include <fhr/pipeline/run.hpp>
+#include "cli/common.hpp"
 
 namespace fhr::cli {
 namespace {

@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "cli/common.hpp"
-#include <fhr/io/detail/json.hpp>
 #include <fhr/core/errors.hpp>
 #include <fhr/exchange/fhr_param.hpp>
 #include <fhr/exchange/verify.hpp>
+#include <fhr/io/detail/json.hpp>
+#include "cli/common.hpp"
 
 namespace fhr::cli {
 namespace {

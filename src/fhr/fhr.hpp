@@ -6,9 +6,9 @@
 // needs RapidCheck, is included separately.
 #pragma once
 
-#include <fhr/version.hpp>
 #include <fhr/core/build.hpp>
 #include <fhr/core/errors.hpp>
+#include <fhr/core/executor.hpp>
 #include <fhr/core/geometry.hpp>
 #include <fhr/core/ids.hpp>
 #include <fhr/core/polygon_soup.hpp>
@@ -47,6 +47,7 @@
 #include <fhr/render/png.hpp>
 #include <fhr/render/raster.hpp>
 #include <fhr/render/svg.hpp>
+#include <fhr/version.hpp>
 #include <fhr/wavelet/analyse.hpp>
 #include <fhr/wavelet/compress.hpp>
 #include <fhr/wavelet/filter_bank.hpp>

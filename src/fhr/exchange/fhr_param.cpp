@@ -21,8 +21,8 @@
 
 #include <fhr/io/atomic_file.hpp>
 #include <fhr/io/detail/number_text.hpp>
-#include <fhr/io/read.hpp>
 #include <fhr/io/detail/text_scanner.hpp>
+#include <fhr/io/read.hpp>
 
 namespace fhr::exchange {
 

@@ -6,8 +6,8 @@
 #include <string>
 
 #include <fhr/core/errors.hpp>
-#include <fhr/geodesic/fast_marching.hpp>
 #include <fhr/geodesic/detail/scratch.hpp>
+#include <fhr/geodesic/fast_marching.hpp>
 
 namespace fhr::geodesic {
 namespace {

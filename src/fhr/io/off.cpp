@@ -5,8 +5,8 @@
 // (`n i0 … i(n-1)` plus at most 4 colour values), '#' comments, "\n" or "\r\n" line endings.
 #include <string>
 
-#include <fhr/io/read.hpp>
 #include <fhr/io/detail/text_scanner.hpp>
+#include <fhr/io/read.hpp>
 
 namespace fhr::io {
 

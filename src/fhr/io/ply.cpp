@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include <fhr/io/read.hpp>
 #include <fhr/io/detail/text_scanner.hpp>
+#include <fhr/io/read.hpp>
 
 namespace fhr::io {
 

@@ -8,8 +8,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <fhr/io/read.hpp>
 #include <fhr/io/detail/text_scanner.hpp>
+#include <fhr/io/read.hpp>
 
 namespace fhr::io {
 

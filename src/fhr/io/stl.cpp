@@ -6,8 +6,8 @@
 #include <string>
 #include <unordered_map>
 
-#include <fhr/io/read.hpp>
 #include <fhr/io/detail/text_scanner.hpp>
+#include <fhr/io/read.hpp>
 
 namespace fhr::io {
 

@@ -11,8 +11,8 @@
 
 #include <fhr/core/errors.hpp>
 #include <fhr/io/atomic_file.hpp>
-#include <fhr/io/read.hpp>
 #include <fhr/io/detail/number_text.hpp>
+#include <fhr/io/read.hpp>
 
 namespace fhr::io {
 

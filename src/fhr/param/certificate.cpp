@@ -53,16 +53,16 @@ std::string vertex_text(const std::array<double, 3>& b) {
 
 Certificate certify(const Disk& disk, const PatchMap& psi, const std::array<Vec3, 3>& domain_triangle) {
     Certificate cert;
-    auto fail = [&](const std::string& why) {
-        if (cert.first_failure.empty()) cert.first_failure = why;
+    auto fail = [&](const char* invariant, Element element, std::int64_t index, const std::string& what) {
+        if (!cert.first_failure) cert.first_failure = Violation{invariant, element, index, what};
     };
     if (const auto broken = disk_violation(disk)) {
-        fail(broken->describe());
+        cert.first_failure = broken;
         return cert;
     }
     const std::size_t nv = disk.positions.size();
     if (psi.beta.size() != nv) {
-        fail("MAP-8: " + std::to_string(psi.beta.size()) + " images for " + std::to_string(nv) + " vertices");
+        fail("MAP-8", Element::whole, -1, std::to_string(psi.beta.size()) + " images for " + std::to_string(nv) + " vertices");
         return cert;
     }
     // MAP-6: finite barycentric triples. On the 2^-53 grid they sum to 1 exactly; any producer
@@ -71,9 +71,10 @@ Certificate certify(const Disk& disk, const PatchMap& psi, const std::array<Vec3
         const auto& b = psi.beta[v];
         const double sum = b[0] + b[1] + b[2];
         if (!std::isfinite(sum) || std::abs(sum - 1) > 2 * std::numeric_limits<double>::epsilon())
-            fail("MAP-6: vertex " + std::to_string(v) + " has β " + vertex_text(b) + ", not summing to 1");
+            fail("MAP-6", Element::vertex, static_cast<std::int64_t>(v),
+                 "vertex " + std::to_string(v) + " has β " + vertex_text(b) + ", not summing to 1");
     }
-    if (!cert.first_failure.empty()) return cert;
+    if (cert.first_failure) return cert;
 
     // Orientation: Theorem (degree argument, certificate.hpp) needs every sign exactly.
     cert.triangles = disk.triangles.size();
@@ -85,7 +86,7 @@ Certificate certify(const Disk& disk, const PatchMap& psi, const std::array<Vec3
         area.add(0.5 * ((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x())));
         if (orient2d(a, b, c) <= 0) {
             if (cert.flipped_triangles++ == 0)
-                fail("MAP-8 orientation: image of triangle " + std::to_string(t) + " (" + std::to_string(f[0]) + ", " +
+                fail("MAP-8", Element::face, static_cast<std::int64_t>(t), "orientation: image of triangle " + std::to_string(t) + " (" + std::to_string(f[0]) + ", " +
                      std::to_string(f[1]) + ", " + std::to_string(f[2]) + ") is folded or degenerate");
             cert.min_image_angle_degrees = 0;
             continue;
@@ -120,7 +121,7 @@ Certificate certify(const Disk& disk, const PatchMap& psi, const std::array<Vec3
             previous = parameter;
             if (!problem.empty()) {
                 ++cert.boundary_violations;
-                fail("MAP-8 boundary: vertex " + std::to_string(u) + " at boundary position " + std::to_string(p % n) +
+                fail("MAP-8", Element::boundary_position, static_cast<std::int64_t>(p % n), "boundary: vertex " + std::to_string(u) + " at boundary position " + std::to_string(p % n) +
                      " with β " + vertex_text(beta) + ": " + problem);
             }
         }
@@ -131,10 +132,10 @@ Certificate certify(const Disk& disk, const PatchMap& psi, const std::array<Vec3
     if (!(std::abs(cert.image_area - 0.5) <= area_tolerance * 0.5)) {
         std::ostringstream s;
         s.precision(17);
-        s << "MAP-8 area: the images cover area " << cert.image_area << ", not 1/2";
-        fail(s.str());
+        s << "area: the images cover area " << cert.image_area << ", not 1/2";
+        fail("MAP-8", Element::whole, -1, s.str());
     }
-    cert.passed = cert.first_failure.empty();
+    cert.passed = !cert.first_failure;
     return cert;
 }
 

@@ -17,8 +17,9 @@
 
 #include <array>
 #include <cstddef>
-#include <string>
+#include <optional>
 
+#include <fhr/core/violation.hpp>
 #include <fhr/param/disk.hpp>
 #include <fhr/param/patch_map.hpp>
 
@@ -38,7 +39,10 @@ struct Certificate {
     std::size_t boundary_violations = 0; ///< boundary vertices off their side, out of order, or corners off
     double image_area = 0;               ///< Σ signed areas in the (β1, β2) plane (1/2 when one-to-one)
     double min_image_angle_degrees = 0;  ///< smallest angle of the image triangles in the domain triangle
-    std::string first_failure;           ///< "" iff passed; else "MAP-k: ..." naming the first broken check
+    /// None iff passed; else the first broken check: MAP-1 (the disk, disk_violation), MAP-6 (a
+    /// vertex's β), MAP-8 (the image count as a whole, a face's orientation, a boundary position,
+    /// the area as a whole).
+    std::optional<Violation> first_failure;
 };
 
 /// Certifies ψ of `disk` (MAP-8). Angles are measured in `domain_triangle` (the images' true

@@ -11,9 +11,9 @@
 #include <utility>
 
 #include <fhr/core/errors.hpp>
-#include <fhr/core/detail/parallel.hpp>
-#include <fhr/partition/patches.hpp>
+#include <fhr/core/executor.hpp>
 #include <fhr/partition/detail/restricted.hpp>
+#include <fhr/partition/patches.hpp>
 
 namespace fhr::partition {
 namespace {
@@ -141,8 +141,8 @@ struct Job {
                                                  // the curve from its smaller vertex of T)
 };
 
-void compute(const Network_& n, std::vector<Job>& jobs) {
-    parallel_for(jobs.size(), 1, [&](std::size_t i) {
+void compute(const Network_& n, std::vector<Job>& jobs, Executor& executor) {
+    executor.for_each(jobs.size(), 1, [&](std::size_t i) {
         Job& j = jobs[i];
         Network_::Quad q = n.quad(j.e);
         Region region(n.T(), q.touched, q.curves);
@@ -176,7 +176,8 @@ void apply(Network_& net, Job& j) {
 }
 
 // Redoes `collapses` (in T's numbering, in their order) on the network.
-void redo(Network_& net, std::span<const domain::Collapse> collapses, const std::function<void(const std::string&)>& say) {
+void redo(Network_& net, std::span<const domain::Collapse> collapses, const std::function<void(const std::string&)>& say,
+          Executor& executor) {
     domain::Domain& D = net.domain();
     // Vertices keep their numbers until the end (removed ones become garbage).
     std::vector<domain::Collapse> left(collapses.begin(), collapses.end());
@@ -219,7 +220,7 @@ void redo(Network_& net, std::span<const domain::Collapse> collapses, const std:
                 jobs.push_back(Job{.e = TriMesh::edge(spoke), .a = w, .b = y});
             }
             if (jobs.empty()) break;
-            compute(net, jobs);
+            compute(net, jobs, executor);
             for (Job& j : jobs) apply(net, j);
         }
         // Each v now has valence 3: the collapse v -> w merges its three faces into (w, a, b)
@@ -273,7 +274,8 @@ std::vector<std::array<VertexId::Index, 3>> canonical_faces(const domain::Domain
 // restricted path in its region, as in the redo.
 constexpr std::size_t search_budget = 200000;
 
-void flip_to(Network_& net, const domain::Domain& target, const std::function<void(const std::string&)>& say) {
+void flip_to(Network_& net, const domain::Domain& target, const std::function<void(const std::string&)>& say,
+             Executor& executor) {
     std::set<Pair> want;
     for (const auto& [a, b] : domain::edge_endpoints(target)) want.insert(key_of(a, b));
     domain::Domain& D = net.domain();
@@ -291,7 +293,7 @@ void flip_to(Network_& net, const domain::Domain& target, const std::function<vo
         return want.size() - present;
     };
     auto flip = [&](std::vector<Job> jobs) {
-        compute(net, jobs);
+        compute(net, jobs, executor);
         for (Job& j : jobs) apply(net, j);
         return jobs.size();
     };
@@ -643,7 +645,7 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
                         std::span<const geodesic::EllipsePath> geodesics,
                         std::span<const Conflict> conflicts,
                         const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,
-                        const std::function<void(const std::string&)>& progress, Start start) {
+                        const std::function<void(const std::string&)>& progress, Executor& executor, Start start) {
     auto say = [&](const std::string& line) {
         if (progress) progress(line);
     };
@@ -721,12 +723,12 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
     }
     // 3. The undone collapses, redone on the network.
     if (undone > 0) {
-        redo(*net, std::span<const domain::Collapse>(H.history).subspan(H.history.size() - undone), say);
+        redo(*net, std::span<const domain::Collapse>(H.history).subspan(H.history.size() - undone), say, executor);
         if (canonical_faces(net->domain()) != canonical_faces(H)) throw std::logic_error("keeping the domain: the collapses redone do not give the decimation");
     }
     // 4. A domain given by the user: from the decimation to its edges by flips.
     if (canonical_faces(net->domain()) != canonical_faces(D)) {
-        flip_to(*net, D, say);
+        flip_to(*net, D, say, executor);
         // With every edge in place, only the orientation can differ: D turned over is not a domain of T.
         if (canonical_faces(net->domain()) != canonical_faces(D))
             throw PartitionFailure("keeping the domain: the given domain has the edges of T's decimation but its faces turned over");
@@ -755,7 +757,7 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
                 used[f.idx()] = used[g.idx()] = 1;
                 jobs.push_back(Job{.e = TriMesh::edge(h), .a = a, .b = b, .geodesic_length = geodesic_length.at(k), .current = net->curves().at(k).path.length});
             }
-            compute(*net, jobs);
+            compute(*net, jobs, executor);
             for (Job& j : jobs)
                 if (j.curve) {
                     apply(*net, j);

@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include <fhr/core/executor.hpp>
 #include <fhr/domain/decimate.hpp>
 #include <fhr/geodesic/ellipse.hpp>
 #include <fhr/partition/embed.hpp>
@@ -79,7 +80,7 @@ enum class Start : std::uint8_t {
 /// \pre H is a decimation of T whose history describes it (domain::history_describes) with D's
 ///      vertices (H = D when D is itself that decimation); geodesics[e] is Γ for D's halfedge
 ///      (e, 0); `conflicts` are those of their embedding; `geodesics_of` gives the geodesics of any
-///      domain of T (in its edge order).
+///      domain of T (in its edge order); the separations of one round run on `executor`.
 /// \throws std::logic_error when a separated curve breaks (1) or (2) (a bug);
 ///         PartitionFailure when a curve has no room to be separated, or when no flips lead from H
 ///         to D.
@@ -87,6 +88,7 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
                         std::span<const geodesic::EllipsePath> geodesics,
                         std::span<const Conflict> conflicts,
                         const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,
-                        const std::function<void(const std::string&)>& progress, Start start = Start::fast);
+                        const std::function<void(const std::string&)>& progress, Executor& executor,
+                        Start start = Start::fast);
 
 }  // namespace fhr::partition

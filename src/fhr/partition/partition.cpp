@@ -1,4 +1,5 @@
 // FHR §3 — the partition with recovery (see partition.hpp for the pseudocode).
+#include <fhr/core/executor.hpp>
 #include <fhr/partition/partition.hpp>
 
 #include <algorithm>
@@ -8,7 +9,6 @@
 #include <utility>
 
 #include <fhr/core/errors.hpp>
-#include <fhr/core/detail/parallel.hpp>
 
 namespace fhr::partition {
 namespace {
@@ -16,18 +16,19 @@ namespace {
 // Γ(a, b) for every edge of D, reusing the paths of edges whose ends are unchanged.
 class PathCache {
 public:
-    explicit PathCache(const TriMesh& T, const geodesic::EllipseOptions& options) : T_(T), options_(options) {}
+    PathCache(const TriMesh& T, const geodesic::EllipseOptions& options, Executor& executor)
+        : T_(T), options_(options), executor_(executor) {}
 
     std::vector<geodesic::EllipsePath> all(const domain::Domain& D) {
         const auto ends = domain::edge_endpoints(D);
-        // The paths not known yet, computed in parallel (core/parallel.hpp).
+        // The paths not known yet, computed in parallel (core/executor.hpp).
         std::vector<Key> missing;
         for (const auto& [a, b] : ends) {
             const Key key = key_of(a, b);
             if (!cache_.count(key) && std::find(missing.begin(), missing.end(), key) == missing.end()) missing.push_back(key);
         }
         std::vector<geodesic::EllipsePath> found(missing.size());
-        parallel_for(missing.size(), 8, [&](std::size_t i) {
+        executor_.for_each(missing.size(), 8, [&](std::size_t i) {
             found[i] = geodesic::ellipse_shortest_path(T_, VertexId(missing[i].first), VertexId(missing[i].second), options_);
         });
         for (std::size_t i = 0; i < missing.size(); ++i) cache_.emplace(missing[i], std::move(found[i]));
@@ -46,6 +47,7 @@ private:
     static Key key_of(VertexId a, VertexId b) { return {std::min(a.idx(), b.idx()), std::max(a.idx(), b.idx())}; }
     const TriMesh& T_;
     geodesic::EllipseOptions options_;
+    Executor& executor_;
     std::map<Key, geodesic::EllipsePath> cache_;
 };
 
@@ -192,7 +194,8 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         }
         return *base;
     };
-    PathCache cache(T, options.ellipse);
+    Executor& executor = executor_or_default(options.executor);
+    PathCache cache(T, options.ellipse, executor);
     Partition out;
     for (;;) {
         out.paths = cache.all(D);
@@ -215,7 +218,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
                 if (!H) break;
                 try {
                     attempt = keep_domain(T, D, *H, out.paths, embedding.conflicts, [&](const domain::Domain& d) { return cache.all(d); },
-                                          options.progress, start);
+                                          options.progress, executor, start);
                     break;
                 } catch (const PartitionFailure& e) {
                     keep_failure = e.what();

@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include <fhr/core/executor.hpp>
 #include <fhr/domain/decimate.hpp>
 #include <fhr/geodesic/ellipse.hpp>
 #include <fhr/partition/embed.hpp>
@@ -52,6 +53,7 @@ struct PartitionOptions {
     /// (partition/keep.hpp); false: the paper's geodesics only, D changed where they conflict.
     bool keep_domain = true;
     std::function<void(const std::string&)> progress;  ///< optional: one line per round
+    Executor* executor = nullptr;  ///< optional: runs the independent geodesic and curve searches; default_executor()
 };
 
 /// The result of §3: the (possibly refined) domain, its paths, T′ and the patches.

@@ -139,7 +139,7 @@ void write_report(const std::string& path, const InputInfo& input, const Paramet
     j.key("min_image_angle_degrees").value(min_angle);
     const auto first = std::find_if(p.certificates.begin(), p.certificates.end(), [](const auto& c) { return !c.passed; });
     if (first != p.certificates.end())
-        j.key("first_failure").value("patch " + std::to_string(first - p.certificates.begin()) + ": " + first->first_failure);
+        j.key("first_failure").value("patch " + std::to_string(first - p.certificates.begin()) + ": " + first->first_failure->describe());
     j.key("oracle").begin_object();
     j.key("valid").value(oracle.valid()).key("checks").begin_array();
     for (const auto& c : oracle.checks) {

@@ -1,12 +1,12 @@
 // FHR §2–§4 — the method end to end (see pipeline.hpp for the pseudocode).
 #include <fhr/core/detail/contract.hpp>
+#include <fhr/core/executor.hpp>
 #include <fhr/pipeline/pipeline.hpp>
 
 #include <algorithm>
 #include <chrono>
 
 #include <fhr/core/errors.hpp>
-#include <fhr/core/detail/parallel.hpp>
 #include <fhr/param/dividing_edges.hpp>
 
 namespace fhr::pipeline {
@@ -56,6 +56,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     partition::PartitionOptions po;
     po.progress = options.progress;
     po.keep_domain = options.keep_domain;
+    po.executor = options.executor;
     out.partition = partition::partition(T, std::move(D), po);
     if (options.observer) options.observer->stage("geodesic_paths", paths.seconds(), true);
     const partition::Partition& P = out.partition;
@@ -69,7 +70,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     out.maps.resize(n_patches);
     out.certificates.resize(n_patches);
     std::vector<std::size_t> split(n_patches, 0);
-    parallel_for(n_patches, 16, [&](std::size_t i) {
+    executor_or_default(options.executor).for_each(n_patches, 16, [&](std::size_t i) {
         param::Disk disk = P.patches.patch[i].disk;
         split[i] = param::split_dividing_edges(disk);
         try {

@@ -18,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include <fhr/core/executor.hpp>
 #include <fhr/core/trimesh.hpp>
 #include <fhr/domain/decimate.hpp>
 #include <fhr/param/certificate.hpp>
@@ -42,6 +43,7 @@ struct Options {
     bool keep_domain = true;  ///< §3: keep D (restricted paths where geodesics conflict), else change it
     std::function<void(const std::string&)> progress;  ///< optional: one line per step, on the calling thread
     StageObserver* observer = nullptr;                 ///< optional: the seconds of each stage
+    Executor* executor = nullptr;  ///< optional: runs the independent tasks (paths, patches, §5's brackets); default_executor()
 };
 
 /// The parameterization φ: Ω_D → Ω_T as computed, with everything the outputs need.

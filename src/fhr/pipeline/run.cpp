@@ -55,7 +55,7 @@ RunResult run(const TriMesh& T, RunOptions options) {
         const double locating = since(start);
         out.wavelets = wavelet::analyse(out.parameterization.partition.domain.mesh,
                                         [&](FaceId d, const std::array<double, 3>& beta) { return phi.phi(d, beta); }, options.levels,
-                                        options.keep, T);
+                                        options.keep, T, {}, options.method.executor);
         observe("refinement", locating + out.wavelets->refinement_seconds, true);
         observe("decomposition", out.wavelets->decomposition_seconds, true);
         observe("reconstruction", out.wavelets->reconstruction_seconds, true);

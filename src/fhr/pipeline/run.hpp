@@ -10,8 +10,8 @@
 //   with J = levels > 0: refinement, decomposition, reconstruction: D^J sampled through φ, its
 //                     prewavelet coefficients, the kept percentages reconstructed (src/fhr/wavelet)
 // Thread safety: run() keeps no state between calls; concurrent calls (on the same T too) are safe.
-// Its progress lines and stage times are reported on the calling thread. (A caller-owned executor
-// and workspace will join the options with the performance work.)
+// Its progress lines and stage times are reported on the calling thread; its independent tasks run
+// on options.method.executor (core/executor.hpp), with the same result on any executor.
 #pragma once
 
 #include <cstddef>

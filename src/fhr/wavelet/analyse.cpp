@@ -6,7 +6,6 @@
 #include <cmath>
 
 #include <fhr/core/geometry.hpp>
-#include <fhr/core/detail/parallel.hpp>
 #include <fhr/wavelet/compress.hpp>
 #include <fhr/wavelet/filter_bank.hpp>
 
@@ -20,7 +19,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::span<const double> keep_percent,
-                      const TriMesh& T, const HausdorffOptions& hausdorff_options) {
+                      const TriMesh& T, const HausdorffOptions& hausdorff_options, Executor* executor) {
     WaveletResult out;
     out.levels = levels;
     for (double p : keep_percent) kept_count(0, p);  // refuse a bad percentage before any work
@@ -64,9 +63,9 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
         out.kept.push_back(std::move(k));
     }
     // The Hausdorff brackets of D^J's f^J and of each reconstruction, independent of each other:
-    // one task each on all cores (core/parallel.hpp; each result is the single-threaded one).
+    // one task each on the executor (core/executor.hpp; each result is the single-threaded one).
     start = std::chrono::steady_clock::now();
-    parallel_for(1 + out.kept.size(), 1, [&](std::size_t i) {
+    executor_or_default(executor).for_each(1 + out.kept.size(), 1, [&](std::size_t i) {
         const std::vector<Vec3>& positions = i == 0 ? out.remesh_positions : out.kept[i - 1].positions;
         (i == 0 ? out.remesh_hausdorff : out.kept[i - 1].hausdorff) = hausdorff(T.positions(), t_faces, positions, out.remesh_faces, ho);
     });
