@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
         t = std::chrono::steady_clock::now();
         std::vector<param::Certificate> c(patches.patch.size());
         default_executor().for_each(patches.patch.size(), 16, [&](std::size_t i) {
-            param::Disk disk = patches.patch[i].disk;
+            param::Disk disk = patches.patch[FaceId(static_cast<FaceId::Index>(i))].disk;
             param::split_dividing_edges(disk);
             c[i] = param::certify(disk, param::map_patch(disk));
         });

@@ -5,7 +5,7 @@
 //
 // Usage: bench_wavelet [--timing-only] MESH FACES RUNS LEVEL... (e.g. fandisk.off 114 5 3 5)
 //   not timed:  T <- MESH (strict reader); D <- decimate(T, FACES); φ <- pipeline::parameterize
-//               (§3, §4, every patch certified) and one param::PatchLocator per patch
+//               (§3, §4, every patch certified) and its global map φ (pipeline::GlobalMap)
 //   per LEVEL J, median and minimum of RUNS runs (std::chrono::steady_clock):
 //     refinement      wavelet::refine(D, J) + wavelet::sample(φ)
 //     decomposition   FilterBank(refinement) + decompose(f^J)  (operators included, as the paper's
@@ -36,7 +36,6 @@
 #include <fhr/core/errors.hpp>
 #include <fhr/core/geometry.hpp>
 #include <fhr/domain/decimate.hpp>
-#include <fhr/param/locate.hpp>
 #include <fhr/pipeline/pipeline.hpp>
 #include <fhr/wavelet/compress.hpp>
 #include <fhr/wavelet/filter_bank.hpp>
@@ -70,9 +69,8 @@ int main(int argc, char** argv) try {
     const TriMesh T = bench::load(path);
     const pipeline::Parameterization p = pipeline::parameterize(T, domain::decimate(T, {.target_faces = faces}), {});
     if (!p.certified()) throw NumericalFailure("the parameterization of " + name + " is not certified");
-    std::vector<param::PatchLocator> locators;
-    for (std::size_t i = 0; i < p.disks.size(); ++i) locators.emplace_back(p.disks[i], p.maps[i]);
-    const wavelet::DomainMap phi = [&](FaceId f, const std::array<double, 3>& b) { return locators[f.idx()].phi(b); };
+    const pipeline::GlobalMap global(p);
+    const wavelet::DomainMap phi = [&](FaceId f, const std::array<double, 3>& b) { return global.phi(f, b); };
     const TriMesh& D = p.partition.domain.mesh;
     const double diag = bounding_box(T).diagonal();
     std::printf("%s: T %zu faces, D %zu vertices / %zu faces; paper (400 MHz R12000, J = 3): refinement 1 s, "

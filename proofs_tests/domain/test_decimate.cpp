@@ -55,7 +55,7 @@ std::string domain_violation(const TriMesh& T, const Domain& d, const DecimateOp
     if (D.n_faces() != o.target_faces) return "DOM-3: face count " + std::to_string(D.n_faces());
     if (d.t_vertex.size() != D.n_vertices()) return "DOM-4: correspondence size";
     for (VertexId v : D.vertices())
-        if (D.position(v) != T.position(d.t_vertex[v.idx()])) return "DOM-4: vertex moved";
+        if (D.position(v) != T.position(d.t_vertex[v])) return "DOM-4: vertex moved";
     if (!std::is_sorted(d.t_vertex.begin(), d.t_vertex.end()) ||
         std::adjacent_find(d.t_vertex.begin(), d.t_vertex.end()) != d.t_vertex.end())
         return "DOM-4: correspondence not one-to-one";
@@ -78,9 +78,9 @@ bool undo_gives_back(const TriMesh& T, const Domain& d) {
     if (back.mesh.n_vertices() != T.n_vertices()) return false;
     std::vector<Triangle> tris = back.mesh.triangles();
     for (auto& t : tris)
-        for (auto& v : t) v = back.t_vertex[v].idx();
+        for (auto& v : t) v = back.t_vertex[fhr::VertexId(v)].idx();
     for (VertexId v : back.mesh.vertices())
-        if (back.mesh.position(v) != T.position(back.t_vertex[v.idx()])) return false;
+        if (back.mesh.position(v) != T.position(back.t_vertex[v])) return false;
     return canonical(tris) == canonical(T.triangles());
 }
 

@@ -37,7 +37,7 @@ Setup make_setup(const TriMesh& T, std::size_t faces) {
     o.target_faces = faces;
     domain::Domain d = domain::decimate(T, o);
     Setup s{T, d.mesh, {}};
-    for (std::size_t j = 0; j < d.t_vertex.size(); ++j) s.x.push_back(entry(SurfacePoint::at_vertex(d.t_vertex[j]), j + 1));
+    for (VertexId j : d.t_vertex.ids()) s.x.push_back(entry(SurfacePoint::at_vertex(d.t_vertex[j]), j.idx() + 1));
     return s;
 }
 
@@ -87,7 +87,7 @@ TEST_CASE("DOM-10..13: attach_domain inserts face and edge points exactly (Fig. 
         for (std::size_t j = 0; j < s.x.size(); ++j) {
             const SurfacePoint c = canonical(G, s.x[j].point);
             inserted += c.kind != SurfacePoint::Kind::vertex;
-            RC_ASSERT((T.position(d.t_vertex[j]) - expected[j]).norm() <= 1e-12 * (1 + expected[j].norm()));
+            RC_ASSERT((T.position(d.t_vertex[VertexId(static_cast<VertexId::Index>(j))]) - expected[j]).norm() <= 1e-12 * (1 + expected[j].norm()));
         }
         RC_ASSERT(T.n_vertices() == G.n_vertices() + inserted);
         for (VertexId v : G.vertices()) RC_ASSERT(T.position(v) == G.position(v));  // T's vertices stay

@@ -190,8 +190,10 @@ TEST_CASE("noise moves vertices by at most noise × their mean edge length, keep
             RC_ASSERT(d <= bound * (1 + 1e-12));
             moved += d > 0;
         }
-        // Most moves are accepted (a refused move keeps the vertex where it was).
-        RC_ASSERT(2 * moved > flat.n_vertices());
+        // Most moves are accepted (a refused move keeps the vertex where it was); on the smallest
+        // blocks (tens of vertices, every one at a corner of the box) at least some are.
+        RC_ASSERT(moved > 0);
+        if (flat.n_vertices() >= 100) RC_ASSERT(2 * moved > flat.n_vertices());
     });
 }
 

@@ -36,15 +36,15 @@ bool same_length(double x, double y) { return std::abs(x - y) <= 1e-12 * std::ma
 
 // The paper's T_jk for one K, built here from its definition (independently of ellipse.cpp):
 // the faces with a vertex v such that d_a(v, a) + d_a(v, b) <= K d_a(a, b), d_a by fast marching.
-std::vector<std::uint8_t> paper_ellipse(const TriMesh& m, VertexId a, VertexId b, double K) {
+FaceData<std::uint8_t> paper_ellipse(const TriMesh& m, VertexId a, VertexId b, double K) {
     const geodesic::DistanceField fa = geodesic::fast_marching(m, std::span(&a, 1));
     const geodesic::DistanceField fb = geodesic::fast_marching(m, std::span(&b, 1));
-    const double bound = K * fa.distance[b.idx()];
-    std::vector<std::uint8_t> mask(m.n_faces(), 0);
+    const double bound = K * fa.distance[b];
+    FaceData<std::uint8_t> mask(m.n_faces(), 0);
     for (VertexId v : m.vertices())
-        if (fa.distance[v.idx()] + fb.distance[v.idx()] <= bound)
+        if (fa.distance[v] + fb.distance[v] <= bound)
             m.for_each_outgoing(v, [&](HalfedgeId h) {
-                if (!m.is_boundary(h)) mask[m.face(h).idx()] = 1;
+                if (!m.is_boundary(h)) mask[m.face(h)] = 1;
             });
     return mask;
 }
@@ -125,7 +125,7 @@ TEST_CASE("GEO-E1: any K_0, every certificate agrees with the unrestricted lengt
 TEST_CASE("GEO-E3: a restricted path that is not a shortest path of T is rejected", "[unit][geodesic]") {
     const TriMesh m = generate::random_closed_mesh({2, 230, 685547253639986ull, 0.0});
     const VertexId a(64), b(43);
-    const std::vector<std::uint8_t> mask = paper_ellipse(m, a, b, 1.06);
+    const FaceData<std::uint8_t> mask = paper_ellipse(m, a, b, 1.06);
     ExactGeodesic inside(m, a, {&mask});
     inside.propagate(std::span(&b, 1));
     const double whole = unrestricted(m, a, b);

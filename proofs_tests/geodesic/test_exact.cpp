@@ -58,7 +58,7 @@ std::string sci(double x) {
 }
 
 
-bool face_kept(const std::vector<std::uint8_t>* mask, FaceId f) { return f.valid() && (!mask || (*mask)[f.idx()]); }
+bool face_kept(const FaceData<std::uint8_t>* mask, FaceId f) { return f.valid() && (!mask || (*mask)[f]); }
 
 /// The faces a path point lies in (a vertex: its fan; an edge point: the edge's faces).
 std::vector<FaceId> faces_at(const TriMesh& m, const SurfacePoint& p) {
@@ -100,7 +100,7 @@ double fan_position(const TriMesh& m, VertexId v, const SurfacePoint& q) {
 /// `conditioning` multiplies the rounding errors: an unfolding across a needle whose longest edge
 /// is r times its height magnifies them up to r times (GEO-9 passes its meshes' largest r).
 std::string path_violation(const TriMesh& m, const GeodesicPath& p, VertexId s, VertexId t,
-                           const std::vector<std::uint8_t>* mask = nullptr, double conditioning = 1) {
+                           const FaceData<std::uint8_t>* mask = nullptr, double conditioning = 1) {
     if (p.points.empty()) return "empty path";
     const auto is_vertex = [](const SurfacePoint& q, VertexId v) { return q.kind == SurfacePoint::Kind::vertex && q.vertex == v; };
     if (!is_vertex(p.points.front(), s) || !is_vertex(p.points.back(), t)) return "does not run from source to target";
@@ -199,7 +199,7 @@ std::vector<double> edge_path_distances(const TriMesh& m, VertexId s) {
 }
 
 /// Full propagation from s; all distances.
-std::vector<double> exact_distances(const TriMesh& m, VertexId s, const std::vector<std::uint8_t>* mask = nullptr) {
+std::vector<double> exact_distances(const TriMesh& m, VertexId s, const FaceData<std::uint8_t>* mask = nullptr) {
     ExactGeodesic g(m, s, ExactOptions{mask});
     g.propagate();
     std::vector<double> d;
@@ -230,17 +230,17 @@ TriMesh flat_square(int n, double jitter, std::uint64_t seed) {
 
 
 /// The faces of the path plus `rings` rings of faces around them (GEO-6).
-std::vector<std::uint8_t> path_neighbourhood(const TriMesh& m, const GeodesicPath& p, int rings) {
-    std::vector<std::uint8_t> mask(m.n_faces(), 0);
+FaceData<std::uint8_t> path_neighbourhood(const TriMesh& m, const GeodesicPath& p, int rings) {
+    FaceData<std::uint8_t> mask(m.n_faces(), 0);
     for (const SurfacePoint& q : p.points)
         for (FaceId f : faces_at(m, q))
-            if (f.valid()) mask[f.idx()] = 1;
+            if (f.valid()) mask[f] = 1;
     for (int r = 0; r < rings; ++r) {
-        std::vector<std::uint8_t> grown = mask;
+        FaceData<std::uint8_t> grown = mask;
         for (FaceId f : m.faces())
-            if (mask[f.idx()])
+            if (mask[f])
                 for (VertexId v : m.face_vertices(f))
-                    m.for_each_outgoing(v, [&](HalfedgeId h) { if (m.face(h).valid()) grown[m.face(h).idx()] = 1; });
+                    m.for_each_outgoing(v, [&](HalfedgeId h) { if (m.face(h).valid()) grown[m.face(h)] = 1; });
         mask = std::move(grown);
     }
     return mask;
@@ -249,12 +249,12 @@ std::vector<std::uint8_t> path_neighbourhood(const TriMesh& m, const GeodesicPat
 /// Paper §3's ellipse T_jk with exact distances: the faces with a vertex v such that
 /// d(v, a) + d(v, b) ≤ K·d(a, b), up to a relative 10⁻¹² so that a, b and the vertices on the
 /// path (equality) are in despite rounding (d(a, b) and d(b, a) may differ in the last bits).
-std::vector<std::uint8_t> ellipse(const TriMesh& m, const std::vector<double>& da, const std::vector<double>& db,
-                                  double d_ab, double K) {
-    std::vector<std::uint8_t> mask(m.n_faces(), 0);
+FaceData<std::uint8_t> ellipse(const TriMesh& m, const std::vector<double>& da, const std::vector<double>& db,
+                               double d_ab, double K) {
+    FaceData<std::uint8_t> mask(m.n_faces(), 0);
     for (FaceId f : m.faces())
         for (VertexId v : m.face_vertices(f))
-            if (da[v.idx()] + db[v.idx()] <= K * d_ab * (1 + 1e-12)) mask[f.idx()] = 1;
+            if (da[v.idx()] + db[v.idx()] <= K * d_ab * (1 + 1e-12)) mask[f] = 1;
     return mask;
 }
 
@@ -495,7 +495,7 @@ TEST_CASE("GEO-6: face masks: a path's neighbourhood keeps its length; a cut nev
         g.propagate();
         const GeodesicPath free_path = g.path_to(b);
 
-        const std::vector<std::uint8_t> around = path_neighbourhood(m, free_path, 1);
+        const FaceData<std::uint8_t> around = path_neighbourhood(m, free_path, 1);
         ExactGeodesic inside(m, a, ExactOptions{&around});
         inside.propagate(std::array{b});
         RC_ASSERT(rel_dev(inside.distance(b), g.distance(b)) <= 1e-12);
@@ -503,9 +503,9 @@ TEST_CASE("GEO-6: face masks: a path's neighbourhood keeps its length; a cut nev
 
         // Remove the faces at one interior node of the path: the detour is never shorter.
         if (free_path.points.size() > 2) {
-            std::vector<std::uint8_t> cut = path_neighbourhood(m, free_path, 2);
+            FaceData<std::uint8_t> cut = path_neighbourhood(m, free_path, 2);
             for (FaceId f : faces_at(m, free_path.points[free_path.points.size() / 2]))
-                if (f.valid()) cut[f.idx()] = 0;
+                if (f.valid()) cut[f] = 0;
             ExactGeodesic detour(m, a, ExactOptions{&cut});
             detour.propagate(std::array{b});
             RC_ASSERT(detour.distance(b) >= g.distance(b) * (1 - 1e-12));
@@ -516,7 +516,7 @@ TEST_CASE("GEO-6: face masks: a path's neighbourhood keeps its length; a cut nev
         std::vector<double> from_a(m.n_vertices());
         for (VertexId v : m.vertices()) from_a[v.idx()] = g.distance(v);
         const std::vector<double> from_b = exact_distances(m, b);
-        const std::vector<std::uint8_t> tight = ellipse(m, from_a, from_b, g.distance(b), *rc::gen::element(1.0, 1.02, 1.06));
+        const FaceData<std::uint8_t> tight = ellipse(m, from_a, from_b, g.distance(b), *rc::gen::element(1.0, 1.02, 1.06));
         const auto oracle = cgal_distances(m, a, &tight);
         if (!oracle) return;  // CGAL cannot build a sub-mesh with a pinched vertex
         ExactGeodesic restricted(m, a, ExactOptions{&tight});

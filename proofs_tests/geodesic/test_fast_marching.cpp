@@ -124,7 +124,7 @@ FieldError field_error(const DistanceField& f, const std::vector<double>& exact,
     FieldError e;
     for (std::size_t v = 0; v < exact.size(); ++v) {
         if (!use[v]) continue;
-        const double err = std::abs(f.distance[v] - exact[v]);
+        const double err = std::abs(f.distance[VertexId(static_cast<VertexId::Index>(v))] - exact[v]);
         e.extent = std::max(e.extent, err / largest);
         if (exact[v] >= far_from) e.far = std::max(e.far, err / exact[v]);
     }
@@ -222,19 +222,19 @@ std::string field_violation(const TriMesh& m, std::span<const VertexId> sources,
     if (f.distance.size() != m.n_vertices()) return "distance has the wrong size";
     if (f.finalized.size() != m.n_vertices()) return "not every vertex was accepted";
     for (std::size_t i = 1; i < f.finalized.size(); ++i)
-        if (f.distance[f.finalized[i - 1].idx()] > f.distance[f.finalized[i].idx()])
+        if (f.distance[f.finalized[i - 1]] > f.distance[f.finalized[i]])
             return "accepted distances decrease at position " + std::to_string(i);
     for (VertexId s : sources)
-        if (f.distance[s.idx()] != 0) return "a source is not at distance 0";
+        if (f.distance[s] != 0) return "a source is not at distance 0";
     for (VertexId v : m.vertices()) {
-        const double d = f.distance[v.idx()];
+        const double d = f.distance[v];
         if (!(d >= 0) || !std::isfinite(d)) return "distance not finite and >= 0 at " + std::to_string(v.idx());
     }
     for (EdgeId e : m.edges()) {
         const HalfedgeId h = TriMesh::halfedge(e, 0);
         const VertexId a = m.from(h), b = m.to(h);
         const double len = (m.position(a) - m.position(b)).norm();
-        const double da = f.distance[a.idx()], db = f.distance[b.idx()];
+        const double da = f.distance[a], db = f.distance[b];
         // Theorem (construction): each vertex hears the edge update from every final
         // neighbour, and later neighbours are accepted no earlier.
         if (da > db + len || db > da + len) return "triangle inequality broken on edge " + std::to_string(e.idx());
@@ -247,7 +247,7 @@ std::string field_violation(const TriMesh& m, std::span<const VertexId> sources,
 // front, paper_notes/fast_marching.md), up to rounding in the last bits (1e-12 relative).
 std::string chord_violation(const TriMesh& m, VertexId source, const DistanceField& f) {
     for (VertexId v : m.vertices())
-        if (f.distance[v.idx()] < (m.position(v) - m.position(source)).norm() * (1 - 1e-12))
+        if (f.distance[v] < (m.position(v) - m.position(source)).norm() * (1 - 1e-12))
             return "shorter than the chord at vertex " + std::to_string(v.idx());
     return "";
 }
@@ -300,7 +300,7 @@ TEST_CASE("a line source on a flat grid gives the exact planar distance", "[unit
         if (m.position(v).x() == -1) left.push_back(v);
     const DistanceField f = fast_marching(m, left);
     double worst = 0;
-    for (VertexId v : m.vertices()) worst = std::max(worst, std::abs(f.distance[v.idx()] - (m.position(v).x() + 1)));
+    for (VertexId v : m.vertices()) worst = std::max(worst, std::abs(f.distance[v] - (m.position(v).x() + 1)));
     CHECK(worst <= 1e-13);  // distances up to 2: a few ulps of rounding
 }
 
@@ -403,9 +403,9 @@ TEST_CASE("fast marching fields on random closed meshes of genus 0-3", "[propert
             const DistanceField single = fast_marching(m, std::span<const VertexId>(&s, 1), o);
             RC_ASSERT(field_violation(m, std::span<const VertexId>(&s, 1), single) == "");
             RC_ASSERT(chord_violation(m, s, single) == "");
-            for (VertexId v : m.vertices()) nearest[v.idx()] = std::min(nearest[v.idx()], single.distance[v.idx()]);
+            for (VertexId v : m.vertices()) nearest[v.idx()] = std::min(nearest[v.idx()], single.distance[v]);
         }
-        for (VertexId v : m.vertices()) RC_ASSERT(f.distance[v.idx()] <= nearest[v.idx()] * (1 + 1e-12));
+        for (VertexId v : m.vertices()) RC_ASSERT(f.distance[v] <= nearest[v.idx()] * (1 + 1e-12));
     });
 }
 
@@ -417,17 +417,17 @@ TEST_CASE("early stop: the values within max_distance are bitwise those of the f
         const double largest = *std::max_element(full.distance.begin(), full.distance.end());
         FastMarchingOptions o;
         // A radius at a vertex's distance exactly (ties at the boundary) or anywhere below.
-        o.max_distance = *rc::gen::element(0, 1) ? full.distance[*rc::gen::inRange<std::size_t>(0, m.n_vertices())]
+        o.max_distance = *rc::gen::element(0, 1) ? full.distance[VertexId(*rc::gen::inRange<VertexId::Index>(0, static_cast<VertexId::Index>(m.n_vertices())))]
                                                    : largest * *rc::gen::inRange(0, 1001) / 1000.0;
         const DistanceField part = fast_marching(m, sources, o);
         std::size_t within = 0;
         for (VertexId v : m.vertices()) {
-            const double d = full.distance[v.idx()];
+            const double d = full.distance[v];
             if (d <= o.max_distance) {
                 ++within;
-                RC_ASSERT(part.distance[v.idx()] == d);
+                RC_ASSERT(part.distance[v] == d);
             } else {
-                RC_ASSERT(std::isinf(part.distance[v.idx()]));
+                RC_ASSERT(std::isinf(part.distance[v]));
             }
         }
         // Exactly the vertices within the radius, accepted in the full run's order.
@@ -469,7 +469,7 @@ TEST_CASE("fast marching refuses bad sources and handles empty ones", "[unit][ge
     zero.max_distance = 0;
     const DistanceField at_source = fast_marching(m, one, zero);
     CHECK(at_source.finalized == one);
-    CHECK(at_source.distance[0] == 0);
+    CHECK(at_source.distance[VertexId(0)] == 0);
 }
 
 TEST_CASE("horse: the full field is valid, and early stop finalizes exactly the vertices within the bound", "[real][geodesic]") {
@@ -485,7 +485,7 @@ TEST_CASE("horse: the full field is valid, and early stop finalizes exactly the 
     CHECK(field_violation(m, source, f) == "");
     CHECK(chord_violation(m, source[0], f) == "");
     FastMarchingOptions o;
-    o.max_distance = f.distance[f.finalized[f.finalized.size() / 10].idx()];
+    o.max_distance = f.distance[f.finalized[f.finalized.size() / 10]];
     const DistanceField part = fast_marching(m, source, o);
     const auto within =
         std::count_if(f.distance.begin(), f.distance.end(), [&](double d) { return d <= o.max_distance; });

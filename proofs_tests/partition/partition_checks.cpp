@@ -50,12 +50,12 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
     // T′ inside a face of T, the same area.
     if (M.n_vertices() < T.n_vertices() || P.network.origin.size() != M.n_vertices()) return "PART-2: vertex count";
     for (VertexId v : T.vertices())
-        if (M.position(v) != T.position(v) || P.network.origin[v.idx()].vertex != v) {
+        if (M.position(v) != T.position(v) || P.network.origin[v].vertex != v) {
             why << "PART-2: vertex " << v.idx() << " of T moved";
             return why.str();
         }
     for (std::size_t i = T.n_vertices(); i < M.n_vertices(); ++i) {
-        const partition::Origin& o = P.network.origin[i];
+        const partition::Origin& o = P.network.origin[VertexId(static_cast<VertexId::Index>(i))];
         if (o.vertex.valid() || !(o.t > 0 && o.t < 1)) return "PART-2: a new vertex is not inside an edge of T";
         const HalfedgeId h = TriMesh::halfedge(o.edge, 0);
         const Vec3 &a = T.position(T.from(h)), &b = T.position(T.to(h));
@@ -66,9 +66,9 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
     }
     for (FaceId f : M.faces()) {
         const auto v = M.face_vertices(f);
-        std::set<std::uint32_t> common = faces_holding(T, P.network.origin[v[0].idx()]);
+        std::set<std::uint32_t> common = faces_holding(T, P.network.origin[v[0]]);
         for (int k = 1; k < 3; ++k) {
-            const auto s = faces_holding(T, P.network.origin[v[static_cast<std::size_t>(k)].idx()]);
+            const auto s = faces_holding(T, P.network.origin[v[static_cast<std::size_t>(k)]]);
             std::set<std::uint32_t> both;
             std::set_intersection(common.begin(), common.end(), s.begin(), s.end(), std::inserter(both, both.begin()));
             common = both;
@@ -87,28 +87,27 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
     if (P.network.path.size() != D.mesh.n_edges() || P.paths.size() != D.mesh.n_edges()) return "PART-3: path count";
     std::vector<int> on_path(M.n_vertices(), -1);
     for (EdgeId e : D.mesh.edges()) {
-        const auto& path = P.network.path[e.idx()];
+        const auto& path = P.network.path[e];
         const HalfedgeId dh = TriMesh::halfedge(e, 0);
-        if (path.size() < 2 || path.front() != D.t_vertex[D.mesh.from(dh).idx()] || path.back() != D.t_vertex[D.mesh.to(dh).idx()])
+        if (path.size() < 2 || path.front() != D.t_vertex[D.mesh.from(dh)] || path.back() != D.t_vertex[D.mesh.to(dh)])
             return "PART-3: a path does not join its corners";
         double length = 0;
         for (std::size_t i = 0; i + 1 < path.size(); ++i) {
             const HalfedgeId h = M.find_halfedge(path[i], path[i + 1]);
-            if (!h.valid() || P.network.d_halfedge[h.idx()] != static_cast<std::int32_t>(dh.idx()) ||
-                P.network.d_halfedge[TriMesh::twin(h).idx()] != static_cast<std::int32_t>(TriMesh::twin(dh).idx()))
+            if (!h.valid() || P.network.d_halfedge[h] != dh || P.network.d_halfedge[TriMesh::twin(h)] != TriMesh::twin(dh))
                 return "PART-3: a path segment is not a labelled edge of T′";
             length += (M.position(path[i + 1]) - M.position(path[i])).norm();
         }
         // Snapping moves each node by at most max_snap_distance: the embedded curve is at most
         // 2·(#nodes)·max_snap longer than the exact geodesic, and never shorter than it by more than rounding.
-        const double L = P.paths[e.idx()].path.length;
+        const double L = P.paths[e].path.length;
         if (length < L * (1 - 1e-12) || length > L * (1 + 1e-12) + 2 * static_cast<double>(path.size()) * P.network.max_snap_distance) {
             why << "PART-3: the curve of domain edge " << e.idx() << " is " << length << " long, its geodesic " << L;
             return why.str();
         }
         // PART-4: condition (1) — the curves' interiors are disjoint and hold no corner.
         for (std::size_t i = 1; i + 1 < path.size(); ++i) {
-            if (P.network.corner[path[i].idx()] >= 0 || on_path[path[i].idx()] >= 0) {
+            if (P.network.corner[path[i]].valid() || on_path[path[i].idx()] >= 0) {
                 why << "PART-4: the curve of domain edge " << e.idx() << " meets another curve or a corner at vertex " << path[i].idx();
                 return why.str();
             }
@@ -116,16 +115,16 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
         }
     }
     std::size_t labelled = 0;
-    for (std::int32_t d : P.network.d_halfedge) labelled += d >= 0;
+    for (HalfedgeId d : P.network.d_halfedge) labelled += d.valid();
     std::size_t segments = 0;
     for (const auto& path : P.network.path) segments += path.size() - 1;
     if (labelled != 2 * segments) return "PART-3: edges of T′ carry labels of no path";
     // PART-5: condition (2) — around x_j the curves leave in the order of D's edges around v_j.
     for (VertexId vj : D.mesh.vertices()) {
-        std::vector<std::int32_t> d_order, t_order;
-        D.mesh.for_each_outgoing(vj, [&](HalfedgeId h) { d_order.push_back(static_cast<std::int32_t>(h.idx())); });
-        M.for_each_outgoing(D.t_vertex[vj.idx()], [&](HalfedgeId h) {
-            if (P.network.d_halfedge[h.idx()] >= 0) t_order.push_back(P.network.d_halfedge[h.idx()]);
+        std::vector<HalfedgeId> d_order, t_order;
+        D.mesh.for_each_outgoing(vj, [&](HalfedgeId h) { d_order.push_back(h); });
+        M.for_each_outgoing(D.t_vertex[vj], [&](HalfedgeId h) {
+            if (P.network.d_halfedge[h].valid()) t_order.push_back(P.network.d_halfedge[h]);
         });
         const auto it = std::find(t_order.begin(), t_order.end(), d_order.front());
         if (it == t_order.end() || t_order.size() != d_order.size()) return "PART-5: the curves at a corner are not D's edges";
@@ -140,29 +139,29 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
     if (patches.patch.size() != D.mesh.n_faces() || patches.patch_of_face.size() != M.n_faces()) return "PART-6: patch count";
     std::vector<int> seen(M.n_faces(), 0);
     for (FaceId df : D.mesh.faces())
-        for (FaceId f : patches.patch[df.idx()].faces) {
+        for (FaceId f : patches.patch[df].faces) {
             if (patches.patch_of_face[f] != df) return "PART-6: patch_of_face disagrees with the patch's faces";
             ++seen[f.idx()];
         }
     if (std::any_of(seen.begin(), seen.end(), [](int s) { return s != 1; })) return "PART-6: a face of T′ is not in exactly one patch";
     // PART-7: patch adjacency is D's — across every curve edge, the patches of D's two faces.
     for (HalfedgeId h : M.halfedges()) {
-        const std::int32_t dh = P.network.d_halfedge[h.idx()];
-        if (dh >= 0 && patches.patch_of_face[M.face(h)] != D.mesh.face(HalfedgeId(static_cast<HalfedgeId::Index>(dh))))
+        const HalfedgeId dh = P.network.d_halfedge[h];
+        if (dh.valid() && patches.patch_of_face[M.face(h)] != D.mesh.face(dh))
             return "PART-7: a patch borders a curve of a domain face it does not belong to";
-        if (dh < 0 && patches.patch_of_face[M.face(h)] != patches.patch_of_face[M.face(TriMesh::twin(h))])
+        if (!dh.valid() && patches.patch_of_face[M.face(h)] != patches.patch_of_face[M.face(TriMesh::twin(h))])
             return "PART-7: two patches meet along an edge that is on no curve";
     }
     // PART-8: each patch is a disk bounded by the three curves of its face, corners at x_j, x_k, x_l.
     for (FaceId df : D.mesh.faces()) {
-        const partition::Patch& p = patches.patch[df.idx()];
+        const partition::Patch& p = patches.patch[df];
         if (const auto broken = param::disk_violation(p.disk)) {
             why << "PART-8: patch " << df.idx() << ": " << broken->what;
             return why.str();
         }
         const auto corners = D.mesh.face_vertices(df);
         for (std::size_t c = 0; c < 3; ++c)
-            if (p.vertices[p.disk.boundary[p.disk.corners[c]]] != D.t_vertex[corners[c].idx()]) return "PART-8: a corner is misplaced";
+            if (p.vertices[p.disk.boundary[p.disk.corners[c]]] != D.t_vertex[corners[c]]) return "PART-8: a corner is misplaced";
         for (std::size_t i = 0; i < p.vertices.size(); ++i)
             if (p.disk.positions[i] != M.position(p.vertices[i])) return "PART-8: a patch vertex's position differs from T′'s";
     }
@@ -179,8 +178,8 @@ std::string recovery_violation(const TriMesh& T, const domain::Domain& D0, const
     if (!boundary_loops(D.mesh).empty() || euler_characteristic(D.mesh) != euler_characteristic(T)) return "PART-9: D lost T's topology";
     if (D.t_vertex.size() != D.mesh.n_vertices()) return "PART-9: correspondence size";
     std::vector<int> in_d(T.n_vertices(), 0);
-    for (std::size_t j = 0; j < D.t_vertex.size(); ++j) {
-        if (D.mesh.position(VertexId(static_cast<VertexId::Index>(j))) != T.position(D.t_vertex[j])) return "PART-9: a vertex of D is not at its x_j";
+    for (VertexId j : D.t_vertex.ids()) {
+        if (D.mesh.position(j) != T.position(D.t_vertex[j])) return "PART-9: a vertex of D is not at its x_j";
         ++in_d[D.t_vertex[j].idx()];
     }
     for (VertexId v : P.kept)
@@ -194,12 +193,12 @@ std::string keep_violation(const TriMesh& T, const domain::Domain& D0, const par
     if (P.domain.mesh.triangles() != D0.mesh.triangles() || P.domain.t_vertex != D0.t_vertex) return "PART-10: D was changed";
     if (P.retries != 0 || P.curves.size() != D0.mesh.n_edges()) return "PART-10: retries or curve count";
     const auto ends = domain::edge_endpoints(D0);
-    for (std::size_t e = 0; e < ends.size(); ++e) {
+    for (EdgeId e : P.curves.ids()) {
         const partition::CurveInfo& c = P.curves[e];
-        const double g = geodesic::ellipse_shortest_path(T, ends[e].first, ends[e].second).path.length;
+        const double g = geodesic::ellipse_shortest_path(T, ends[e.idx()].first, ends[e.idx()].second).path.length;
         const double L = P.paths[e].path.length;
         std::ostringstream why;
-        why << "PART-10: domain edge " << e << " (L " << L << ", geodesic " << g << ", restricted shortest " << c.shortest
+        why << "PART-10: domain edge " << e.idx() << " (L " << L << ", geodesic " << g << ", restricted shortest " << c.shortest
             << ", bound " << c.separation_bound << "): ";
         if (std::abs(c.geodesic_length - g) > 1e-12 * g) return why.str() + "the reported geodesic length is wrong";
         if (c.kind == partition::CurveKind::geodesic) {

@@ -69,31 +69,31 @@ std::string restricted_oracle_violation(const TriMesh& T, const partition::Parti
     const domain::Domain& D = P.domain;
     const partition::Network& net = P.network;
     // A curve of the final network as a curve of T, exactly where T′ has it.
-    std::vector<geodesic::GeodesicPath> curves(D.mesh.n_edges());
-    for (std::size_t e = 0; e < curves.size(); ++e)
+    EdgeData<geodesic::GeodesicPath> curves(D.mesh.n_edges());
+    for (EdgeId e : curves.ids())
         for (VertexId v : net.path[e]) {
-            const partition::Origin& o = net.origin[v.idx()];
+            const partition::Origin& o = net.origin[v];
             curves[e].points.push_back(o.vertex.valid() ? SurfacePoint::at_vertex(o.vertex)
                                                         : SurfacePoint::on_edge(TriMesh::halfedge(o.edge, 0), o.t));
         }
     for (EdgeId e : D.mesh.edges()) {
-        if (!all_edges && P.curves[e.idx()].kind != partition::CurveKind::restricted) continue;
+        if (!all_edges && P.curves[e].kind != partition::CurveKind::restricted) continue;
         const HalfedgeId h = TriMesh::halfedge(e, 0), t = TriMesh::twin(h);
         const FaceId f1 = D.mesh.face(h), f2 = D.mesh.face(t);
-        std::vector<std::uint8_t> mask(net.mesh.n_faces(), 0);
+        FaceData<std::uint8_t> mask(net.mesh.n_faces(), 0);
         std::vector<FaceId> touched;
         for (FaceId f : net.mesh.faces())
             if (P.patches.patch_of_face[f] == f1 || P.patches.patch_of_face[f] == f2) {
-                mask[f.idx()] = 1;
+                mask[f] = 1;
                 touched.push_back(net.t_face[f]);
             }
         std::sort(touched.begin(), touched.end());
         touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
         std::vector<partition::RegionCurve> around;
         for (HalfedgeId s : {D.mesh.next(h), D.mesh.next(D.mesh.next(h)), D.mesh.next(t), D.mesh.next(D.mesh.next(t))})
-            around.push_back(partition::RegionCurve{&curves[TriMesh::edge(s).idx()], false});
+            around.push_back(partition::RegionCurve{&curves[TriMesh::edge(s)], false});
         const bool left = (D.mesh.next(h).idx() & 1u) == 0;  // net.path runs along D's halfedge (e, 0)
-        const VertexId a = D.t_vertex[D.mesh.from(h).idx()], b = D.t_vertex[D.mesh.to(h).idx()];
+        const VertexId a = D.t_vertex[D.mesh.from(h)], b = D.t_vertex[D.mesh.to(h)];
         partition::Region region(T, touched, around);
         const partition::RestrictedPath r = partition::restricted_path(region, 0, left, a, b);
         // CGAL's inexact constructions can trip its own assertions in the slivers next to the
@@ -111,15 +111,15 @@ std::string restricted_oracle_violation(const TriMesh& T, const partition::Parti
             }
         }
         if (!cgal) return "CGAL failed from both ends of domain edge " + std::to_string(e.idx()) + ": " + cgal_error;
-        const double d = *cgal, L = P.paths[e.idx()].path.length;
+        const double d = *cgal, L = P.paths[e].path.length;
         std::ostringstream why;
         why.precision(17);
         why << "PART-10: domain edge " << e.idx() << " (CGAL " << d << ", L* " << r.shortest << ", separated " << r.path.length
             << ", bound " << r.separation_bound << ", delivered " << L << "): ";
         if (r.shortest > d * (1 + 1e-9)) return why.str() + "the restricted shortest length exceeds CGAL's";
         if (r.path.length > r.shortest + r.separation_bound + 1e-12 * r.shortest) return why.str() + "the separation added more than its bound";
-        if (r.shortest < P.curves[e.idx()].geodesic_length * (1 - 1e-12)) return why.str() + "shorter than the geodesic";
-        if (L < P.curves[e.idx()].geodesic_length * (1 - 1e-12)) return why.str() + "the delivered curve is shorter than the geodesic";
+        if (r.shortest < P.curves[e].geodesic_length * (1 - 1e-12)) return why.str() + "shorter than the geodesic";
+        if (L < P.curves[e].geodesic_length * (1 - 1e-12)) return why.str() + "the delivered curve is shorter than the geodesic";
         try {
             region.add(partition::RegionCurve{&r.path, false});
             region.side(4, true);
@@ -177,7 +177,7 @@ TEST_CASE("PART-5: a domain with its orientation reversed breaks (2) at every co
     const partition::Embedding e = partition::embed(T, D, exact_paths(T, D));
     std::vector<std::uint8_t> at(D.mesh.n_vertices(), 0);
     for (const Conflict& c : e.conflicts)
-        if (c.kind == Conflict::Kind::order) at[c.d_vertex] = 1;
+        if (c.kind == Conflict::Kind::order) at[c.d_vertex.idx()] = 1;
     CHECK(std::count(at.begin(), at.end(), 1) == static_cast<long>(D.mesh.n_vertices()));
     try {
         (void)partition::partition(T, D);

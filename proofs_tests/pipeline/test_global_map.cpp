@@ -25,7 +25,7 @@ TEST_CASE("GlobalMap: φ maps corners to x_j, is continuous across D's edges, an
         for (int k = 0; k < 3; ++k) {
             std::array<double, 3> e{0, 0, 0};
             e[static_cast<std::size_t>(k)] = 1;
-            CHECK(map.phi(d, e) == T.position(D.t_vertex[c[static_cast<std::size_t>(k)].idx()]));
+            CHECK(map.phi(d, e) == T.position(D.t_vertex[c[static_cast<std::size_t>(k)]]));
         }
     }
     // Continuity: a point of edge [v_a, v_b] from either face gives the same point, bit for bit.

@@ -16,7 +16,7 @@ using CgalShortestPath = CGAL::Surface_mesh_shortest_path<CGAL::Surface_mesh_sho
 
 }  // namespace
 
-std::optional<std::vector<double>> cgal_distances(const TriMesh& m, VertexId source, const std::vector<std::uint8_t>* mask) {
+std::optional<std::vector<double>> cgal_distances(const TriMesh& m, VertexId source, const FaceData<std::uint8_t>* mask) {
     CgalMesh cm;
     std::vector<CgalMesh::Vertex_index> vid;
     for (VertexId v : m.vertices()) {
@@ -24,7 +24,7 @@ std::optional<std::vector<double>> cgal_distances(const TriMesh& m, VertexId sou
         vid.push_back(cm.add_vertex(K::Point_3(p.x(), p.y(), p.z())));
     }
     for (FaceId f : m.faces()) {
-        if (mask && !(*mask)[f.idx()]) continue;
+        if (mask && !(*mask)[f]) continue;
         const auto t = m.face_vertices(f);
         if (cm.add_face(vid[t[0].idx()], vid[t[1].idx()], vid[t[2].idx()]) == CgalMesh::null_face()) return std::nullopt;
     }

@@ -48,7 +48,7 @@ public:
             fail_vertex(v, "non-manifold vertex " + vname(v) + ": its faces form more than one fan");
         TriMesh mesh = TriMesh::from_triangles(std::move(positions_), tris_, table);
         check_closed_and_connected(mesh);
-        log_.vertex_origin = std::move(origin_);
+        log_.vertex_origin = VertexData<std::uint32_t>(std::move(origin_));
         return mesh;
     }
 

@@ -25,7 +25,7 @@ struct BuildLog {
     std::vector<std::string> warnings;   ///< one line each, without "fhr: warning: "
     std::size_t dropped_vertices = 0;    ///< isolated vertices removed (INV-IN-12)
     std::size_t reoriented_faces = 0;    ///< faces turned to agree with their component (INV-IN-8)
-    std::vector<std::uint32_t> vertex_origin;  ///< #V: index in the soup of each mesh vertex
+    VertexData<std::uint32_t> vertex_origin;   ///< #V: index in the soup of each mesh vertex
 };
 
 /// Checks the soup against spec/mesh.md in a fixed order and builds the mesh.

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace fhr {
@@ -59,15 +60,30 @@ class IdVector {
 public:
     IdVector() = default;
     explicit IdVector(std::size_t n, const T& value = T()) : data_(n, value) {}
+    /// Adopts `values` as the data of ids 0, 1, … in order.
+    explicit IdVector(std::vector<T> values) : data_(std::move(values)) {}
     T& operator[](IdT id) { return data_[id.idx()]; }
     const T& operator[](IdT id) const { return data_[id.idx()]; }
+    /// Bounds-checked: \throws std::out_of_range.
+    const T& at(IdT id) const { return data_.at(id.idx()); }
     std::size_t size() const { return data_.size(); }
     bool empty() const { return data_.empty(); }
     void resize(std::size_t n, const T& value = T()) { data_.resize(n, value); }
     void assign(std::size_t n, const T& value) { data_.assign(n, value); }
     void reserve(std::size_t n) { data_.reserve(n); }
+    void clear() { data_.clear(); }
+    /// Appends the data of the next id, size() before the call.
     void push_back(const T& value) { data_.push_back(value); }
+    void push_back(T&& value) { data_.push_back(std::move(value)); }
+    template <class... Args>
+    T& emplace_back(Args&&... args) { return data_.emplace_back(std::forward<Args>(args)...); }
+    T& back() { return data_.back(); }
+    const T& back() const { return data_.back(); }
+    /// The id of the last element (invalid when empty).
+    IdT last_id() const { return data_.empty() ? IdT() : IdT(static_cast<typename IdT::Index>(data_.size() - 1)); }
     IdRange<IdT> ids() const { return IdRange<IdT>(data_.size()); }
+    /// All values in id order, for bulk use (writers, spans): no id checks there.
+    const std::vector<T>& values() const { return data_; }
     auto begin() { return data_.begin(); }
     auto end() { return data_.end(); }
     auto begin() const { return data_.begin(); }

@@ -27,17 +27,17 @@ Components connected_components(const TriMesh& m) {
     c.vertex_component.assign(m.n_vertices(), UINT32_MAX);
     std::vector<VertexId> stack;
     for (VertexId seed : m.vertices()) {
-        if (c.vertex_component[seed.idx()] != UINT32_MAX) continue;
+        if (c.vertex_component[seed] != UINT32_MAX) continue;
         const auto id = static_cast<std::uint32_t>(c.count++);
-        c.vertex_component[seed.idx()] = id;
+        c.vertex_component[seed] = id;
         stack.push_back(seed);
         while (!stack.empty()) {
             const VertexId v = stack.back();
             stack.pop_back();
             m.for_each_outgoing(v, [&](HalfedgeId h) {
                 const VertexId w = m.to(h);
-                if (c.vertex_component[w.idx()] == UINT32_MAX) {
-                    c.vertex_component[w.idx()] = id;
+                if (c.vertex_component[w] == UINT32_MAX) {
+                    c.vertex_component[w] = id;
                     stack.push_back(w);
                 }
             });
@@ -49,10 +49,10 @@ Components connected_components(const TriMesh& m) {
 long genus(const TriMesh& m) {
     const Components comp = connected_components(m);
     std::vector<long> chi(comp.count, 0), loops(comp.count, 0);
-    for (VertexId v : m.vertices()) ++chi[comp.vertex_component[v.idx()]];
-    for (EdgeId e : m.edges()) --chi[comp.vertex_component[m.to(TriMesh::halfedge(e, 0)).idx()]];
-    for (FaceId f : m.faces()) ++chi[comp.vertex_component[m.face_vertices(f)[0].idx()]];
-    for (HalfedgeId h : boundary_loops(m)) ++loops[comp.vertex_component[m.to(h).idx()]];
+    for (VertexId v : m.vertices()) ++chi[comp.vertex_component[v]];
+    for (EdgeId e : m.edges()) --chi[comp.vertex_component[m.to(TriMesh::halfedge(e, 0))]];
+    for (FaceId f : m.faces()) ++chi[comp.vertex_component[m.face_vertices(f)[0]]];
+    for (HalfedgeId h : boundary_loops(m)) ++loops[comp.vertex_component[m.to(h)]];
     long g = 0;
     for (std::size_t i = 0; i < comp.count; ++i) g += (2 - loops[i] - chi[i]) / 2;
     return g;

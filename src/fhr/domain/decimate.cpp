@@ -97,7 +97,7 @@ public:
         std::vector<std::uint8_t> kept(std::max_element(t_of_.begin(), t_of_.end())->idx() + 1, 0);
         for (VertexId v : o.keep)
             if (v.idx() < kept.size()) kept[v.idx()] = 1;
-        for (VertexId v : m_.vertices()) keep_[v.idx()] = kept[t_of_[v.idx()].idx()];
+        for (VertexId v : m_.vertices()) keep_[v.idx()] = kept[t_of_[v].idx()];
         cos_max_turn_ = std::cos(o.max_normal_deviation_deg * M_PI / 180.0);
         tan_min_angle_ = std::tan(o.min_angle_deg * M_PI / 180.0);
         volume_ = volume6_of(m_);
@@ -131,8 +131,8 @@ public:
                 continue;
             }
             const VertexId v0 = m_.from(h), v1 = m_.to(h);
-            d.history.push_back({t_of_[v0.idx()], t_of_[v1.idx()], t_of_[m_.to(m_.next(h)).idx()],
-                                 t_of_[m_.to(m_.next(TriMesh::twin(h))).idx()]});
+            d.history.push_back({t_of_[v0], t_of_[v1], t_of_[m_.to(m_.next(h))],
+                                 t_of_[m_.to(m_.next(TriMesh::twin(h)))]});
             m_.collapse(h);
             volume_ += change_;
             faces -= 2;
@@ -140,7 +140,7 @@ public:
             refresh_around(v1);
         }
         for (VertexId v : m_.vertices())
-            if (!m_.is_deleted(v)) d.t_vertex.push_back(t_of_[v.idx()]);
+            if (!m_.is_deleted(v)) d.t_vertex.push_back(t_of_[v]);
         m_.compact();  // keeps the survivors' order, so D's vertex j is d.t_vertex[j]
         d.mesh = std::move(m_);
         return d;
@@ -148,7 +148,7 @@ public:
 
 private:
     TriMesh m_;
-    std::vector<VertexId> t_of_;      // vertex of m_ -> vertex of T
+    VertexData<VertexId> t_of_;       // vertex of m_ -> vertex of T
     std::vector<Collapse> history_;   // the collapses that made `start` from T
     const DecimateOptions& options_;
     std::vector<Quadric> quadric_;
@@ -235,7 +235,7 @@ std::vector<std::pair<VertexId, VertexId>> edge_endpoints(const Domain& d) {
     pairs.reserve(d.mesh.n_edges());
     for (EdgeId e : d.mesh.edges()) {
         const HalfedgeId h = TriMesh::halfedge(e, 0);
-        pairs.emplace_back(d.t_vertex[d.mesh.from(h).idx()], d.t_vertex[d.mesh.to(h).idx()]);
+        pairs.emplace_back(d.t_vertex[d.mesh.from(h)], d.t_vertex[d.mesh.to(h)]);
     }
     return pairs;
 }
@@ -283,20 +283,21 @@ Domain decimate_again(const TriMesh& T, const Domain& previous, const DecimateOp
     const Domain start = undo_collapses(previous, T, previous.history.size() - reuse);
     std::vector<Quadric> merged = vertex_quadrics(T);  // summed in the order decimate summed them
     for (std::size_t i = 0; i < reuse; ++i) merged[previous.history[i].kept.idx()] += merged[previous.history[i].removed.idx()];
-    std::vector<Quadric> quadrics(start.t_vertex.size());
-    for (std::size_t j = 0; j < quadrics.size(); ++j) quadrics[j] = merged[start.t_vertex[j].idx()];
+    std::vector<Quadric> quadrics;
+    for (VertexId x : start.t_vertex) quadrics.push_back(merged[x.idx()]);
     Domain d = Decimator(start, std::move(quadrics), volume6_of(T), options).run();
     // Number D's vertices in T's order, as decimate does (DOM-4): the undone prefix appended its
     // vertices at the end.
     std::vector<std::uint32_t> order(d.t_vertex.size()), rank(d.t_vertex.size());
     for (std::uint32_t j = 0; j < order.size(); ++j) order[j] = j;
-    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return d.t_vertex[a] < d.t_vertex[b]; });
+    std::sort(order.begin(), order.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return d.t_vertex[VertexId(a)] < d.t_vertex[VertexId(b)]; });
     std::vector<Vec3> positions(order.size());
-    std::vector<VertexId> t_vertex(order.size());
+    VertexData<VertexId> t_vertex(order.size());
     for (std::uint32_t r = 0; r < order.size(); ++r) {
         rank[order[r]] = r;
         positions[r] = d.mesh.position(VertexId(order[r]));
-        t_vertex[r] = d.t_vertex[order[r]];
+        t_vertex[VertexId(r)] = d.t_vertex[VertexId(order[r])];
     }
     std::vector<Triangle> faces = d.mesh.triangles();
     for (Triangle& f : faces)
@@ -313,7 +314,7 @@ Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count) {
     r.t_vertex = d.t_vertex;
     r.history.assign(d.history.begin(), d.history.end() - static_cast<std::ptrdiff_t>(count));
     std::vector<VertexId> current(T.n_vertices());  // T vertex -> vertex of r.mesh
-    for (std::size_t j = 0; j < r.t_vertex.size(); ++j) current[r.t_vertex[j].idx()] = VertexId(static_cast<VertexId::Index>(j));
+    for (VertexId j : r.t_vertex.ids()) current[r.t_vertex[j].idx()] = j;
     for (std::size_t i = d.history.size(); i-- > d.history.size() - count;) {
         const Collapse& c = d.history[i];
         const VertexId v = r.mesh.split_vertex(current[c.kept.idx()], current[c.left.idx()], current[c.right.idx()],
@@ -340,7 +341,7 @@ bool history_describes(const Domain& d, const TriMesh& T) {
     };
     std::vector<Triangle> faces = back.mesh.triangles();
     for (Triangle& f : faces)
-        for (std::uint32_t& v : f) v = back.t_vertex[v].idx();
+        for (std::uint32_t& v : f) v = back.t_vertex[VertexId(v)].idx();
     return canonical(std::move(faces)) == canonical(T.triangles());
 }
 

@@ -43,7 +43,7 @@ struct DecimateOptions {
 /// D together with its correspondence to T (paper §2).
 struct Domain {
     TriMesh mesh;                     ///< D: compact, closed, with T's Euler characteristic
-    std::vector<VertexId> t_vertex;   ///< #V(D): the vertex x_j of T at vertex v_j of D
+    VertexData<VertexId> t_vertex;    ///< #V(D): the vertex x_j of T at vertex v_j of D
     std::vector<Collapse> history;    ///< the collapses, in the order they were made
 };
 

@@ -135,12 +135,13 @@ Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<io::Correspondence
     Domain d;
     d.mesh = std::move(D);
     d.t_vertex.resize(n);
+    auto v_of = [](std::size_t j) { return VertexId(static_cast<VertexId::Index>(j)); };  // entry j is D's vertex j
     // Face points first (face splits keep every edge of T, so edge points stay valid), grouped
     // by face in `order`, which sorts them by face.
     for (std::size_t i = 0; i < n;) {
         const std::size_t j0 = order[i];
         if (p[j0].kind != SurfacePoint::Kind::face) {
-            if (p[j0].kind == SurfacePoint::Kind::vertex) d.t_vertex[j0] = p[j0].vertex;
+            if (p[j0].kind == SurfacePoint::Kind::vertex) d.t_vertex[v_of(j0)] = p[j0].vertex;
             ++i;
             continue;
         }
@@ -151,7 +152,7 @@ Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<io::Correspondence
             if (!v.valid())
                 throw InvalidInput(sources.correspondence_file, x[j].line,
                                    entry_name(j, x[j]) + " is within 1e-14 (barycentric) of another entry's point");
-            d.t_vertex[j] = v;
+            d.t_vertex[v_of(j)] = v;
         }
     }
     // Edge points, edge by edge, from the far end: split_edge keeps the edge's first halfedge
@@ -164,7 +165,7 @@ Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<io::Correspondence
         }
         std::size_t end = i;
         while (end < n && p[order[end]].kind == SurfacePoint::Kind::edge && p[order[end]].halfedge == p[j0].halfedge) ++end;
-        for (std::size_t k = end; k-- > i;) d.t_vertex[order[k]] = T.split_edge(TriMesh::edge(p[j0].halfedge), pos[order[k]]);
+        for (std::size_t k = end; k-- > i;) d.t_vertex[v_of(order[k])] = T.split_edge(TriMesh::edge(p[j0].halfedge), pos[order[k]]);
         i = end;
     }
     return d;

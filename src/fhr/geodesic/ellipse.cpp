@@ -19,13 +19,13 @@ namespace {
 constexpr double certificate_margin = 1e-11;
 
 // A face is outside T_jk when the mask leaves it out (a real hole of T is not outside).
-bool outside(const TriMesh& mesh, const std::vector<std::uint8_t>& mask, HalfedgeId h) {
-    return !mesh.is_boundary(h) && !mask[mesh.face(h).idx()];
+bool outside(const TriMesh& mesh, const FaceData<std::uint8_t>& mask, HalfedgeId h) {
+    return !mesh.is_boundary(h) && !mask[mesh.face(h)];
 }
 
 // The paper's test: the path touches a vertex of the artificial boundary, or runs along an edge
 // next to a left-out face.
-bool touches_boundary(const TriMesh& mesh, const std::vector<std::uint8_t>& mask, const GeodesicPath& path) {
+bool touches_boundary(const TriMesh& mesh, const FaceData<std::uint8_t>& mask, const GeodesicPath& path) {
     for (const SurfacePoint& p : path.points) {
         if (p.kind == SurfacePoint::Kind::vertex) {
             bool touches = false;
@@ -43,11 +43,11 @@ bool touches_boundary(const TriMesh& mesh, const std::vector<std::uint8_t>& mask
 // faces set to 1. The ellipse only grows with K (the fields are fixed, the bound grows), so the
 // mask is only ever added to.
 struct MaskScratch {
-    std::vector<std::uint8_t> mask;
-    std::vector<std::uint32_t> in;
+    FaceData<std::uint8_t> mask;
+    std::vector<FaceId> in;
     void fit(std::size_t n) { mask.resize(n, 0); }  // clean, so shrinking or growing keeps it clean
     void reset() {
-        for (std::uint32_t f : in) mask[f] = 0;
+        for (FaceId f : in) mask[f] = 0;
         detail::clear_buffer(in);
     }
 };
@@ -67,7 +67,7 @@ EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, c
     if (!std::isfinite(d_ab)) throw InvalidInput("", 0, "the two vertices are not connected");
     FastMarching from_b(mesh, std::span(&b, 1));
     const detail::Borrowed<MaskScratch> scratch = detail::borrow<MaskScratch>(mesh.n_faces());
-    std::vector<std::uint8_t>& mask = scratch->mask;
+    FaceData<std::uint8_t>& mask = scratch->mask;
     EllipsePath result;
     for (double K = options.K;; K = 1 + 2 * (K - 1)) {
         const double bound = K * d_ab;
@@ -79,8 +79,8 @@ EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, c
             if (!(from_a.distance(v) + from_b.distance(v) <= bound)) continue;
             mesh.for_each_outgoing(v, [&](HalfedgeId h) {
                 if (mesh.is_boundary(h)) return;
-                std::uint8_t& in = mask[mesh.face(h).idx()];
-                if (!in) scratch->in.push_back(mesh.face(h).idx());
+                std::uint8_t& in = mask[mesh.face(h)];
+                if (!in) scratch->in.push_back(mesh.face(h));
                 in = 1;
             });
         }

@@ -124,11 +124,11 @@ ExactGeodesic::ExactGeodesic(const TriMesh& mesh, VertexId source, ExactOptions 
 ExactGeodesic::~ExactGeodesic() = default;
 
 bool ExactGeodesic::face_exists(FaceId f) const {
-    return f.valid() && (!options_.face_mask || (*options_.face_mask)[f.idx()] != 0);
+    return f.valid() && (!options_.face_mask || (*options_.face_mask)[f] != 0);
 }
 
 bool ExactGeodesic::masked_out(FaceId f) const {
-    return f.valid() && options_.face_mask && (*options_.face_mask)[f.idx()] == 0;
+    return f.valid() && options_.face_mask && (*options_.face_mask)[f] == 0;
 }
 
 // A window that would enter a masked-out face: its key over its interval (clamped to the edge,

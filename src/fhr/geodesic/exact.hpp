@@ -64,7 +64,7 @@ struct ExactOptions {
     /// If set (size n_faces), only faces with mask[f] != 0 exist: the "ellipse" T_jk of §3. An
     /// edge between a masked-in and a masked-out face is a boundary edge, and its vertices are
     /// boundary vertices (pseudo-sources).
-    const std::vector<std::uint8_t>* face_mask = nullptr;
+    const FaceData<std::uint8_t>* face_mask = nullptr;
     /// Events whose key exceeds this are never queued or expanded, so only paths no longer than
     /// it are searched: a target whose distance exceeds it may be left at a larger value (or
     /// INFINITY). A distance below it is exact as without the bound (the events of a path keep

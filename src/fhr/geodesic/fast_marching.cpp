@@ -316,10 +316,10 @@ DistanceField fast_marching(const TriMesh& mesh, std::span<const VertexId> sourc
     if (std::isnan(options.max_distance)) throw InvalidInput("", 0, "fast marching: max_distance is NaN");
     FastMarching run(mesh, sources, options.unfold);
     run.advance(options.max_distance);
-    DistanceField field{std::vector<double>(mesh.n_vertices(), INFINITY), {}};
+    DistanceField field{VertexData<double>(mesh.n_vertices(), INFINITY), {}};
     const std::span<const VertexId> done = run.finalized();
     field.finalized.assign(done.begin(), done.end());
-    for (VertexId v : done) field.distance[v.idx()] = run.distance(v);
+    for (VertexId v : done) field.distance[v] = run.distance(v);
     return field;
 }
 

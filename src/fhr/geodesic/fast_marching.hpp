@@ -54,7 +54,7 @@ inline constexpr int max_unfold_steps = 16;
 
 struct DistanceField {
     /// #V: the fast-marching distance of every final vertex, INFINITY for every other vertex.
-    std::vector<double> distance;
+    VertexData<double> distance;
     /// The final vertices in the order they were accepted: distances non-decreasing. Of the
     /// vertices in the band at the same time, equal distances go by increasing index; a vertex
     /// whose new value equals the one just accepted (a front parallel to an edge) comes after it.

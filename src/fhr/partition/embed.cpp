@@ -46,23 +46,23 @@ public:
              std::span<const std::uint8_t> unsnapped)
         : T_(T), D_(D), paths_(paths), unsnapped_(unsnapped) {
         Network& n = out_.network;
-        n.corner.assign(T.n_vertices(), -1);
+        n.corner.assign(T.n_vertices(), VertexId());
         if (D) {
-            for (std::size_t j = 0; j < D->t_vertex.size(); ++j) n.corner[D->t_vertex[j].idx()] = static_cast<std::int32_t>(j);
+            for (VertexId j : D->t_vertex.ids()) n.corner[D->t_vertex[j]] = j;
             ends_ = domain::edge_endpoints(*D);
         } else {
-            std::int32_t corners = 0;
+            VertexId::Index corners = 0;
             for (const geodesic::GeodesicPath& p : paths) {
                 if (p.points.size() < 2 || p.points.front().kind != SurfacePoint::Kind::vertex || p.points.back().kind != SurfacePoint::Kind::vertex)
                     throw std::logic_error("embed: a curve does not run between two vertices");
                 ends_.emplace_back(p.points.front().vertex, p.points.back().vertex);
                 for (VertexId x : {p.points.front().vertex, p.points.back().vertex})
-                    if (n.corner[x.idx()] < 0) n.corner[x.idx()] = corners++;
+                    if (!n.corner[x].valid()) n.corner[x] = VertexId(corners++);
             }
         }
         n.on_path.assign(T.n_vertices(), PathPosition{});
         n.origin.resize(T.n_vertices());
-        for (VertexId v : T.vertices()) n.origin[v.idx()].vertex = v;
+        for (VertexId v : T.vertices()) n.origin[v].vertex = v;
         positions_.assign(T.positions().begin(), T.positions().end());
     }
 
@@ -94,13 +94,13 @@ private:
     std::vector<Chord> chords_;
     std::vector<Run> runs_;
 
-    void conflict(Kind kind, std::uint32_t a, std::uint32_t b, std::array<VertexId, 3> near, std::uint32_t d_vertex = 0) {
-        out_.conflicts.push_back(Conflict{kind, std::min(a, b), std::max(a, b), d_vertex, near});
+    void conflict(Kind kind, std::uint32_t a, std::uint32_t b, std::array<VertexId, 3> near, VertexId d_vertex = {}) {
+        out_.conflicts.push_back(Conflict{kind, EdgeId(std::min(a, b)), EdgeId(std::max(a, b)), d_vertex, near});
     }
 
     // The vertex of T nearest to vertex v of T′: itself, or the nearer end of its edge of T.
     VertexId nearest(VertexId v) const {
-        const Origin& o = out_.network.origin[v.idx()];
+        const Origin& o = out_.network.origin[v];
         if (o.vertex.valid()) return o.vertex;
         const HalfedgeId h = TriMesh::halfedge(o.edge, 0);
         return o.t < 0.5 ? T_.from(h) : T_.to(h);
@@ -134,7 +134,7 @@ private:
         Network& net = out_.network;
         net.origin.push_back(Origin{{}, n.edge, n.t});
         net.on_path.push_back(PathPosition{});
-        net.corner.push_back(-1);
+        net.corner.push_back(VertexId());
         list.emplace_back(n.t, v);
         return v;
     }
@@ -155,14 +155,13 @@ private:
         for (const Node& n : nodes) path.push_back(vertex_of(n));
         for (std::size_t i = 1; i + 1 < nodes.size(); ++i) {
             const VertexId v = path[i];
-            if (net.corner[v.idx()] >= 0) {
+            if (net.corner[v].valid()) {
                 // Γ(x_j, x_k) runs over x_m: D needs vertices beside x_m on it (paper_notes/partition.md).
-                conflict(Kind::through_corner, e, e, {nearest(path[i - 1]), nearest(path[i + 1]), {}},
-                         static_cast<std::uint32_t>(net.corner[v.idx()]));
-            } else if (net.on_path[v.idx()].d_edge >= 0) {
-                conflict(Kind::shared_node, static_cast<std::uint32_t>(net.on_path[v.idx()].d_edge), e, {nearest(v), {}, {}});
+                conflict(Kind::through_corner, e, e, {nearest(path[i - 1]), nearest(path[i + 1]), {}}, net.corner[v]);
+            } else if (net.on_path[v].d_edge.valid()) {
+                conflict(Kind::shared_node, net.on_path[v].d_edge.idx(), e, {nearest(v), {}, {}});
             } else {
-                net.on_path[v.idx()] = PathPosition{static_cast<std::int32_t>(e), static_cast<std::uint32_t>(i)};
+                net.on_path[v] = PathPosition{EdgeId(e), static_cast<std::uint32_t>(i)};
             }
         }
         for (std::size_t i = 0; i + 1 < nodes.size(); ++i) add_segment(nodes[i], nodes[i + 1], path[i], path[i + 1], e);
@@ -214,7 +213,7 @@ private:
             if (it == on_edge_.end()) continue;
             for (const auto& [t, v] : it->second) {
                 if (t > r.t0 && t < r.t1)
-                    conflict(Kind::shared_node, r.d_edge, static_cast<std::uint32_t>(net.on_path[v.idx()].d_edge), {nearest(v), {}, {}});
+                    conflict(Kind::shared_node, r.d_edge, net.on_path[v].d_edge.idx(), {nearest(v), {}, {}});
             }
         }
     }
@@ -351,14 +350,14 @@ private:
     // Every segment is an edge of T′: label it with its D halfedge.
     void label_paths() {
         Network& net = out_.network;
-        net.d_halfedge.assign(net.mesh.n_halfedges(), -1);
-        for (std::uint32_t e = 0; e < net.path.size(); ++e) {
+        net.d_halfedge.assign(net.mesh.n_halfedges(), HalfedgeId());
+        for (EdgeId e : net.path.ids()) {
             const auto& path = net.path[e];
             for (std::size_t i = 0; i + 1 < path.size(); ++i) {
                 const HalfedgeId h = net.mesh.find_halfedge(path[i], path[i + 1]);
-                if (!h.valid() || net.d_halfedge[h.idx()] >= 0) throw std::logic_error("embed: a path segment is not an edge of T′");
-                net.d_halfedge[h.idx()] = static_cast<std::int32_t>(2 * e);
-                net.d_halfedge[TriMesh::twin(h).idx()] = static_cast<std::int32_t>(2 * e + 1);
+                if (!h.valid() || net.d_halfedge[h].valid()) throw std::logic_error("embed: a path segment is not an edge of T′");
+                net.d_halfedge[h] = TriMesh::halfedge(e, 0);
+                net.d_halfedge[TriMesh::twin(h)] = TriMesh::halfedge(e, 1);
             }
         }
     }
@@ -368,10 +367,10 @@ private:
         const Network& net = out_.network;
         const domain::Domain& D = *D_;
         for (VertexId vj : D.mesh.vertices()) {
-            std::vector<std::int32_t> in_d, in_t;
-            D.mesh.for_each_outgoing(vj, [&](HalfedgeId h) { in_d.push_back(static_cast<std::int32_t>(h.idx())); });
-            net.mesh.for_each_outgoing(D.t_vertex[vj.idx()], [&](HalfedgeId h) {
-                if (net.d_halfedge[h.idx()] >= 0) in_t.push_back(net.d_halfedge[h.idx()]);
+            std::vector<HalfedgeId> in_d, in_t;
+            D.mesh.for_each_outgoing(vj, [&](HalfedgeId h) { in_d.push_back(h); });
+            net.mesh.for_each_outgoing(D.t_vertex[vj], [&](HalfedgeId h) {
+                if (net.d_halfedge[h].valid()) in_t.push_back(net.d_halfedge[h]);
             });
             // The D edges whose successor around x_j is not their successor around v_j (all of
             // them when the curves at x_j are not exactly D's edges).
@@ -388,10 +387,10 @@ private:
             for (std::size_t k = 0; k < n; ++k) {
                 if (!wrong[k]) continue;
                 // The curve's first node after x_j: a vertex of D there puts it in its place.
-                const std::uint32_t e = static_cast<std::uint32_t>(in_d[k]) / 2;
+                const EdgeId e = TriMesh::edge(in_d[k]);
                 const auto& path = net.path[e];
-                const VertexId first = (in_d[k] & 1) ? path[path.size() - 2] : path[1];
-                conflict(Kind::order, e, e, {nearest(first), {}, {}}, vj.idx());
+                const VertexId first = in_d[k] == TriMesh::halfedge(e, 1) ? path[path.size() - 2] : path[1];
+                conflict(Kind::order, e.idx(), e.idx(), {nearest(first), {}, {}}, vj);
             }
         }
     }
@@ -400,16 +399,16 @@ private:
 }  // namespace
 
 std::string Conflict::describe() const {
-    const std::string a = "domain edge " + std::to_string(d_edge_a), b = "domain edge " + std::to_string(d_edge_b);
+    const std::string a = "domain edge " + std::to_string(d_edge_a.idx()), b = "domain edge " + std::to_string(d_edge_b.idx());
     switch (kind) {
         case Kind::shared_node:
             return d_edge_a == d_edge_b ? "the path of " + a + " passes a point twice"
                                         : "the paths of " + a + " and " + b + " meet at a point that is not a common end";
         case Kind::crossing: return "the paths of " + a + " and " + b + " cross";
         case Kind::through_corner:
-            return "the path of " + a + " passes through the corner of domain vertex " + std::to_string(d_vertex);
+            return "the path of " + a + " passes through the corner of domain vertex " + std::to_string(d_vertex.idx());
         case Kind::order:
-            return "around domain vertex " + std::to_string(d_vertex) + " the path of " + a +
+            return "around domain vertex " + std::to_string(d_vertex.idx()) + " the path of " + a +
                    " is out of the domain's cyclic order";
     }
     return {};

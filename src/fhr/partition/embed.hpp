@@ -49,7 +49,7 @@ struct Origin {
 
 /// A vertex of T′ inside a path: the D edge of the path and the node's index along it.
 struct PathPosition {
-    std::int32_t d_edge = -1;  ///< -1: not inside any path
+    EdgeId d_edge;             ///< invalid: not inside any path
     std::uint32_t index = 0;
 };
 
@@ -62,8 +62,8 @@ struct Conflict {
         order,           ///< (2): the cyclic order of the paths at x_j differs from D's
     };
     Kind kind;
-    std::uint32_t d_edge_a = 0, d_edge_b = 0;  ///< the D edges (equal when only one is involved)
-    std::uint32_t d_vertex = 0;                ///< through_corner and order: the D vertex v_m / v_j
+    EdgeId d_edge_a, d_edge_b;                 ///< the D edges (equal when only one is involved), a <= b
+    VertexId d_vertex;                         ///< through_corner and order: the D vertex v_m / v_j, else invalid
     std::array<VertexId, 3> near{};            ///< vertices of T at the place (unused ones invalid)
     std::string describe() const;
 };
@@ -71,12 +71,12 @@ struct Conflict {
 /// The refined triangulation T′ with the geodesic network embedded in it.
 struct Network {
     TriMesh mesh;                                   ///< T′; vertices 0..#V(T)−1 are T's vertices
-    std::vector<Origin> origin;                     ///< #V(T′)
-    std::vector<PathPosition> on_path;              ///< #V(T′)
-    std::vector<std::int32_t> corner;               ///< #V(T′): the D vertex v_j at x_j, else -1
-    std::vector<std::vector<VertexId>> path;        ///< #E(D): vertices of T′ from x_j to x_k along Γ_e
+    VertexData<Origin> origin;                      ///< #V(T′)
+    VertexData<PathPosition> on_path;               ///< #V(T′)
+    VertexData<VertexId> corner;                    ///< #V(T′): the D vertex v_j at x_j, else invalid
+    EdgeData<std::vector<VertexId>> path;           ///< #E(D): vertices of T′ from x_j to x_k along Γ_e
                                                     ///< (direction of D's halfedge (e, 0))
-    std::vector<std::int32_t> d_halfedge;           ///< #H(T′): the D halfedge it runs along, or -1
+    HalfedgeData<HalfedgeId> d_halfedge;            ///< #H(T′): the D halfedge it runs along, else invalid
     FaceData<FaceId> t_face;                        ///< #F(T′): the face of T that holds it
     double max_snap_distance = 0;                   ///< the farthest a node was moved by snapping
 };

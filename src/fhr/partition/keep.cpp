@@ -25,7 +25,7 @@ Pair key_of(VertexId a, VertexId b) { return {std::min(a.idx(), b.idx()), std::m
 using Corners = std::array<VertexId::Index, 3>;
 Corners corners_of(const domain::Domain& D, FaceId f) {
     const auto v = D.mesh.face_vertices(f);
-    Corners c{D.t_vertex[v[0].idx()].idx(), D.t_vertex[v[1].idx()].idx(), D.t_vertex[v[2].idx()].idx()};
+    Corners c{D.t_vertex[v[0]].idx(), D.t_vertex[v[1]].idx(), D.t_vertex[v[2]].idx()};
     std::sort(c.begin(), c.end());
     return c;
 }
@@ -66,7 +66,7 @@ public:
     const std::map<Pair, Curve>& curves() const { return curves_; }
     std::map<Corners, std::vector<FaceId>>& touched() { return touched_; }
 
-    VertexId x(VertexId v) const { return D_.t_vertex[v.idx()]; }
+    VertexId x(VertexId v) const { return D_.t_vertex[v]; }
     // The vertex of D at vertex x of T: D's vertices are numbered in T's order (make_domain), and
     // keep their numbers through flips and collapses until compacted, which keeps the order.
     VertexId at(VertexId::Index x) const {
@@ -125,7 +125,10 @@ domain::Domain make_domain(const TriMesh& T, const std::vector<std::array<Vertex
 
 std::vector<std::array<VertexId, 3>> faces_in_t(const domain::Domain& D) {
     std::vector<std::array<VertexId, 3>> faces;
-    for (const Triangle& t : D.mesh.triangles()) faces.push_back({D.t_vertex[t[0]], D.t_vertex[t[1]], D.t_vertex[t[2]]});
+    for (FaceId f : D.mesh.faces()) {
+        const auto v = D.mesh.face_vertices(f);
+        faces.push_back({D.t_vertex[v[0]], D.t_vertex[v[1]], D.t_vertex[v[2]]});
+    }
     return faces;
 }
 
@@ -247,9 +250,9 @@ void redo(Network_& net, std::span<const domain::Collapse> collapses, const std:
         left = std::move(later);
     }
     // The removed vertices go.
-    std::vector<VertexId> kept;
+    VertexData<VertexId> kept;
     for (VertexId v : D.mesh.vertices())
-        if (!D.mesh.is_deleted(v)) kept.push_back(D.t_vertex[v.idx()]);
+        if (!D.mesh.is_deleted(v)) kept.push_back(D.t_vertex[v]);
     D.mesh.compact();
     D.t_vertex = std::move(kept);
 }
@@ -387,9 +390,10 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
     std::vector<std::vector<std::size_t>> against(ends.size());
     for (const Conflict& c : conflicts) {
         if (c.kind == Conflict::Kind::order) continue;  // settled among the kept ones below
-        if (c.d_edge_a == c.d_edge_b) alone[c.d_edge_a] = 0;
-        against[c.d_edge_a].push_back(c.d_edge_b);
-        against[c.d_edge_b].push_back(c.d_edge_a);
+        const std::uint32_t a = c.d_edge_a.idx(), b = c.d_edge_b.idx();
+        if (a == b) alone[a] = 0;
+        against[a].push_back(b);
+        against[b].push_back(a);
     }
     std::map<Pair, std::size_t> rank;  // place in the kept order
     for (const Pair& k : order) {
@@ -428,8 +432,9 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
             // A conflict the first embedding did not report (it names one pair per shared point):
             // the later edge of the pair in the kept order goes.
             for (const Conflict& c : cut.conflicts) {
-                const Pair a = key_of(paths[c.d_edge_a].points.front().vertex, paths[c.d_edge_a].points.back().vertex);
-                const Pair b = key_of(paths[c.d_edge_b].points.front().vertex, paths[c.d_edge_b].points.back().vertex);
+                const auto& pa = paths[c.d_edge_a.idx()].points;
+                const auto& pb = paths[c.d_edge_b.idx()].points;
+                const Pair a = key_of(pa.front().vertex, pa.back().vertex), b = key_of(pb.front().vertex, pb.back().vertex);
                 kept[edge_of.at(rank.at(a) >= rank.at(b) ? a : b)] = 0;
             }
             continue;
@@ -441,9 +446,9 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
                 if (is_kept(h)) in_d.push_back(edge_key(h));
             });
             cut.network.mesh.for_each_outgoing(net.x(v), [&](HalfedgeId h) {
-                const std::int32_t label = cut.network.d_halfedge[h.idx()];
-                if (label < 0) return;
-                const auto& p = paths[static_cast<std::size_t>(label / 2)].points;
+                const HalfedgeId label = cut.network.d_halfedge[h];
+                if (!label.valid()) return;
+                const auto& p = paths[TriMesh::edge(label).idx()].points;
                 in_t.push_back(key_of(p.front().vertex, p.back().vertex));
             });
             // A curve of another edge through x_v goes; the others must follow D's order.
@@ -543,7 +548,7 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
             for (int i = 0; i < 3; ++i, h = m.next(h))
                 if (is_kept(h)) boundary = h;
         }
-        const auto& path = cut.network.path[index.at(edge_key(boundary))];
+        const auto& path = cut.network.path[EdgeId(index.at(edge_key(boundary)))];
         const HalfedgeId first = M.find_halfedge(path[0], path[1]);
         const FaceId seed = M.face(net.x(m.from(boundary)).idx() < net.x(m.to(boundary)).idx() ? first : TriMesh::twin(first));
         if (region[seed.idx()] >= 0) return std::nullopt;
@@ -555,7 +560,7 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
             touched[gi].push_back(cut.network.t_face[a]);
             HalfedgeId h = M.halfedge(a);
             for (int i = 0; i < 3; ++i, h = M.next(h)) {
-                if (cut.network.d_halfedge[h.idx()] >= 0) continue;
+                if (cut.network.d_halfedge[h].valid()) continue;
                 const FaceId b = M.face(TriMesh::twin(h));
                 if (region[b.idx()] == static_cast<std::int32_t>(gi)) continue;
                 if (region[b.idx()] >= 0) return std::nullopt;  // two groups in one region of T′
@@ -655,7 +660,7 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
     std::map<Pair, std::string> reason;
     for (std::size_t e = 0; e < ends.size(); ++e) geodesic_length[key_of(ends[e].first, ends[e].second)] = geodesics[e].path.length;
     for (const Conflict& c : conflicts)
-        for (std::uint32_t e : {c.d_edge_a, c.d_edge_b}) reason.emplace(key_of(ends[e].first, ends[e].second), c.describe());
+        for (EdgeId e : {c.d_edge_a, c.d_edge_b}) reason.emplace(key_of(ends[e.idx()].first, ends[e.idx()].second), c.describe());
     std::vector<Pair> order;
     for (const auto& [k, length] : geodesic_length) order.push_back(k);
     std::stable_sort(order.begin(), order.end(), [&](const Pair& p, const Pair& q) {
@@ -712,7 +717,7 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
             const Patches patches = extract_patches(Di, embedding.network);
             for (FaceId df : Di.mesh.faces()) {
                 std::vector<FaceId> touched;
-                for (FaceId f : patches.patch[df.idx()].faces) touched.push_back(embedding.network.t_face[f]);
+                for (FaceId f : patches.patch[df].faces) touched.push_back(embedding.network.t_face[f]);
                 net->touched()[corners_of(Di, df)] = merged(std::move(touched), {});
             }
             say("keeping the domain: the geodesics of a domain of " + std::to_string(faces) + " faces (" +

@@ -64,9 +64,9 @@ struct CurveInfo {
 };
 
 struct KeptNetwork {
-    std::vector<geodesic::GeodesicPath> paths;  ///< #E(D): the curve of D's halfedge (e, 0)
-    std::vector<CurveInfo> info;                ///< #E(D)
-    std::vector<std::uint8_t> unsnapped;        ///< #E(D): 1 when embed() must place it as given
+    EdgeData<geodesic::GeodesicPath> paths;     ///< #E(D): the curve of D's halfedge (e, 0)
+    EdgeData<CurveInfo> info;                   ///< #E(D)
+    EdgeData<std::uint8_t> unsnapped;           ///< #E(D): 1 when embed() must place it as given
     std::size_t start_faces = 0;                ///< #F(D_i), the valid start
 };
 

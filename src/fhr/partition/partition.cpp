@@ -73,16 +73,19 @@ std::vector<VertexId> new_keep(const TriMesh& T, const domain::Domain& D, const 
     // conflicts' places.
     const Network& net = embedding.network;
     auto nearest = [&](VertexId v) {
-        const Origin& o = net.origin[v.idx()];
+        const Origin& o = net.origin[v];
         return o.vertex.valid() ? o.vertex : T.from(TriMesh::halfedge(o.edge, o.t < 0.5 ? 0 : 1));
     };
     for (const Conflict& c : embedding.conflicts)
-        for (std::uint32_t e : {c.d_edge_a, c.d_edge_b}) add(nearest(net.path[e][net.path[e].size() / 2]));
+        for (EdgeId e : {c.d_edge_a, c.d_edge_b}) {
+            const auto& path = net.path[e];
+            add(nearest(path[path.size() / 2]));
+        }
     if (!keep.empty()) return keep;
     for (const Conflict& c : embedding.conflicts)
-        for (std::uint32_t e : {c.d_edge_a, c.d_edge_b})
+        for (EdgeId e : {c.d_edge_a, c.d_edge_b})
             for (VertexId v : net.path[e]) {
-                const Origin& o = net.origin[v.idx()];
+                const Origin& o = net.origin[v];
                 if (o.vertex.valid()) continue;
                 add(T.from(TriMesh::halfedge(o.edge, 0)));
                 add(T.to(TriMesh::halfedge(o.edge, 0)));
@@ -103,7 +106,7 @@ std::vector<VertexId> new_keep(const TriMesh& T, const domain::Domain& D, const 
 using VertexPair = std::pair<VertexId::Index, VertexId::Index>;
 using Flips = std::map<VertexPair, VertexPair>;  // edge made -> edge replaced, as vertices of T
 VertexPair pair_of(const domain::Domain& D, VertexId a, VertexId b) {
-    const VertexId::Index x = D.t_vertex[a.idx()].idx(), y = D.t_vertex[b.idx()].idx();
+    const VertexId::Index x = D.t_vertex[a].idx(), y = D.t_vertex[b].idx();
     return {std::min(x, y), std::max(x, y)};
 }
 
@@ -112,7 +115,7 @@ VertexPair pair_of(const domain::Domain& D, VertexId a, VertexId b) {
 // such an edge ran over a corner before and would again. Returns the number of edges flipped.
 std::size_t reapply_flips(domain::Domain& D, const Flips& made) {
     std::map<VertexId::Index, VertexId> vertex;  // vertex of T -> vertex of D
-    for (std::size_t j = 0; j < D.t_vertex.size(); ++j) vertex.emplace(D.t_vertex[j].idx(), VertexId(static_cast<VertexId::Index>(j)));
+    for (VertexId j : D.t_vertex.ids()) vertex.emplace(D.t_vertex[j].idx(), j);
     std::size_t flips = 0;
     for (const auto& [to, from] : made) {
         const auto a = vertex.find(from.first), b = vertex.find(from.second);
@@ -130,10 +133,10 @@ std::size_t flip_over_corners(domain::Domain& D, const std::vector<Conflict>& co
     std::vector<std::uint8_t> touched(D.mesh.n_edges(), 0);
     std::size_t flips = 0;
     for (const Conflict& c : conflicts) {
-        if (c.kind != Conflict::Kind::through_corner || touched[c.d_edge_a]) continue;
-        const EdgeId e(c.d_edge_a);
+        if (c.kind != Conflict::Kind::through_corner || touched[c.d_edge_a.idx()]) continue;
+        const EdgeId e = c.d_edge_a;
         const HalfedgeId h = TriMesh::halfedge(e, 0);
-        const VertexId m(c.d_vertex);
+        const VertexId m = c.d_vertex;
         if (D.mesh.to(D.mesh.next(h)) != m && D.mesh.to(D.mesh.next(TriMesh::twin(h))) != m) continue;
         const VertexPair replaced = pair_of(D, D.mesh.from(h), D.mesh.to(h));
         if (!D.mesh.is_flip_ok(e) || made.count(replaced)) continue;
@@ -153,11 +156,11 @@ std::size_t flip_over_corners(domain::Domain& D, const std::vector<Conflict>& co
 std::optional<domain::Domain> decimation_to_vertices(const TriMesh& T, const domain::Domain& D, std::string& why) {
     domain::DecimateOptions o;
     o.target_faces = D.mesh.n_faces();
-    o.keep = D.t_vertex;
+    o.keep = D.t_vertex.values();
     o.best_effort = true;
     try {
         domain::Domain H = domain::decimate(T, o);
-        std::vector<VertexId> a = H.t_vertex, b = D.t_vertex;
+        std::vector<VertexId> a = H.t_vertex.values(), b = D.t_vertex.values();
         std::sort(a.begin(), a.end());
         std::sort(b.begin(), b.end());
         if (a == b) return H;
@@ -198,7 +201,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
     PathCache cache(T, options.ellipse, executor);
     Partition out;
     for (;;) {
-        out.paths = cache.all(D);
+        out.paths = EdgeData<geodesic::EllipsePath>(cache.all(D));
         std::vector<geodesic::GeodesicPath> paths;
         paths.reserve(out.paths.size());
         for (const auto& p : out.paths) paths.push_back(p.path);
@@ -217,7 +220,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             for (const Start start : {Start::fast, Start::gradual}) {
                 if (!H) break;
                 try {
-                    attempt = keep_domain(T, D, *H, out.paths, embedding.conflicts, [&](const domain::Domain& d) { return cache.all(d); },
+                    attempt = keep_domain(T, D, *H, out.paths.values(), embedding.conflicts, [&](const domain::Domain& d) { return cache.all(d); },
                                           options.progress, executor, start);
                     break;
                 } catch (const PartitionFailure& e) {
@@ -232,11 +235,11 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         }
         if (!embedding.conflicts.empty() && attempt) {
             const KeptNetwork& kept = *attempt;
-            for (std::size_t e = 0; e < kept.paths.size(); ++e) out.paths[e].path = kept.paths[e];
+            for (EdgeId e : kept.paths.ids()) out.paths[e].path = kept.paths[e];
             out.curves = kept.info;
             out.keep_start_faces = kept.start_faces;
             out.resolved = embedding.conflicts;
-            embedding = embed(T, D, kept.paths, kept.unsnapped);
+            embedding = embed(T, D, kept.paths.values(), kept.unsnapped.values());
             if (!embedding.conflicts.empty())
                 throw std::logic_error("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
         }

@@ -33,10 +33,10 @@ Patches extract_patches(const domain::Domain& D, const Network& net) {
             stack.pop_back();
             HalfedgeId h = M.halfedge(g);
             for (int i = 0; i < 3; ++i, h = M.next(h)) {
-                const std::int32_t dh = net.d_halfedge[h.idx()];
-                if (dh >= 0) {
+                const HalfedgeId dh = net.d_halfedge[h];
+                if (dh.valid()) {
                     // R lies on the left of h, and D's face on the left of the D halfedge is T_i.
-                    const FaceId df = D.mesh.face(HalfedgeId(static_cast<HalfedgeId::Index>(dh)));
+                    const FaceId df = D.mesh.face(dh);
                     FaceId& known = region_face[static_cast<std::size_t>(r)];
                     if (!known.valid()) known = df;
                     else if (known != df) fail(df, "runs into the patch of domain face " + std::to_string(known.idx()));
@@ -66,11 +66,11 @@ Patches extract_patches(const domain::Domain& D, const Network& net) {
     for (FaceId f : M.faces()) {
         const FaceId df = region_face[static_cast<std::size_t>(region[f.idx()])];
         out.patch_of_face[f] = df;
-        out.patch[df.idx()].faces.push_back(f);
+        out.patch[df].faces.push_back(f);
     }
     std::vector<std::int32_t> local(M.n_vertices(), -1);
     for (FaceId df : D.mesh.faces()) {
-        Patch& p = out.patch[df.idx()];
+        Patch& p = out.patch[df];
         auto local_of = [&](VertexId v) {
             if (local[v.idx()] < 0) {
                 local[v.idx()] = static_cast<std::int32_t>(p.vertices.size());
@@ -85,7 +85,7 @@ Patches extract_patches(const domain::Domain& D, const Network& net) {
             std::array<std::uint32_t, 3> tri{};
             for (int i = 0; i < 3; ++i, h = M.next(h)) {
                 tri[static_cast<std::size_t>(i)] = local_of(M.from(h));
-                if (net.d_halfedge[h.idx()] >= 0) ++boundary_halfedges;
+                if (net.d_halfedge[h].valid()) ++boundary_halfedges;
             }
             p.disk.triangles.push_back(tri);
         }
@@ -94,7 +94,7 @@ Patches extract_patches(const domain::Domain& D, const Network& net) {
         std::vector<VertexId> loop;
         for (std::size_t c = 0; c < 3; ++c, dh = D.mesh.next(dh)) {
             p.disk.corners[c] = loop.size();
-            std::vector<VertexId> curve = net.path[TriMesh::edge(dh).idx()];
+            std::vector<VertexId> curve = net.path[TriMesh::edge(dh)];
             if (dh.idx() & 1u) std::reverse(curve.begin(), curve.end());
             loop.insert(loop.end(), curve.begin(), curve.end() - 1);
         }

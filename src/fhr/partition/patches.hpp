@@ -30,7 +30,7 @@ struct Patch {
 
 /// The patches, indexed by D's faces, and the patch of every face of T′.
 struct Patches {
-    std::vector<Patch> patch;           ///< #F(D)
+    FaceData<Patch> patch;              ///< #F(D)
     FaceData<FaceId> patch_of_face;     ///< #F(T′): the D face whose patch holds it
 };
 

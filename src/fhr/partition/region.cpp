@@ -114,26 +114,26 @@ SurfacePoint Region::in_t(const SurfacePoint& p) const {
     return SurfacePoint::on_edge(T_.find_halfedge(in_t(sub_.from(p.halfedge)), in_t(sub_.to(p.halfedge))), p.t);
 }
 
-std::vector<std::uint8_t> Region::side(std::size_t curve, bool left) const {
+FaceData<std::uint8_t> Region::side(std::size_t curve, bool left) const {
     const Network& net = cut_.network;
     const TriMesh& M = net.mesh;
-    const auto& path = net.path.at(curve);
+    const auto& path = net.path.at(EdgeId(static_cast<EdgeId::Index>(curve)));
     const HalfedgeId h = M.find_halfedge(path[0], path[1]);
     const FaceId seed = M.face(left ? h : TriMesh::twin(h));
-    std::vector<std::uint8_t> mask(M.n_faces(), 0);
+    FaceData<std::uint8_t> mask(M.n_faces(), 0);
     std::vector<FaceId> stack{seed};
     if (!seed.valid()) throw std::logic_error("region: a curve on the border of the faces around the region");
-    mask[seed.idx()] = 1;
+    mask[seed] = 1;
     while (!stack.empty()) {
         const FaceId f = stack.back();
         stack.pop_back();
         HalfedgeId g = M.halfedge(f);
         for (int i = 0; i < 3; ++i, g = M.next(g)) {
-            if (net.d_halfedge[g.idx()] >= 0) continue;
+            if (net.d_halfedge[g].valid()) continue;
             const FaceId n = M.face(TriMesh::twin(g));
             if (!n.valid()) throw std::logic_error("region: the curves do not enclose the region");
-            if (!mask[n.idx()]) {
-                mask[n.idx()] = 1;
+            if (!mask[n]) {
+                mask[n] = 1;
                 stack.push_back(n);
             }
         }
@@ -141,10 +141,10 @@ std::vector<std::uint8_t> Region::side(std::size_t curve, bool left) const {
     return mask;
 }
 
-std::vector<FaceId> Region::t_faces(const std::vector<std::uint8_t>& mask) const {
+std::vector<FaceId> Region::t_faces(const FaceData<std::uint8_t>& mask) const {
     std::vector<FaceId> faces;
     for (FaceId f : cut_.network.t_face.ids())
-        if (mask[f.idx()]) faces.push_back(t_face_[cut_.network.t_face[f].idx()]);
+        if (mask[f]) faces.push_back(t_face_[cut_.network.t_face[f].idx()]);
     std::sort(faces.begin(), faces.end());
     faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
     return faces;

@@ -16,12 +16,12 @@ namespace {
 class Restrictor {
 public:
     // Works on the piece T_S of T around the region and on T′_S (partition/region.hpp).
-    Restrictor(const Region& region, const std::vector<std::uint8_t>& mask)
+    Restrictor(const Region& region, const FaceData<std::uint8_t>& mask)
         : region_(region), T_(region.sub()), net_(region.cut()), mask_(mask) {}
 
     // The parameter of vertex x of T′ on T's edge E (along halfedge(E, 0)), when x lies on E.
     std::optional<double> param_on(EdgeId E, VertexId x) const {
-        const Origin& o = net_.origin[x.idx()];
+        const Origin& o = net_.origin[x];
         const HalfedgeId h = TriMesh::halfedge(E, 0);
         if (o.vertex.valid()) {
             if (o.vertex == T_.from(h)) return 0.0;
@@ -34,7 +34,7 @@ public:
 
     // The edge of T that T′'s edge (a, b) runs along, if any (otherwise it is a chord of a face).
     std::optional<EdgeId> along(VertexId a, VertexId b) const {
-        const Origin &oa = net_.origin[a.idx()], &ob = net_.origin[b.idx()];
+        const Origin &oa = net_.origin[a], &ob = net_.origin[b];
         if (oa.vertex.valid() && ob.vertex.valid()) {
             const HalfedgeId h = T_.find_halfedge(oa.vertex, ob.vertex);
             if (h.valid()) return TriMesh::edge(h);
@@ -47,20 +47,20 @@ public:
 
     // Vertex x of T′ as a point of T.
     SurfacePoint place(VertexId x) const {
-        const Origin& o = net_.origin[x.idx()];
+        const Origin& o = net_.origin[x];
         if (o.vertex.valid()) return SurfacePoint::at_vertex(o.vertex);
         return SurfacePoint::on_edge(TriMesh::halfedge(o.edge, 0), o.t);
     }
 
     // The vertex of T at (or nearest to) vertex u of T′_S, for messages.
     VertexId near_in_t(VertexId u) const {
-        const Origin& o = net_.origin[u.idx()];
+        const Origin& o = net_.origin[u];
         if (o.vertex.valid()) return region_.in_t(o.vertex);
         const HalfedgeId h = TriMesh::halfedge(o.edge, 0);
         return region_.in_t(o.t < 0.5 ? T_.from(h) : T_.to(h));
     }
 
-    bool masked(FaceId f) const { return f.valid() && mask_[f.idx()] != 0; }
+    bool masked(FaceId f) const { return f.valid() && mask_[f] != 0; }
 
     bool on_boundary(VertexId u) const {
         bool in = false, outside = false;
@@ -127,7 +127,7 @@ private:
     const Region& region_;
     const TriMesh& T_;
     const Network& net_;
-    const std::vector<std::uint8_t>& mask_;
+    const FaceData<std::uint8_t>& mask_;
 
     // Where neighbour point p of vertex u lies in u's fan of outgoing halfedges `fan` (clockwise):
     // 2k for the edge of fan[k], 2k − 1 for the face between fan[k − 1] and fan[k] (face(fan[k])).
@@ -205,7 +205,7 @@ private:
 }  // namespace
 
 RestrictedPath restricted_path(const Region& region, std::size_t curve, bool left, VertexId from, VertexId to) {
-    const std::vector<std::uint8_t> mask = region.side(curve, left);
+    const FaceData<std::uint8_t> mask = region.side(curve, left);
     RestrictedPath r = Restrictor(region, mask).run(region.in_sub(from), region.in_sub(to));
     for (SurfacePoint& p : r.path.points) p = region.in_t(p);
     return r;

@@ -102,7 +102,7 @@ void write_report(const std::string& path, const InputInfo& input, const Paramet
     j.key("max_snap_distance").value(P.network.max_snap_distance);
     std::size_t restricted = 0;
     double restricted_length = 0, excess = 0, separation = 0;
-    for (std::size_t e = 0; e < P.curves.size(); ++e) {
+    for (EdgeId e : P.curves.ids()) {
         if (P.curves[e].kind != partition::CurveKind::restricted) continue;
         ++restricted;
         restricted_length += P.paths[e].path.length;
@@ -113,10 +113,10 @@ void write_report(const std::string& path, const InputInfo& input, const Paramet
     j.key("restricted_length").value(restricted_length).key("restricted_excess").value(excess);
     j.key("max_separation_bound").value(separation).key("keep_start_faces").value(P.keep_start_faces);
     j.key("restricted").begin_array();
-    for (std::size_t e = 0; e < P.curves.size(); ++e) {
+    for (EdgeId e : P.curves.ids()) {
         const partition::CurveInfo& c = P.curves[e];
         if (c.kind != partition::CurveKind::restricted) continue;
-        j.begin_object().key("domain_edge").value(e).key("length").value(P.paths[e].path.length);
+        j.begin_object().key("domain_edge").value(e.idx()).key("length").value(P.paths[e].path.length);
         j.key("geodesic_length").value(c.geodesic_length).key("shortest_restricted").value(c.shortest);
         j.key("separation_bound").value(c.separation_bound).key("reason").value(c.reason).end_object();
     }
@@ -139,7 +139,8 @@ void write_report(const std::string& path, const InputInfo& input, const Paramet
     j.key("min_image_angle_degrees").value(min_angle);
     const auto first = std::find_if(p.certificates.begin(), p.certificates.end(), [](const auto& c) { return !c.passed; });
     if (first != p.certificates.end())
-        j.key("first_failure").value("patch " + std::to_string(first - p.certificates.begin()) + ": " + first->first_failure->describe());
+        j.key("first_failure").value("patch " + std::to_string(std::distance(p.certificates.begin(), first)) + ": " +
+                                      first->first_failure->describe());
     j.key("oracle").begin_object();
     j.key("valid").value(oracle.valid()).key("checks").begin_array();
     for (const auto& c : oracle.checks) {
@@ -237,7 +238,7 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
     const render::MeshData t{T.positions(), t_faces}, d{P.domain.mesh.positions(), d_faces};
     render::write_fig6(base + "fig6.png", camera, t, d, size);
     std::vector<std::vector<std::uint32_t>> geodesic_lines, restricted_lines;  // by each curve's kind
-    for (std::size_t e = 0; e < P.network.path.size(); ++e) {
+    for (EdgeId e : P.network.path.ids()) {
         auto& line = (P.curves[e].kind == partition::CurveKind::geodesic ? geodesic_lines : restricted_lines).emplace_back();
         for (VertexId v : P.network.path[e]) line.push_back(v.idx());
     }
@@ -265,14 +266,14 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
     }
     // ψ_i(S_i) inside an equilateral triangle for the first patch and the one with the most faces.
     const std::array<Eigen::Vector2d, 3> corners{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0.5, std::sqrt(3.0) / 2)};
-    std::size_t largest = 0;
-    for (std::size_t i = 0; i < p.disks.size(); ++i)
-        if (p.disks[i].triangles.size() > p.disks[largest].triangles.size()) largest = i;
-    for (std::size_t i : {std::size_t{0}, largest}) {
+    FaceId largest(0);
+    for (FaceId d : p.disks.ids())
+        if (p.disks[d].triangles.size() > p.disks[largest].triangles.size()) largest = d;
+    for (FaceId d : {FaceId(0), largest}) {
         std::vector<render::ImageTriangle> image;
         for (std::size_t f = 0; f < p.face_patch.size(); ++f)
-            if (p.face_patch[f] == i) image.push_back(p.face_beta[f]);
-        render::write_patch_svg(base + "patch" + std::to_string(i) + ".svg", corners, image);
+            if (p.face_patch[f] == d.idx()) image.push_back(p.face_beta[f]);
+        render::write_patch_svg(base + "patch" + std::to_string(d.idx()) + ".svg", corners, image);
     }
 }
 

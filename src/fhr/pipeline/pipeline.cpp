@@ -18,10 +18,10 @@ bool Parameterization::certified() const {
 GlobalMap::GlobalMap(const Parameterization& p) : p_(p) {
     FHR_DCHECK(p.certified());
     locators_.reserve(p.disks.size());
-    for (std::size_t i = 0; i < p.disks.size(); ++i) locators_.emplace_back(p.disks[i], p.maps[i]);
+    for (FaceId d : p.disks.ids()) locators_.emplace_back(p.disks[d], p.maps[d]);
 }
 
-Vec3 GlobalMap::phi(FaceId d, const std::array<double, 3>& beta) const { return locators_.at(d.idx()).phi(beta); }
+Vec3 GlobalMap::phi(FaceId d, const std::array<double, 3>& beta) const { return locators_.at(d).phi(beta); }
 
 std::pair<FaceId, std::array<double, 3>> GlobalMap::psi(std::size_t f, const std::array<double, 3>& w) const {
     // ψ is linear on every face of T′ (eq. 2): the weights of its corners' images.
@@ -71,15 +71,16 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     out.certificates.resize(n_patches);
     std::vector<std::size_t> split(n_patches, 0);
     executor_or_default(options.executor).for_each(n_patches, 16, [&](std::size_t i) {
-        param::Disk disk = P.patches.patch[i].disk;
+        const FaceId d(static_cast<FaceId::Index>(i));
+        param::Disk disk = P.patches.patch[d].disk;
         split[i] = param::split_dividing_edges(disk);
         try {
-            out.maps[i] = param::map_patch(disk, options.map);
+            out.maps[d] = param::map_patch(disk, options.map);
         } catch (const InvalidInput& e) {  // the patch is fhr's own (§3), not the caller's input
             throw InternalError("the patch of domain face " + std::to_string(i) + " that §3 made is refused by §4: " + e.problem());
         }
-        out.certificates[i] = param::certify(disk, out.maps[i]);
-        out.disks[i] = std::move(disk);
+        out.certificates[d] = param::certify(disk, out.maps[d]);
+        out.disks[d] = std::move(disk);
     });
     for (std::size_t s : split) out.dividing_edges_split += s;
     // The final T′: the vertices of T′ of §3, then each patch's dividing-edge midpoints; faces
@@ -87,9 +88,9 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     const TriMesh& M = P.network.mesh;
     out.refined_positions.assign(M.positions().begin(), M.positions().end());
     out.refined_faces.reserve(M.n_faces() + 2 * out.dividing_edges_split);
-    for (std::uint32_t i = 0; i < n_patches; ++i) {
-        const param::Disk& disk = out.disks[i];
-        const partition::Patch& patch = P.patches.patch[i];
+    for (FaceId d : out.disks.ids()) {
+        const param::Disk& disk = out.disks[d];
+        const partition::Patch& patch = P.patches.patch[d];
         std::vector<std::uint32_t> global(disk.positions.size());
         for (std::size_t v = 0; v < disk.positions.size(); ++v) {
             if (v < patch.vertices.size()) {
@@ -101,8 +102,8 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
         }
         for (const auto& t : disk.triangles) {
             out.refined_faces.push_back({global[t[0]], global[t[1]], global[t[2]]});
-            out.face_patch.push_back(i);
-            out.face_beta.push_back({out.maps[i].beta[t[0]], out.maps[i].beta[t[1]], out.maps[i].beta[t[2]]});
+            out.face_patch.push_back(d.idx());
+            out.face_beta.push_back({out.maps[d].beta[t[0]], out.maps[d].beta[t[1]], out.maps[d].beta[t[2]]});
         }
     }
     if (options.observer) options.observer->stage("parameterization", param.seconds(), true);

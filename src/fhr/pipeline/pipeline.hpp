@@ -49,15 +49,16 @@ struct Options {
 /// The parameterization φ: Ω_D → Ω_T as computed, with everything the outputs need.
 struct Parameterization {
     partition::Partition partition;                 ///< D (final), paths, T′ before §4, patches
-    std::vector<param::Disk> disks;                 ///< #F(D): each patch after its dividing edges were split
-    std::vector<param::PatchMap> maps;              ///< #F(D): ψ_i at the disk's vertices
-    std::vector<param::Certificate> certificates;   ///< #F(D)
+    FaceData<param::Disk> disks;                    ///< #F(D): each patch after its dividing edges were split
+    FaceData<param::PatchMap> maps;                 ///< #F(D): ψ_i at the disk's vertices
+    FaceData<param::Certificate> certificates;      ///< #F(D)
     std::size_t dividing_edges_split = 0;
     // The final T′: T′ of §3 plus the dividing-edge midpoints.
     std::vector<Vec3> refined_positions;
     std::vector<Triangle> refined_faces;
-    std::vector<std::uint32_t> face_patch;                      ///< per face: the D face of its patch
-    std::vector<std::array<std::array<double, 3>, 3>> face_beta;  ///< per face corner: β of ψ
+    // Per face of the final T′ (parallel to refined_faces, as in the `fhr-param 1` file):
+    std::vector<std::uint32_t> face_patch;                      ///< the D face of its patch (FaceId::idx())
+    std::vector<std::array<std::array<double, 3>, 3>> face_beta;  ///< per corner: β of ψ
     bool certified() const;                          ///< every patch's certificate passed
 };
 
@@ -77,7 +78,7 @@ public:
 
 private:
     const Parameterization& p_;
-    std::vector<param::PatchLocator> locators_;
+    FaceData<param::PatchLocator> locators_;  // per face of D
 };
 
 /// §3 and §4 for T and a domain D whose vertices are vertices of T.

@@ -49,9 +49,9 @@ public:
 
     /// The faces of T′_S on the left (or right) of curve i, as a mask over T′_S's faces.
     /// \throws std::logic_error when the curves do not enclose that side.
-    std::vector<std::uint8_t> side(std::size_t curve, bool left) const;
+    FaceData<std::uint8_t> side(std::size_t curve, bool left) const;
     /// The faces of T holding the masked faces of T′_S, in increasing order.
-    std::vector<FaceId> t_faces(const std::vector<std::uint8_t>& mask) const;
+    std::vector<FaceId> t_faces(const FaceData<std::uint8_t>& mask) const;
 
     VertexId in_sub(VertexId v) const;             ///< the vertex of T_S at vertex v of T
     VertexId in_t(VertexId v) const { return t_vertex_[v.idx()]; }
