@@ -603,3 +603,37 @@ TEST_CASE("GEO-8: early stop gives the final distance on the fandisk's 171 domai
     CHECK(count.pairs >= 12);
     CHECK(count.max_dev <= 1e-9);
 }
+// A cap whose apex lies on its opposite edge's line within rounding: on the generator's flat
+// lattice, an edge split near its end (t = 10⁻⁴, lifted) and then flips leave face (40, 32, 6)
+// with vertex 32 at x = −0.33333333333333337 on the line through 40 and 6 (exactly collinear for
+// x = −1/3, so INV-IN-5 accepts it). |e × r| of the window from 32 onto edge 40 → 6 rounds to 0;
+// read as "rays along the edge only", the window was dropped and the whole face beyond was hidden
+// from 32: d(32, 7) came out 1.77 where the straight segment, which CGAL and fast marching find,
+// is 0.300. (Shrunk by RapidCheck from a GEO-9 counterexample.)
+TEST_CASE("GEO-E4: a cap with an angle of π at its apex does not hide the face beyond it", "[unit][geodesic]") {
+    TriMesh m = generate::random_closed_mesh({0, 82, 5463374062748197205ull, 0.0});
+    const std::vector<std::pair<std::uint32_t, double>> splits{{0, 1e-2}, {3, 1e-2}, {5, 1e-2}, {6, 1e-4}, {7, 1e-2}, {9, 1e-2},
+                                                               {8, 1e-2}, {10, 1e-3}, {4, 1e-2}, {11, 1e-3}, {1, 1e-2}};
+    for (const auto& [index, t] : splits) {
+        const HalfedgeId h = TriMesh::halfedge(EdgeId(index), 0);
+        const Vec3 &a = m.position(m.from(h)), &b = m.position(m.to(h));
+        m.split_edge(EdgeId(index), (1 - t) * a + t * b + 0.01 * t * (b - a).norm() * face_normal(m, m.face(h)));
+    }
+    for (const std::uint32_t index : {0u, 34u}) {
+        const EdgeId e(index);
+        REQUIRE(m.is_flip_ok(e));
+        m.flip(e);
+    }
+    m.validate();
+    const VertexId s(32), t(7);
+    REQUIRE(collinear(m.position(VertexId(40)), m.position(s), m.position(VertexId(6))) == false);
+    ExactGeodesic geo(m, s);
+    geo.propagate();
+    CHECK(geo.distance(t) == Approx((m.position(t) - m.position(s)).norm()).epsilon(1e-12));
+    const std::vector<double> oracle = *cgal_distances(m, s);
+    for (VertexId v : m.vertices()) {
+        CAPTURE(v.idx(), geo.distance(v), oracle[v.idx()]);
+        CHECK(geo.distance(v) <= oracle[v.idx()] * (1 + 1e-9));
+        CHECK(path_violation(m, geo.path_to(v), s, v, nullptr, needle_ratio(m)) == "");
+    }
+}

@@ -79,8 +79,6 @@ public:
     T& emplace_back(Args&&... args) { return data_.emplace_back(std::forward<Args>(args)...); }
     T& back() { return data_.back(); }
     const T& back() const { return data_.back(); }
-    /// The id of the last element (invalid when empty).
-    IdT last_id() const { return data_.empty() ? IdT() : IdT(static_cast<typename IdT::Index>(data_.size() - 1)); }
     IdRange<IdT> ids() const { return IdRange<IdT>(data_.size()); }
     /// All values in id order, for bulk use (writers, spans): no id checks there.
     const std::vector<T>& values() const { return data_; }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -283,7 +284,12 @@ void ExactGeodesic::expand_vertex(VertexId v) {
                 const Vec3& pb = mesh_.position(mesh_.from(beyond));
                 const Vec3 e = mesh_.position(mesh_.to(beyond)) - pb, r = pv - pb;
                 const double len = e.norm();
-                const Window w{beyond, v, no_parent, 0, len, e.dot(r) / len, -e.cross(r).norm() / len, delta};
+                // v's image lies strictly below the edge: the face is not exactly degenerate
+                // (INV-IN-5). When v lies on the edge's line within rounding (a cap with an angle of
+                // π at v), |e × r| can round to 0; a zero height would read as "rays along the edge
+                // only" and drop the window, hiding the face beyond from v (GEO-E4).
+                const double below = std::min(-e.cross(r).norm() / len, -std::numeric_limits<double>::min());
+                const Window w{beyond, v, no_parent, 0, len, e.dot(r) / len, below, delta};
                 if (face_exists(mesh_.face(beyond)))
                     push_window(w);
                 else
