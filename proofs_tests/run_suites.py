@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Runs every test registered in meson (meson introspect --tests) and prints one closing line,
-`N passed, N failed`, counting Catch2 test cases (each suite writes Catch2's XML report) and
-counting any other test as one case judged by its exit code. Two suites run at a time (2 cores).
+`N passed, N failed`, counting Catch2 test cases (each suite writes Catch2's XML report), pytest's
+cases (a test whose environment names FHR_JUNIT_XML, pytest's JUnit report) and any other test as
+one case judged by its exit code. Two suites run at a time (2 cores).
 Usage: run_suites.py BUILD_DIR"""
 import concurrent.futures
 import json
@@ -22,6 +23,9 @@ def run(test):
     name, cmd = test["name"], list(test["cmd"])
     env = dict(os.environ, **(test.get("env") or {}))
     is_catch = os.path.basename(cmd[0]).startswith("test_")
+    junit = (test.get("env") or {}).get("FHR_JUNIT_XML")
+    if junit and os.path.exists(junit):
+        os.remove(junit)  # never count a report from an earlier run
     xml = os.path.join(results_dir, name + ".xml")
     if is_catch:
         cmd += ["-r", "xml", "-o", xml]
@@ -33,6 +37,17 @@ def run(test):
     except subprocess.TimeoutExpired:
         code, output = -1, "timed out"
     seconds = time.monotonic() - start
+    if junit:  # pytest: one count per test case (a skipped case counts as failed: none is expected)
+        try:
+            suite = ET.parse(junit).getroot()
+            suite = suite if suite.tag == "testsuite" else suite.find("testsuite")
+            total = int(suite.get("tests"))
+            bad = int(suite.get("failures")) + int(suite.get("errors")) + int(suite.get("skipped"))
+        except (ET.ParseError, FileNotFoundError, AttributeError, TypeError):
+            return name, seconds, 0, 1, [(name, "no JUnit report (exit %d)\n%s" % (code, output[-4000:]))]
+        if code != 0 and bad == 0:
+            bad = 1
+        return name, seconds, total - min(bad, total), bad, [] if bad == 0 else [(name, output[-4000:])]
     if not is_catch:
         ok = code == 0
         return name, seconds, int(ok), int(not ok), [] if ok else [(name, output[-4000:])]

@@ -3,7 +3,7 @@
 
   check_install.py SOURCE_DIR install CXX...
       Copies the source tree (the files git knows, committed or not) to a temporary folder,
-      configures it with -Dtests=false -Dbench=false --libdir=lib, builds it and installs it
+      configures it with -Dtests=false -Dbench=false -Dpython=false --libdir=lib, builds it and installs it
       with `meson install --destdir` into a temporary prefix. Checks that the prefix holds the
       public headers and no detail/ header, libfhr, fhr.pc and the CMake package files. Then builds
       examples/parameterize.cpp and examples/verify.cpp with nothing but the compiler and
@@ -117,8 +117,8 @@ with tempfile.TemporaryDirectory() as tmp_name:
     if mode == "install":
         copy, dest = tmp / "fhr", tmp / "dest"
         fresh_copy(copy)
-        run(["meson", "setup", copy / "build", copy, "-Dtests=false", "-Dbench=false", "--prefix=/usr/local",
-             "--libdir=lib"])
+        run(["meson", "setup", copy / "build", copy, "-Dtests=false", "-Dbench=false", "-Dpython=false",
+             "--prefix=/usr/local", "--libdir=lib"])
         run(["meson", "compile", "-C", copy / "build"])
         run(["meson", "install", "-C", copy / "build", "--destdir", dest])
         prefix = dest / "usr/local"

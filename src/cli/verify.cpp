@@ -18,16 +18,6 @@ namespace fhr::cli {
 namespace {
 
 /// PARAM-1 is decided by the reader: a file that is read satisfies it.
-exchange::CheckResult grammar_check(const exchange::ParamFile& file) {
-    exchange::CheckResult r;
-    r.id = "PARAM-1";
-    r.title = "the grammar: header, sections, counts";
-    r.status = exchange::CheckStatus::pass;
-    r.checked = file.domain_vertices.size() + file.domain_faces.size() + file.surface_vertices.size() +
-                file.surface_faces.size();
-    return r;
-}
-
 std::string print_human(const std::string& path, const exchange::ParamFile& file,
                         const std::vector<exchange::CheckResult>& checks) {
     const exchange::CheckResult* first = nullptr;
@@ -109,7 +99,7 @@ int run_verify(const std::vector<std::string>& argv) {
         }
         throw;
     }
-    std::vector<exchange::CheckResult> checks{grammar_check(file)};
+    std::vector<exchange::CheckResult> checks{exchange::grammar_check(file)};
     exchange::VerifyReport report = exchange::verify(file, mesh ? &*mesh : nullptr);
     const bool valid = report.valid();
     for (auto& c : report.checks) checks.push_back(std::move(c));

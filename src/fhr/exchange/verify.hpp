@@ -57,6 +57,10 @@ inline constexpr double area_tolerance = 1e-12;         ///< PARAM-8 (relative)
 inline constexpr double chord_tolerance = 1e-9;         ///< PARAM-10
 inline constexpr double geometry_tolerance = 1e-9;      ///< PARAM-11 (relative to T's bounding box)
 
+/// PARAM-1 for a file that parse_param accepted: passed, with the number of records read. (A file
+/// that breaks the grammar is refused by the reader with InvalidInput and never gets here.)
+CheckResult grammar_check(const ParamFile& file);
+
 /// Checks `file` against PARAM-2..10 of spec/param.md, and PARAM-11 against `input_mesh` when it
 /// is not null. Every check runs unless one it relies on failed; each counts its failures and
 /// names the first one.

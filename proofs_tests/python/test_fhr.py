@@ -1,0 +1,223 @@
+"""The Python package fhr (issue: the Python package; spec/library.md for the calls underneath).
+
+Run by `./run test` with Debian's /usr/bin/python3 and the package staged in the build tree
+(PYTHONPATH=build/src/python); FHR is the `fhr` command of the same build, FHR_CGAL_MESHES the
+folder of libcgal-demo's meshes (default: out/cgal-data/data/meshes, where ./run extracts them). The CLI is the independent reference for bytes and verdicts.
+"""
+
+import gzip
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+
+import fhr
+import fhr.testing
+
+ROOT = Path(__file__).resolve().parents[2]
+FHR = os.environ["FHR"]
+MESHES = Path(os.environ.get("FHR_CGAL_MESHES", ROOT / "out/cgal-data/data/meshes"))
+FANDISK = MESHES / "fandisk.off"
+
+
+def cli(*args, check=True):
+    return subprocess.run([FHR, *map(str, args)], capture_output=True, text=True, check=check)
+
+
+@pytest.fixture(scope="module")
+def fandisk():
+    if not FANDISK.exists():
+        pytest.fail("fandisk.off is missing from %s: ./run extracts libcgal-demo's meshes" % MESHES)
+    return fhr.read_mesh(str(FANDISK))
+
+
+@pytest.fixture(scope="module")
+def fandisk_run(fandisk, tmp_path_factory):
+    """fhr.parameterize and `fhr run` on the fandisk with the paper's 114 faces."""
+    out = tmp_path_factory.mktemp("cli")
+    cli("run", FANDISK, "--faces", 114, "--out", out)
+    V, F = fandisk
+    return fhr.parameterize(V, F, faces=114), out
+
+
+# --- arrays in and out ------------------------------------------------------------------------
+
+def test_read_mesh_gives_libigl_arrays(fandisk):
+    V, F = fandisk
+    assert V.shape == (6475, 3) and V.dtype == np.float64
+    assert F.shape == (12946, 3) and F.dtype == np.int64
+    assert fhr.info(V, F) == {"vertices": 6475, "faces": 12946, "edges": 19419, "euler_characteristic": 2,
+                              "boundary_loops": 0, "components": 1, "genus": 0}
+
+
+def test_lossless_dtypes_and_layouts_are_accepted(fandisk):
+    V, F = fandisk
+    expected = fhr.info(V, F)
+    assert fhr.info(V.astype(np.float32), F.astype(np.int32)) == expected
+    assert fhr.info(np.asfortranarray(V), F.astype(np.uint16)) == expected
+    assert fhr.info(V[::1], np.ascontiguousarray(F[:, [0, 1, 2]]).astype(np.uint64)) == expected
+    strided = np.zeros((len(V), 6))
+    strided[:, ::2] = V
+    assert fhr.info(strided[:, ::2], F) == expected  # a non-contiguous view
+
+
+def test_write_then_read_is_bit_exact(fandisk, tmp_path):
+    V, F = fandisk
+    for ext in ("off", "obj", "ply"):
+        path = str(tmp_path / ("m." + ext))
+        fhr.write_mesh(path, V, F)
+        V2, F2 = fhr.read_mesh(path)
+        assert np.array_equal(V2, V) and np.array_equal(F2, F)
+
+
+@pytest.mark.parametrize("make, words", [
+    (lambda V, F: (V[:, :2], F), "V must have shape (n, 3)"),
+    (lambda V, F: (V, F[:, :2]), "F must have shape (n, 3)"),
+    (lambda V, F: (V, F.ravel()), "F must have shape (n, 3)"),
+    (lambda V, F: (np.where(np.arange(len(V))[:, None] == 2, np.nan, V), F), "V[2] is not finite"),
+    (lambda V, F: (V, np.where(F == 3, len(V), F)), "outside [0, 4)"),
+    (lambda V, F: (V, np.where(F == 3, -1, F)), "vertex index -1"),
+    (lambda V, F: (V, F.astype(np.float64)), "F must hold integers"),
+    (lambda V, F: (V.astype(str), F), "V must hold numbers"),
+    (lambda V, F: (V, np.vstack([F, [[0, 1, 2]]])), ""),  # a face twice: an edge in three faces
+    (lambda V, F: (V, np.array([[0, 1, 1]] + F[1:].tolist())), "repeats"),
+])
+def test_bad_arrays_raise_invalid_input_naming_the_problem(make, words):
+    # The tetrahedron; each case breaks it in one way (INV-IN-* of spec/mesh.md for the mesh rules).
+    V = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], dtype=float)
+    F = np.array([[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]])
+    assert fhr.info(V, F)["genus"] == 0
+    bad_V, bad_F = make(V, F)
+    with pytest.raises(fhr.InvalidInput) as caught:
+        fhr.parameterize(bad_V, bad_F, faces=4)
+    assert isinstance(caught.value, ValueError)
+    assert words in str(caught.value)
+    assert str(caught.value)  # always a one-line message
+
+
+def test_a_non_manifold_vertex_is_refused():
+    # Two tetrahedra sharing one vertex: closed, but the shared vertex has two fans (INV-IN-7).
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [-1, 0, 0], [0, -1, 0], [0, 0, -1]], dtype=float)
+    F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3], [0, 4, 5], [0, 6, 4], [0, 5, 6], [4, 6, 5]])
+    with pytest.raises(fhr.InvalidInput, match="non-manifold vertex"):
+        fhr.info(V, F)
+
+
+# --- the generator, §2 and §3 -------------------------------------------------------------------
+
+def test_generate_gives_the_bits_of_fhr_generate(tmp_path):
+    path = tmp_path / "g.off"
+    cli("generate", "--genus", 2, "--faces", 400, "--seed", 9, "--noise", 0.1, "--out", path)
+    V, F = fhr.generate(2, 400, seed=9, noise=0.1)
+    V2, F2 = fhr.read_mesh(str(path))
+    assert np.array_equal(V, V2) and np.array_equal(F, F2)
+    assert fhr.info(V, F)["genus"] == 2
+
+
+def test_decimate_keeps_vertices_of_t(fandisk):
+    V, F = fandisk
+    DV, DF, t_vertex = fhr.decimate(V, F, 114)
+    assert DF.shape == (114, 3) and len(DV) == len(t_vertex) == 59
+    assert np.array_equal(DV, V[t_vertex])
+
+
+def test_geodesic_runs_on_the_surface(fandisk):
+    V, F = fandisk
+    length, points = fhr.geodesic(V, F, 0, 100)
+    assert np.array_equal(points[0], V[0]) and np.array_equal(points[-1], V[100])
+    polyline = np.linalg.norm(np.diff(points, axis=0), axis=1).sum()
+    assert abs(polyline - length) <= 1e-12 * length
+    assert length >= np.linalg.norm(V[100] - V[0])
+    with pytest.raises(fhr.InvalidInput, match="out of range"):
+        fhr.geodesic(V, F, 0, len(V))
+
+
+# --- the method and the oracle -------------------------------------------------------------------
+
+def test_param_file_is_byte_identical_to_the_cli(fandisk_run, tmp_path):
+    p, out = fandisk_run
+    assert p.certified and p.oracle["valid"]
+    path = tmp_path / "python.fhrp"
+    p.write_param(str(path))
+    assert path.read_bytes() == (out / "param.fhrp").read_bytes()
+    # And the reviewed reference output of the paper's run.
+    reference = ROOT / "reference_outputs/fandisk/param.fhrp.gz"
+    assert path.read_bytes() == gzip.decompress(reference.read_bytes())
+
+
+def test_the_arrays_are_the_file(fandisk, fandisk_run):
+    p, _ = fandisk_run
+    V, _ = fandisk
+    RV, RF = p.refined
+    DV, DF = p.domain
+    assert np.array_equal(RV[:len(V)], V)  # T's vertices first, unmoved
+    assert DF.shape == (114, 3) and RF.shape[0] == len(p.face_patch) == len(p.face_beta)
+    assert p.face_patch.min() == 0 and p.face_patch.max() == 113
+    assert np.all(p.face_beta >= 0) and np.allclose(p.face_beta.sum(axis=2), 1, atol=1e-12)
+
+
+def test_phi_at_the_domain_corners_is_the_domain_vertex(fandisk_run):
+    p, _ = fandisk_run
+    DV, DF = p.domain
+    for k in range(3):
+        beta = np.zeros((len(DF), 3))
+        beta[:, k] = 1
+        assert np.array_equal(p.phi(np.arange(len(DF)), beta), DV[DF[:, k]])
+    with pytest.raises(fhr.InvalidInput):
+        p.phi(np.array([114]), np.array([[1.0, 0, 0]]))
+
+
+def test_a_corrupted_file_fails_with_the_cli_check(fandisk, fandisk_run, tmp_path):
+    V, F = fandisk
+    _, out = fandisk_run
+    lines = (out / "param.fhrp").read_text().split("\n")
+    face = lines[-2].split()
+    face[5] = "0.75"  # the first corner's β no longer sums to 1 (PARAM-5)
+    lines[-2] = " ".join(face)
+    bad = tmp_path / "bad.fhrp"
+    bad.write_text("\n".join(lines))
+    for path, valid in ((bad, False), (out / "param.fhrp", True)):
+        ours = fhr.verify(str(path), mesh=(V, F))
+        theirs = json.loads(cli("verify", path, "--mesh", FANDISK, "--json", check=False).stdout)
+        assert ours["valid"] == theirs["valid"] == valid
+        assert ours == {key: theirs[key] for key in ours}  # every check, count and message alike
+    assert ours["first_failure"] is None
+    assert fhr.verify(str(bad), mesh=(V, F))["first_failure"] == "PARAM-5"
+
+
+def test_an_unreadable_file_is_invalid_input(tmp_path):
+    bad = tmp_path / "bad.fhrp"
+    bad.write_text("fhr-param 2\n")
+    with pytest.raises(fhr.InvalidInput, match="bad.fhrp:1"):
+        fhr.verify(str(bad))
+
+
+def test_options_out_of_range_are_invalid_input(fandisk):
+    V, F = fandisk
+    with pytest.raises(fhr.InvalidInput):
+        fhr.parameterize(V, F, faces=113)  # odd
+    with pytest.raises(fhr.InvalidInput, match="weights"):
+        fhr.parameterize(V, F, faces=114, weights="cotangent")
+
+
+@settings(max_examples=50, derandomize=True, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(fhr.testing.meshes(genus=(0, 2), faces=(100, 2000)))
+def test_random_meshes_parameterize_and_verify(mesh):
+    domain_faces = max(40, len(mesh.F) // 40 * 2)
+    p = fhr.parameterize(mesh.V, mesh.F, faces=domain_faces)
+    assert p.certified, mesh
+    assert p.oracle["valid"], (mesh, p.oracle["first_failure"])
+    assert len(p.domain[1]) == domain_faces
+
+
+def test_the_strategy_shrinks_toward_the_smallest_recipe():
+    from hypothesis import find
+    smallest = find(fhr.testing.recipes(genus=(1, 3), faces=(100, 800)), lambda r: True)
+    assert smallest == fhr.testing.Recipe(1, 100, 0, 0.0)
+    # A failing property shrinks to its boundary, not to an arbitrary recipe.
+    bigger = find(fhr.testing.recipes(genus=(0, 2), faces=(12, 800)), lambda r: r.faces >= 300 and r.noise > 0)
+    assert bigger == fhr.testing.Recipe(0, 300, 0, 0.05)

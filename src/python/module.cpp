@@ -1,0 +1,362 @@
+// fhr for Python (beyond the paper) — the `fhr._fhr` extension under the `fhr` package
+// (src/python/fhr/__init__.py): meshes as numpy arrays in libigl's convention (V: n × 3 float64,
+// F: m × 3 integers), validated exactly as the readers validate files (spec/mesh.md), and the
+// library's calls on them (spec/library.md): the generator, §2's decimation, §3's exact geodesics,
+// the whole method (pipeline::run) and the independent oracle. Errors keep the library's
+// taxonomy: the `fhr` package defines the Python classes (InvalidInput is a ValueError) and the
+// translator below raises them with the library's one-line messages. Long calls release the GIL.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fhr/fhr.hpp>
+
+namespace py = pybind11;
+
+namespace fhr::python {
+namespace {
+
+using Vertices = py::array_t<double>;
+using Faces = py::array_t<std::int64_t>;
+
+/// `what`'s rows × cols shape, or InvalidInput naming the array and the shape it has.
+void require_shape(const py::array& a, py::ssize_t cols, const char* what) {
+    if (a.ndim() != 2 || a.shape(1) != cols) {
+        std::string shape = "(";
+        for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
+        throw InvalidInput("", 0, std::string(what) + " must have shape (n, " + std::to_string(cols) + "), not " + shape +
+                                      (a.ndim() == 1 ? ",)" : ")"));
+    }
+}
+
+/// V as points: float or integer dtypes (converted when lossless), finite.
+std::vector<Vec3> points_of(const py::array& V) {
+    require_shape(V, 3, "V");
+    const char kind = V.dtype().kind();
+    if (kind != 'f' && kind != 'i' && kind != 'u') throw InvalidInput("", 0, "V must hold numbers (its dtype is " + std::string(py::str(V.dtype())) + ")");
+    if (kind == 'f' && V.dtype().itemsize() > 8) throw InvalidInput("", 0, "V's dtype " + std::string(py::str(V.dtype())) + " does not fit float64 without loss");
+    const auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(V);
+    const auto r = v.unchecked<2>();
+    std::vector<Vec3> points(static_cast<std::size_t>(r.shape(0)));
+    for (py::ssize_t i = 0; i < r.shape(0); ++i) {
+        for (py::ssize_t k = 0; k < 3; ++k) {
+            const double x = r(i, k);
+            if (!std::isfinite(x)) throw InvalidInput("", 0, "V[" + std::to_string(i) + "] is not finite (vertex " + std::to_string(i) + ")");
+            if (kind != 'f' && std::abs(x) > 9007199254740992.0)
+                throw InvalidInput("", 0, "V[" + std::to_string(i) + "] does not fit float64 without loss");
+        }
+        points[static_cast<std::size_t>(i)] = Vec3(r(i, 0), r(i, 1), r(i, 2));
+    }
+    return points;
+}
+
+/// F as triangles: any integer dtype, every index in [0, n).
+std::vector<Triangle> triangles_of(const py::array& F, std::size_t n) {
+    require_shape(F, 3, "F");
+    const char kind = F.dtype().kind();
+    if (kind != 'i' && kind != 'u') throw InvalidInput("", 0, "F must hold integers (its dtype is " + std::string(py::str(F.dtype())) + ")");
+    std::vector<Triangle> faces(static_cast<std::size_t>(F.shape(0)));
+    auto fill = [&](auto typed) {
+        const auto r = typed.template unchecked<2>();
+        for (py::ssize_t i = 0; i < r.shape(0); ++i)
+            for (py::ssize_t k = 0; k < 3; ++k) {
+                const auto x = r(i, k);
+                if (x < 0 || static_cast<std::uint64_t>(x) >= n)
+                    throw InvalidInput("", 0, "face " + std::to_string(i) + " has vertex index " + std::to_string(x) +
+                                                  ", outside [0, " + std::to_string(n) + ")");
+                faces[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(x);
+            }
+    };
+    if (kind == 'u')
+        fill(py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>::ensure(F));
+    else
+        fill(py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(F));
+    return faces;
+}
+
+/// (V, F) through every input rule of spec/mesh.md, as a file would go through them.
+TriMesh mesh_of(const py::array& V, const py::array& F, const BuildOptions& options = {}) {
+    PolygonSoup soup;
+    soup.points = points_of(V);
+    for (const Triangle& t : triangles_of(F, soup.points.size())) soup.add_polygon(t.data(), 3);
+    BuildLog log;
+    return build_trimesh(soup, options, log);
+}
+
+Vertices vertices_array(std::span<const Vec3> points) {
+    Vertices V({static_cast<py::ssize_t>(points.size()), py::ssize_t{3}});
+    auto w = V.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < points.size(); ++i)
+        for (int k = 0; k < 3; ++k) w(static_cast<py::ssize_t>(i), k) = points[i][k];
+    return V;
+}
+
+Faces faces_array(std::span<const Triangle> triangles) {
+    Faces F({static_cast<py::ssize_t>(triangles.size()), py::ssize_t{3}});
+    auto w = F.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+        for (int k = 0; k < 3; ++k) w(static_cast<py::ssize_t>(i), k) = triangles[i][static_cast<std::size_t>(k)];
+    return F;
+}
+
+py::tuple mesh_arrays(const TriMesh& m) { return py::make_tuple(vertices_array(m.positions()), faces_array(m.triangles())); }
+
+py::dict check_dict(const exchange::CheckResult& c) {
+    py::dict d;
+    d["id"] = c.id;
+    d["title"] = c.title;
+    d["result"] = exchange::to_string(c.status);
+    d["checked"] = c.checked;
+    d["failures"] = c.failures;
+    d["first_failure"] = c.first_failure.empty() ? py::object(py::none()) : py::object(py::str(c.first_failure));
+    for (const auto& [key, value] : {std::pair{"face", c.face}, std::pair{"vertex", c.vertex}, std::pair{"patch", c.patch}})
+        d[key] = value < 0 ? py::object(py::none()) : py::object(py::int_(value));
+    return d;
+}
+
+/// The verdict as `fhr verify --json` gives it: PARAM-1 (the file was read) and PARAM-2..11.
+py::dict verdict(const exchange::ParamFile& file, const TriMesh* mesh) {
+    exchange::VerifyReport report;
+    {
+        py::gil_scoped_release unlocked;
+        report = exchange::verify(file, mesh);
+    }
+    py::list checks;
+    checks.append(check_dict(exchange::grammar_check(file)));
+    for (const auto& c : report.checks) checks.append(check_dict(c));
+    // The keys and values of `fhr verify --json` (spec/cli.md), without its file names.
+    py::dict d;
+    d["valid"] = report.valid();
+    const exchange::CheckResult* first = report.first_failure();
+    d["first_failure"] = first ? py::object(py::str(first->id)) : py::object(py::none());
+    py::dict domain, surface;
+    domain["vertices"] = file.domain_vertices.size();
+    domain["faces"] = file.domain_faces.size();
+    surface["vertices"] = file.surface_vertices.size();
+    surface["faces"] = file.surface_faces.size();
+    d["domain"] = domain;
+    d["surface"] = surface;
+    d["checks"] = checks;
+    return d;
+}
+
+/// A result of fhr.parameterize: the input T, the method's result and the global maps.
+class Result {
+public:
+    Result(TriMesh T, pipeline::RunResult r) : T_(std::move(T)), r_(std::move(r)) {}
+    const pipeline::Parameterization& p() const { return r_.parameterization; }
+    const pipeline::RunResult& run() const { return r_; }
+    const TriMesh& T() const { return T_; }
+    exchange::ParamFile file() const { return pipeline::to_param_file(p()); }
+    const pipeline::GlobalMap& global() {
+        if (!global_) {
+            if (!p().certified()) throw NumericalFailure("φ and ψ are only defined for a certified parameterization");
+            global_.emplace(p());
+        }
+        return *global_;
+    }
+
+private:
+    TriMesh T_;
+    pipeline::RunResult r_;
+    std::optional<pipeline::GlobalMap> global_;
+};
+
+void translate(std::exception_ptr error) {
+    // The Python classes live in the pure-Python part of the package (fhr/__init__.py).
+    auto raise = [](const char* name, const std::exception& e) {
+        const py::object cls = py::module_::import("fhr").attr(name);
+        PyErr_SetString(cls.ptr(), e.what());
+    };
+    try {
+        if (error) std::rethrow_exception(error);
+    } catch (const InvalidInput& e) {
+        raise("InvalidInput", e);
+    } catch (const PartitionFailure& e) {
+        raise("PartitionFailure", e);
+    } catch (const NumericalFailure& e) {
+        raise("NumericalFailure", e);
+    } catch (const InternalError& e) {
+        raise("InternalError", e);
+    }
+}
+
+}  // namespace
+}  // namespace fhr::python
+
+PYBIND11_MODULE(_fhr, m) {
+    using namespace fhr;
+    using namespace fhr::python;
+    m.doc() = "fhr's C++ library for Python (see the fhr package).";
+    m.attr("__version__") = std::string(fhr::version);
+    py::register_exception_translator(&translate);
+
+    m.def("read_mesh", [](const std::string& path) { return mesh_arrays(io::read_mesh(path)); }, py::arg("path"),
+          "read_mesh(path) -> (V, F): a closed, connected triangle mesh (.off, .obj, .ply, .stl) through every "
+          "input rule of spec/mesh.md. V: (n, 3) float64, F: (m, 3) int64.");
+    m.def(
+        "write_mesh",
+        [](const std::string& path, const py::array& V, const py::array& F) {
+            const TriMesh mesh = mesh_of(V, F);
+            io::write_mesh(path, mesh.positions(), mesh.triangles());
+        },
+        py::arg("path"), py::arg("V"), py::arg("F"),
+        "write_mesh(path, V, F): validates (V, F) and writes it (.off, .obj or .ply) atomically, coordinates bit-exact.");
+    m.def(
+        "info",
+        [](const py::array& V, const py::array& F) {
+            BuildOptions options;
+            options.require_closed = false;
+            options.require_connected = false;
+            const TriMesh mesh = mesh_of(V, F, options);
+            py::dict d;
+            d["vertices"] = mesh.n_vertices();
+            d["faces"] = mesh.n_faces();
+            d["edges"] = mesh.n_edges();
+            d["euler_characteristic"] = euler_characteristic(mesh);
+            d["boundary_loops"] = boundary_loops(mesh).size();
+            d["components"] = connected_components(mesh).count;
+            d["genus"] = genus(mesh);
+            return d;
+        },
+        py::arg("V"), py::arg("F"),
+        "info(V, F) -> dict: counts, Euler characteristic, boundary loops, components and genus of a valid "
+        "manifold triangle mesh (boundary and several components allowed here).");
+    m.def(
+        "generate",
+        [](int genus, std::size_t faces, std::uint64_t seed, double noise) {
+            return mesh_arrays(generate::random_closed_mesh({genus, faces, seed, noise}));
+        },
+        py::arg("genus"), py::arg("faces"), py::arg("seed") = 0, py::arg("noise") = 0.0,
+        "generate(genus, faces, seed=0, noise=0.0) -> (V, F): the random closed mesh that `fhr generate` writes "
+        "for the same options, bit for bit.");
+    m.def("min_faces", &generate::min_faces, py::arg("genus"), "min_faces(genus) -> int: the fewest faces generate() makes for a genus.");
+    m.def(
+        "decimate",
+        [](const py::array& V, const py::array& F, std::size_t faces) {
+            const TriMesh T = mesh_of(V, F);
+            domain::Domain D;
+            {
+                py::gil_scoped_release unlocked;
+                D = domain::decimate(T, {.target_faces = faces});
+            }
+            py::array_t<std::int64_t> t_vertex(static_cast<py::ssize_t>(D.t_vertex.size()));
+            auto w = t_vertex.mutable_unchecked<1>();
+            for (VertexId j : D.t_vertex.ids()) w(j.idx()) = D.t_vertex[j].idx();
+            return py::make_tuple(vertices_array(D.mesh.positions()), faces_array(D.mesh.triangles()), t_vertex);
+        },
+        py::arg("V"), py::arg("F"), py::arg("faces"),
+        "decimate(V, F, faces) -> (DV, DF, t_vertex): §2's half-edge-collapse decimation to exactly `faces` faces; "
+        "vertex j of the domain is vertex t_vertex[j] of the input, at the same position.");
+    m.def(
+        "geodesic",
+        [](const py::array& V, const py::array& F, std::int64_t source, std::int64_t target) {
+            const TriMesh T = mesh_of(V, F);
+            for (const std::int64_t v : {source, target})
+                if (v < 0 || static_cast<std::uint64_t>(v) >= T.n_vertices())
+                    throw InvalidInput("", 0, "vertex " + std::to_string(v) + " is out of range (the mesh has " + std::to_string(T.n_vertices()) + " vertices)");
+            geodesic::EllipsePath path;
+            {
+                py::gil_scoped_release unlocked;
+                path = geodesic::ellipse_shortest_path(T, VertexId(static_cast<VertexId::Index>(source)),
+                                                       VertexId(static_cast<VertexId::Index>(target)));
+            }
+            std::vector<Vec3> xyz;
+            for (const SurfacePoint& p : path.path.points) xyz.push_back(position(T, p));
+            return py::make_tuple(path.path.length, vertices_array(xyz));
+        },
+        py::arg("V"), py::arg("F"), py::arg("source"), py::arg("target"),
+        "geodesic(V, F, source, target) -> (length, points): the exact shortest path on the surface between two "
+        "vertices (§3's ellipse search, certified); points: (k, 3) float64 from source to target.");
+
+    py::class_<Result>(m, "Parameterization", "The result of fhr.parameterize.")
+        .def_property_readonly("certified", [](const Result& r) { return r.run().certified(); },
+                               "Every patch certified one-to-one (Prop. 1) and the independent oracle says valid.")
+        .def_property_readonly("domain", [](const Result& r) { return mesh_arrays(r.p().partition.domain.mesh); },
+                               "(DV, DF): the domain D (after §3, equal to the requested one when D was kept).")
+        .def_property_readonly("refined", [](const Result& r) {
+                return py::make_tuple(vertices_array(r.p().refined_positions), faces_array(r.p().refined_faces));
+            }, "(V', F'): the final T′; its first #V(T) vertices are T's, in T's order.")
+        .def_property_readonly("face_patch", [](const Result& r) {
+                py::array_t<std::int64_t> a(static_cast<py::ssize_t>(r.p().face_patch.size()));
+                auto w = a.mutable_unchecked<1>();
+                for (std::size_t f = 0; f < r.p().face_patch.size(); ++f) w(static_cast<py::ssize_t>(f)) = r.p().face_patch[f];
+                return a;
+            }, "(m',) int64: for each face of T′, the domain face whose patch holds it.")
+        .def_property_readonly("face_beta", [](const Result& r) {
+                const auto& beta = r.p().face_beta;
+                py::array_t<double> a({static_cast<py::ssize_t>(beta.size()), py::ssize_t{3}, py::ssize_t{3}});
+                auto w = a.mutable_unchecked<3>();
+                for (std::size_t f = 0; f < beta.size(); ++f)
+                    for (int k = 0; k < 3; ++k)
+                        for (int c = 0; c < 3; ++c) w(static_cast<py::ssize_t>(f), k, c) = beta[f][static_cast<std::size_t>(k)][static_cast<std::size_t>(c)];
+                return a;
+            }, "(m', 3, 3) float64: for each face of T′ and each of its corners, the barycentric coordinates of ψ "
+               "at the corner in its domain face (corner order of DF).")
+        .def_property_readonly("oracle", [](const Result& r) {
+                const exchange::ParamFile file = r.file();
+                return verdict(file, &r.T());
+            }, "The independent oracle's verdict on this parameterization against T (as fhr.verify).")
+        .def("phi", [](Result& r, const py::array& faces, const py::array& beta) {
+                const auto f = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(faces);
+                const auto b = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(beta);
+                if (!f || f.ndim() != 1 || !b || b.ndim() != 2 || b.shape(1) != 3 || b.shape(0) != f.shape(0))
+                    throw InvalidInput("", 0, "phi needs faces of shape (k,) and beta of shape (k, 3)");
+                const pipeline::GlobalMap& g = r.global();
+                const std::size_t nd = r.p().partition.domain.mesh.n_faces();
+                std::vector<Vec3> out(static_cast<std::size_t>(f.shape(0)));
+                for (py::ssize_t i = 0; i < f.shape(0); ++i) {
+                    if (f.at(i) < 0 || static_cast<std::size_t>(f.at(i)) >= nd)
+                        throw InvalidInput("", 0, "domain face " + std::to_string(f.at(i)) + " is out of range");
+                    out[static_cast<std::size_t>(i)] = g.phi(FaceId(static_cast<FaceId::Index>(f.at(i))), {b.at(i, 0), b.at(i, 1), b.at(i, 2)});
+                }
+                return vertices_array(out);
+            }, py::arg("faces"), py::arg("beta"),
+            "phi(faces, beta) -> (k, 3) float64: the points φ(d, β) of the surface for domain faces d and barycentric "
+            "coordinates β (corner order of DF).")
+        .def("write_param", [](const Result& r, const std::string& path) { exchange::write_param(path, r.file()); },
+             py::arg("path"), "write_param(path): the `fhr-param 1` file (spec/param.md), as `fhr run` writes it.");
+
+    m.def(
+        "parameterize",
+        [](const py::array& V, const py::array& F, std::size_t faces, const std::string& weights, int levels,
+           const std::vector<double>& keep) {
+            TriMesh T = mesh_of(V, F);
+            pipeline::RunOptions options;
+            options.faces = faces;
+            options.method.map.weights = param::parse_weights(weights);
+            options.levels = levels;
+            options.keep = keep;
+            pipeline::RunResult result;
+            {
+                py::gil_scoped_release unlocked;
+                result = pipeline::run(T, options);
+            }
+            return Result(std::move(T), std::move(result));
+        },
+        py::arg("V"), py::arg("F"), py::arg("faces"), py::arg("weights") = "shape-preserving", py::arg("levels") = 0,
+        py::arg("keep") = std::vector<double>{},
+        "parameterize(V, F, faces, weights='shape-preserving', levels=0, keep=[]) -> Parameterization: the paper's "
+        "method (§2 decimation to `faces`, §3 partition keeping D, §4 certified patch maps, the oracle; §5 with "
+        "levels ≥ 1).");
+    m.def(
+        "verify",
+        [](const std::string& path, std::optional<std::pair<py::array, py::array>> mesh) {
+            const exchange::ParamFile file = exchange::read_param(path);
+            std::optional<TriMesh> T;
+            if (mesh) T = mesh_of(mesh->first, mesh->second);
+            return verdict(file, T ? &*T : nullptr);
+        },
+        py::arg("path"), py::arg("mesh") = py::none(),
+        "verify(path, mesh=None) -> dict: the oracle's checks (PARAM-1..11) of a `fhr-param 1` file, against the "
+        "surface (V, F) when given: the keys and values of `fhr verify --json` (valid, first_failure: the first "
+        "check id that did not pass, domain and surface counts, checks: id, title, result, checked, failures, "
+        "first_failure, face, vertex, patch).");
+}
