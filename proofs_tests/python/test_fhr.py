@@ -221,3 +221,46 @@ def test_the_strategy_shrinks_toward_the_smallest_recipe():
     # A failing property shrinks to its boundary, not to an arbitrary recipe.
     bigger = find(fhr.testing.recipes(genus=(0, 2), faces=(12, 800)), lambda r: r.faces >= 300 and r.noise > 0)
     assert bigger == fhr.testing.Recipe(0, 300, 0, 0.05)
+
+
+def test_progress_lines_reach_the_callback_and_an_exception_there_stops_the_call(fandisk, tmp_path):
+    V, F = fandisk
+    lines = []
+    fhr.parameterize(V, F, faces=114, progress=lines.append)
+    assert any(line.startswith("domain: 59 vertices, 114 faces") for line in lines)
+    assert any(line.startswith("parameterization: 114 patches") for line in lines)
+
+    class Stop(Exception):
+        pass
+
+    def stop(line):
+        raise Stop(line)
+
+    with pytest.raises(Stop, match="domain"):
+        fhr.parameterize(V, F, faces=114, progress=stop)
+
+
+def test_ctrl_c_raises_keyboard_interrupt_and_leaves_fhr_usable(fandisk):
+    # SIGINT while the calls run (mostly without the GIL): KeyboardInterrupt, raised between the
+    # steps of a call (PyErr_CheckSignals) or between calls; either way fhr works afterwards.
+    import signal
+    import threading
+    V, F = fandisk
+    timer = threading.Timer(0.05, lambda: signal.pthread_kill(threading.main_thread().ident, signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            for _ in range(200):  # far longer than 50 ms in all
+                fhr.parameterize(V, F, faces=114, levels=2, keep=[5])
+    finally:
+        timer.cancel()
+    assert fhr.parameterize(V, F, faces=114).certified
+
+
+def test_stubs_agree_with_the_module(tmp_path):
+    # mypy's stubtest compares src/python/fhr/_fhr.pyi with the built extension.
+    import sys
+    allowlist = Path(__file__).with_name("stubtest_allowlist.txt")
+    check = subprocess.run([sys.executable, "-m", "mypy.stubtest", "fhr._fhr", "--allowlist", str(allowlist)],
+                           capture_output=True, text=True, env=dict(os.environ, MYPY_CACHE_DIR=str(tmp_path)))
+    assert check.returncode == 0, check.stdout + check.stderr

@@ -147,6 +147,27 @@ py::dict verdict(const exchange::ParamFile& file, const TriMesh* mesh) {
     return d;
 }
 
+/// Between the steps of a long call (with the GIL released): Ctrl-C raises KeyboardInterrupt
+/// there (the call unwinds; nothing has been written), and the caller's progress callback, if any,
+/// gets each progress line. Both run on the calling thread (spec/library.md: callbacks never run
+/// on the executor's threads).
+struct Interruptible final : pipeline::StageObserver {
+    explicit Interruptible(py::object progress) : callback(std::move(progress)) {}
+    py::object callback;
+    void check() const {
+        py::gil_scoped_acquire locked;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+    void line(const std::string& text) const {
+        check();
+        if (!callback.is_none()) {
+            py::gil_scoped_acquire locked;
+            callback(text);
+        }
+    }
+    void stage(std::string_view, double, bool) override { check(); }
+};
+
 /// A result of fhr.parameterize: the input T, the method's result and the global maps.
 class Result {
 public:
@@ -327,11 +348,14 @@ PYBIND11_MODULE(_fhr, m) {
     m.def(
         "parameterize",
         [](const py::array& V, const py::array& F, std::size_t faces, const std::string& weights, int levels,
-           const std::vector<double>& keep) {
+           const std::vector<double>& keep, py::object progress) {
             TriMesh T = mesh_of(V, F);
+            Interruptible interruptible(std::move(progress));
             pipeline::RunOptions options;
             options.faces = faces;
             options.method.map.weights = param::parse_weights(weights);
+            options.method.progress = [&](const std::string& text) { interruptible.line(text); };
+            options.method.observer = &interruptible;
             options.levels = levels;
             options.keep = keep;
             pipeline::RunResult result;
@@ -342,10 +366,11 @@ PYBIND11_MODULE(_fhr, m) {
             return Result(std::move(T), std::move(result));
         },
         py::arg("V"), py::arg("F"), py::arg("faces"), py::arg("weights") = "shape-preserving", py::arg("levels") = 0,
-        py::arg("keep") = std::vector<double>{},
-        "parameterize(V, F, faces, weights='shape-preserving', levels=0, keep=[]) -> Parameterization: the paper's "
-        "method (§2 decimation to `faces`, §3 partition keeping D, §4 certified patch maps, the oracle; §5 with "
-        "levels ≥ 1).");
+        py::arg("keep") = std::vector<double>{}, py::arg("progress") = py::none(),
+        "parameterize(V, F, faces, weights='shape-preserving', levels=0, keep=[], progress=None) -> Parameterization: "
+        "the paper's method (§2 decimation to `faces`, §3 partition keeping D, §4 certified patch maps, the oracle; "
+        "§5 with levels ≥ 1). progress(line) is called with each progress line; Ctrl-C interrupts between steps "
+        "(KeyboardInterrupt).");
     m.def(
         "verify",
         [](const std::string& path, std::optional<std::pair<py::array, py::array>> mesh) {
