@@ -264,3 +264,14 @@ def test_stubs_agree_with_the_module(tmp_path):
     check = subprocess.run([sys.executable, "-m", "mypy.stubtest", "fhr._fhr", "--allowlist", str(allowlist)],
                            capture_output=True, text=True, env=dict(os.environ, MYPY_CACHE_DIR=str(tmp_path)))
     assert check.returncode == 0, check.stdout + check.stderr
+
+
+def test_the_python_example_prints_what_the_cpp_example_prints():
+    # examples/parameterize.py and examples/parameterize.cpp: the same lines, byte for byte.
+    import sys
+    script = ROOT / "examples" / "parameterize.py"
+    ours = subprocess.run([sys.executable, str(script), str(FANDISK), "114"], capture_output=True, text=True, check=True)
+    theirs = subprocess.run([os.environ["FHR_EXAMPLE_PARAMETERIZE"], str(FANDISK), "114"], capture_output=True, text=True,
+                            check=True)
+    assert ours.stdout == theirs.stdout
+    assert len(ours.stdout.splitlines()) == 6475
