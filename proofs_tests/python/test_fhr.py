@@ -127,7 +127,14 @@ def test_decimate_keeps_vertices_of_t(fandisk):
 
 def test_geodesic_runs_on_the_surface(fandisk):
     V, F = fandisk
-    length, points = fhr.geodesic(V, F, 0, 100)
+    length, points, surface = fhr.geodesic(V, F, 0, 100)
+    assert len(surface) == len(points) and surface[0] == ("vertex", 0) and surface[-1] == ("vertex", 100)
+    for (kind, *where), xyz in zip(surface, points):
+        if kind == "vertex":
+            assert np.array_equal(V[where[0]], xyz)
+        else:
+            a, b, t = where
+            assert np.linalg.norm((1 - t) * V[a] + t * V[b] - xyz) <= 1e-15 * np.abs(V).max()
     assert np.array_equal(points[0], V[0]) and np.array_equal(points[-1], V[100])
     polyline = np.linalg.norm(np.diff(points, axis=0), axis=1).sum()
     assert abs(polyline - length) <= 1e-12 * length
@@ -275,3 +282,54 @@ def test_the_python_example_prints_what_the_cpp_example_prints():
                             check=True)
     assert ours.stdout == theirs.stdout
     assert len(ours.stdout.splitlines()) == 6475
+
+
+def test_psi_inverts_phi_and_the_wavelets_are_there(fandisk):
+    V, F = fandisk
+    p = fhr.parameterize(V, F, faces=114, levels=2, keep=[5, 20])
+    RV, RF = p.refined
+    # psi at the corners of T' faces is the file's β; phi maps them back onto the surface.
+    faces = np.arange(0, len(RF), 97)
+    for k in range(3):
+        w = np.zeros((len(faces), 3))
+        w[:, k] = 1
+        d, beta = p.psi(faces, w)
+        assert np.array_equal(d, p.face_patch[faces])
+        assert np.array_equal(beta, p.face_beta[faces, k])
+        assert np.abs(p.phi(d, beta) - RV[RF[faces, k]]).max() <= 1e-9 * np.abs(V).max()
+    w = p.wavelets
+    assert w["levels"] == 2 and w["remesh"][1].shape == (114 * 16, 3)
+    assert [k["percent"] for k in w["kept"]] == [5, 20]
+    assert w["kept"][0]["l2_error"] >= w["kept"][1]["l2_error"] > 0
+    assert w["hausdorff"][0] <= w["hausdorff"][1]
+    assert fhr.parameterize(V, F, faces=114).wavelets is None
+
+
+def test_write_gives_the_files_of_fhr_run(fandisk, fandisk_run, tmp_path):
+    V, F = fandisk
+    p, out = fandisk_run
+    p.write(str(tmp_path))
+    for name in ("domain.off", "geodesics.obj", "refined.ply", "param.fhrp", "textured.obj"):
+        assert (tmp_path / name).read_bytes() == (out / name).read_bytes(), name
+    ours, theirs = (json.loads((d / "report.json").read_text()) for d in (tmp_path, out))
+    assert ours.keys() == theirs.keys()
+    assert all(ours[key] == theirs[key] for key in ours if key != "input")  # domain, partition, §4, oracle
+    assert {**ours["input"], "path": None} == {**theirs["input"], "path": None}  # arrays have no file name
+
+
+def test_verify_a_parameterization_object(fandisk, fandisk_run):
+    V, F = fandisk
+    p, out = fandisk_run
+    assert fhr.verify(p) == fhr.verify(str(out / "param.fhrp"), mesh=(V, F))
+
+
+def test_a_given_domain_is_kept(fandisk):
+    V, F = fandisk
+    DV, DF, t_vertex = fhr.decimate(V, F, 200)
+    p = fhr.parameterize(V, F, domain=(DV, DF, t_vertex))
+    assert p.certified
+    assert np.array_equal(p.domain[1], DF) and np.array_equal(p.domain[0], DV)
+    with pytest.raises(fhr.InvalidInput, match="exactly one of faces and domain"):
+        fhr.parameterize(V, F, faces=114, domain=(DV, DF, t_vertex))
+    with pytest.raises(fhr.InvalidInput, match="not a vertex of T"):
+        fhr.parameterize(V, F, domain=(DV, DF, np.full(len(DV), len(V))))

@@ -154,6 +154,7 @@ py::dict verdict(const exchange::ParamFile& file, const TriMesh* mesh) {
 struct Interruptible final : pipeline::StageObserver {
     explicit Interruptible(py::object progress) : callback(std::move(progress)) {}
     py::object callback;
+    pipeline::Timings timings;  ///< for the outputs' timings.json
     void check() const {
         py::gil_scoped_acquire locked;
         if (PyErr_CheckSignals() != 0) throw py::error_already_set();
@@ -165,13 +166,19 @@ struct Interruptible final : pipeline::StageObserver {
             callback(text);
         }
     }
-    void stage(std::string_view, double, bool) override { check(); }
+    void stage(std::string_view name, double seconds, bool in_total) override {
+        timings.stage(name, seconds, in_total);
+        check();
+    }
 };
 
 /// A result of fhr.parameterize: the input T, the method's result and the global maps.
 class Result {
 public:
-    Result(TriMesh T, pipeline::RunResult r) : T_(std::move(T)), r_(std::move(r)) {}
+    Result(TriMesh T, pipeline::RunResult r, pipeline::Timings t, pipeline::Options o)
+        : timings(std::move(t)), options(std::move(o)), T_(std::move(T)), r_(std::move(r)) {}
+    pipeline::Timings timings;  ///< the stages' seconds, for timings.json
+    pipeline::Options options;  ///< the method's options, for report.json (no callbacks)
     const pipeline::Parameterization& p() const { return r_.parameterization; }
     const pipeline::RunResult& run() const { return r_; }
     const TriMesh& T() const { return T_; }
@@ -290,12 +297,20 @@ PYBIND11_MODULE(_fhr, m) {
                                                        VertexId(static_cast<VertexId::Index>(target)));
             }
             std::vector<Vec3> xyz;
-            for (const SurfacePoint& p : path.path.points) xyz.push_back(position(T, p));
-            return py::make_tuple(path.path.length, vertices_array(xyz));
+            py::list surface;
+            for (const SurfacePoint& p : path.path.points) {
+                xyz.push_back(position(T, p));
+                if (p.kind == SurfacePoint::Kind::vertex)
+                    surface.append(py::make_tuple("vertex", p.vertex.idx()));
+                else  // the paths of §3 run through vertices and across edges only
+                    surface.append(py::make_tuple("edge", T.from(p.halfedge).idx(), T.to(p.halfedge).idx(), p.t));
+            }
+            return py::make_tuple(path.path.length, vertices_array(xyz), surface);
         },
         py::arg("V"), py::arg("F"), py::arg("source"), py::arg("target"),
-        "geodesic(V, F, source, target) -> (length, points): the exact shortest path on the surface between two "
-        "vertices (§3's ellipse search, certified); points: (k, 3) float64 from source to target.");
+        "geodesic(V, F, source, target) -> (length, points, surface): the exact shortest path on the surface "
+        "between two vertices (§3's ellipse search, certified); points: (k, 3) float64 from source to target; "
+        "surface: the same k points as ('vertex', v) or ('edge', a, b, t), the point (1 − t)·V[a] + t·V[b].");
 
     py::class_<Result>(m, "Parameterization", "The result of fhr.parameterize.")
         .def_property_readonly("certified", [](const Result& r) { return r.run().certified(); },
@@ -342,17 +357,90 @@ PYBIND11_MODULE(_fhr, m) {
             }, py::arg("faces"), py::arg("beta"),
             "phi(faces, beta) -> (k, 3) float64: the points φ(d, β) of the surface for domain faces d and barycentric "
             "coordinates β (corner order of DF).")
+        .def("psi", [](Result& r, const py::array& faces, const py::array& weights) {
+                const auto f = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(faces);
+                const auto w = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(weights);
+                if (!f || f.ndim() != 1 || !w || w.ndim() != 2 || w.shape(1) != 3 || w.shape(0) != f.shape(0))
+                    throw InvalidInput("", 0, "psi needs faces of shape (k,) and weights of shape (k, 3)");
+                const pipeline::GlobalMap& g = r.global();
+                const std::size_t nf = r.p().refined_faces.size();
+                py::array_t<std::int64_t> d(f.shape(0));
+                py::array_t<double> beta({f.shape(0), py::ssize_t{3}});
+                auto dw = d.mutable_unchecked<1>();
+                auto bw = beta.mutable_unchecked<2>();
+                for (py::ssize_t i = 0; i < f.shape(0); ++i) {
+                    if (f.at(i) < 0 || static_cast<std::size_t>(f.at(i)) >= nf)
+                        throw InvalidInput("", 0, "face " + std::to_string(f.at(i)) + " of T′ is out of range");
+                    const auto [face, b] = g.psi(static_cast<std::size_t>(f.at(i)), {w.at(i, 0), w.at(i, 1), w.at(i, 2)});
+                    dw(i) = face.idx();
+                    for (int k = 0; k < 3; ++k) bw(i, k) = b[static_cast<std::size_t>(k)];
+                }
+                return py::make_tuple(d, beta);
+            }, py::arg("faces"), py::arg("weights"),
+            "psi(faces, weights) -> (domain_faces, beta): ψ of the points Σ weights[:, k]·(corner k of face f of T′): "
+            "(k,) int64 domain faces and (k, 3) float64 barycentric coordinates in them.")
+        .def_property_readonly("wavelets", [](const Result& r) -> py::object {
+                if (!r.run().wavelets) return py::none();
+                const wavelet::WaveletResult& w = *r.run().wavelets;
+                py::dict d;
+                d["levels"] = w.levels;
+                d["remesh"] = py::make_tuple(vertices_array(w.remesh_positions), faces_array(w.remesh_faces));
+                d["coefficients"] = w.coefficients;
+                d["hausdorff"] = py::make_tuple(w.remesh_hausdorff.lower(), w.remesh_hausdorff.upper());
+                d["reconstruction_max_error"] = w.reconstruction_max_error;
+                py::list kept;
+                for (const wavelet::KeptResult& k : w.kept) {
+                    py::dict e;
+                    e["percent"] = k.percent;
+                    e["count"] = k.count;
+                    e["V"] = vertices_array(k.positions);
+                    e["l2_error"] = k.l2_error;
+                    e["hausdorff"] = py::make_tuple(k.hausdorff.lower(), k.hausdorff.upper());
+                    kept.append(e);
+                }
+                d["kept"] = kept;
+                return d;
+            }, "§5 with levels ≥ 1, else None: the remesh (V, F) of D^J sampled through φ, the number of prewavelet "
+               "coefficients, its Hausdorff bracket to T, the round trip's largest error, and per kept percentage the "
+               "reconstruction V (faces: the remesh's), its L2 error and Hausdorff bracket.")
         .def("write_param", [](const Result& r, const std::string& path) { exchange::write_param(path, r.file()); },
-             py::arg("path"), "write_param(path): the `fhr-param 1` file (spec/param.md), as `fhr run` writes it.");
+             py::arg("path"), "write_param(path): the `fhr-param 1` file (spec/param.md), as `fhr run` writes it.")
+        .def("write", [](const Result& r, const std::string& dir, bool figures) {
+                pipeline::InputInfo input{"(arrays)", r.T().n_vertices(), r.T().n_faces(), genus(r.T()), r.run().domain_faces_requested};
+                const wavelet::WaveletResult* wavelets = r.run().wavelets ? &*r.run().wavelets : nullptr;
+                py::gil_scoped_release unlocked;
+                pipeline::write_outputs(dir, input, r.p(), r.run().oracle, r.timings, r.options, wavelets);
+                if (figures) pipeline::write_figures(dir, r.T(), r.p(), 2, wavelets);
+            }, py::arg("dir"), py::arg("figures") = false,
+            "write(dir, figures=False): all of `fhr run`'s outputs into dir (spec/cli.md CLI-RUN-*): domain.off, "
+            "geodesics.obj, refined.ply, param.fhrp, textured.obj, report.json, timings.json, §5's meshes; with "
+            "figures, figures/ as `fhr run --figures` (z up).");
 
     m.def(
         "parameterize",
-        [](const py::array& V, const py::array& F, std::size_t faces, const std::string& weights, int levels,
-           const std::vector<double>& keep, py::object progress) {
+        [](const py::array& V, const py::array& F, std::size_t faces, std::optional<py::tuple> domain,
+           const std::string& weights, int levels, const std::vector<double>& keep, py::object progress) {
             TriMesh T = mesh_of(V, F);
             Interruptible interruptible(std::move(progress));
             pipeline::RunOptions options;
             options.faces = faces;
+            if ((faces > 0) == domain.has_value()) throw InvalidInput("", 0, "give exactly one of faces and domain");
+            if (domain) {  // (DV, DF, t_vertex): domain vertex j at vertex t_vertex[j] of T
+                if (domain->size() != 3) throw InvalidInput("", 0, "domain must be (DV, DF, t_vertex)");
+                const py::array x = py::array::ensure((*domain)[2]);
+                if (!x || x.ndim() != 1 || (x.dtype().kind() != 'i' && x.dtype().kind() != 'u'))
+                    throw InvalidInput("", 0, "t_vertex must be a 1-D array of vertex indices of T");
+                const auto xs = py::array_t<std::int64_t, py::array::forcecast>::ensure(x);
+                std::vector<io::CorrespondenceEntry> entries;
+                for (py::ssize_t j = 0; j < xs.shape(0); ++j) {
+                    if (xs.at(j) < 0 || static_cast<std::uint64_t>(xs.at(j)) >= T.n_vertices())
+                        throw InvalidInput("", 0, "t_vertex[" + std::to_string(j) + "] = " + std::to_string(xs.at(j)) + " is not a vertex of T");
+                    entries.push_back({SurfacePoint::at_vertex(VertexId(static_cast<VertexId::Index>(xs.at(j)))),
+                                       static_cast<std::uint64_t>(j + 1)});
+                }
+                options.domain = domain::attach_domain(T, mesh_of(py::array::ensure((*domain)[0]), py::array::ensure((*domain)[1])),
+                                                       entries, {"domain", "t_vertex"});
+            }
             options.method.map.weights = param::parse_weights(weights);
             options.method.progress = [&](const std::string& text) { interruptible.line(text); };
             options.method.observer = &interruptible;
@@ -363,14 +451,29 @@ PYBIND11_MODULE(_fhr, m) {
                 py::gil_scoped_release unlocked;
                 result = pipeline::run(T, options);
             }
-            return Result(std::move(T), std::move(result));
+            pipeline::Options kept = options.method;
+            kept.progress = nullptr;
+            kept.observer = nullptr;
+            return Result(std::move(T), std::move(result), std::move(interruptible.timings), std::move(kept));
         },
-        py::arg("V"), py::arg("F"), py::arg("faces"), py::arg("weights") = "shape-preserving", py::arg("levels") = 0,
+        py::arg("V"), py::arg("F"), py::arg("faces") = 0, py::arg("domain") = py::none(), py::arg("weights") = "shape-preserving", py::arg("levels") = 0,
         py::arg("keep") = std::vector<double>{}, py::arg("progress") = py::none(),
-        "parameterize(V, F, faces, weights='shape-preserving', levels=0, keep=[], progress=None) -> Parameterization: "
-        "the paper's method (§2 decimation to `faces`, §3 partition keeping D, §4 certified patch maps, the oracle; "
-        "§5 with levels ≥ 1). progress(line) is called with each progress line; Ctrl-C interrupts between steps "
+        "parameterize(V, F, faces=0, domain=None, weights='shape-preserving', levels=0, keep=[], progress=None) -> "
+        "Parameterization: the paper's method (§2 decimation to `faces`, or a given domain=(DV, DF, t_vertex) with domain "
+        "vertex j at vertex t_vertex[j] of T; §3 partition keeping D; §4 certified patch maps; the oracle; §5 with "
+        "levels ≥ 1). progress(line) is called with each progress line; Ctrl-C interrupts between steps "
         "(KeyboardInterrupt).");
+    m.def(
+        "verify",
+        [](const Result& r, std::optional<std::pair<py::array, py::array>> mesh) {
+            const exchange::ParamFile file = r.file();
+            if (!mesh) return verdict(file, &r.T());
+            const TriMesh T = mesh_of(mesh->first, mesh->second);
+            return verdict(file, &T);
+        },
+        py::arg("parameterization"), py::arg("mesh") = py::none(),
+        "verify(parameterization, mesh=None) -> dict: the oracle on what write_param would write, against its own "
+        "T or the given (V, F).");
     m.def(
         "verify",
         [](const std::string& path, std::optional<std::pair<py::array, py::array>> mesh) {
