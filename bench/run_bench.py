@@ -172,8 +172,22 @@ def bench_meshes(build, runs, goals, results):
     for line in tool(build, "bench_pipeline", fandisk, 114, 5) + tool(build, "bench_wavelet", fandisk, 114, 5, 3, 5):
         print("  | " + line)
 
+    python_vs_cpp = None
+    horse = os.path.join(SHARED_MESHES, "horse.off")
+    if os.path.isfile(horse):
+        print("== the Python package against the library from C++: horse, 1000 faces, §2-§4 and the oracle")
+        cpp = tool(build, "bench_run", horse, 1000, 5)[0]
+        py = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "bench", "bench_python.py"), horse, "1000", "5"],
+                            capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=os.path.join(build, "src", "python")))
+        for line in (cpp, py.stdout.strip() or py.stderr.strip()):
+            print("  | " + line)
+        if py.returncode == 0:
+            python_vs_cpp = number(r"median ([0-9.]+) ms", py.stdout) / number(r"median ([0-9.]+) ms", cpp)
+
     print("== goals")
     ms = results["meshes"]
+    if python_vs_cpp is not None:
+        goal(goals, "horse: fhr.parameterize from Python / pipeline::run from C++ (1000 faces)", python_vs_cpp, "x", 1.10)
     if "fandisk.off" in ms:
         goal(goals, "fandisk end to end (114 faces, J = 3, 5 %/20 %)", ms["fandisk.off"]["total"], "s", 0.25)
         goal(goals, "fandisk geodesic paths faster than CGAL (all %d)" % ms["fandisk.off"]["paths"],
