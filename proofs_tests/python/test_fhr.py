@@ -46,6 +46,7 @@ def fandisk_run(fandisk, tmp_path_factory):
 
 # --- arrays in and out ------------------------------------------------------------------------
 
+# PY-1
 def test_read_mesh_gives_libigl_arrays(fandisk):
     V, F = fandisk
     assert V.shape == (6475, 3) and V.dtype == np.float64
@@ -54,6 +55,7 @@ def test_read_mesh_gives_libigl_arrays(fandisk):
                               "boundary_loops": 0, "components": 1, "genus": 0}
 
 
+# PY-1
 def test_lossless_dtypes_and_layouts_are_accepted(fandisk):
     V, F = fandisk
     expected = fhr.info(V, F)
@@ -65,6 +67,7 @@ def test_lossless_dtypes_and_layouts_are_accepted(fandisk):
     assert fhr.info(strided[:, ::2], F) == expected  # a non-contiguous view
 
 
+# PY-1, FMT-WRITE-2
 def test_write_then_read_is_bit_exact(fandisk, tmp_path):
     V, F = fandisk
     for ext in ("off", "obj", "ply"):
@@ -86,6 +89,7 @@ def test_write_then_read_is_bit_exact(fandisk, tmp_path):
     (lambda V, F: (V, np.vstack([F, [[0, 1, 2]]])), ""),  # a face twice: an edge in three faces
     (lambda V, F: (V, np.array([[0, 1, 1]] + F[1:].tolist())), "repeats"),
 ])
+# PY-1, PY-2
 def test_bad_arrays_raise_invalid_input_naming_the_problem(make, words):
     # The tetrahedron; each case breaks it in one way (INV-IN-* of spec/mesh.md for the mesh rules).
     V = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], dtype=float)
@@ -99,6 +103,7 @@ def test_bad_arrays_raise_invalid_input_naming_the_problem(make, words):
     assert str(caught.value)  # always a one-line message
 
 
+# PY-1, INV-IN-7
 def test_a_non_manifold_vertex_is_refused():
     # Two tetrahedra sharing one vertex: closed, but the shared vertex has two fans (INV-IN-7).
     V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [-1, 0, 0], [0, -1, 0], [0, 0, -1]], dtype=float)
@@ -109,6 +114,7 @@ def test_a_non_manifold_vertex_is_refused():
 
 # --- the generator, §2 and §3 -------------------------------------------------------------------
 
+# PY-3
 def test_generate_gives_the_bits_of_fhr_generate(tmp_path):
     path = tmp_path / "g.off"
     cli("generate", "--genus", 2, "--faces", 400, "--seed", 9, "--noise", 0.1, "--out", path)
@@ -118,6 +124,7 @@ def test_generate_gives_the_bits_of_fhr_generate(tmp_path):
     assert fhr.info(V, F)["genus"] == 2
 
 
+# PY-4
 def test_decimate_keeps_vertices_of_t(fandisk):
     V, F = fandisk
     DV, DF, t_vertex = fhr.decimate(V, F, 114)
@@ -125,6 +132,7 @@ def test_decimate_keeps_vertices_of_t(fandisk):
     assert np.array_equal(DV, V[t_vertex])
 
 
+# PY-4
 def test_geodesic_runs_on_the_surface(fandisk):
     V, F = fandisk
     length, points, surface = fhr.geodesic(V, F, 0, 100)
@@ -145,6 +153,7 @@ def test_geodesic_runs_on_the_surface(fandisk):
 
 # --- the method and the oracle -------------------------------------------------------------------
 
+# PY-3
 def test_param_file_is_byte_identical_to_the_cli(fandisk_run, tmp_path):
     p, out = fandisk_run
     assert p.certified and p.oracle["valid"]
@@ -156,6 +165,7 @@ def test_param_file_is_byte_identical_to_the_cli(fandisk_run, tmp_path):
     assert path.read_bytes() == gzip.decompress(reference.read_bytes())
 
 
+# PY-4
 def test_the_arrays_are_the_file(fandisk, fandisk_run):
     p, _ = fandisk_run
     V, _ = fandisk
@@ -167,6 +177,7 @@ def test_the_arrays_are_the_file(fandisk, fandisk_run):
     assert np.all(p.face_beta >= 0) and np.allclose(p.face_beta.sum(axis=2), 1, atol=1e-12)
 
 
+# PY-4
 def test_phi_at_the_domain_corners_is_the_domain_vertex(fandisk_run):
     p, _ = fandisk_run
     DV, DF = p.domain
@@ -178,6 +189,7 @@ def test_phi_at_the_domain_corners_is_the_domain_vertex(fandisk_run):
         p.phi(np.array([114]), np.array([[1.0, 0, 0]]))
 
 
+# PY-3
 def test_a_corrupted_file_fails_with_the_cli_check(fandisk, fandisk_run, tmp_path):
     V, F = fandisk
     _, out = fandisk_run
@@ -196,6 +208,7 @@ def test_a_corrupted_file_fails_with_the_cli_check(fandisk, fandisk_run, tmp_pat
     assert fhr.verify(str(bad), mesh=(V, F))["first_failure"] == "PARAM-5"
 
 
+# PY-2
 def test_an_unreadable_file_is_invalid_input(tmp_path):
     bad = tmp_path / "bad.fhrp"
     bad.write_text("fhr-param 2\n")
@@ -203,6 +216,7 @@ def test_an_unreadable_file_is_invalid_input(tmp_path):
         fhr.verify(str(bad))
 
 
+# PY-2
 def test_options_out_of_range_are_invalid_input(fandisk):
     V, F = fandisk
     with pytest.raises(fhr.InvalidInput):
@@ -211,6 +225,7 @@ def test_options_out_of_range_are_invalid_input(fandisk):
         fhr.parameterize(V, F, faces=114, weights="cotangent")
 
 
+# PY-4, PY-6
 @settings(max_examples=50, derandomize=True, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(fhr.testing.meshes(genus=(0, 2), faces=(100, 2000)))
 def test_random_meshes_parameterize_and_verify(mesh):
@@ -221,6 +236,7 @@ def test_random_meshes_parameterize_and_verify(mesh):
     assert len(p.domain[1]) == domain_faces
 
 
+# PY-6
 def test_the_strategy_shrinks_toward_the_smallest_recipe():
     from hypothesis import find
     smallest = find(fhr.testing.recipes(genus=(1, 3), faces=(100, 800)), lambda r: True)
@@ -230,6 +246,7 @@ def test_the_strategy_shrinks_toward_the_smallest_recipe():
     assert bigger == fhr.testing.Recipe(0, 300, 0, 0.05)
 
 
+# PY-5
 def test_progress_lines_reach_the_callback_and_an_exception_there_stops_the_call(fandisk, tmp_path):
     V, F = fandisk
     lines = []
@@ -247,6 +264,7 @@ def test_progress_lines_reach_the_callback_and_an_exception_there_stops_the_call
         fhr.parameterize(V, F, faces=114, progress=stop)
 
 
+# PY-5
 def test_ctrl_c_raises_keyboard_interrupt_and_leaves_fhr_usable(fandisk):
     # SIGINT while the calls run (mostly without the GIL): KeyboardInterrupt, raised between the
     # steps of a call (PyErr_CheckSignals) or between calls; either way fhr works afterwards.
@@ -264,6 +282,7 @@ def test_ctrl_c_raises_keyboard_interrupt_and_leaves_fhr_usable(fandisk):
     assert fhr.parameterize(V, F, faces=114).certified
 
 
+# PY-4
 def test_stubs_agree_with_the_module(tmp_path):
     # mypy's stubtest compares src/python/fhr/_fhr.pyi with the built extension.
     import sys
@@ -273,6 +292,7 @@ def test_stubs_agree_with_the_module(tmp_path):
     assert check.returncode == 0, check.stdout + check.stderr
 
 
+# PY-4, LIB-6
 def test_the_python_example_prints_what_the_cpp_example_prints():
     # examples/parameterize.py and examples/parameterize.cpp: the same lines, byte for byte.
     import sys
@@ -284,6 +304,7 @@ def test_the_python_example_prints_what_the_cpp_example_prints():
     assert len(ours.stdout.splitlines()) == 6475
 
 
+# PY-4
 def test_psi_inverts_phi_and_the_wavelets_are_there(fandisk):
     V, F = fandisk
     p = fhr.parameterize(V, F, faces=114, levels=2, keep=[5, 20])
@@ -305,6 +326,7 @@ def test_psi_inverts_phi_and_the_wavelets_are_there(fandisk):
     assert fhr.parameterize(V, F, faces=114).wavelets is None
 
 
+# PY-3
 def test_write_gives_the_files_of_fhr_run(fandisk, fandisk_run, tmp_path):
     V, F = fandisk
     p, out = fandisk_run
@@ -317,12 +339,14 @@ def test_write_gives_the_files_of_fhr_run(fandisk, fandisk_run, tmp_path):
     assert {**ours["input"], "path": None} == {**theirs["input"], "path": None}  # arrays have no file name
 
 
+# PY-3
 def test_verify_a_parameterization_object(fandisk, fandisk_run):
     V, F = fandisk
     p, out = fandisk_run
     assert fhr.verify(p) == fhr.verify(str(out / "param.fhrp"), mesh=(V, F))
 
 
+# PY-4
 def test_a_given_domain_is_kept(fandisk):
     V, F = fandisk
     DV, DF, t_vertex = fhr.decimate(V, F, 200)

@@ -1,4 +1,4 @@
-"""The package installs like any Python package (issue: the Python package): pyproject.toml with
+"""PY-7: the package installs like any Python package: pyproject.toml with
 meson-python, `pip install --no-build-isolation .` into a fresh virtual environment (Debian's
 numpy, pybind11 and meson-python through the system site packages; no network), then imported
 and used from outside the source tree. The wheel holds the module only (no C++ install)."""
