@@ -249,6 +249,36 @@ const std::vector<Corruption>& corruptions() {
              b = {-0.25, 0.75, 0.5};
              return Expect{"PARAM-5", "", -1, 4};
          }},
+        {"beta component 0 just above 1, the sum within its tolerance",
+         [](ParamFile& f, TriMesh&) {
+             f.surface_faces[4].beta[1] = {1 + 4e-13, 0, 0};
+             return Expect{"PARAM-5", "", -1, 4, "has a component outside [0, 1]"};
+         }},
+        {"beta component 0 just below 0, the sum exactly 1",
+         [](ParamFile& f, TriMesh&) {
+             f.surface_faces[4].beta[1] = {-4e-13, 0.5 + 4e-13, 0.5};
+             return Expect{"PARAM-5", "", -1, 4, "has a component outside [0, 1]"};
+         }},
+        {"beta component 1 just above 1, the sum within its tolerance",
+         [](ParamFile& f, TriMesh&) {
+             f.surface_faces[4].beta[1] = {0, 1 + 4e-13, 0};
+             return Expect{"PARAM-5", "", -1, 4, "has a component outside [0, 1]"};
+         }},
+        {"beta component 1 just below 0, the sum exactly 1",
+         [](ParamFile& f, TriMesh&) {
+             f.surface_faces[4].beta[1] = {0.5, -4e-13, 0.5 + 4e-13};
+             return Expect{"PARAM-5", "", -1, 4, "has a component outside [0, 1]"};
+         }},
+        {"beta component 2 just above 1, the sum within its tolerance",
+         [](ParamFile& f, TriMesh&) {
+             f.surface_faces[4].beta[1] = {0, 0, 1 + 4e-13};
+             return Expect{"PARAM-5", "", -1, 4, "has a component outside [0, 1]"};
+         }},
+        {"beta component 2 just below 0, the sum exactly 1",
+         [](ParamFile& f, TriMesh&) {
+             f.surface_faces[4].beta[1] = {0.5 + 4e-13, 0.5, -4e-13};
+             return Expect{"PARAM-5", "", -1, 4, "has a component outside [0, 1]"};
+         }},
         {"a patch that is not a disk: an interior face moved to another patch",
          [](ParamFile& f, TriMesh&) {
              const auto inc = incidences(f);
