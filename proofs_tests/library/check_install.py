@@ -27,6 +27,9 @@ import sys
 import tempfile
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+from fresh_copy import fresh_copy  # noqa: E402
+
 source, mode = Path(sys.argv[1]).resolve(), sys.argv[2]
 cxx = sys.argv[3:]
 meshes = Path(os.environ.get("FHR_CGAL_MESHES", source / "out/cgal-data/data/meshes"))
@@ -41,16 +44,6 @@ def run(cmd, **kw):
         sys.exit("failed (%d): %s\n%s%s" % (proc.returncode, " ".join(map(str, cmd)), proc.stdout[-3000:],
                                           proc.stderr[-3000:]))
     return proc.stdout
-
-
-def fresh_copy(dest):
-    """The files git knows (tracked, or new and not ignored) as they are on disk now."""
-    listed = subprocess.run(["git", "-C", source, "ls-files", "--cached", "--others", "--exclude-standard", "-z"],
-                            capture_output=True, check=True).stdout.decode().split("\0")
-    for name in filter(None, listed):
-        if (source / name).is_file():
-            (dest / name).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(source / name, dest / name)
 
 
 def reference_param(tmp):

@@ -4,22 +4,12 @@ numpy, pybind11 and meson-python through the system site packages; no network), 
 and used from outside the source tree. The wheel holds the module only (no C++ install)."""
 
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-
-
-def fresh_copy(dest):
-    """The files git knows (tracked, or new and not ignored) as they are on disk now."""
-    names = subprocess.run(["git", "-C", str(ROOT), "ls-files", "--cached", "--others", "--exclude-standard", "-z"],
-                           capture_output=True, check=True).stdout.decode().split("\0")
-    for name in filter(None, names):
-        if (ROOT / name).is_file():
-            (dest / name).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(ROOT / name, dest / name)
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+from fresh_copy import fresh_copy  # noqa: E402
 
 
 def test_pip_install_into_a_fresh_venv_and_import_from_outside(tmp_path):

@@ -147,6 +147,24 @@ py::dict verdict(const exchange::ParamFile& file, const TriMesh* mesh) {
     return d;
 }
 
+/// Points given as faces (k,) and coordinates (k, 3), for phi and psi: each face checked against
+/// n_faces, InvalidInput naming the call and the array otherwise.
+std::vector<std::pair<std::size_t, std::array<double, 3>>> points_in_faces(const py::array& faces, const py::array& coords,
+                                                                           std::size_t n_faces, const std::string& call,
+                                                                           const std::string& coords_name, const std::string& face_kind) {
+    const auto f = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(faces);
+    const auto c = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(coords);
+    if (!f || f.ndim() != 1 || !c || c.ndim() != 2 || c.shape(1) != 3 || c.shape(0) != f.shape(0))
+        throw InvalidInput("", 0, call + " needs faces of shape (k,) and " + coords_name + " of shape (k, 3)");
+    std::vector<std::pair<std::size_t, std::array<double, 3>>> points;
+    for (py::ssize_t i = 0; i < f.shape(0); ++i) {
+        if (f.at(i) < 0 || static_cast<std::size_t>(f.at(i)) >= n_faces)
+            throw InvalidInput("", 0, face_kind + " " + std::to_string(f.at(i)) + " is out of range");
+        points.emplace_back(static_cast<std::size_t>(f.at(i)), std::array<double, 3>{c.at(i, 0), c.at(i, 1), c.at(i, 2)});
+    }
+    return points;
+}
+
 /// Between the steps of a long call (with the GIL released): Ctrl-C raises KeyboardInterrupt
 /// there (the call unwinds; nothing has been written), and the caller's progress callback, if any,
 /// gets each progress line. Both run on the calling thread (spec/library.md: callbacks never run
@@ -341,39 +359,26 @@ PYBIND11_MODULE(_fhr, m) {
                 return verdict(file, &r.T());
             }, "The independent oracle's verdict on this parameterization against T (as fhr.verify).")
         .def("phi", [](Result& r, const py::array& faces, const py::array& beta) {
-                const auto f = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(faces);
-                const auto b = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(beta);
-                if (!f || f.ndim() != 1 || !b || b.ndim() != 2 || b.shape(1) != 3 || b.shape(0) != f.shape(0))
-                    throw InvalidInput("", 0, "phi needs faces of shape (k,) and beta of shape (k, 3)");
                 const pipeline::GlobalMap& g = r.global();
-                const std::size_t nd = r.p().partition.domain.mesh.n_faces();
-                std::vector<Vec3> out(static_cast<std::size_t>(f.shape(0)));
-                for (py::ssize_t i = 0; i < f.shape(0); ++i) {
-                    if (f.at(i) < 0 || static_cast<std::size_t>(f.at(i)) >= nd)
-                        throw InvalidInput("", 0, "domain face " + std::to_string(f.at(i)) + " is out of range");
-                    out[static_cast<std::size_t>(i)] = g.phi(FaceId(static_cast<FaceId::Index>(f.at(i))), {b.at(i, 0), b.at(i, 1), b.at(i, 2)});
-                }
+                std::vector<Vec3> out;
+                for (const auto& [d, b] : points_in_faces(faces, beta, r.p().partition.domain.mesh.n_faces(), "phi", "beta", "domain face"))
+                    out.push_back(g.phi(FaceId(static_cast<FaceId::Index>(d)), b));
                 return vertices_array(out);
             }, py::arg("faces"), py::arg("beta"),
             "phi(faces, beta) -> (k, 3) float64: the points φ(d, β) of the surface for domain faces d and barycentric "
             "coordinates β (corner order of DF).")
         .def("psi", [](Result& r, const py::array& faces, const py::array& weights) {
-                const auto f = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(faces);
-                const auto w = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(weights);
-                if (!f || f.ndim() != 1 || !w || w.ndim() != 2 || w.shape(1) != 3 || w.shape(0) != f.shape(0))
-                    throw InvalidInput("", 0, "psi needs faces of shape (k,) and weights of shape (k, 3)");
                 const pipeline::GlobalMap& g = r.global();
-                const std::size_t nf = r.p().refined_faces.size();
-                py::array_t<std::int64_t> d(f.shape(0));
-                py::array_t<double> beta({f.shape(0), py::ssize_t{3}});
+                const auto points = points_in_faces(faces, weights, r.p().refined_faces.size(), "psi", "weights", "face of T′");
+                const auto k = static_cast<py::ssize_t>(points.size());
+                py::array_t<std::int64_t> d(k);
+                py::array_t<double> beta({k, py::ssize_t{3}});
                 auto dw = d.mutable_unchecked<1>();
                 auto bw = beta.mutable_unchecked<2>();
-                for (py::ssize_t i = 0; i < f.shape(0); ++i) {
-                    if (f.at(i) < 0 || static_cast<std::size_t>(f.at(i)) >= nf)
-                        throw InvalidInput("", 0, "face " + std::to_string(f.at(i)) + " of T′ is out of range");
-                    const auto [face, b] = g.psi(static_cast<std::size_t>(f.at(i)), {w.at(i, 0), w.at(i, 1), w.at(i, 2)});
+                for (py::ssize_t i = 0; i < k; ++i) {
+                    const auto [face, b] = g.psi(points[static_cast<std::size_t>(i)].first, points[static_cast<std::size_t>(i)].second);
                     dw(i) = face.idx();
-                    for (int k = 0; k < 3; ++k) bw(i, k) = b[static_cast<std::size_t>(k)];
+                    for (int c = 0; c < 3; ++c) bw(i, c) = b[static_cast<std::size_t>(c)];
                 }
                 return py::make_tuple(d, beta);
             }, py::arg("faces"), py::arg("weights"),
