@@ -566,10 +566,7 @@ TEST_CASE("GEO-7: on icospheres the polyhedral distance converges to the geodesi
 
 TEST_CASE("GEO-8: early stop gives the final distance on the fandisk's 171 domain paths", "[geodesic][oracle][real]") {
     const auto path = test::cgal_mesh("fandisk.off");
-    if (!path) {
-        WARN("fandisk.off is not present (./run extracts libcgal-demo's meshes into out/); skipped");
-        return;
-    }
+    if (!path) FAIL("fandisk.off is missing: ./run extracts libcgal-demo's meshes into out/");
     const TriMesh m = test::load_mesh(*path);
     domain::DecimateOptions o;
     o.target_faces = 114;
