@@ -10,6 +10,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -100,23 +101,25 @@ void move_image(ParamFile& f, const std::vector<Incidence>& inc, const Point& p,
     }
 }
 
-/// A vertex inside one patch (β all positive), and one inside a side (two patches, two weights).
+/// A vertex inside one patch (β all positive), and one inside a side: of two patches (an interior
+/// edge of D) or, with `patches` = 1, of one (a boundary edge of D; the vertex is on ∂T′).
 std::uint32_t interior_vertex(const ParamFile& f, const std::vector<std::vector<Incidence>>& inc) {
     for (std::uint32_t v = 0; v < inc.size(); ++v)
         if (patches_of(f, inc[v]).size() == 1 && point(f, inc[v][0]).size() == 3) return v;
     throw std::logic_error("no interior vertex (k >= 3 needed)");
 }
 
-std::uint32_t side_vertex(const ParamFile& f, const std::vector<std::vector<Incidence>>& inc) {
+std::uint32_t side_vertex(const ParamFile& f, const std::vector<std::vector<Incidence>>& inc, std::size_t patches = 2) {
     for (std::uint32_t v = 0; v < inc.size(); ++v)
-        if (patches_of(f, inc[v]).size() == 2 && point(f, inc[v][0]).size() == 2) return v;
+        if (patches_of(f, inc[v]).size() == patches && point(f, inc[v][0]).size() == 2) return v;
     throw std::logic_error("no side vertex (k >= 2 needed)");
 }
 
-/// Slides a side vertex by 0.05 along its side, in the patch `only` or (−1) in every patch; returns it.
-std::uint32_t slide_side_vertex(ParamFile& f, bool one_patch_only) {
+/// Slides a side vertex by 0.05 along its side, in one of its patches only or in every patch; a
+/// vertex of a side of `patches` patches. Returns it.
+std::uint32_t slide_side_vertex(ParamFile& f, bool one_patch_only, std::size_t patches = 2) {
     const auto inc = incidences(f);
-    const std::uint32_t v = side_vertex(f, inc);
+    const std::uint32_t v = side_vertex(f, inc, patches);
     Point p = point(f, inc[v][0]);
     p.begin()->second -= 0.05;
     p.rbegin()->second += 0.05;
@@ -132,6 +135,7 @@ struct Expect {
     std::int64_t vertex = -1;      ///< the vertex the first failure names (-1: not checked)
     std::int64_t face = -1;        ///< the face `also` (or `first`) names (-1: not checked)
     std::string says = "";         ///< a phrase of the first failure's description
+    std::string also_says = "";    ///< a phrase of `also`'s first failure
 };
 
 struct Corruption {
@@ -207,10 +211,10 @@ const std::vector<Corruption>& corruptions() {
          [](ParamFile& f, TriMesh&) { return Expect{"PARAM-7", "", slide_side_vertex(f, true)}; }},
         {"wrong chord length: a boundary vertex slid along its side in both patches",
          [](ParamFile& f, TriMesh&) { return Expect{"PARAM-10", "", slide_side_vertex(f, false), -1, "but chord length"}; }},
-        {"a missing face",
+        {"a missing face: T' has a hole that the closed D lacks",
          [](ParamFile& f, TriMesh&) {
              f.surface_faces.pop_back();
-             return Expect{"PARAM-3", "PARAM-8", -1, -1, "surface T': the mesh has boundary"};
+             return Expect{"PARAM-4", "PARAM-8", -1, -1, "chi(T') = "};
          }},
         {"an out-of-range vertex index",
          [](ParamFile& f, TriMesh&) {
@@ -342,6 +346,21 @@ void expect_caught(const Corruption& c, const TriMesh& domain, int k) {
     if (!e.also.empty()) CHECK(check(r, e.also).status == CheckStatus::fail);
     if (e.face >= 0) CHECK(check(r, e.also.empty() ? e.first : e.also).face == e.face);
     CHECK_THAT(first.first_failure, Catch::Contains(e.says));
+    if (!e.also.empty()) CHECK_THAT(check(r, e.also).first_failure, Catch::Contains(e.also_says));
+}
+
+/// The property form of expect_caught: each corruption of `domain`'s 4-to-16 subdivision.
+void rc_expect_caught(const std::vector<Corruption>& list, const TriMesh& domain) {
+    for (const Corruption& c : list) {
+        ParamFile file = fhr::test::subdivided_param(domain, 4);
+        TriMesh input = domain;
+        const Expect e = c.apply(file, input);
+        const VerifyReport r = verify(file, &input);
+        RC_LOG() << c.name << "\n" << describe(r);
+        RC_ASSERT(first_failure(r) == e.first);
+        if (e.vertex >= 0) RC_ASSERT(check(r, e.first).vertex == e.vertex);
+        if (!e.also.empty()) RC_ASSERT(check(r, e.also).status == CheckStatus::fail);
+    }
 }
 
 }  // namespace
@@ -390,24 +409,16 @@ TEST_CASE("PARAM-2..11: verify rejects each deliberate corruption, naming the br
 
 TEST_CASE("PARAM-2..11: the corruptions are caught on random domains of genus 0-3", "[exchange][property]") {
     rc::prop("every corruption of the 4-to-16 subdivision of a random domain", [] {
-        const auto& domain = *fhr::testing::gen_closed_mesh(0, 3, 200);
-        for (const Corruption& c : corruptions()) {
-            ParamFile file = fhr::test::subdivided_param(domain, 4);
-            TriMesh input = domain;
-            const Expect e = c.apply(file, input);
-            const VerifyReport r = verify(file, &input);
-            RC_LOG() << c.name << "\n" << describe(r);
-            RC_ASSERT(first_failure(r) == e.first);
-            if (e.vertex >= 0) RC_ASSERT(check(r, e.first).vertex == e.vertex);
-            if (!e.also.empty()) RC_ASSERT(check(r, e.also).status == CheckStatus::fail);
-        }
+        rc_expect_caught(corruptions(), *fhr::testing::gen_closed_mesh(0, 3, 200));
     });
 }
 
 TEST_CASE("PARAM-9, PARAM-10: a failed check makes the checks that rely on it skipped, with the reason", "[exchange]") {
     const TriMesh domain = random_domain(0, 100, 2);
     ParamFile file = fhr::test::subdivided_param(domain, 4);
-    file.surface_faces.pop_back();  // T′ is no longer closed: PARAM-3 fails
+    auto& face = file.surface_faces.back();  // turned, with its beta: PARAM-3 fails, PARAM-7 holds
+    std::swap(face.v[1], face.v[2]);
+    std::swap(face.beta[1], face.beta[2]);
     const VerifyReport r = verify(file, &domain);
     for (const char* id : {"PARAM-4", "PARAM-6", "PARAM-9", "PARAM-10", "PARAM-11"}) {
         INFO(id);
@@ -415,4 +426,421 @@ TEST_CASE("PARAM-9, PARAM-10: a failed check makes the checks that rely on it sk
         CHECK_THAT(check(r, id).first_failure, Catch::StartsWith("not checked: needs PARAM-"));
     }
     CHECK(check(r, "PARAM-7").status == CheckStatus::pass);  // needs only PARAM-2
+}
+
+// ---- surfaces with boundary and several components (issue 19; spec/param.md, "Boundary and
+// components") ------------------------------------------------------------------------------------
+
+namespace {
+
+using fhr::test::disjoint_union;
+using fhr::test::hexagon_disk;
+using fhr::test::square_annulus;
+using fhr::test::with_holes;
+
+/// Every feature at once: a genus-1 mesh with two holes, a hexagonal disk and a closed sphere —
+/// three components, two of them with boundary.
+TriMesh mixed_domain(std::uint64_t seed) {
+    return disjoint_union(disjoint_union(with_holes(random_domain(1, 200, seed), 2, seed), hexagon_disk()),
+                          random_domain(0, 60, seed + 1));
+}
+
+TriMesh domain_of(const ParamFile& f) { return TriMesh::from_triangles(f.domain_vertices, f.domain_faces); }
+
+/// The component of D of each domain face.
+std::vector<std::uint32_t> face_components(const ParamFile& f) {
+    const fhr::Components comp = fhr::connected_components(domain_of(f));
+    std::vector<std::uint32_t> c;
+    for (const fhr::Triangle& t : f.domain_faces) c.push_back(comp.vertex_component[fhr::VertexId(t[0])]);
+    return c;
+}
+
+/// The edges of T′ in one face only (∂T′), as ordered vertex pairs.
+std::set<std::pair<std::uint32_t, std::uint32_t>> surface_boundary_edges(const ParamFile& f) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> count;
+    for (const auto& face : f.surface_faces)
+        for (int c = 0; c < 3; ++c) ++count[std::minmax(face.v[c], face.v[(c + 1) % 3])];
+    std::set<std::pair<std::uint32_t, std::uint32_t>> boundary;
+    for (const auto& [edge, n] : count)
+        if (n == 1) boundary.insert(edge);
+    return boundary;
+}
+
+/// Cuts T′ open along a side (j, k) of a patch d where j is inside D, k on ∂D and d's other edge
+/// at k on ∂D: patch d gets its own copies of k and of the points inside the side. T′ stays a
+/// manifold of the same topology (the slit opens into the boundary loop at k), every vertex keeps
+/// its image, but an interior edge of D now has a side on ∂T′. Returns j.
+std::uint32_t slit(ParamFile& f) {
+    const TriMesh D = domain_of(f);
+    for (fhr::FaceId d : D.faces()) {
+        fhr::HalfedgeId h = D.halfedge(d);
+        for (int i = 0; i < 3; ++i, h = D.next(h)) {
+            if (D.is_boundary(TriMesh::twin(h))) continue;
+            std::uint32_t j = D.from(h).idx(), k = D.to(h).idx();  // k's other edge in d: next(h)
+            if (!D.is_boundary(TriMesh::twin(D.next(h)))) {
+                if (!D.is_boundary(TriMesh::twin(D.next(D.next(h))))) continue;
+                std::swap(j, k);  // the other edge at from(h) is the previous one
+            }
+            if (D.is_boundary(fhr::VertexId(j))) continue;
+            std::map<std::uint32_t, std::uint32_t> copy;
+            for (std::uint32_t x = 0; x < f.surface_faces.size(); ++x) {
+                if (f.surface_faces[x].patch != d.idx()) continue;
+                for (int c = 0; c < 3; ++c) {
+                    const Point p = point(f, {x, c});
+                    if (!p.count(k) || (p.size() == 2 && !p.count(j)) || p.size() == 3) continue;
+                    std::uint32_t& v = f.surface_faces[x].v[c];
+                    if (!copy.count(v)) {
+                        copy[v] = static_cast<std::uint32_t>(f.surface_vertices.size());
+                        f.surface_vertices.push_back(f.surface_vertices[v]);
+                    }
+                    v = copy[v];
+                }
+            }
+            return j;
+        }
+    }
+    throw std::logic_error("no interior edge of D from an inner vertex to the boundary");
+}
+
+/// At the midpoint v of a side of patch d on ∂D (three faces of d, an open fan), moves the middle
+/// face to the last patch e > d of d's component of D: d's faces at v form two fans, separated by
+/// that face and by the gap of ∂T′, and d stays connected (the midpoint's neighbours on the side
+/// are not corners: k >= 4). Returns v.
+std::uint32_t pinch(ParamFile& f) {
+    const auto inc = incidences(f);
+    const auto boundary = surface_boundary_edges(f);
+    const std::vector<std::uint32_t> component = face_components(f);
+    for (std::uint32_t v = 0; v < inc.size(); ++v) {
+        const Point p = point(f, inc[v][0]);
+        if (patches_of(f, inc[v]).size() != 1 || p.size() != 2 || p.begin()->second != 0.5) continue;
+        const std::uint32_t d = f.surface_faces[inc[v][0].face].patch;
+        std::uint32_t e = d;
+        for (std::uint32_t x = d; x < component.size(); ++x)
+            if (component[x] == component[d]) e = x;
+        if (e == d) continue;
+        for (const Incidence& i : inc[v]) {
+            const auto& face = f.surface_faces[i.face];
+            const std::uint32_t a = face.v[(i.corner + 1) % 3], b = face.v[(i.corner + 2) % 3];
+            if (!boundary.count(std::minmax(v, a)) && !boundary.count(std::minmax(v, b))) {
+                f.surface_faces[i.face].patch = e;
+                return v;
+            }
+        }
+    }
+    throw std::logic_error("no side of a patch on the boundary of D");
+}
+
+/// Reverses every face of the first component of D with boundary (i j k → i k j) and rewrites the
+/// β of T′'s faces in its patches for the new corner order, so that ψ is the same map; with
+/// `surface_too`, T′'s faces there are reversed as well (a b c → a c b, with their β).
+void turn_over_bounded_component(ParamFile& f, bool surface_too) {
+    const TriMesh D = domain_of(f);
+    const std::vector<std::uint32_t> component = face_components(f);
+    const fhr::Components comp = fhr::connected_components(D);
+    std::uint32_t chosen = 0;
+    for (fhr::VertexId v : D.vertices())
+        if (D.is_boundary(v)) {
+            chosen = comp.vertex_component[v];
+            break;
+        }
+    for (std::uint32_t d = 0; d < f.domain_faces.size(); ++d)
+        if (component[d] == chosen) std::swap(f.domain_faces[d][1], f.domain_faces[d][2]);
+    for (auto& face : f.surface_faces) {
+        if (component[face.patch] != chosen) continue;
+        for (Beta& b : face.beta) std::swap(b[1], b[2]);
+        if (surface_too) {
+            std::swap(face.v[1], face.v[2]);
+            std::swap(face.beta[1], face.beta[2]);
+        }
+    }
+}
+
+/// Corruptions that only a surface with boundary or several components allows; each applies to
+/// the 4-to-16 subdivision of a domain with at least two components with boundary.
+const std::vector<Corruption>& boundary_corruptions() {
+    static const std::vector<Corruption> all{
+        {"a slit: T' cut open along an interior edge of D that reaches the boundary",
+         [](ParamFile& f, TriMesh&) {
+             slit(f);
+             return Expect{"PARAM-9", "PARAM-11", -1, -1,
+                           "lies on the boundary of T', but the side is an interior edge of D",
+                           "is on the boundary of T' but not on T's boundary"};
+         }},
+        {"a non-manifold boundary vertex of T': two corners on its boundary glued",
+         [](ParamFile& f, TriMesh&) {
+             const TriMesh D = domain_of(f);
+             std::vector<std::uint32_t> corners;  // T′'s first vertices are D's (synthetic.hpp)
+             for (fhr::VertexId v : D.vertices())
+                 if (D.is_boundary(v)) corners.push_back(v.idx());
+             for (auto& face : f.surface_faces)
+                 for (auto& v : face.v)
+                     if (v == corners[1]) v = corners[0];
+             return Expect{"PARAM-3", "", -1, -1, "surface T': non-manifold vertex " + std::to_string(corners[0])};
+         }},
+        {"a non-manifold boundary vertex of D: boundary vertices of two components glued",
+         [](ParamFile& f, TriMesh&) {
+             const TriMesh D = domain_of(f);
+             const fhr::Components comp = fhr::connected_components(D);
+             std::vector<std::uint32_t> first(comp.count, UINT32_MAX);
+             for (fhr::VertexId v : D.vertices())
+                 if (D.is_boundary(v) && first[comp.vertex_component[v]] == UINT32_MAX) first[comp.vertex_component[v]] = v.idx();
+             std::sort(first.begin(), first.end());  // the two lowest: components with boundary
+             for (auto& t : f.domain_faces)
+                 for (auto& v : t)
+                     if (v == first[1]) v = first[0];
+             return Expect{"PARAM-3", "", -1, -1, "domain D: non-manifold vertex " + std::to_string(first[0])};
+         }},
+        {"a patch touching the boundary pinched there (not a disk)",
+         [](ParamFile& f, TriMesh&) {
+             const std::uint32_t v = pinch(f);
+             return Expect{"PARAM-6", "", v, -1, "is pinched at surface vertex " + std::to_string(v)};
+         }},
+        {"wrong chord length on a boundary side: a vertex slid along a side on the boundary of D",
+         [](ParamFile& f, TriMesh&) {
+             return Expect{"PARAM-10", "", slide_side_vertex(f, false, 1), -1, "but chord length"};
+         }},
+        {"a component of D with boundary turned over, T' not (beta rewritten: psi the same map)",
+         [](ParamFile& f, TriMesh&) {
+             turn_over_bounded_component(f, false);
+             return Expect{"PARAM-8", "PARAM-9", -1, -1, "its image is clockwise"};
+         }},
+        {"a face of T' in a patch of another component of D",
+         [](ParamFile& f, TriMesh&) {
+             const std::vector<std::uint32_t> component = face_components(f);
+             const auto other = std::find_if(component.begin(), component.end(),
+                                             [&](std::uint32_t c) { return c != component[f.surface_faces[0].patch]; });
+             f.surface_faces[0].patch = static_cast<std::uint32_t>(other - component.begin());
+             return Expect{"PARAM-4", "PARAM-6", -1, -1, "has faces in two components of D"};
+         }},
+        {"an extra component of D that holds no face of T'",
+         [](ParamFile& f, TriMesh&) {
+             const auto n = static_cast<std::uint32_t>(f.domain_vertices.size());
+             for (const fhr::Vec3& p : {fhr::Vec3(0, 0, 1e3), fhr::Vec3(1, 0, 1e3), fhr::Vec3(0, 1, 1e3)})
+                 f.domain_vertices.push_back(p);
+             f.domain_faces.push_back({n, n + 1, n + 2});
+             return Expect{"PARAM-4", "PARAM-6", -1, -1, "components but D has", "holds no face of T'"};
+         }},
+        {"an extra component of T': a copy of the patches of a component of D, moved away",
+         [](ParamFile& f, TriMesh&) {
+             const std::vector<std::uint32_t> component = face_components(f);
+             std::map<std::uint32_t, std::uint32_t> copy;
+             const std::size_t faces = f.surface_faces.size();
+             for (std::size_t x = 0; x < faces; ++x) {
+                 auto face = f.surface_faces[x];
+                 if (component[face.patch] != 0) continue;
+                 for (auto& v : face.v) {
+                     if (!copy.count(v)) {
+                         copy[v] = static_cast<std::uint32_t>(f.surface_vertices.size());
+                         f.surface_vertices.push_back(f.surface_vertices[v] + fhr::Vec3(0, 0, 1e3));
+                     }
+                     v = copy[v];
+                 }
+                 f.surface_faces.push_back(face);
+             }
+             return Expect{"PARAM-4", "", -1, -1, "components but D has"};
+         }},
+        {"a hole in T' inside a patch: a component of T' of another chi than its component of D",
+         [](ParamFile& f, TriMesh&) {
+             const auto inc = incidences(f);
+             for (std::size_t x = 0; x < f.surface_faces.size(); ++x) {
+                 bool inside = true;
+                 for (int c = 0; c < 3; ++c) inside = inside && point(f, {static_cast<std::uint32_t>(x), c}).size() == 3;
+                 if (inside) {
+                     f.surface_faces.erase(f.surface_faces.begin() + static_cast<std::ptrdiff_t>(x));
+                     return Expect{"PARAM-4", "PARAM-8", -1, -1, "chi(the component of T' at surface vertex "};
+                 }
+             }
+             throw std::logic_error("k must be >= 4");
+         }},
+        {"--mesh: T with one more component (a torus: chi, boundary loops and area unchanged)",
+         [](ParamFile&, TriMesh& input) {
+             input = disjoint_union(input, random_domain(1, fhr::generate::min_faces(1), 3));
+             return Expect{"PARAM-11", "", -1, -1, "T' has 3 components but T has 4"};
+         }},
+        {"--mesh: T with one more hole than T'",
+         [](ParamFile&, TriMesh& input) {
+             std::vector<fhr::Triangle> faces = input.triangles();
+             faces.pop_back();  // a face of the closed sphere, the last component
+             input = TriMesh::from_triangles(input.positions(), faces);
+             return Expect{"PARAM-11", "", -1, -1, "chi(T') = "};
+         }},
+    };
+    return all;
+}
+
+/// D and T′ (the k-subdivision of D) of a file, verified with and without T = D; both valid.
+void expect_valid(const TriMesh& domain, int k) {
+    const ParamFile file = fhr::test::subdivided_param(domain, k);
+    const VerifyReport r = verify(file, &domain);
+    INFO("k = " << k << "\n" << describe(r));
+    CHECK(r.valid());
+    CHECK(r.checks.size() == 10u);
+    CHECK(verify(file, nullptr).valid());
+}
+
+}  // namespace
+
+TEST_CASE("PARAM-2..11: subdivisions of a disk, an annulus, a mesh with holes and several pieces are valid",
+          "[exchange][boundary]") {
+    const std::vector<std::pair<const char*, TriMesh>> domains{
+        {"hexagonal disk", hexagon_disk()},
+        {"square annulus", square_annulus()},
+        {"a disk and an annulus", disjoint_union(hexagon_disk(), square_annulus())},
+        {"a torus with three holes", with_holes(random_domain(1, 200, 4), 3, 17)},
+        {"two closed meshes", disjoint_union(random_domain(0, 40, 1), random_domain(2, 200, 2))},
+        {"holes, a disk and a sphere", mixed_domain(5)},
+    };
+    for (const auto& [name, domain] : domains)
+        for (int k = 1; k <= 4; ++k) {
+            INFO(name);
+            expect_valid(domain, k);
+        }
+}
+
+TEST_CASE("PARAM-4, PARAM-10: boundary sides are checked from their one patch; components are counted",
+          "[exchange][boundary]") {
+    // Hexagon, k = 3: 6 spokes inside D seen from 2 patches, 6 rim sides from 1, 2 inner points each.
+    const TriMesh disk = hexagon_disk();
+    const VerifyReport r = verify(fhr::test::subdivided_param(disk, 3), &disk);
+    INFO(describe(r));
+    REQUIRE(r.valid());
+    CHECK(check(r, "PARAM-10").checked == (6 * 2 + 6) * 2);
+    CHECK(check(r, "PARAM-4").checked == 1);
+    CHECK(check(r, "PARAM-11").checked == 2 + 7 + fhr::test::subdivided_param(disk, 3).surface_vertices.size() + 6 * 3);
+    const VerifyReport mixed = verify(fhr::test::subdivided_param(mixed_domain(5), 2), nullptr);
+    CHECK(check(mixed, "PARAM-4").checked == 3);
+}
+
+TEST_CASE("PARAM-3..11: verify rejects each corruption of a surface with boundary and several components, naming "
+          "the broken invariant first", "[exchange][boundary]") {
+    const TriMesh domain = mixed_domain(5);
+    for (const Corruption& c : boundary_corruptions()) {
+        DYNAMIC_SECTION(c.name) { expect_caught(c, domain, 4); }
+    }
+}
+
+TEST_CASE("PARAM-3..11: the boundary corruptions are caught on random domains with holes and several pieces",
+          "[exchange][boundary][property]") {
+    rc::prop("every boundary corruption of the 4-to-16 subdivision of a random domain", [] {
+        const auto& closed = *fhr::testing::gen_closed_mesh(0, 2, 200);
+        const std::size_t holes = *rc::gen::inRange<std::size_t>(1, std::max<std::size_t>(2, closed.n_faces() / 12 + 1));
+        const bool annulus = *rc::gen::arbitrary<bool>();
+        const TriMesh domain = disjoint_union(disjoint_union(with_holes(closed, holes, *rc::gen::inRange(0, 1000)),
+                                                             annulus ? square_annulus() : hexagon_disk()),
+                                              random_domain(0, 20, 7));
+        RC_LOG() << holes << " holes, " << (annulus ? "annulus" : "disk");
+        rc_expect_caught(boundary_corruptions(), domain);
+    });
+}
+
+TEST_CASE("PARAM-2..11: subdivisions of random domains with holes and several pieces are valid",
+          "[exchange][boundary][property]") {
+    rc::prop("genus 0-2 with 0-3 holes, alone or with a second random piece, k = 1..4, T = D", [] {
+        const auto& first = *fhr::testing::gen_closed_mesh(0, 2, 200);
+        const std::size_t holes = *rc::gen::inRange<std::size_t>(0, std::min<std::size_t>(4, first.n_faces() / 12 + 1));
+        TriMesh domain = with_holes(first, holes, *rc::gen::inRange(0, 1000));
+        if (*rc::gen::arbitrary<bool>()) {
+            const auto& second = *fhr::testing::gen_closed_mesh(0, 1, 100);
+            domain = disjoint_union(domain, with_holes(second, *rc::gen::inRange<std::size_t>(0, 2), 3));
+        }
+        const int k = *rc::gen::inRange(1, 5);
+        const ParamFile file = fhr::test::subdivided_param(domain, k);
+        const VerifyReport r = verify(file, &domain);
+        RC_LOG() << holes << " holes, k = " << k << "\n" << describe(r);
+        RC_ASSERT(r.valid());
+        RC_ASSERT(verify(file, nullptr).valid());
+    });
+}
+
+TEST_CASE("PARAM-3, PARAM-8: a component with boundary may have either orientation, if D's and T''s agree",
+          "[exchange][boundary]") {
+    const TriMesh domain = mixed_domain(5);
+    ParamFile file = fhr::test::subdivided_param(domain, 3);
+    turn_over_bounded_component(file, true);  // D and T′ turned over together: the same map, mirrored
+    const VerifyReport r = verify(file, nullptr);
+    INFO(describe(r));
+    CHECK(r.valid());
+}
+
+TEST_CASE("PARAM-4: each component of T' has the chi and the boundary loops of its own component of D",
+          "[exchange][boundary]") {
+    // Totals equal, components swapped: D = X ∪ Y with the face counts of T′'s pieces A ∪ B but
+    // X ≅ B, Y ≅ A. The patches of A (faces 0..F−1) now lie in X.
+    auto swapped = [](const TriMesh& a, const TriMesh& b, const TriMesh& x, const TriMesh& y) {
+        REQUIRE(a.n_faces() == x.n_faces());
+        REQUIRE(b.n_faces() == y.n_faces());
+        ParamFile file = fhr::test::subdivided_param(disjoint_union(a, b), 2);
+        const TriMesh other = disjoint_union(x, y);
+        file.domain_vertices = other.positions();
+        file.domain_faces = other.triangles();
+        return verify(file, nullptr);
+    };
+    const std::size_t f = 200;
+    SECTION("chi: a torus and a sphere against a sphere and a torus") {
+        const VerifyReport r = swapped(random_domain(1, f, 1), random_domain(0, f, 2), random_domain(0, f, 3),
+                                       random_domain(1, f, 4));
+        INFO(describe(r));
+        CHECK(first_failure(r) == "PARAM-4");
+        CHECK_THAT(check(r, "PARAM-4").first_failure,
+                   Catch::StartsWith("chi(the component of T' at surface vertex 0) = 0 but chi(the component of D at "
+                                     "domain vertex 0) = 2"));
+    }
+    SECTION("boundary loops: a sphere with two holes and a torus against a torus and a sphere with two holes") {
+        const VerifyReport r = swapped(with_holes(random_domain(0, f + 2, 1), 2, 0), random_domain(1, f, 2),
+                                       random_domain(1, f, 3), with_holes(random_domain(0, f + 2, 4), 2, 0));
+        INFO(describe(r));
+        CHECK(first_failure(r) == "PARAM-4");
+        CHECK_THAT(check(r, "PARAM-4").first_failure,
+                   Catch::StartsWith("the component of T' at surface vertex 0 has 2 boundary loops but the component "
+                                     "of D at domain vertex 0 has 0 boundary loops"));
+    }
+    SECTION("one component each: a sphere with two holes against a torus (the same chi)") {
+        ParamFile file = fhr::test::subdivided_param(with_holes(random_domain(0, f + 2, 1), 2, 0), 2);
+        const TriMesh torus = random_domain(1, f, 3);
+        file.domain_vertices = torus.positions();
+        file.domain_faces = torus.triangles();
+        const VerifyReport r = verify(file, nullptr);
+        INFO(describe(r));
+        CHECK(first_failure(r) == "PARAM-4");
+        CHECK(check(r, "PARAM-4").first_failure == "T' has 2 boundary loops but D has 0 boundary loops");
+    }
+}
+
+TEST_CASE("PARAM-3: a flat closed component is refused (INV-IN-13 for each closed component)", "[exchange][boundary]") {
+    // Four coplanar points as a tetrahedron: not degenerate triangles, but a flat closed surface.
+    const std::vector<fhr::Vec3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+    const TriMesh flat = TriMesh::from_triangles(p, std::vector<fhr::Triangle>{{0, 1, 2}, {1, 3, 2}, {0, 3, 1}, {0, 2, 3}});
+    SECTION("alone: the message of a closed connected surface") {
+        const VerifyReport r = verify(fhr::test::subdivided_param(flat, 2), nullptr);
+        CHECK(first_failure(r) == "PARAM-3");
+        CHECK(check(r, "PARAM-3").first_failure ==
+              "domain D: the closed surface is flat: all 4 vertices lie in the plane of face 0, so its faces cover a "
+              "flat region twice");
+    }
+    SECTION("beside a disk") {
+        const VerifyReport r = verify(fhr::test::subdivided_param(disjoint_union(hexagon_disk(), flat), 1), nullptr);
+        CHECK(first_failure(r) == "PARAM-3");
+        CHECK(check(r, "PARAM-3").first_failure ==
+              "domain D: the closed component at vertex 7 is flat: all 4 vertices lie in the plane of face 6, so its "
+              "faces cover a flat region twice");
+    }
+}
+
+TEST_CASE("PARAM-11: a vertex on T's boundary must be on T''s boundary", "[exchange][boundary]") {
+    // T = the hexagon slit along the spoke (0, 1): rim vertex 1 doubled (as vertex 7, in the last
+    // face), so the centre is on T's boundary. T′ = the unslit hexagon: the same point set, the
+    // same chi, boundary loops and components, the same area — but the centre is inside T′.
+    const TriMesh disk = hexagon_disk();
+    std::vector<fhr::Vec3> p = disk.positions();
+    p.push_back(p[1]);
+    std::vector<fhr::Triangle> t = disk.triangles();
+    for (auto& v : t.back())
+        if (v == 1) v = 7;
+    const TriMesh slit_disk = TriMesh::from_triangles(p, t);
+    const VerifyReport r = verify(fhr::test::subdivided_param(disk, 2), &slit_disk);
+    INFO(describe(r));
+    CHECK(first_failure(r) == "PARAM-11");
+    CHECK_THAT(check(r, "PARAM-11").first_failure,
+               Catch::StartsWith("vertex 0 of T (0, 0, 0) is on T's boundary, but surface vertex 0 at the same point is "
+                                 "not on the boundary of T'"));
 }

@@ -3,21 +3,29 @@
 // φ = ψ⁻¹ is a parameterization of Ω_T over Ω_D is argued in paper_notes/exchange.md; in short:
 //
 //   PARAM-2   finite numbers, indices in range                      (so the rest can index safely)
-//   PARAM-3   D and T′ closed, connected, orientable manifolds       (§1; spec/mesh.md INV-IN-*)
-//   PARAM-4   χ(T′) = χ(D)                                           (§2: same topology)
+//   PARAM-3   D and T′ orientable manifolds, closed or with simple   (§1; spec/mesh.md INV-IN-*)
+//             boundary loops, one or several components, consistently oriented
+//   PARAM-4   T′ and D of one topology, component by component       (§2: same topology)
 //   PARAM-5   every β is a barycentric triple                        (§4 eq. (2))
 //   PARAM-6   every patch S_d is a non-empty disk                    (§3: S_i a triangular region)
 //   PARAM-7   ψ continuous: each vertex of T′ has one image in Ω_D   (§4: ψ continuous over ∪ S_i),
 //             on one carrier (vertex, edge or face of D) exactly     (§3 conditions (1), (2))
 //   PARAM-8   exact orient2d > 0 of every image triangle; image areas sum to the triangle's
-//   PARAM-9   ∂S_d → ∂T_d monotone and bijective, corners on corners (§4 Prop. 1, Floater 2003)
+//   PARAM-9   ∂S_d → ∂T_d monotone and bijective, corners on corners (§4 Prop. 1, Floater 2003);
+//             a side lies on ∂T′ iff its domain edge lies on ∂D    (beyond the paper: boundary)
 //   PARAM-10  chord length along every curve Γ(x_j, x_k)             (§4, the boundary map)
-//   PARAM-11  with T: Ω_T′ = Ω_T (T's vertices kept bit for bit, T′ on T, equal area, equal χ) (§3)
+//   PARAM-11  with T: Ω_T′ = Ω_T (T's vertices kept bit for bit, T′ on T, ∂T′ on ∂T, equal area,
+//             equal χ, boundary loops and components)               (§3)
 //
-// Theorem (degree argument, paper_notes/exchange.md): if PARAM-6, 7, 8 and 9 hold, ψ: Ω_T′ → Ω_D
-// is a homeomorphism — each ψ_d maps S_d one-to-one onto T_d (all image triangles positive and
-// the boundary mapped homeomorphically onto ∂T_d, so every interior point of T_d is covered
-// exactly winding-number = 1 times), and continuity glues the ψ_d.
+// Theorem (degree argument, paper_notes/exchange.md, spec/param.md): if PARAM-6, 7, 8 and 9 hold,
+// ψ: Ω_T′ → Ω_D is a homeomorphism — each ψ_d maps S_d one-to-one onto T_d (all image triangles
+// positive and the boundary mapped homeomorphically onto ∂T_d, so every interior point of T_d is
+// covered exactly winding-number = 1 times), and continuity glues the ψ_d along the interior edges
+// of D, whose sides PARAM-9 requires to be glued in T′ too.
+//
+// Surfaces with boundary and several components (issue 19) are judged by the same checks; the
+// boundary adds PARAM-9's side rule and PARAM-11's boundary comparison, and the components make
+// PARAM-4 a matching (spec/param.md, "Boundary and components").
 //
 // Cost: linear in the file (each check is one or two passes over faces, halfedges or vertices),
 // plus sorting for PARAM-11; 500k faces verify in about a second.
@@ -135,13 +143,13 @@ CheckResult skipped(const char* id, const char* title, const std::string& reason
 }
 
 constexpr const char* title_2 = "numbers finite, indices in range";
-constexpr const char* title_3 = "D and T' are closed, connected, orientable manifolds";
-constexpr const char* title_4 = "T' and D have the same Euler characteristic";
+constexpr const char* title_3 = "D and T' are orientable manifolds, consistently oriented";
+constexpr const char* title_4 = "T' and D have the same topology, component by component";
 constexpr const char* title_5 = "every beta is a barycentric triple";
 constexpr const char* title_6 = "every patch is a non-empty topological disk";
 constexpr const char* title_7 = "psi is continuous across patches";
 constexpr const char* title_8 = "psi is one-to-one: exact orientation, image areas";
-constexpr const char* title_9 = "patch boundaries map monotonically onto the triangle sides";
+constexpr const char* title_9 = "patch boundaries map monotonically onto the triangle sides, boundary on boundary";
 constexpr const char* title_10 = "chord-length parameter along every domain edge";
 constexpr const char* title_11 = "T' has the geometry of the input mesh T";
 
@@ -151,6 +159,62 @@ struct SideRun {
     std::uint32_t patch;
     int side;
     std::size_t begin, end;
+};
+
+/// The components of a mesh, each with its Euler characteristic and number of boundary loops. A
+/// compact connected orientable surface is determined up to homeomorphism by these two numbers
+/// (χ = 2 − 2g − b: the classification of surfaces), so they are what PARAM-4 and PARAM-11 compare.
+struct Topology {
+    Components components;                   ///< vertex → component, numbered by lowest vertex
+    std::vector<long> chi;                   ///< per component
+    std::vector<std::uint32_t> loops;        ///< boundary loops per component
+    std::vector<std::uint32_t> vertices;     ///< number of vertices per component
+    std::vector<std::uint32_t> first_vertex; ///< the lowest vertex of each component (its name)
+
+    std::size_t count() const { return chi.size(); }
+    std::uint32_t of(std::uint32_t vertex) const { return components.vertex_component[VertexId(vertex)]; }
+    long total_chi() const { return std::accumulate(chi.begin(), chi.end(), 0L); }
+    std::uint64_t total_loops() const { return std::accumulate(loops.begin(), loops.end(), std::uint64_t{0}); }
+};
+
+/// \pre mesh has no garbage. \post one entry per connected component; Σ chi = χ(mesh).
+/// Cost: the component search, then each vertex, each face and each boundary halfedge once — a
+/// component with F faces and B boundary halfedges has E = (3F + B) / 2 edges.
+Topology topology_of(const TriMesh& mesh) {
+    Topology t;
+    t.components = connected_components(mesh);
+    const std::size_t n = t.components.count;
+    t.chi.assign(n, 0);
+    t.loops.assign(n, 0);
+    t.vertices.assign(n, 0);
+    t.first_vertex.assign(n, none);
+    for (VertexId v : mesh.vertices()) {
+        const std::uint32_t c = t.of(v.idx());
+        if (t.vertices[c]++ == 0) t.first_vertex[c] = v.idx();
+    }
+    std::vector<long> faces(n, 0), boundary_halfedges(n, 0);
+    for (FaceId f : mesh.faces()) ++faces[t.of(mesh.to(mesh.halfedge(f)).idx())];
+    for (HalfedgeId h : boundary_loops(mesh)) {
+        const std::uint32_t c = t.of(mesh.to(h).idx());
+        ++t.loops[c];
+        HalfedgeId g = h;
+        do {
+            ++boundary_halfedges[c];
+            g = mesh.next(g);
+        } while (g != h);
+    }
+    for (std::size_t c = 0; c < n; ++c)
+        t.chi[c] = static_cast<long>(t.vertices[c]) - (3 * faces[c] + boundary_halfedges[c]) / 2 + faces[c];
+    return t;
+}
+
+/// "1 boundary loop", "2 boundary loops".
+std::string loops_text(std::uint64_t n) { return std::to_string(n) + (n == 1 ? " boundary loop" : " boundary loops"); }
+
+/// A mesh that passed PARAM-3, with its topology.
+struct Surface {
+    TriMesh mesh;
+    Topology topology;
 };
 
 class Verifier {
@@ -172,8 +236,8 @@ public:
             return report;
         }
         checks.push_back(check_manifolds());
-        const std::string needs_surface = "needs PARAM-3 (T' a closed manifold)";
-        checks.push_back(domain_ && surface_ ? check_euler() : skipped("PARAM-4", title_4, "needs PARAM-3"));
+        const std::string needs_surface = "needs PARAM-3 (T' a manifold)";
+        checks.push_back(domain_ && surface_ ? check_topology() : skipped("PARAM-4", title_4, "needs PARAM-3"));
         checks.push_back(check_betas());
         checks.push_back(surface_ ? check_disks() : skipped("PARAM-6", title_6, needs_surface));
         const bool disks = checks.back().status == CheckStatus::pass;
@@ -190,10 +254,11 @@ public:
 private:
     const ParamFile& f_;
     const TriMesh* input_;
-    std::optional<TriMesh> domain_, surface_;  // built by PARAM-3 when valid
+    std::optional<Surface> domain_, surface_;  // built by PARAM-3 when valid
     std::vector<std::uint32_t> run_vertex_;    // PARAM-9 → PARAM-10
     std::vector<double> run_t_;
     std::vector<SideRun> runs_;
+    std::vector<std::uint8_t> domain_boundary_side_;  // PARAM-9: side r of domain face d on ∂D, at 3d + r
 
     std::uint32_t patch(FaceId f) const { return f_.surface_faces[f.idx()].patch; }
 
@@ -253,10 +318,14 @@ private:
     }
 
     // ---- PARAM-3 ---------------------------------------------------------------------------
-    /// build_trimesh with every rule of spec/mesh.md strict; a file must need no repair: no
-    /// isolated vertex (a vertex of T′ in no face has no ψ) and no face turned (the orientation
-    /// is part of the contract: PARAM-8 reads it).
-    std::optional<TriMesh> build(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
+    /// build_trimesh with every rule of spec/mesh.md strict but closed and connected (boundary
+    /// loops and several components are allowed; every vertex, boundary ones included, must be
+    /// manifold, which makes every boundary loop a simple closed curve), and INV-IN-13 for each
+    /// closed component. A file must need no repair: no isolated vertex (a vertex of T′ in no
+    /// face has no ψ) and no face turned — each component consistently oriented, a closed one
+    /// with positive volume (the orientation is part of the contract: PARAM-8 reads it; a
+    /// component with boundary has no outside, so either of its two orientations is accepted).
+    std::optional<Surface> build(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
                                  const char* what, Recorder& rec) const {
         PolygonSoup soup;
         soup.points = points;
@@ -265,13 +334,19 @@ private:
         for (const Triangle& t : triangles) soup.add_polygon(t.data(), 3);
         BuildLog log;
         try {
-            TriMesh mesh = build_trimesh(soup, BuildOptions{}, log);
-            if (log.dropped_vertices == 0 && log.reoriented_faces == 0) return mesh;
+            TriMesh mesh = build_trimesh(soup, BuildOptions{.require_closed = false, .require_connected = false}, log);
+            if (log.dropped_vertices == 0 && log.reoriented_faces == 0) {
+                Topology topology = topology_of(mesh);
+                if (flat_closed_component(mesh, topology, what, rec)) return std::nullopt;
+                return Surface{std::move(mesh), std::move(topology)};
+            }
             rec.fail([&] {
                 std::string warning = log.warnings.front();  // ": dropped …" or ": re-oriented …" (no file name)
                 if (warning.rfind(": ", 0) == 0) warning.erase(0, 2);
                 return std::string(what) + (log.dropped_vertices ? " has vertices in no face: "
-                                                                 : " is not oriented counter-clockwise seen from outside: ") +
+                                                                 : " is not oriented counter-clockwise seen from outside "
+                                                                   "(each component consistently, a closed one with "
+                                                                   "positive volume): ") +
                        warning;
             });
         } catch (const InvalidInput& e) {
@@ -290,13 +365,107 @@ private:
         return rec.done();
     }
 
+    /// INV-IN-13 for every closed component (build_trimesh checks it only when it requires the
+    /// whole surface to be closed): a closed component whose vertices all lie in the plane of its
+    /// lowest face (exact orient3d) covers a flat region twice. True when one is flat (recorded).
+    static bool flat_closed_component(const TriMesh& mesh, const Topology& t, const char* what, Recorder& rec) {
+        std::vector<std::uint32_t> plane(t.count(), none);  // the lowest face of each closed component
+        std::size_t closed = std::count(t.loops.begin(), t.loops.end(), 0u);
+        for (FaceId f : mesh.faces()) {
+            if (closed == 0) break;
+            const std::uint32_t c = t.of(mesh.to(mesh.halfedge(f)).idx());
+            if (t.loops[c] == 0 && plane[c] == none) {
+                plane[c] = f.idx();
+                --closed;
+            }
+        }
+        std::vector<std::uint8_t> flat(t.count());
+        std::size_t candidates = 0;
+        for (std::size_t c = 0; c < t.count(); ++c) candidates += flat[c] = plane[c] != none;
+        for (VertexId v : mesh.vertices()) {
+            if (candidates == 0) return false;
+            const std::uint32_t c = t.of(v.idx());
+            if (!flat[c]) continue;
+            const auto corners = mesh.face_vertices(FaceId(plane[c]));
+            if (orient3d(mesh.position(corners[0]), mesh.position(corners[1]), mesh.position(corners[2]),
+                         mesh.position(v)) != 0) {
+                flat[c] = 0;
+                --candidates;
+            }
+        }
+        const auto c = std::find(flat.begin(), flat.end(), 1) - flat.begin();
+        if (c == static_cast<std::ptrdiff_t>(flat.size())) return false;
+        rec.fail([&] {
+            return std::string(what) + ": the closed " +
+                   (t.count() == 1 ? std::string("surface") : "component at vertex " + std::to_string(t.first_vertex[c])) +
+                   " is flat: all " + std::to_string(t.vertices[c]) + " vertices lie in the plane of face " +
+                   std::to_string(plane[c]) + ", so its faces cover a flat region twice";
+        });
+        return true;
+    }
+
     // ---- PARAM-4 ---------------------------------------------------------------------------
-    CheckResult check_euler() const {
+    /// Components of T′ correspond to components of D through their faces' patches: every face of
+    /// a component of T′ lies in a patch of one component of D, and this map is one-to-one and
+    /// onto; then each matched pair has the same χ and number of boundary loops. With one
+    /// component on each side the messages name T′ and D (as for closed connected surfaces).
+    CheckResult check_topology() const {
         Recorder rec("PARAM-4", title_4);
-        const long chi_d = euler_characteristic(*domain_), chi_t = euler_characteristic(*surface_);
-        if (chi_d != chi_t)
-            rec.fail([&] { return "chi(T') = " + std::to_string(chi_t) + " but chi(D) = " + std::to_string(chi_d); });
-        rec.examined(1);
+        const Topology &td = domain_->topology, &tt = surface_->topology;
+        const bool single = td.count() == 1 && tt.count() == 1;
+        auto name_t = [&](std::uint32_t c) {
+            return single ? std::string("T'") : "the component of T' at surface vertex " + std::to_string(tt.first_vertex[c]);
+        };
+        auto name_d = [&](std::uint32_t e) {
+            return single ? std::string("D") : "the component of D at domain vertex " + std::to_string(td.first_vertex[e]);
+        };
+        if (td.count() != tt.count())
+            rec.fail([&] { return "T' has " + std::to_string(tt.count()) + " components but D has " + std::to_string(td.count()); });
+        // image[c]: the component of D of the patches of T′'s component c (from its first face).
+        std::vector<std::uint32_t> image(tt.count(), none), image_face(tt.count(), none), preimage(td.count(), none);
+        std::vector<std::uint8_t> spans(tt.count(), 0), held(td.count(), 0);
+        std::vector<std::uint32_t> patch_component(f_.domain_faces.size());
+        for (std::size_t d = 0; d < patch_component.size(); ++d) patch_component[d] = td.of(f_.domain_faces[d][0]);
+        for (std::uint32_t f = 0; f < f_.surface_faces.size(); ++f) {
+            const ParamFace& face = f_.surface_faces[f];
+            const std::uint32_t c = tt.of(face.v[0]), e = patch_component[face.patch];
+            held[e] = 1;
+            if (image[c] == none) {
+                image[c] = e;
+                image_face[c] = f;
+            } else if (image[c] != e && !spans[c]) {
+                spans[c] = 1;
+                const std::uint32_t f0 = image_face[c];
+                rec.fail([&] { return name_t(c) + " has faces in two components of D: face " + std::to_string(f0) +
+                                      " in patch " + std::to_string(f_.surface_faces[f0].patch) + " (" + name_d(image[c]) +
+                                      ") and face " + std::to_string(f) + " in patch " + std::to_string(face.patch) + " (" +
+                                      name_d(e) + ")"; },
+                         f, tt.first_vertex[c], face.patch);
+            }
+        }
+        for (std::uint32_t c = 0; c < tt.count(); ++c) {
+            if (spans[c]) continue;
+            const std::uint32_t e = image[c], f = image_face[c], d = f_.surface_faces[f].patch;
+            if (preimage[e] != none) {
+                rec.fail([&] { return name_t(preimage[e]) + " and " + name_t(c) + " both lie in patches of " + name_d(e) +
+                                      ": the components do not correspond one to one"; },
+                         f, tt.first_vertex[c], d);
+                continue;
+            }
+            preimage[e] = c;
+            if (tt.chi[c] != td.chi[e])
+                rec.fail([&] { return "chi(" + name_t(c) + ") = " + std::to_string(tt.chi[c]) + " but chi(" + name_d(e) +
+                                      ") = " + std::to_string(td.chi[e]); },
+                         single ? -1 : f, single ? -1 : tt.first_vertex[c], single ? -1 : d);
+            else if (tt.loops[c] != td.loops[e])
+                rec.fail([&] { return name_t(c) + " has " + loops_text(tt.loops[c]) + " but " + name_d(e) + " has " +
+                                      loops_text(td.loops[e]); },
+                         single ? -1 : f, single ? -1 : tt.first_vertex[c], single ? -1 : d);
+        }
+        for (std::uint32_t e = 0; e < td.count(); ++e)
+            if (!held[e])
+                rec.fail([&] { return name_d(e) + " holds no face of T'"; });
+        rec.examined(tt.count());
         return rec.done();
     }
 
@@ -327,9 +496,11 @@ private:
     /// A finite 2-complex is a disk iff it is connected, every vertex's faces form one fan (a
     /// surface with boundary), and χ = 1: a connected orientable surface has χ = 2 − 2g − b,
     /// and 2 − 2g − b = 1 forces g = 0, b = 1. Subcomplexes of the orientable T′ are orientable.
+    /// A patch may touch T′'s boundary: an edge of ∂T′ counts once, for its one face, and at a
+    /// vertex of ∂T′ the gap between the first and the last face of its fan separates fans.
     CheckResult check_disks() const {
         Recorder rec("PARAM-6", title_6);
-        const TriMesh& mesh = *surface_;
+        const TriMesh& mesh = surface_->mesh;
         const std::size_t m = f_.domain_faces.size(), q = mesh.n_faces();
         std::vector<std::int64_t> chi(m, 0);
         std::vector<std::uint32_t> first_face(m, none), components(m, 0), pinch(m, none);
@@ -344,7 +515,12 @@ private:
             if (first_face[patch(f)] == none) first_face[patch(f)] = f.idx();
         }
         for (EdgeId e : mesh.edges()) {  // an edge inside a patch counts once, one between patches once for each
-            const FaceId f0 = mesh.face(TriMesh::halfedge(e, 0)), f1 = mesh.face(TriMesh::halfedge(e, 1));
+            const HalfedgeId h0 = TriMesh::halfedge(e, 0), h1 = TriMesh::halfedge(e, 1);
+            if (mesh.is_boundary(h0) || mesh.is_boundary(h1)) {  // on ∂T′: one face
+                --chi[patch(mesh.face(mesh.is_boundary(h0) ? h1 : h0))];
+                continue;
+            }
+            const FaceId f0 = mesh.face(h0), f1 = mesh.face(h1);
             --chi[patch(f0)];
             if (patch(f0) == patch(f1)) parent[find(f0.idx())] = find(f1.idx());
             else --chi[patch(f1)];
@@ -355,16 +531,17 @@ private:
         std::vector<std::pair<std::uint32_t, std::uint32_t>> fans;  // (patch, fans of it) at one vertex
         for (VertexId v : mesh.vertices()) {
             ring.clear();
-            mesh.for_each_outgoing(v, [&](HalfedgeId h) { ring.push_back(patch(mesh.face(h))); });
+            // The patches of v's faces in turning order; `none` for the gap of a vertex of ∂T′.
+            mesh.for_each_outgoing(v, [&](HalfedgeId h) { ring.push_back(mesh.is_boundary(h) ? none : patch(mesh.face(h))); });
             fans.clear();
             for (std::size_t k = 0; k < ring.size(); ++k) {
                 const std::uint32_t d = ring[k], before = ring[(k + ring.size() - 1) % ring.size()];
-                if (d == before) continue;  // not the start of a fan of d
+                if (d == none || d == before) continue;  // the gap, or not the start of a fan of d
                 auto it = std::find_if(fans.begin(), fans.end(), [&](const auto& x) { return x.first == d; });
                 if (it == fans.end()) fans.emplace_back(d, 1);
                 else ++it->second;
             }
-            if (fans.empty()) ++chi[ring[0]];  // interior vertex of one patch
+            if (fans.empty()) ++chi[ring[0]];  // interior vertex of one patch (no gap: ring[0] is a patch)
             for (const auto& [d, count] : fans) {
                 ++chi[d];
                 if (count > 1 && pinch[d] == none) pinch[d] = v.idx();
@@ -500,16 +677,48 @@ private:
     }
 
     // ---- PARAM-9 ---------------------------------------------------------------------------
+    /// Whether side r of domain face d — its edge (i_r, i_{r+1}) — lies on ∂D, i.e. no other face
+    /// of D has that edge; indexed 3d + r. Read from the file's faces (PARAM-9 does not need D to
+    /// have passed PARAM-3).
+    std::vector<std::uint8_t> domain_boundary_sides() const {
+        std::vector<std::pair<std::uint64_t, std::uint32_t>> edges;  // (undirected edge, 3d + r)
+        edges.reserve(3 * f_.domain_faces.size());
+        for (std::uint32_t d = 0; d < f_.domain_faces.size(); ++d)
+            for (std::uint32_t r = 0; r < 3; ++r) {
+                const auto [a, b] = std::minmax(f_.domain_faces[d][r], f_.domain_faces[d][(r + 1) % 3]);
+                edges.emplace_back(std::uint64_t{a} << 32 | b, 3 * d + r);
+            }
+        std::sort(edges.begin(), edges.end());
+        std::vector<std::uint8_t> on_boundary(edges.size(), 0);
+        for (std::size_t i = 0; i < edges.size(); ++i)
+            on_boundary[edges[i].second] = (i == 0 || edges[i - 1].first != edges[i].first) &&
+                                           (i + 1 == edges.size() || edges[i + 1].first != edges[i].first);
+        return on_boundary;
+    }
+
     CheckResult check_boundaries() {
         Recorder rec("PARAM-9", title_9);
-        const TriMesh& mesh = *surface_;
+        const TriMesh& mesh = surface_->mesh;
         const std::size_t m = f_.domain_faces.size();
-        // Faces and boundary halfedges of each patch, bucketed by patch (counting sort).
+        domain_boundary_side_ = domain_boundary_sides();
+        // Faces and boundary halfedges of each patch, bucketed by patch (counting sort). A halfedge
+        // of a face bounds its patch when the face across is in another patch or there is none (∂T′).
         std::vector<std::size_t> face_begin(m + 1, 0), he_begin(m + 1, 0);
         for (FaceId f : mesh.faces()) ++face_begin[patch(f) + 1];
-        auto on_boundary = [&](HalfedgeId h) { return patch(mesh.face(h)) != patch(mesh.face(TriMesh::twin(h))); };
-        for (HalfedgeId h : mesh.halfedges())
-            if (on_boundary(h)) ++he_begin[patch(mesh.face(h)) + 1];
+        // Calls visit(h, d) for every halfedge h of a face of patch d that bounds d.
+        auto for_each_patch_side = [&](auto&& visit) {
+            for (EdgeId e : mesh.edges()) {
+                const HalfedgeId h0 = TriMesh::halfedge(e, 0), h1 = TriMesh::halfedge(e, 1);
+                const FaceId f0 = mesh.face(h0), f1 = mesh.face(h1);
+                if (!f0.valid()) visit(h1, patch(f1));
+                else if (!f1.valid()) visit(h0, patch(f0));
+                else if (const std::uint32_t d0 = patch(f0), d1 = patch(f1); d0 != d1) {
+                    visit(h0, d0);
+                    visit(h1, d1);
+                }
+            }
+        };
+        for_each_patch_side([&](HalfedgeId, std::uint32_t d) { ++he_begin[d + 1]; });
         std::partial_sum(face_begin.begin(), face_begin.end(), face_begin.begin());
         std::partial_sum(he_begin.begin(), he_begin.end(), he_begin.begin());
         std::vector<std::uint32_t> faces(mesh.n_faces()), boundary(he_begin[m]);
@@ -517,8 +726,7 @@ private:
             std::vector<std::size_t> fill_f(face_begin.begin(), face_begin.end() - 1),
                 fill_h(he_begin.begin(), he_begin.end() - 1);
             for (FaceId f : mesh.faces()) faces[fill_f[patch(f)]++] = f.idx();
-            for (HalfedgeId h : mesh.halfedges())
-                if (on_boundary(h)) boundary[fill_h[patch(mesh.face(h))]++] = h.idx();
+            for_each_patch_side([&](HalfedgeId h, std::uint32_t d) { boundary[fill_h[d]++] = h.idx(); });
         }
         // Per boundary vertex of the current patch: its outgoing boundary halfedge, and where it
         // lies (side r: 0..2; corner r: 3 + r). Reset after each patch.
@@ -550,10 +758,11 @@ private:
     /// Walks the boundary loop of patch d from its corner 0 (counter-clockwise, the orientation of
     /// T′'s faces): side 0 → 1, corner 1, side 1 → 2, corner 2, side 2 → 0, back to corner 0.
     /// Each vertex strictly inside side r → s has β_o = 0 exactly (o the opposite corner),
-    /// β_r, β_s > 0, and β_s strictly increasing: monotone and bijective onto the side.
+    /// β_r, β_s > 0, and β_s strictly increasing: monotone and bijective onto the side. Every
+    /// edge of side r lies on ∂T′ if and only if side r lies on ∂D.
     bool walk_boundary(std::uint32_t d, const std::uint32_t* boundary, std::size_t count,
                        const std::vector<std::uint32_t>& out, std::vector<std::uint8_t>& place, Recorder& rec) {
-        const TriMesh& mesh = *surface_;
+        const TriMesh& mesh = surface_->mesh;
         const auto pd = static_cast<std::int64_t>(d);
         const Triangle& dv = f_.domain_faces[d];
         std::uint32_t corner[3] = {none, none, none};
@@ -591,6 +800,14 @@ private:
             const Beta& b = beta_at(f, w);
             const int r = side, s = (side + 1) % 3, o = (side + 2) % 3;
             const auto fi = static_cast<std::int64_t>(f);
+            if (const bool on_t = mesh.is_boundary(TriMesh::twin(h)); on_t != (domain_boundary_side_[3 * d + r] != 0)) {
+                rec.fail([&] { return "patch " + std::to_string(d) + ": edge (" + std::to_string(v) + ", " + std::to_string(w) +
+                                      ") of its " + side_name(d, r) +
+                                      (on_t ? " lies on the boundary of T', but the side is an interior edge of D"
+                                            : " is not on the boundary of T', but the side is a boundary edge of D"); },
+                         fi, v, pd);
+                return false;
+            }
             if (is_corner(b, s)) {
                 run_vertex_.push_back(w);
                 run_t_.push_back(1);
@@ -698,38 +915,40 @@ Bits bits(const Vec3& p) {
     return b;
 }
 
-/// A uniform grid over the faces of T, stored sparsely as sorted (cell, face) pairs: each face is
-/// listed in every cell its bounding box, grown by `tolerance`, meets. Then a point within
-/// `tolerance` of a face finds that face in its own cell.
-class FaceGrid {
+/// The closest point to p on the segment [a, b]. \pre a ≠ b (an edge of a valid mesh).
+Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 ab = b - a;
+    return a + std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) * ab;
+}
+
+/// A uniform grid over simplices of T — its faces, or its boundary edges — stored sparsely as
+/// sorted (cell, simplex) pairs: each simplex is listed in every cell its bounding box, grown by
+/// `tolerance`, meets. Then a point within `tolerance` of a simplex finds it in its own cell. A
+/// segment (a, b) is stored as the triple (a, b, b).
+class SimplexGrid {
 public:
-    FaceGrid(const TriMesh& mesh, double tolerance) : mesh_(mesh), tolerance_(tolerance) {
-        for (const Triangle& t : mesh.triangles()) triangles_.push_back(t);
+    /// \pre simplices is not empty; `size` > 0 is their typical diameter.
+    SimplexGrid(const TriMesh& mesh, std::vector<Triangle> simplices, double size, double tolerance)
+        : mesh_(mesh), tolerance_(tolerance), simplices_(std::move(simplices)) {
         min_ = max_ = mesh.position(VertexId(0));
-        double area = 0;
-        for (const Triangle& t : triangles_) {
-            const Vec3 &a = pos(t[0]), &b = pos(t[1]), &c = pos(t[2]);
-            area += 0.5 * (b - a).cross(c - a).norm();
-        }
         for (const Vec3& p : mesh.positions()) {
             min_ = min_.cwiseMin(p);
             max_ = max_.cwiseMax(p);
         }
         min_.array() -= tolerance;
         max_.array() += tolerance;
-        // Cells about twice the typical edge length, at most 2^20 per axis (keys of 21 bits), and
-        // coarsened until the faces are listed at most 16 times each on average.
+        // Cells about twice the typical size, at most 2^20 per axis (keys of 21 bits), and
+        // coarsened until the simplices are listed at most 16 times each on average.
         const double extent = (max_ - min_).maxCoeff();
-        cell_ = std::max({2 * std::sqrt(area / static_cast<double>(triangles_.size())), extent / (1 << 20),
-                          4 * tolerance, std::numeric_limits<double>::min()});
+        cell_ = std::max({2 * size, extent / (1 << 20), 4 * tolerance, std::numeric_limits<double>::min()});
         double listed = listings();
-        while (listed > 16.0 * static_cast<double>(triangles_.size()) + 1024) {
+        while (listed > 16.0 * static_cast<double>(simplices_.size()) + 1024) {
             cell_ *= 2;
             listed = listings();
         }
         std::vector<std::pair<std::uint64_t, std::uint32_t>> entries;
         entries.reserve(static_cast<std::size_t>(listed));
-        for (std::uint32_t f = 0; f < triangles_.size(); ++f) {
+        for (std::uint32_t f = 0; f < simplices_.size(); ++f) {
             const auto [lo, hi] = cell_range(f);
             for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
                 for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
@@ -737,15 +956,15 @@ public:
         }
         std::sort(entries.begin(), entries.end());
         keys_.reserve(entries.size());
-        faces_.reserve(entries.size());
+        simplex_.reserve(entries.size());
         for (const auto& [k, f] : entries) {
             keys_.push_back(k);
-            faces_.push_back(f);
+            simplex_.push_back(f);
         }
     }
 
-    /// The distance from p to the nearest face of T listed in p's cell, or +inf when there is
-    /// none (then p is farther than the tolerance from T).
+    /// The distance from p to the nearest simplex listed in p's cell, or +inf when there is none
+    /// (then p is farther than the tolerance from every simplex).
     double distance(const Vec3& p) const {
         if ((p.array() < min_.array()).any() || (p.array() > max_.array()).any())
             return std::numeric_limits<double>::infinity();
@@ -754,8 +973,10 @@ public:
         const auto [first, last] = std::equal_range(keys_.begin(), keys_.end(), k);
         double best = std::numeric_limits<double>::infinity();
         for (auto it = first; it != last; ++it) {
-            const Triangle& t = triangles_[faces_[it - keys_.begin()]];
-            best = std::min(best, (closest_point_on_triangle(p, pos(t[0]), pos(t[1]), pos(t[2])) - p).norm());
+            const Triangle& t = simplices_[simplex_[it - keys_.begin()]];
+            const Vec3 q = t[1] == t[2] ? closest_point_on_segment(p, pos(t[0]), pos(t[1]))
+                                        : closest_point_on_triangle(p, pos(t[0]), pos(t[1]), pos(t[2]));
+            best = std::min(best, (q - p).norm());
         }
         return best;
     }
@@ -763,11 +984,11 @@ public:
 private:
     const TriMesh& mesh_;
     double tolerance_;
-    std::vector<Triangle> triangles_;
+    std::vector<Triangle> simplices_;
     Vec3 min_, max_;
     double cell_ = 0;
     std::vector<std::uint64_t> keys_;
-    std::vector<std::uint32_t> faces_;
+    std::vector<std::uint32_t> simplex_;
 
     const Vec3& pos(std::uint32_t v) const { return mesh_.position(VertexId(v)); }
 
@@ -781,16 +1002,16 @@ private:
     }
 
     std::pair<std::array<std::int64_t, 3>, std::array<std::int64_t, 3>> cell_range(std::uint32_t f) const {
-        const Triangle& t = triangles_[f];
+        const Triangle& t = simplices_[f];
         const Vec3 lo = pos(t[0]).cwiseMin(pos(t[1])).cwiseMin(pos(t[2])).array() - tolerance_;
         const Vec3 hi = pos(t[0]).cwiseMax(pos(t[1])).cwiseMax(pos(t[2])).array() + tolerance_;
         return {cell(lo), cell(hi)};
     }
 
-    /// How many (cell, face) pairs the grid lists (a double: up to 2^60 cells per face).
+    /// How many (cell, simplex) pairs the grid lists (a double: up to 2^60 cells per simplex).
     double listings() const {
         double n = 0;
-        for (std::uint32_t f = 0; f < triangles_.size(); ++f) {
+        for (std::uint32_t f = 0; f < simplices_.size(); ++f) {
             const auto [lo, hi] = cell_range(f);
             n += static_cast<double>(hi[0] - lo[0] + 1) * static_cast<double>(hi[1] - lo[1] + 1) *
                  static_cast<double>(hi[2] - lo[2] + 1);
@@ -816,21 +1037,42 @@ double total_area(const TriMesh& mesh) {
 CheckResult Verifier::check_geometry() const {
     Recorder rec("PARAM-11", title_11);
     const TriMesh& t = *input_;
-    const TriMesh& refined = *surface_;
-    // §3: T′ refines T, so it has T's topology ...
-    const long chi_t = euler_characteristic(t), chi_r = euler_characteristic(refined);
+    const TriMesh& refined = surface_->mesh;
+    // §3: T′ refines T, so it has T's topology: χ, and with boundary or several components also
+    // the number of boundary loops and of components (a refinement keeps each component's
+    // topology; PARAM-4 already matched T′'s components with D's) ...
+    const Topology topology_t = topology_of(t);
+    const Topology& topology_r = surface_->topology;
+    const long chi_t = topology_t.total_chi(), chi_r = topology_r.total_chi();
     if (chi_t != chi_r)
         rec.fail([&] { return "chi(T') = " + std::to_string(chi_r) + " but chi(T) = " + std::to_string(chi_t); });
-    // ... keeps every vertex of T where it is (T′ only inserts points; bitwise, as written) ...
-    std::vector<Bits> refined_bits;
+    if (topology_t.total_loops() != topology_r.total_loops())
+        rec.fail([&] { return "T' has " + loops_text(topology_r.total_loops()) + " but T has " +
+                              loops_text(topology_t.total_loops()); });
+    if (topology_t.count() != topology_r.count())
+        rec.fail([&] { return "T' has " + std::to_string(topology_r.count()) + " components but T has " +
+                              std::to_string(topology_t.count()); });
+    // ... keeps every vertex of T where it is (T′ only inserts points; bitwise, as written), on
+    // T′'s boundary when it is on T's ...
+    std::vector<std::pair<Bits, std::uint32_t>> refined_bits;
     refined_bits.reserve(refined.n_vertices());
-    for (const Vec3& p : refined.positions()) refined_bits.push_back(bits(p));
+    for (VertexId w : refined.vertices()) refined_bits.emplace_back(bits(refined.position(w)), w.idx());
     std::sort(refined_bits.begin(), refined_bits.end());
-    for (VertexId v : t.vertices())
-        if (!std::binary_search(refined_bits.begin(), refined_bits.end(), bits(t.position(v))))
+    for (VertexId v : t.vertices()) {
+        const Bits b = bits(t.position(v));
+        auto it = std::lower_bound(refined_bits.begin(), refined_bits.end(), std::pair<Bits, std::uint32_t>(b, 0));
+        if (it == refined_bits.end() || it->first != b)
             rec.fail([&] { return "vertex " + std::to_string(v.idx()) + " of T " + str(t.position(v)) +
                                   " is not a vertex of T' (no vertex with bitwise-identical coordinates)"; },
                      -1, v.idx());
+        else if (t.is_boundary(v))
+            for (; it != refined_bits.end() && it->first == b; ++it)
+                if (const std::uint32_t w = it->second; !refined.is_boundary(VertexId(w)))
+                    rec.fail([&] { return "vertex " + std::to_string(v.idx()) + " of T " + str(t.position(v)) +
+                                          " is on T's boundary, but surface vertex " + std::to_string(w) +
+                                          " at the same point is not on the boundary of T'"; },
+                             -1, v.idx());
+    }
     // ... inserts points only on T: within 1e-9 of the bounding-box diagonal, plus 64u·|x|max for
     // the rounding of a point computed on an edge or face of T (a few u·|x| per coordinate, by
     // the producer and again by closest_point) when T lies far from the origin ...
@@ -842,22 +1084,51 @@ CheckResult Verifier::check_geometry() const {
         hi = hi.cwiseMax(p);
     }
     const double tolerance = geometry_tolerance * (hi - lo).norm() + 64 * unit_roundoff * max_abs;
-    const FaceGrid grid(t, tolerance);
-    for (VertexId v : refined.vertices()) {
-        const double d = grid.distance(refined.position(v));
-        if (!(d <= tolerance))
-            rec.fail([&] { return "surface vertex " + std::to_string(v.idx()) + " " + str(refined.position(v)) +
-                                  " is not on T (distance " + (std::isinf(d) ? std::string("> ") + num(tolerance) : num(d)) +
-                                  ", tolerance " + num(tolerance) + ")"; },
-                     -1, v.idx());
+    const double area_t = total_area(t), area_r = total_area(refined);
+    {
+        const SimplexGrid grid(t, t.triangles(), std::sqrt(area_t / static_cast<double>(t.n_faces())), tolerance);
+        for (VertexId v : refined.vertices()) {
+            const double d = grid.distance(refined.position(v));
+            if (!(d <= tolerance))
+                rec.fail([&] { return "surface vertex " + std::to_string(v.idx()) + " " + str(refined.position(v)) +
+                                      " is not on T (distance " + (std::isinf(d) ? std::string("> ") + num(tolerance) : num(d)) +
+                                      ", tolerance " + num(tolerance) + ")"; },
+                         -1, v.idx());
+        }
+    }
+    // ... with its boundary on T's boundary, within the same tolerance (a point inserted on a
+    // boundary edge of T is rounded like any other) ...
+    std::vector<std::uint32_t> refined_boundary;
+    for (VertexId w : refined.vertices())
+        if (refined.is_boundary(w)) refined_boundary.push_back(w.idx());
+    if (!refined_boundary.empty()) {
+        std::vector<Triangle> edges;
+        double length = 0;
+        for (HalfedgeId h : t.halfedges())
+            if (t.is_boundary(h)) {
+                edges.push_back({t.from(h).idx(), t.to(h).idx(), t.to(h).idx()});
+                length += (t.position(t.to(h)) - t.position(t.from(h))).norm();
+            }
+        const double mean_length = length / static_cast<double>(std::max<std::size_t>(edges.size(), 1));
+        std::optional<SimplexGrid> grid;  // none when T is closed: then no point is on its boundary
+        if (!edges.empty()) grid.emplace(t, std::move(edges), mean_length, tolerance);
+        for (std::uint32_t w : refined_boundary) {
+            const Vec3& p = refined.position(VertexId(w));
+            const double d = grid ? grid->distance(p) : std::numeric_limits<double>::infinity();
+            if (!(d <= tolerance))
+                rec.fail([&] { return "surface vertex " + std::to_string(w) + " " + str(p) +
+                                      " is on the boundary of T' but not on T's boundary (distance " +
+                                      (std::isinf(d) ? std::string("> ") + num(tolerance) : num(d)) + ", tolerance " +
+                                      num(tolerance) + ")"; },
+                         -1, w);
+        }
     }
     // ... and covers the same area. Both sums are compensated; the difference comes from the
     // rounding of the inserted points (≈ u·|x| each, times an edge length), far below 1e-9.
-    const double area_t = total_area(t), area_r = total_area(refined);
     if (!(std::fabs(area_r - area_t) <= geometry_tolerance * area_t))
         rec.fail([&] { return "the area of T' is " + num(area_r) + " but T's is " + num(area_t) + " (relative difference " +
                               num((area_r - area_t) / area_t) + ", more than 1e-9)"; });
-    rec.examined(2 + t.n_vertices() + refined.n_vertices());
+    rec.examined(2 + t.n_vertices() + refined.n_vertices() + refined_boundary.size());
     return rec.done();
 }
 

@@ -1,7 +1,9 @@
 // FHR exchange — the oracle: does a `fhr-param 1` file describe a valid parameterization in the
 // sense of the paper? It checks the invariants PARAM-2..11 of spec/param.md (PARAM-1, the
-// grammar, is parse_param's): the surfaces are closed manifolds of one topology (§1, §2), every
-// patch S_i is a disk (§3), ψ is continuous across patch boundaries (§4), one-to-one on each patch
+// grammar, is parse_param's): the surfaces are manifolds of one topology, component by component
+// (§1, §2; closed as in the paper, or — beyond the paper, issue 19 — with boundary and several
+// components: spec/param.md "Boundary and components"), every patch S_i is a disk (§3), ψ is
+// continuous across patch boundaries and maps ∂T′ onto ∂D (§4), one-to-one on each patch
 // (§4, Proposition 1: exact orientation of every image triangle, and the patch boundary mapped
 // monotonically onto the triangle's boundary), chord length along every curve (§4), and with the
 // input mesh T, Ω_T′ = Ω_T (§3).
@@ -64,7 +66,8 @@ CheckResult grammar_check(const ParamFile& file);
 /// Checks `file` against PARAM-2..10 of spec/param.md, and PARAM-11 against `input_mesh` when it
 /// is not null. Every check runs unless one it relies on failed; each counts its failures and
 /// names the first one.
-/// \pre input_mesh, when given, is a valid mesh (built by build_trimesh).
+/// \pre input_mesh, when given, is a valid mesh (built by build_trimesh; it may have boundary and
+///      several components).
 /// \post never throws InvalidInput for any file: a broken file gives failed checks. Runs in time
 ///       O(size of the file · log), plus O(|T| log |T|) with an input mesh.
 VerifyReport verify(const ParamFile& file, const TriMesh* input_mesh);
