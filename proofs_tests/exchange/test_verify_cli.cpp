@@ -136,3 +136,45 @@ TEST_CASE("CLI-VERIFY-3, CLI-VERIFY-4: an unreadable file or mesh gives one erro
     CHECK(usage.exit_code == 2);
     CHECK_THAT(usage.err, Catch::Contains("PARAM.fhrp"));
 }
+
+TEST_CASE("CLI-VERIFY-1..4: a surface with boundary and several components: exit codes 0, 1 and 2", "[cli][exchange]") {
+    // D = a genus-1 mesh with two holes beside a hexagonal disk; T = D.
+    fhr::generate::RandomMeshOptions o;
+    o.genus = 1;
+    o.faces = 120;
+    o.seed = 8;
+    o.noise = 0.1;
+    const fhr::TriMesh domain =
+        fhr::test::disjoint_union(fhr::test::with_holes(fhr::generate::random_closed_mesh(o), 2, 3), fhr::test::hexagon_disk());
+    const fhr::exchange::ParamFile file = fhr::test::subdivided_param(domain, 4);
+    const std::string param = temp_path("cli-boundary.fhrp"), mesh = temp_path("cli-boundary.off");
+    fhr::exchange::write_param(param, file);
+    fhr::io::write_off(mesh, domain.positions(), domain.triangles());
+
+    const auto valid = run_fhr({"verify", param, "--mesh", mesh});
+    INFO(valid.out << valid.err);
+    CHECK(valid.exit_code == 0);
+    CHECK(valid.err.empty());
+    CHECK(valid.out.rfind(param + ": valid\n", 0) == 0);
+    CHECK(count_lines(valid.out) == 2 + 11);
+
+    // T′ with a hole inside patch 0: its face 9 at k = 4, the one whose corners are all inside it.
+    auto holed = file;
+    holed.surface_faces.erase(holed.surface_faces.begin() + 9);
+    const std::string holed_path = temp_path("cli-boundary-holed.fhrp");
+    fhr::exchange::write_param(holed_path, holed);
+    const auto invalid = run_fhr({"verify", holed_path, "--json"});
+    INFO(invalid.out << invalid.err);
+    CHECK(invalid.exit_code == 1);
+    CHECK_THAT(invalid.out, Catch::Contains("\"first_failure\": \"PARAM-4\"") &&
+                                Catch::Contains("chi(the component of T' at surface vertex 0) = -3 but chi(the "
+                                                "component of D at domain vertex 0) = -2"));
+
+    // T with a non-manifold boundary vertex (two triangles meeting at one vertex): unreadable.
+    const std::string bowtie = write_temp("bowtie.off", "OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n3 0 1 2\n3 0 3 4\n");
+    const auto unreadable = run_fhr({"verify", param, "--mesh", bowtie});
+    INFO(unreadable.err);
+    CHECK(unreadable.exit_code == 2);
+    CHECK(count_lines(unreadable.err) == 1);
+    CHECK_THAT(unreadable.err, Catch::Contains("non-manifold vertex 0"));
+}

@@ -1,7 +1,8 @@
 // FHR cli — `fhr verify PARAM.fhrp [--mesh INPUT] [--json]`: the oracle for any producer of a
 // parameterization (spec/cli.md CLI-VERIFY-*, spec/param.md). It reads the file with the strict
 // reader (PARAM-1), checks PARAM-2..10 and, with the input mesh T, PARAM-11 (src/fhr/exchange/verify.hpp),
-// and prints a verdict and one line per check, or one JSON object.
+// and prints a verdict and one line per check, or one JSON object. D, T′ and T may have boundary
+// and several components (issue 19).
 // Exit codes: 0 valid, 1 invalid (a check failed), 2 unreadable (the file or the mesh).
 #include <cstdio>
 #include <optional>
@@ -89,7 +90,8 @@ int run_verify(const std::vector<std::string>& argv) {
     std::optional<TriMesh> mesh;
     try {
         file = exchange::read_param(path);
-        if (mesh_path) mesh = load_mesh(*mesh_path, BuildOptions{});
+        // T may have boundary and several components, like D and T′ (spec/param.md PARAM-11).
+        if (mesh_path) mesh = load_mesh(*mesh_path, BuildOptions{.require_closed = false, .require_connected = false});
     } catch (const InvalidInput& e) {  // unreadable: exit 2 through main, with the one-line error
         if (args.flag("json")) {
             io::JsonWriter j;
