@@ -597,34 +597,46 @@ TEST_CASE("generated meshes survive write -> read -> build exactly, in every wri
 
 // LIB-7: the public RapidCheck generator (<fhr/testing/rapidcheck.hpp>) draws recipes within its
 // bounds, and every shrink is a smaller recipe, down to the smallest one: lowest genus, fewest
-// faces, seed 0, no noise.
+// holes and components, fewest faces, seed 0, no noise.
 TEST_CASE("LIB-7: fhr::testing recipes stay in bounds and shrink toward the smallest recipe", "[unit][library]") {
-    const auto gen = fhr::testing::gen_mesh_options(1, 3, 800);
-    const auto in_bounds = [](const RandomMeshOptions& o) {
-        return 1 <= o.genus && o.genus <= 3 && o.faces >= min_faces(o.genus) && o.faces <= 800 && o.faces % 2 == 0;
-    };
-    const auto smaller = [](const RandomMeshOptions& s, const RandomMeshOptions& o) {
-        const bool no_larger = s.genus <= o.genus && s.seed <= o.seed && s.noise <= o.noise &&
-                               (s.genus < o.genus || s.faces <= o.faces);
-        return no_larger && (s.genus < o.genus || s.faces < o.faces || s.seed < o.seed || s.noise < o.noise);
-    };
-    for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-        rc::Shrinkable<RandomMeshOptions> current = gen(rc::Random(seed), 100);
-        REQUIRE(in_bounds(current.value()));
-        for (int steps = 0;; ++steps) {
-            REQUIRE(steps < 1000);
-            auto shrinks = current.shrinks();
-            const auto first = shrinks.next();
-            if (!first) break;
-            INFO(fhr::testing::generate_command(current.value()) << " -> " << fhr::testing::generate_command(first->value()));
-            CHECK(in_bounds(first->value()));
-            CHECK(smaller(first->value(), current.value()));
-            current = *first;
+    const fhr::testing::MeshRanges closed{.min_genus = 1, .max_genus = 3, .max_faces = 800};
+    const fhr::testing::MeshRanges open{.min_genus = 1, .max_genus = 3, .max_faces = 800, .min_holes = 1, .max_holes = 5,
+                                        .min_components = 1, .max_components = 3};
+    for (const fhr::testing::MeshRanges& r : {closed, open}) {
+        const auto gen = r.max_holes == 0 ? fhr::testing::gen_mesh_options(1, 3, 800) : fhr::testing::gen_mesh_options(r);
+        const auto in_bounds = [&](const RandomMeshOptions& o) {
+            return r.min_genus <= o.genus && o.genus <= r.max_genus && r.min_holes <= o.holes && o.holes <= r.max_holes &&
+                   r.min_components <= o.components && o.components <= r.max_components &&
+                   o.faces >= min_faces(o.genus, o.holes, o.components) && o.faces <= r.max_faces &&
+                   (o.holes > 0 || o.faces % 2 == 0);
+        };
+        // Fewer handles, holes or components may need more faces; otherwise the faces do not grow.
+        const auto smaller = [](const RandomMeshOptions& s, const RandomMeshOptions& o) {
+            const bool fewer = s.genus < o.genus || s.holes < o.holes || s.components < o.components;
+            const bool no_larger = s.genus <= o.genus && s.holes <= o.holes && s.components <= o.components &&
+                                   s.seed <= o.seed && s.noise <= o.noise && (fewer || s.faces <= o.faces);
+            return no_larger && (fewer || s.faces < o.faces || s.seed < o.seed || s.noise < o.noise);
+        };
+        for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+            rc::Shrinkable<RandomMeshOptions> current = gen(rc::Random(seed), 100);
+            REQUIRE(in_bounds(current.value()));
+            for (int steps = 0;; ++steps) {
+                REQUIRE(steps < 1000);
+                auto shrinks = current.shrinks();
+                const auto first = shrinks.next();
+                if (!first) break;
+                INFO(fhr::testing::generate_command(current.value()) << " -> " << fhr::testing::generate_command(first->value()));
+                CHECK(in_bounds(first->value()));
+                CHECK(smaller(first->value(), current.value()));
+                current = *first;
+            }
+            const RandomMeshOptions last = current.value();
+            CHECK(last.genus == 1);
+            CHECK(last.holes == r.min_holes);
+            CHECK(last.components == 1);
+            CHECK(last.faces == min_faces(1, r.min_holes));
+            CHECK(last.seed == 0);
+            CHECK(last.noise == 0);
         }
-        const RandomMeshOptions last = current.value();
-        CHECK(last.genus == 1);
-        CHECK(last.faces == min_faces(1));
-        CHECK(last.seed == 0);
-        CHECK(last.noise == 0);
     }
 }
