@@ -254,7 +254,10 @@ void check_generated(const RandomMeshOptions& o, const TriMesh& m) {
         max_x[component(v)] = std::max(max_x[component(v)], m.position(v).x());
     }
     for (fhr::EdgeId e : m.edges()) --chi[component(m.from(TriMesh::halfedge(e, 0)))];
-    for (fhr::FaceId f : m.faces()) ++chi[component(m.face_vertices(f)[0])];
+    for (fhr::FaceId f : m.faces()) {
+        ++chi[component(m.face_vertices(f)[0])];
+        if (f.idx() > 0) RC_ASSERT(component(m.face_vertices(f)[0]) >= component(m.face_vertices(fhr::FaceId(f.idx() - 1))[0]));
+    }
     for (HalfedgeId h : loops) ++n_loops[component(m.from(h))];
     // GEN-6: outward: each component, its holes filled, encloses a positive volume.
     const std::vector<double> six_volume = filled_six_volumes(m, comps);
