@@ -312,7 +312,7 @@ public:
     /// One sweep over the edges in index order (neighbouring edges have close indices, so the
     /// sweep walks the memory in order): each edge is flipped with probability 1/2, or split
     /// and paired with a collapse nearby with probability 1/8, when the edit keeps the shape.
-    /// Boundary edges are drawn for too (the same stream with and without holes) but never edited.
+    /// Every live edge draws its number, a boundary edge too, but a boundary edge is never edited.
     void run() {
         const std::size_t n = m_.n_edges();
         for (std::size_t i = 0; i < n; ++i) {
