@@ -7,7 +7,11 @@
 #include <string>
 #include <vector>
 
+#include <fhr/core/build.hpp>
 #include <fhr/core/errors.hpp>
+#include <fhr/generate/random_mesh.hpp>
+#include <fhr/io/read.hpp>
+#include <fhr/testing/rapidcheck.hpp>
 #include "cli/common.hpp"
 #include "support/test_support.hpp"
 
@@ -195,6 +199,66 @@ TEST_CASE("CLI-GEN-1: fhr generate writes meshes that fhr info accepts, with the
             CHECK(r.err.empty());
             CHECK_THAT(r.out, Catch::Contains("\"genus\": " + std::to_string(g)) &&
                                   Catch::Contains("\"faces\": 2000") && Catch::Contains("\"valid\": true"));
+        }
+    }
+}
+
+TEST_CASE("CLI-GEN-2: --holes and --components: the file holds exactly random_mesh's mesh, and fhr info counts it",
+          "[cli]") {
+    const std::vector<fhr::generate::RandomMeshOptions> recipes{
+        {1, 501, 5, 0.1, 3, 2}, {0, 400, 6, 0.0, 5, 3}, {2, 900, 7, 0.25, 0, 3}, {0, 13, 8, 0.0, 1, 1}};
+    for (const fhr::generate::RandomMeshOptions& o : recipes) {
+        DYNAMIC_SECTION(fhr::testing::generate_command(o)) {
+            const std::string out = temp_path("holes.off");
+            const auto gen = run_fhr({"generate", "--genus", std::to_string(o.genus), "--holes", std::to_string(o.holes),
+                                      "--components", std::to_string(o.components), "--faces", std::to_string(o.faces),
+                                      "--seed", std::to_string(o.seed), "--noise", std::to_string(o.noise), "--out", out});
+            INFO(gen.err);
+            REQUIRE(gen.exit_code == 0);
+            fhr::BuildLog log;
+            const fhr::TriMesh back = fhr::build_trimesh(fhr::io::read_soup(out),
+                                                         {.require_closed = false, .require_connected = false}, log);
+            const fhr::TriMesh expected = fhr::generate::random_mesh(o);
+            CHECK(back.positions() == expected.positions());
+            CHECK(back.triangles() == expected.triangles());
+            // fhr info counts them (whether it calls them a valid input is spec/mesh.md's business).
+            const auto r = run_fhr({"info", "--json", out});
+            CHECK_THAT(r.out, Catch::Contains("\"faces\": " + std::to_string(o.faces)) &&
+                                  Catch::Contains("\"genus\": " + std::to_string(o.genus)) &&
+                                  Catch::Contains("\"boundary_loops\": " + std::to_string(o.holes)) &&
+                                  Catch::Contains("\"components\": " + std::to_string(o.components)));
+        }
+    }
+}
+
+TEST_CASE("CLI-GEN-3: out-of-range --holes, --components and face counts are refused in one line, exit code 2",
+          "[cli]") {
+    struct Refused {
+        std::vector<std::string> options;
+        const char* expect;
+    };
+    const std::vector<Refused> cases{
+        {{"--holes", "-1"}, "option --holes must be in [0, 10000], got -1"},
+        {{"--holes", "10001"}, "option --holes must be in [0, 10000], got 10001"},
+        {{"--components", "0"}, "option --components must be in [1, 10000], got 0"},
+        {{"--components", "10001"}, "option --components must be in [1, 10000], got 10001"},
+        {{"--holes", "two"}, "option --holes needs an integer, got 'two'"},
+        {{"--holes", "5", "--faces", "33"}, "genus 0 with 5 holes needs at least 34 faces (got 33)"},
+        {{"--components", "2", "--faces", "25"}, "the face count must be even without holes (got 25)"},
+    };
+    for (const Refused& c : cases) {
+        DYNAMIC_SECTION(c.expect) {
+            const fs::path dir = fs::path(temp_path("gen-refused"));
+            fs::remove_all(dir);
+            fs::create_directories(dir);
+            std::vector<std::string> args{"generate"};
+            args.insert(args.end(), c.options.begin(), c.options.end());
+            args.insert(args.end(), {"--out", (dir / "mesh.off").string()});
+            const auto r = run_fhr(args);
+            CHECK(r.exit_code == 2);
+            CHECK(count_lines(r.err) == 1);
+            CHECK_THAT(r.err, Catch::StartsWith("fhr: error: ") && Catch::Contains(c.expect));
+            CHECK(fs::is_empty(dir));
         }
     }
 }

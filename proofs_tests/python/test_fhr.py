@@ -124,6 +124,39 @@ def test_generate_gives_the_bits_of_fhr_generate(tmp_path):
     assert fhr.info(V, F)["genus"] == 2
 
 
+def read_off_arrays(path):
+    """An OFF file as written by `fhr generate`, read without fhr's builder (which refuses boundary)."""
+    lines = Path(path).read_text().split("\n")
+    nv, nf = map(int, lines[1].split()[:2])
+    V = np.array([[float(x) for x in line.split()] for line in lines[2:2 + nv]])
+    F = np.array([[int(x) for x in line.split()[1:]] for line in lines[2 + nv:2 + nv + nf]], dtype=np.int64)
+    return V, F
+
+
+# PY-3, spec/generator.md
+def test_generate_with_holes_and_components_gives_the_bits_of_fhr_generate(tmp_path):
+    path = tmp_path / "g.off"
+    cli("generate", "--genus", 1, "--holes", 3, "--components", 2, "--faces", 301, "--seed", 4, "--noise", 0.25,
+        "--out", path)
+    V, F = fhr.generate(1, 301, seed=4, noise=0.25, holes=3, components=2)
+    V2, F2 = read_off_arrays(path)
+    assert np.array_equal(V, V2) and np.array_equal(F, F2)
+    counts = fhr.info(V, F)
+    assert (counts["faces"], counts["genus"], counts["boundary_loops"], counts["components"]) == (301, 1, 3, 2)
+    # Hand-computed in proofs_tests/generate/test_random_mesh.cpp: 60 + 60 + 10 faces.
+    assert fhr.min_faces(2, 5, 3) == 130 and fhr.min_faces(2) == 100
+
+
+# PY-6, spec/generator.md GEN-2, GEN-3
+@settings(max_examples=40, derandomize=True, deadline=None)
+@given(fhr.testing.meshes(genus=(0, 2), faces=(12, 1500), holes=(0, 5), components=(1, 3)))
+def test_meshes_with_holes_and_components_have_them(mesh):
+    counts = fhr.info(mesh.V, mesh.F)
+    r = mesh.recipe
+    assert (counts["faces"], counts["genus"], counts["boundary_loops"], counts["components"]) == (
+        r.faces, r.genus, r.holes, r.components), mesh
+
+
 # PY-4
 def test_decimate_keeps_vertices_of_t(fandisk):
     V, F = fandisk
@@ -244,6 +277,14 @@ def test_the_strategy_shrinks_toward_the_smallest_recipe():
     # A failing property shrinks to its boundary, not to an arbitrary recipe.
     bigger = find(fhr.testing.recipes(genus=(0, 2), faces=(12, 800)), lambda r: r.faces >= 300 and r.noise > 0)
     assert bigger == fhr.testing.Recipe(0, 300, 0, 0.05)
+    # With holes and components: toward the fewest of each, and the fewest faces (here the lower
+    # bound 12 of `faces`, above min_faces(0, 1, 1) = 10); with holes the face count may be odd: two
+    # components with one hole need min_faces(0, 1, 2) = 10 + 12 = 22, so 23 is the smallest odd one.
+    ranges = dict(genus=(0, 2), faces=(12, 800), holes=(1, 5), components=(1, 3))
+    assert find(fhr.testing.recipes(**ranges), lambda r: True) == fhr.testing.Recipe(0, 12, 0, 0.0, 1, 1)
+    odd = find(fhr.testing.recipes(**ranges), lambda r: r.components == 2 and r.faces % 2 == 1)
+    assert odd == fhr.testing.Recipe(0, 23, 0, 0.0, 1, 2)
+    assert odd.command() == "fhr generate --genus 0 --holes 1 --components 2 --faces 23 --seed 0 --out mesh.off"
 
 
 # PY-5

@@ -18,8 +18,10 @@ usage:
   fhr info MESH [--json] [--triangulate]
       vertices, edges, faces, genus, components, boundary loops, bounding box, edge lengths,
       and whether MESH is a valid input (closed, connected, orientable manifold; spec/mesh.md)
-  fhr generate --genus G --faces N [--seed S] [--noise X] --out MESH
-      a random closed orientable manifold mesh of genus G with exactly N faces (N even)
+  fhr generate --genus G --faces N [--holes H] [--components C] [--seed S] [--noise X] --out MESH
+      a random orientable manifold mesh with exactly N faces: closed, connected, of genus G, or
+      with H boundary loops (0-10000) in C components (1-10000), G and H spread over them
+      (N even when H = 0)
   fhr convert MESH --out MESH2 [--triangulate]
       validate MESH and write it as .off, .obj or .ply
   fhr decimate MESH (--faces N | --vertices N) --out DOMAIN.off [--min-angle DEG]

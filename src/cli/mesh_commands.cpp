@@ -1,5 +1,6 @@
-// FHR cli — `fhr generate` (random closed manifolds, for tests and for users fuzzing their own
-// code), `fhr convert` (validate and rewrite a mesh) and `fhr decimate` (§2: the domain D).
+// FHR cli — `fhr generate` (random manifolds, closed or with holes, in one or several components:
+// for tests and for users fuzzing their own code), `fhr convert` (validate and rewrite a mesh) and
+// `fhr decimate` (§2: the domain D).
 #include <cstdio>
 #include <filesystem>
 
@@ -14,15 +15,17 @@
 namespace fhr::cli {
 
 int run_generate(const std::vector<std::string>& argv) {
-    const Args args(argv, {}, {"genus", "faces", "seed", "noise", "out"});
+    const Args args(argv, {}, {"genus", "holes", "components", "faces", "seed", "noise", "out"});
     if (!args.positional().empty()) usage_error("fhr generate takes no positional arguments");
     generate::RandomMeshOptions options;
     options.genus = static_cast<int>(args.integer("genus", 0, 0, 1000));
+    options.holes = static_cast<int>(args.integer("holes", 0, 0, generate::max_holes));
+    options.components = static_cast<int>(args.integer("components", 1, 1, generate::max_components));
     options.faces = static_cast<std::size_t>(args.integer("faces", 1000, 4, 100'000'000));
     options.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, INT64_MAX));
     options.noise = args.real("noise", 0.0, 0.0, 0.5);  // the generator refuses 0.5 itself
     const std::string out = args.require("out");
-    save_mesh(out, generate::random_closed_mesh(options));
+    save_mesh(out, generate::random_mesh(options));
     return 0;
 }
 

@@ -277,13 +277,16 @@ PYBIND11_MODULE(_fhr, m) {
         "manifold triangle mesh (boundary and several components allowed here).");
     m.def(
         "generate",
-        [](int genus, std::size_t faces, std::uint64_t seed, double noise) {
-            return mesh_arrays(generate::random_closed_mesh({genus, faces, seed, noise}));
+        [](int genus, std::size_t faces, std::uint64_t seed, double noise, int holes, int components) {
+            return mesh_arrays(generate::random_mesh({genus, faces, seed, noise, holes, components}));
         },
-        py::arg("genus"), py::arg("faces"), py::arg("seed") = 0, py::arg("noise") = 0.0,
-        "generate(genus, faces, seed=0, noise=0.0) -> (V, F): the random closed mesh that `fhr generate` writes "
-        "for the same options, bit for bit.");
-    m.def("min_faces", &generate::min_faces, py::arg("genus"), "min_faces(genus) -> int: the fewest faces generate() makes for a genus.");
+        py::arg("genus"), py::arg("faces"), py::arg("seed") = 0, py::arg("noise") = 0.0, py::arg("holes") = 0,
+        py::arg("components") = 1,
+        "generate(genus, faces, seed=0, noise=0.0, holes=0, components=1) -> (V, F): the random mesh that "
+        "`fhr generate` writes for the same options, bit for bit. genus and holes (boundary loops) are totals "
+        "over the components; the defaults give a closed connected mesh.");
+    m.def("min_faces", &generate::min_faces, py::arg("genus"), py::arg("holes") = 0, py::arg("components") = 1,
+          "min_faces(genus, holes=0, components=1) -> int: the fewest faces generate() makes for these totals.");
     m.def(
         "decimate",
         [](const py::array& V, const py::array& F, std::size_t faces) {

@@ -1,24 +1,32 @@
-// FHR generate — random closed orientable manifold meshes of genus g with an exact face count
-// (the input class T of the paper, §1), for the property tests, the fuzzers and `fhr generate`.
-// The full argument is in paper_notes/generator.md; in short:
+// FHR generate — random orientable manifold meshes of genus g with an exact face count: closed
+// and connected ones are the input class T of the paper (§1); boundary loops (holes) and several
+// components are beyond the paper (issue 19). For the property tests, the fuzzers and
+// `fhr generate`. The full argument is in paper_notes/generator.md; in short, per component:
 //
 //   1. Block: the solid (2g+1) x 3 x 1 unit cells with g unit holes in a row (a unit cube for g = 0),
-//      cut into a lattice of nx x ny x nz boxes per unit cell, nx, ny, nz in {r, r+1}. Its surface
-//      has Q(nx, ny, nz) lattice rectangles. Resolution: the largest (nx, ny, nz) on the chain
-//      (1,1,1) → (2,1,1) → (2,2,1) → (2,2,2) → (3,2,2) → … with 2Q <= F. One step multiplies Q
-//      by at most 2, so F < 4Q.
-//   2. Triangulate: k = F/2 − Q randomly chosen rectangles get a centre vertex (4 triangles), the
-//      others a random diagonal (2 triangles): exactly 2(Q − k) + 4k = F faces, every corner >= 26.5°.
+//      made longer when it has too few cells for its boundary loops. Hole j is the top (j even) or
+//      bottom (j odd) face of the j/2-th cell with even coordinates: those faces are pairwise
+//      vertex-disjoint. The block is cut into a lattice of nx x ny x nz boxes per unit cell, nx, ny,
+//      nz in {r, r+1}; its surface without the holes has Q(nx, ny, nz) lattice rectangles.
+//      Resolution: the largest (nx, ny, nz) on the chain (1,1,1) → (2,1,1) → (2,2,1) → (2,2,2) →
+//      (3,2,2) → … with 2Q + t <= F (t = F mod 2 = 1 keeps one triangle of hole 0). One step
+//      multiplies Q by at most 2, so F − t < 4Q.
+//   2. Triangulate: k = (F − t)/2 − Q randomly chosen rectangles get a centre vertex (4 triangles),
+//      the others a random diagonal (2 triangles): exactly 2(Q − k) + 4k + t = F faces, every
+//      corner >= 26.5°.
 //   3. Randomize the connectivity without changing the surface, in one sweep over the edges:
 //      flips of coplanar pairs, and pairs "split an edge at its midpoint, then half-edge collapse
 //      a nearby vertex interior to a flat facet" (face count unchanged; if no collapse is allowed
 //      the split is undone). Every edit is kept only if all triangles it creates keep their
 //      corners >= 20° and lie in the facet of the triangles they replace (normals unchanged), so
 //      the surface stays the embedded polyhedron of step 1 and the face count never drifts.
+//      Boundary edges and boundary vertices are never edited, so the holes keep their outlines.
 //   4. Jitter (noise > 0): each vertex moves by at most noise × (mean length of its edges before
 //      the jitter) in a random direction; a move is refused if a triangle would get a corner < 20°
 //      or tilt by more than 60° from its un-jittered normal.
-//   5. Rebuild from the triangles: the result is exactly what reading its written file gives.
+//   5. Components are made one after the other from the same random stream, component c ≥ 1
+//      moved along +x to lie at least 1 beyond the ones before it; then the mesh is rebuilt from
+//      the triangles: the result is exactly what reading its written file gives.
 //
 // Reproducibility: std::mt19937_64 is fully specified by the standard, our uniform mappings are
 // our own (the std::uniform_*_distribution outputs differ between libraries), and every decision
@@ -27,8 +35,10 @@
 // bit-identical on every conforming compiler.
 #include <fhr/generate/random_mesh.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -102,36 +112,60 @@ constexpr double cos_max_tilt = 0.5;
 
 struct Block {
     int genus;
-    std::uint64_t W, H;  // unit cells along x and y; the block is 1 unit thick (z)
+    int holes;       // boundary loops cut into this block
+    bool keep_half;  // hole 0 keeps one triangle of its corner pixel: an odd face count
+    std::uint64_t H, W;  // unit cells along y and x; the block is 1 unit thick (z)
     std::array<std::uint64_t, 3> n{1, 1, 1};  // lattice boxes per unit cell along x, y, z
 
-    explicit Block(int g) : genus(g), W(g == 0 ? 1 : 2 * static_cast<std::uint64_t>(g) + 1), H(g == 0 ? 1 : 3) {}
+    Block(int g, int b, bool half) : genus(g), holes(b), keep_half(half), H(g == 0 ? 1 : 3), W(width(g, b, H)) {}
 
-    // The g holes are the cells (1, 1), (3, 1), …, (2g − 1, 1).
+    /// Rows of cells with an even y coordinate (1 or 2): the cells that can hold holes.
+    static std::uint64_t even_rows(std::uint64_t h) { return (h + 1) / 2; }
+    /// 2g + 1 cells for the genus (1 for g = 0), or more when the cells with even coordinates,
+    /// two holes each (top and bottom), are too few for b holes.
+    static std::uint64_t width(int g, int b, std::uint64_t h) {
+        const std::uint64_t cells = (static_cast<std::uint64_t>(b) + 1) / 2;
+        const std::uint64_t columns = (cells + even_rows(h) - 1) / even_rows(h);
+        return std::max(g == 0 ? 1 : 2 * static_cast<std::uint64_t>(g) + 1, columns == 0 ? 1 : 2 * columns - 1);
+    }
+
+    // The g holes of the genus are the cells (1, 1), (3, 1), …, (2g − 1, 1).
     bool solid_cell(std::uint64_t cx, std::uint64_t cy) const {
-        return cx < W && cy < H && !(genus > 0 && cy == 1 && cx % 2 == 1);
+        return cx < W && cy < H && !(genus > 0 && cy == 1 && cx % 2 == 1 && cx < 2 * static_cast<std::uint64_t>(genus));
+    }
+    /// Boundary loop j is the top (j even) or bottom (j odd) face of cell j/2 in the list (0, 0),
+    /// (0, 2), (2, 0), (2, 2), … of the cells with even coordinates, column by column. Two such
+    /// faces share no vertex: different cells are at least one cell apart, and top and bottom
+    /// are one unit apart.
+    bool hole_cell(std::uint64_t cx, std::uint64_t cy, bool top) const {
+        if (cx % 2 != 0 || cy % 2 != 0) return false;
+        const std::uint64_t index = 2 * ((cx / 2) * even_rows(H) + cy / 2) + (top ? 0 : 1);
+        return index < static_cast<std::uint64_t>(holes);
     }
     std::uint64_t px() const { return W * n[0]; }  // pixels of the footprint along x
     std::uint64_t py() const { return H * n[1]; }
     bool solid_pixel(std::int64_t i, std::int64_t j) const {
         return i >= 0 && j >= 0 && solid_cell(static_cast<std::uint64_t>(i) / n[0], static_cast<std::uint64_t>(j) / n[1]);
     }
-    /// Lattice rectangles on the surface: top and bottom, outer walls, hole walls.
+    /// Lattice rectangles on the surface, holes excluded: top and bottom, outer walls, hole walls.
+    /// A sum of monomials of degree <= 1 in each of m[0], m[1], m[2] with non-negative
+    /// coefficients (the b holes lie in the 2(WH − g) top and bottom cells).
     std::uint64_t quad_count(const std::array<std::uint64_t, 3>& m) const {
-        const std::uint64_t g = static_cast<std::uint64_t>(genus);
-        return 2 * m[0] * m[1] * (W * H - g) + 2 * m[2] * (W * m[0] + H * m[1]) + 2 * g * m[2] * (m[0] + m[1]);
+        const std::uint64_t g = static_cast<std::uint64_t>(genus), b = static_cast<std::uint64_t>(holes);
+        return m[0] * m[1] * (2 * (W * H - g) - b) + 2 * m[2] * (W * m[0] + H * m[1]) + 2 * g * m[2] * (m[0] + m[1]);
     }
     std::uint64_t quad_count() const { return quad_count(n); }
 
     /// The largest resolution on the chain (1,1,1) → (2,1,1) → (2,2,1) → (2,2,2) → … with
-    /// 2Q <= faces. Theorem: Q is a sum of monomials of degree <= 1 in each of nx, ny, nz, so
-    /// raising one of them from r to r + 1 multiplies Q by at most (r + 1)/r <= 2; hence the next
-    /// resolution's 2Q' > faces gives faces < 4Q, i.e. fewer than Q centre splits are needed.
+    /// 2Q + t <= faces (t = keep_half). Theorem: Q is a sum of monomials of degree <= 1 in each
+    /// of nx, ny, nz, so raising one of them from r to r + 1 multiplies Q by at most
+    /// (r + 1)/r <= 2; hence the next resolution's 2Q' + t > faces gives faces − t < 4Q, i.e.
+    /// fewer than Q centre splits are needed.
     void choose_resolution(std::uint64_t faces) {
         for (std::size_t axis = 0;; axis = (axis + 1) % 3) {
             std::array<std::uint64_t, 3> next = n;
             ++next[axis];
-            if (2 * quad_count(next) > faces) return;
+            if (2 * quad_count(next) + (keep_half ? 1 : 0) > faces) return;
             n = next;
         }
     }
@@ -176,7 +210,11 @@ private:
 
 using Corner = std::array<std::uint64_t, 3>;
 
-/// Calls quad(p, u, v) for every surface rectangle p, p+u, p+u+v, p+v of the block, with
+/// A surface rectangle of the block is solid, or lies in a hole: wholly (no triangle), or as
+/// hole 0's corner pixel when that hole keeps one triangle (keep_half).
+enum class QuadKind { solid, hole, half };
+
+/// Calls quad(p, u, v, kind) for every surface rectangle p, p+u, p+u+v, p+v of the block, with
 /// u × v its outward normal, so the corners run counter-clockwise seen from outside.
 template <class F>
 void for_each_quad(const Block& b, F&& quad) {
@@ -186,38 +224,66 @@ void for_each_quad(const Block& b, F&& quad) {
         for (std::uint64_t j = 0; j < b.py(); ++j) {
             const auto si = static_cast<std::int64_t>(i), sj = static_cast<std::int64_t>(j);
             if (!b.solid_pixel(si, sj)) continue;
-            quad(Corner{i, j, nz}, X, Y);  // top, +z
-            quad(Corner{i, j, 0}, Y, X);   // bottom, −z
+            const std::uint64_t cx = i / b.n[0], cy = j / b.n[1];
+            const QuadKind top = !b.hole_cell(cx, cy, true) ? QuadKind::solid
+                                 : b.keep_half && i == 0 && j == 0 ? QuadKind::half
+                                                                   : QuadKind::hole;
+            quad(Corner{i, j, nz}, X, Y, top);  // top, +z
+            quad(Corner{i, j, 0}, Y, X, b.hole_cell(cx, cy, false) ? QuadKind::hole : QuadKind::solid);  // bottom, −z
             const bool wall[4] = {!b.solid_pixel(si + 1, sj), !b.solid_pixel(si - 1, sj), !b.solid_pixel(si, sj + 1),
                                   !b.solid_pixel(si, sj - 1)};
             for (std::uint64_t k = 0; k < nz && (wall[0] || wall[1] || wall[2] || wall[3]); ++k) {
-                if (wall[0]) quad(Corner{i + 1, j, k}, Y, Z);  // +x
-                if (wall[1]) quad(Corner{i, j, k}, Z, Y);      // −x
-                if (wall[2]) quad(Corner{i, j + 1, k}, Z, X);  // +y
-                if (wall[3]) quad(Corner{i, j, k}, X, Z);      // −y
+                if (wall[0]) quad(Corner{i + 1, j, k}, Y, Z, QuadKind::solid);  // +x
+                if (wall[1]) quad(Corner{i, j, k}, Z, Y, QuadKind::solid);      // −x
+                if (wall[2]) quad(Corner{i, j + 1, k}, Z, X, QuadKind::solid);  // +y
+                if (wall[3]) quad(Corner{i, j, k}, X, Z, QuadKind::solid);      // −y
             }
         }
 }
 
 // --- step 2: triangulate --------------------------------------------------------------------
 
+/// Drops the vertices no triangle uses (the lattice vertices inside a hole), keeping the order
+/// of the others; without holes every vertex is used and nothing changes.
+void drop_unused_vertices(std::vector<Vec3>& positions, std::vector<Triangle>& triangles) {
+    constexpr std::uint32_t unused = UINT32_MAX;
+    std::vector<std::uint32_t> renumbered(positions.size(), unused);
+    for (const Triangle& t : triangles)
+        for (std::uint32_t v : t) renumbered[v] = 0;
+    std::uint32_t kept = 0;
+    for (std::size_t v = 0; v < positions.size(); ++v)
+        if (renumbered[v] != unused) {
+            renumbered[v] = kept;
+            positions[kept++] = positions[v];
+        }
+    positions.resize(kept);
+    for (Triangle& t : triangles)
+        for (std::uint32_t& v : t) v = renumbered[v];
+}
+
 TriMesh triangulated_block(const Block& b, std::uint64_t faces, Random& rng) {
     const Lattice lattice(b);
-    const std::uint64_t n_quads = b.quad_count();
-    std::uint64_t to_split = faces / 2 - n_quads;  // centre splits still to place
+    const std::uint64_t n_quads = b.quad_count();  // the solid ones
+    std::uint64_t to_split = (faces - (b.keep_half ? 1 : 0)) / 2 - n_quads;  // centre splits still to place
     std::uint64_t quads_left = n_quads;
     std::vector<Vec3> positions;
     positions.reserve(lattice.size() + to_split);
     positions.resize(lattice.size());
     std::vector<Triangle> triangles;
     triangles.reserve(faces);
-    for_each_quad(b, [&](const Corner& p, const Corner& u, const Corner& v) {
+    for_each_quad(b, [&](const Corner& p, const Corner& u, const Corner& v, QuadKind kind) {
+        if (kind == QuadKind::hole) return;
         std::array<std::uint32_t, 4> c;
         for (std::size_t q = 0; q < 4; ++q) {
             const std::uint64_t su = q == 1 || q == 2, sv = q >= 2;
             const Corner l{p[0] + su * u[0] + sv * v[0], p[1] + su * u[1] + sv * v[1], p[2] + su * u[2] + sv * v[2]};
             c[q] = lattice.index(l[0], l[1], l[2]);
             positions[c[q]] = lattice.position(l[0], l[1], l[2]);
+        }
+        if (kind == QuadKind::half) {
+            // The triangle at the cell's corner p: p becomes interior, the loop cuts across.
+            triangles.push_back({c[0], c[1], c[3]});
+            return;
         }
         // Selection sampling (Knuth, TAOCP 3.4.2, Algorithm S): a uniform k-subset of the quads.
         if (rng.below(quads_left--) < to_split) {
@@ -233,6 +299,7 @@ TriMesh triangulated_block(const Block& b, std::uint64_t faces, Random& rng) {
             triangles.push_back({c[1], c[3], c[0]});
         }
     });
+    drop_unused_vertices(positions, triangles);
     return TriMesh::from_triangles(std::move(positions), triangles);
 }
 
@@ -245,6 +312,7 @@ public:
     /// One sweep over the edges in index order (neighbouring edges have close indices, so the
     /// sweep walks the memory in order): each edge is flipped with probability 1/2, or split
     /// and paired with a collapse nearby with probability 1/8, when the edit keeps the shape.
+    /// Every live edge draws its number, a boundary edge too, but a boundary edge is never edited.
     void run() {
         const std::size_t n = m_.n_edges();
         for (std::size_t i = 0; i < n; ++i) {
@@ -273,6 +341,7 @@ private:
     // Faces (a, b, c) and (b, a, d) of e become (a, d, c) and (d, b, c): allowed when the four
     // points are coplanar and the quadrilateral is strictly convex (new normals unchanged).
     bool flip_keeps_shape(EdgeId e) const {
+        if (m_.is_boundary(e)) return false;
         const HalfedgeId h = TriMesh::halfedge(e, 0), o = TriMesh::halfedge(e, 1);
         const Vec3 &a = pos(m_.from(h)), &b = pos(m_.to(h)), &c = pos(m_.to(m_.next(h))), &d = pos(m_.to(m_.next(o)));
         const Vec3 n = normal(a, b, c);
@@ -289,9 +358,12 @@ private:
         return well_shaped(a, mid, c) && well_shaped(mid, b, c) && well_shaped(b, mid, d) && well_shaped(mid, a, d);
     }
 
-    // from(h) must be interior to a flat facet (all its faces coplanar), and its faces other than
-    // the two removed ones, moved to to(h), must stay in that facet and be well shaped: then the
-    // collapse only re-triangulates the facet. The link condition keeps the topology.
+    // from(h) must be interior to a flat facet (not on the boundary, all its faces coplanar), and
+    // its faces other than the two removed ones, moved to to(h), must stay in that facet and be
+    // well shaped: then the collapse only re-triangulates the facet. The link condition keeps the
+    // topology (to(h) may be on the boundary: the collapse only moves an interior vertex).
+    // Boundary vertices are recognised by their halfedges, not by out(): collapse() does not keep
+    // a boundary vertex's out() on its boundary halfedge.
     bool collapse_keeps_shape(HalfedgeId h) const {
         const VertexId v0 = m_.from(h);
         const Vec3& target = pos(m_.to(h));
@@ -300,7 +372,7 @@ private:
         bool ok = true;
         m_.for_each_outgoing(v0, [&](HalfedgeId g) {
             const Vec3 &b = pos(m_.to(g)), &c = pos(m_.to(m_.next(g)));
-            ok = ok && within_angle(normal(pos(v0), b, c), n, cos_coplanar);
+            ok = ok && !m_.is_boundary(g) && within_angle(normal(pos(v0), b, c), n, cos_coplanar);
             if (ok && m_.face(g) != gone0 && m_.face(g) != gone1)
                 ok = within_angle(normal(target, b, c), n, cos_coplanar) && well_shaped(target, b, c);
         });
@@ -310,6 +382,7 @@ private:
     // Splits e at its midpoint, then collapses a random halfedge leaving a random neighbour of
     // the new vertex, so that the face count and the local vertex density stay the same.
     void split_then_collapse(EdgeId e) {
+        if (m_.is_boundary(e)) return;  // a split would add one face, a collapse then remove two
         const HalfedgeId h = TriMesh::halfedge(e, 0);
         const Vec3 mid = 0.5 * (pos(m_.from(h)) + pos(m_.to(h)));
         if (!split_keeps_shape(e, mid)) return;
@@ -355,6 +428,7 @@ void jitter(TriMesh& m, double noise, Random& rng) {
         const Vec3 moved = m.position(v) + step[v.idx()] * direction;
         bool ok = true;
         m.for_each_outgoing(v, [&](HalfedgeId h) {
+            if (m.is_boundary(h)) return;  // no triangle on the left of h: a hole
             const Vec3 &b = m.position(m.to(h)), &c = m.position(m.to(m.next(h)));
             ok = ok && well_shaped(moved, b, c) &&
                  within_angle(normal(moved, b, c), reference[m.face(h).idx()], cos_max_tilt);
@@ -363,36 +437,103 @@ void jitter(TriMesh& m, double noise, Random& rng) {
     }
 }
 
-}  // namespace
+// --- components -------------------------------------------------------------------------------
 
-std::size_t min_faces(int genus) {
+/// Component c's share of a total over C components: ⌊total/C⌋, plus one for the first total mod C.
+int share(int total, int components, int c) { return total / components + (c < total % components ? 1 : 0); }
+
+/// 2Q at the coarsest resolution: the fewest faces of a component (always even).
+std::uint64_t component_min_faces(int genus, int holes) { return 2 * Block(genus, holes, false).quad_count(); }
+
+void check_counts(int genus, int holes, int components) {
     if (genus < 0) invalid("the genus must be >= 0 (got " + std::to_string(genus) + ")");
-    const Block b(genus);
-    return 2 * b.quad_count();
+    if (holes < 0 || holes > max_holes)
+        invalid("the number of holes must be in [0, " + std::to_string(max_holes) + "] (got " + std::to_string(holes) + ")");
+    if (components < 1 || components > max_components)
+        invalid("the number of components must be in [1, " + std::to_string(max_components) + "] (got " +
+                std::to_string(components) + ")");
 }
 
-TriMesh random_closed_mesh(const RandomMeshOptions& options) {
-    const std::size_t faces = options.faces, least = min_faces(options.genus);
-    if (faces % 2 != 0)
-        invalid("the face count must be even (got " + std::to_string(faces) +
-                "): a closed triangle mesh has 3F/2 edges");
-    if (faces < least)
-        invalid("genus " + std::to_string(options.genus) + " needs at least " + std::to_string(least) +
-                " faces (got " + std::to_string(faces) + ")");
-    if (faces > max_faces)
-        invalid("at most " + std::to_string(max_faces) + " faces can be generated (got " + std::to_string(faces) + ")");
-    if (!(options.noise >= 0 && options.noise < 0.5))
-        invalid("the noise must be in [0, 0.5) (got " + std::to_string(options.noise) + ")");
-    Random rng(options.seed);
-    Block block(options.genus);
+/// Steps 1–4 for one component with an exact face count (odd only when it has holes).
+TriMesh component_mesh(int genus, int holes, std::uint64_t faces, double noise, Random& rng) {
+    Block block(genus, holes, faces % 2 == 1);
     block.choose_resolution(faces);
     TriMesh mesh = triangulated_block(block, faces, rng);
     Randomizer(mesh, rng).run();
     mesh.compact();
-    if (options.noise > 0) jitter(mesh, options.noise, rng);
+    if (noise > 0) jitter(mesh, noise, rng);
+    return mesh;
+}
+
+}  // namespace
+
+std::size_t min_faces(int genus, int holes, int components) {
+    check_counts(genus, holes, components);
+    std::uint64_t sum = 0;
+    for (int c = 0; c < components; ++c)
+        sum += component_min_faces(share(genus, components, c), share(holes, components, c));
+    return sum;
+}
+
+TriMesh random_mesh(const RandomMeshOptions& options) {
+    const std::size_t faces = options.faces, least = min_faces(options.genus, options.holes, options.components);
+    if (faces % 2 != 0 && options.holes == 0)
+        invalid("the face count must be even without holes (got " + std::to_string(faces) +
+                "): a closed triangle mesh has 3F/2 edges");
+    if (faces < least) {
+        std::string what = "genus " + std::to_string(options.genus);
+        if (options.holes > 0) what += " with " + std::to_string(options.holes) + " holes";
+        if (options.components > 1) what += " in " + std::to_string(options.components) + " components";
+        invalid(what + " needs at least " + std::to_string(least) + " faces (got " + std::to_string(faces) + ")");
+    }
+    if (faces > max_faces)
+        invalid("at most " + std::to_string(max_faces) + " faces can be generated (got " + std::to_string(faces) + ")");
+    if (!(options.noise >= 0 && options.noise < 0.5))
+        invalid("the noise must be in [0, 0.5) (got " + std::to_string(options.noise) + ")");
+    // Faces: every component gets its minimum, then the pairs of faces left over are dealt out
+    // as evenly as possible (the first ones get one pair more), and an odd last face goes to
+    // component 0, which has a hole whenever F may be odd.
+    const int components = options.components;
+    const std::uint64_t surplus = faces - least, pairs = surplus / 2, count = static_cast<std::uint64_t>(components);
+    Random rng(options.seed);
+    std::vector<Vec3> positions;
+    std::vector<Triangle> triangles;
+    double right = -std::numeric_limits<double>::infinity();  // the largest x of the components so far
+    for (int c = 0; c < components; ++c) {
+        const int genus = share(options.genus, components, c), holes = share(options.holes, components, c);
+        const std::uint64_t extra = 2 * (pairs / count + (static_cast<std::uint64_t>(c) < pairs % count ? 1 : 0)) +
+                                    (c == 0 ? surplus % 2 : 0);
+        const TriMesh part = component_mesh(genus, holes, component_min_faces(genus, holes) + extra, options.noise, rng);
+        // Component 0 stays centred at the origin; component c >= 1 is moved along +x so that its
+        // smallest x is right + 1: bounding boxes 1 apart (up to a rounding), so no two
+        // components meet.
+        double shift = 0;
+        if (c > 0) {
+            double left = part.positions().front().x();
+            for (const Vec3& p : part.positions()) left = std::min(left, p.x());
+            shift = (right + 1) - left;
+        }
+        const auto first = static_cast<std::uint32_t>(positions.size());
+        for (Vec3 p : part.positions()) {
+            if (c > 0) p.x() += shift;  // not for c = 0: −0 + 0 would change a bit
+            right = std::max(right, p.x());
+            positions.push_back(p);
+        }
+        for (Triangle t : part.triangles()) {
+            for (std::uint32_t& v : t) v += first;
+            triangles.push_back(t);
+        }
+    }
     // Step 5: rebuilt from its own triangles, the mesh is exactly the one a reader gives for its
     // written file (same halfedge numbering), so a failing test reproduces from the file.
-    return TriMesh::from_triangles(mesh.positions(), mesh.triangles());
+    return TriMesh::from_triangles(std::move(positions), triangles);
+}
+
+TriMesh random_closed_mesh(const RandomMeshOptions& options) {
+    if (options.holes != 0)
+        invalid("random_closed_mesh makes closed surfaces: the number of holes must be 0 (got " +
+                std::to_string(options.holes) + "); random_mesh makes surfaces with holes");
+    return random_mesh(options);
 }
 
 }  // namespace fhr::generate

@@ -1,6 +1,7 @@
-// <fhr/testing/rapidcheck.hpp> — random closed meshes for RapidCheck properties (fhr/generate),
-// for users fuzzing their own code and for fhr's own property tests, which draw their input
-// surfaces T (paper §1: closed orientable manifold triangulations of any genus) from here.
+// <fhr/testing/rapidcheck.hpp> — random meshes for RapidCheck properties (fhr/generate), for
+// users fuzzing their own code and for fhr's own property tests, which draw their input surfaces
+// T (paper §1: closed orientable manifold triangulations of any genus) from here; surfaces with
+// boundary loops and several components (beyond the paper, issue 19) on request.
 // Header-only: it needs RapidCheck (<rapidcheck.h>, Debian's librapidcheck-dev) and libfhr; fhr
 // itself never needs RapidCheck to build. A failing case shows the `fhr generate` command that
 // writes the same mesh to a file, and reading the file gives exactly the same TriMesh back
@@ -15,6 +16,7 @@
 #include <sstream>
 #include <string>
 
+#include <fhr/core/errors.hpp>
 #include <fhr/core/trimesh.hpp>
 #include <fhr/generate/random_mesh.hpp>
 
@@ -23,31 +25,63 @@ namespace fhr::testing {
 /// The command line that writes the mesh of these options.
 inline std::string generate_command(const generate::RandomMeshOptions& o) {
     std::ostringstream s;
-    s << "fhr generate --genus " << o.genus << " --faces " << o.faces << " --seed " << o.seed;
+    s << "fhr generate --genus " << o.genus;
+    if (o.holes != 0) s << " --holes " << o.holes;
+    if (o.components != 1) s << " --components " << o.components;
+    s << " --faces " << o.faces << " --seed " << o.seed;
     if (o.noise != 0) s << " --noise " << o.noise;
     s << " --out mesh.off";
     return s.str();
 }
 
-/// Random options: genus in [min_genus, max_genus], an even face count in
-/// [min_faces(genus), max_faces], a seed the CLI accepts (< 2^63) and a noise of 0, 0.05, 0.1
-/// or 0.25 (exact in decimal, so the shown command reproduces it). Shrinks towards the
-/// smallest genus, the fewest faces, seed 0 and no noise. Properties pick gen_closed_mesh,
-/// whose values show their options in a counterexample.
-/// \pre 0 <= min_genus <= max_genus and max_faces >= generate::min_faces(max_genus).
-inline rc::Gen<generate::RandomMeshOptions> gen_mesh_options(int min_genus = 0, int max_genus = 4,
-                                                             std::size_t max_faces = 2000) {
+/// The ranges recipes are drawn from (closed ranges; genus and holes are totals over the
+/// components, generate::RandomMeshOptions). Holes and components are opt-in: the defaults give
+/// closed connected meshes, the only ones fhr's pipeline accepts.
+struct MeshRanges {
+    int min_genus = 0, max_genus = 4;
+    std::size_t max_faces = 2000;
+    int min_holes = 0, max_holes = 0;
+    int min_components = 1, max_components = 1;
+};
+
+/// Random options: genus, holes and components in their ranges (holes and components are drawn
+/// only when their range has more than one value, so the default ranges draw what they drew
+/// before these two knobs existed), a face count in [min_faces(genus, holes, components), max_faces] (even when there
+/// are no holes), a seed the CLI accepts (< 2^63) and a noise of 0, 0.05, 0.1 or 0.25 (exact in
+/// decimal, so the shown command reproduces it). Shrinks towards the smallest genus, holes and
+/// components, the fewest faces, seed 0 and no noise. Properties pick gen_mesh or
+/// gen_closed_mesh, whose values show their options in a counterexample.
+/// \pre 0 <= min_genus <= max_genus, 0 <= min_holes <= max_holes <= generate::max_holes,
+///      1 <= min_components <= max_components <= generate::max_components.
+/// \throws InvalidInput (when a value is drawn) if max_faces is below min_faces of the drawn
+///         genus, holes and components.
+inline rc::Gen<generate::RandomMeshOptions> gen_mesh_options(const MeshRanges& r) {
     return rc::gen::exec([=] {
+        const auto draw_if_varies = [](int lo, int hi) { return lo == hi ? lo : *rc::gen::inRange(lo, hi + 1); };
         generate::RandomMeshOptions o;
-        o.genus = *rc::gen::inRange(min_genus, max_genus + 1);
-        const std::size_t least = generate::min_faces(o.genus);
-        o.faces = least + 2 * *rc::gen::inRange<std::size_t>(0, (max_faces - least) / 2 + 1);
+        o.genus = *rc::gen::inRange(r.min_genus, r.max_genus + 1);
+        o.holes = draw_if_varies(r.min_holes, r.max_holes);
+        o.components = draw_if_varies(r.min_components, r.max_components);
+        const std::size_t least = generate::min_faces(o.genus, o.holes, o.components);
+        if (least > r.max_faces)
+            throw InvalidInput("", 0, "gen_mesh_options: " + generate_command(o) + " needs at least " +
+                                          std::to_string(least) + " faces, more than max_faces = " +
+                                          std::to_string(r.max_faces));
+        const std::size_t step = o.holes == 0 ? 2 : 1;  // F is even without holes
+        o.faces = least + step * *rc::gen::inRange<std::size_t>(0, (r.max_faces - least) / step + 1);
         o.seed = *rc::gen::inRange<std::uint64_t>(0, std::numeric_limits<std::int64_t>::max());
         // an index, not gen::element (which never shrinks): shrinks toward no noise
         constexpr double noises[] = {0.0, 0.05, 0.1, 0.25};
         o.noise = noises[*rc::gen::inRange(0, 4)];
         return o;
     });
+}
+
+/// Closed connected recipes: genus in [min_genus, max_genus], faces up to max_faces.
+/// \pre 0 <= min_genus <= max_genus and max_faces >= generate::min_faces(max_genus).
+inline rc::Gen<generate::RandomMeshOptions> gen_mesh_options(int min_genus = 0, int max_genus = 4,
+                                                             std::size_t max_faces = 2000) {
+    return gen_mesh_options(MeshRanges{min_genus, max_genus, max_faces});
 }
 
 /// A generated mesh that remembers its options. RapidCheck shows it in a counterexample as the
@@ -61,12 +95,18 @@ inline void showValue(const GeneratedMesh& m, std::ostream& os) {
     os << generate_command(m.options) << "  (" << m.n_vertices() << " vertices, " << m.n_faces() << " faces)";
 }
 
-/// A random closed mesh (see gen_mesh_options); use it as a TriMesh:
+/// A random mesh of a recipe drawn from the ranges (see gen_mesh_options); use it as a TriMesh:
+/// `const TriMesh& m = *gen_mesh({.max_holes = 5, .max_components = 3});`.
+inline rc::Gen<GeneratedMesh> gen_mesh(const MeshRanges& ranges) {
+    return rc::gen::map(gen_mesh_options(ranges), [](const generate::RandomMeshOptions& o) {
+        return GeneratedMesh{generate::random_mesh(o), o};
+    });
+}
+
+/// A random closed connected mesh (see gen_mesh_options); use it as a TriMesh:
 /// `const TriMesh& m = *gen_closed_mesh();`.
 inline rc::Gen<GeneratedMesh> gen_closed_mesh(int min_genus = 0, int max_genus = 4, std::size_t max_faces = 2000) {
-    return rc::gen::map(gen_mesh_options(min_genus, max_genus, max_faces), [](const generate::RandomMeshOptions& o) {
-        return GeneratedMesh{generate::random_closed_mesh(o), o};
-    });
+    return gen_mesh(MeshRanges{min_genus, max_genus, max_faces});
 }
 
 }  // namespace fhr::testing

@@ -1,9 +1,12 @@
-"""Hypothesis strategies of random closed manifold meshes, for property tests of your own code.
+"""Hypothesis strategies of random manifold meshes, for property tests of your own code.
 
-A mesh is drawn as a recipe of `fhr generate` (genus, face count, seed, noise) and built by the C++
-generator, so a failing example is reproducible from its recipe on any machine. Hypothesis shrinks
-the recipe: lower genus, fewer faces, seed 0, no noise -- the same notion of "smaller" as the C++
-RapidCheck generator (<fhr/testing/rapidcheck.hpp>).
+A mesh is drawn as a recipe of `fhr generate` (genus, face count, seed, noise, and on request
+holes and components) and built by the C++ generator, so a failing example is reproducible from its
+recipe on any machine. Hypothesis shrinks the recipe: lower genus, fewer holes and components, fewer
+faces, seed 0, no noise -- the same notion of "smaller" as the C++ RapidCheck generator
+(<fhr/testing/rapidcheck.hpp>). By default the meshes are closed and connected, the only ones
+fhr.parameterize accepts; `holes=(1, 5), components=(1, 3)` gives surfaces with boundary loops
+and several components (genus and holes are totals over the components).
 
     from hypothesis import given
     import fhr.testing
@@ -32,11 +35,16 @@ class Recipe:
     faces: int
     seed: int
     noise: float
+    holes: int = 0
+    components: int = 1
 
     def command(self, out="mesh.off"):
         """The command line that writes this mesh to a file."""
+        holes = " --holes %d" % self.holes if self.holes else ""
+        components = " --components %d" % self.components if self.components != 1 else ""
         noise = " --noise %r" % self.noise if self.noise else ""
-        return "fhr generate --genus %d --faces %d --seed %d%s --out %s" % (self.genus, self.faces, self.seed, noise, out)
+        return "fhr generate --genus %d%s%s --faces %d --seed %d%s --out %s" % (
+            self.genus, holes, components, self.faces, self.seed, noise, out)
 
 
 @dataclass(frozen=True)
@@ -52,24 +60,33 @@ class Mesh:
 
 
 @st.composite
-def recipes(draw, genus=(0, 4), faces=(12, 2000)):
-    """Recipes with genus in the closed range `genus` and an even face count in `faces` (raised to the
-    generator's minimum for the genus drawn). Shrinks toward the lowest genus, the fewest faces, seed
-    0 and no noise."""
-    lo_genus, hi_genus = genus
-    g = draw(st.integers(lo_genus, hi_genus))
-    least = max(_fhr.min_faces(g), faces[0] + faces[0] % 2)
+def recipes(draw, genus=(0, 4), faces=(12, 2000), holes=(0, 0), components=(1, 1)):
+    """Recipes with genus, holes and components in the closed ranges given (holes and components are
+    drawn only when their range has more than one value, so the defaults draw what they drew before
+    these two knobs existed) and a face count in `faces`, raised to the generator's minimum for what
+    was drawn, even when there are no holes. Shrinks toward the lowest genus, the fewest holes and
+    components, the fewest faces, seed 0 and no noise."""
+    def draw_if_varies(bounds):
+        return bounds[0] if bounds[0] == bounds[1] else draw(st.integers(bounds[0], bounds[1]))
+    g = draw(st.integers(genus[0], genus[1]))
+    b = draw_if_varies(holes)
+    c = draw_if_varies(components)
+    step = 2 if b == 0 else 1  # without holes the face count is even
+    fewest = _fhr.min_faces(g, b, c)
+    least = max(fewest, faces[0] + (faces[0] % 2 if step == 2 else 0))
     if least > faces[1]:
-        raise ValueError("no mesh of genus %d has at most %d faces (the fewest are %d)" % (g, faces[1], _fhr.min_faces(g)))
-    n = least + 2 * draw(st.integers(0, (faces[1] - least) // 2))
+        raise ValueError("no mesh of genus %d with %d holes in %d components has at most %d faces (the fewest are %d)"
+                         % (g, b, c, faces[1], fewest))
+    n = least + step * draw(st.integers(0, (faces[1] - least) // step))
     seed = draw(st.integers(0, 2**63 - 1))
     noise = NOISES[draw(st.integers(0, len(NOISES) - 1))]
-    return Recipe(g, n, seed, noise)
+    return Recipe(g, n, seed, noise, b, c)
 
 
-def meshes(genus=(0, 4), faces=(12, 2000)):
-    """Random closed orientable manifold meshes (see recipes), as Mesh values."""
+def meshes(genus=(0, 4), faces=(12, 2000), holes=(0, 0), components=(1, 1)):
+    """Random orientable manifold meshes (see recipes), as Mesh values: closed and connected unless
+    `holes` or `components` ask for more."""
     def build(r):
-        V, F = _fhr.generate(r.genus, r.faces, r.seed, r.noise)
+        V, F = _fhr.generate(r.genus, r.faces, r.seed, r.noise, r.holes, r.components)
         return Mesh(r, V, F)
-    return recipes(genus, faces).map(build)
+    return recipes(genus, faces, holes, components).map(build)
