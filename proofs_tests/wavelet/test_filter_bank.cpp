@@ -69,11 +69,8 @@ Eigen::MatrixXd closed_form(const TriMesh& coarse, int j) {
     return A;
 }
 
-// A domain with J: closed (genus 0..2) or with 1..5 boundary loops and 1..3 components.
-TriMesh gen_any_domain(bool open, int J) {
-    if (open) return *test::gen_open_domain(max_component_faces_for(J));
-    return *test::gen_domain(max_faces_for(J));
-}
+// A domain for level J: closed, or with boundary and several components.
+TriMesh domain_for(bool open, int J) { return test::draw_domain(open, open ? max_component_faces_for(J) : max_faces_for(J)); }
 
 // WAV-4, WAV-13: the round trip within 1e−12 of ‖f‖_∞ and every solve within its τ_j.
 void check_round_trip(const TriMesh& D, int J) {
@@ -161,14 +158,14 @@ TEST_CASE("WAV-4: reconstruct(decompose(f)) = f to 1e-12 relative, random f on r
           "[property][wavelet]") {
     rc::prop("random D, J, f (coordinates up to 10^3 away from the origin)", [] {
         const int J = *rc::gen::inRange(1, 5);
-        check_round_trip(gen_any_domain(false, J), J);
+        check_round_trip(domain_for(false, J), J);
     });
 }
 
 TEST_CASE("WAV-13: the round trip to 1e-12 relative with boundary and several components, levels 1..4", "[property][wavelet]") {
     rc::prop("random D (1..5 boundary loops, 1..3 components), J, f (up to 10^3 away from the origin)", [] {
         const int J = *rc::gen::inRange(1, 5);
-        check_round_trip(gen_any_domain(true, J), J);
+        check_round_trip(domain_for(true, J), J);
     });
 }
 
@@ -210,7 +207,7 @@ TEST_CASE("WAV-6: a function already in S^k has every wavelet coefficient at lev
     rc::prop("random D, J, k < J, c^k", [] {
         const int J = *rc::gen::inRange(1, 4);
         const int k = *rc::gen::inRange(0, J);
-        check_coarse_function(*test::gen_domain(max_faces_for(J)), J, k);
+        check_coarse_function(domain_for(false, J), J, k);
     });
 }
 
@@ -218,7 +215,7 @@ TEST_CASE("WAV-13: with boundary too, a function already in S^k has no wavelet c
     rc::prop("random D (1..5 boundary loops, 1..3 components), J, k < J, c^k", [] {
         const int J = *rc::gen::inRange(1, 4);
         const int k = *rc::gen::inRange(0, J);
-        check_coarse_function(*test::gen_open_domain(max_component_faces_for(J)), J, k);
+        check_coarse_function(domain_for(true, J), J, k);
     });
 }
 

@@ -151,6 +151,14 @@ inline rc::Gen<OpenDomain> gen_open_domain(std::size_t max_faces, std::size_t ma
     });
 }
 
+/// A random domain drawn in a property: closed (genus 0..2, at most `max_faces` faces) or, when
+/// `open`, with 1..5 boundary loops and 1..3 components of at most `max_faces` faces each. The
+/// counterexample shows the recipe of either kind.
+inline TriMesh draw_domain(bool open, std::size_t max_faces) {
+    if (open) return *gen_open_domain(max_faces);
+    return *gen_domain(max_faces);
+}
+
 /// n random points with coordinates uniform in [−1, 1] (scaled by `scale`, shifted by `offset`).
 inline std::vector<Vec3> random_points(std::size_t n, std::uint64_t seed, double scale = 1, const Vec3& offset = Vec3::Zero()) {
     std::mt19937_64 rng(seed);
