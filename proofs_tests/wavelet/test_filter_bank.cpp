@@ -203,6 +203,21 @@ TEST_CASE("WAV-13: with boundary the decomposition matrix is s Σ_v E_v B_v E_v�
     });
 }
 
+TEST_CASE("WAV-13: one triangle: A = s(2I + ⅔𝟙𝟙ᵀ) at j = 1, spectrum {2s, 2s, 4s}: the bound 4s is attained", "[unit][wavelet]") {
+    // By hand: each corner has t = 1 and B = 6/7 𝟙𝟙ᵀ + T_1⁻¹, T_1 = [5/2 1; 1 5/2], T_1⁻¹ =
+    // [10 −4; −4 10]/21, so B = [4/3 2/3; 2/3 4/3]; every new vertex is in two corners' rings and
+    // every pair of new vertices in one: A = 8/3 on the diagonal, 2/3 off it (s = 1).
+    const TriMesh D = TriMesh::from_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, std::vector<Triangle>{{0, 1, 2}});
+    const FilterBank bank(wavelet::refine(D, 1));
+    const Eigen::MatrixXd A(bank.level(1).A);
+    REQUIRE(A.rows() == 3);
+    for (Eigen::Index a = 0; a < 3; ++a)
+        for (Eigen::Index b = 0; b < 3; ++b) CHECK(A(a, b) == Approx(a == b ? 8.0 / 3.0 : 2.0 / 3.0).epsilon(1e-15));
+    const Eigen::VectorXd lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A).eigenvalues();
+    CHECK(lambda.maxCoeff() == Approx(4).epsilon(1e-14));
+    CHECK(lambda.minCoeff() == Approx(2).epsilon(1e-14));
+}
+
 TEST_CASE("WAV-6: a function already in S^k has every wavelet coefficient at levels ≥ k exactly zero", "[property][wavelet]") {
     rc::prop("random D, J, k < J, c^k", [] {
         const int J = *rc::gen::inRange(1, 4);
