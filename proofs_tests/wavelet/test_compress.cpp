@@ -1,6 +1,8 @@
-// FHR §6 (Fig. 9) — compression (spec/wavelet.md WAV-7, WAV-8): the kept count ⌊p·N/100⌋, keeping
-// 100 % reconstructs exactly, 0 % gives the coarse approximation, the kept coefficients are the
-// largest by |d_u|·‖ψ_u‖, and the error does not increase as more coefficients are kept.
+// FHR §6 (Fig. 9) — compression (spec/wavelet.md WAV-7, WAV-8; WAV-14 with boundary): the kept
+// count ⌊p·N/100⌋, keeping 100 % reconstructs exactly, 0 % gives the coarse approximation, the
+// kept coefficients are the largest by |d_u|·‖ψ_u‖, and the error does not increase as whole
+// levels are kept; each property on closed domains and on domains with boundary and several
+// components alike.
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
@@ -59,10 +61,11 @@ TEST_CASE("WAV-7: kept_count is ⌊p·N/100⌋: 179 and 718 of the fandisk's 3,5
     CHECK_THROWS_AS(wavelet::kept_count(10, std::nan("")), InvalidInput);
 }
 
-TEST_CASE("WAV-7: keeping 100 % reconstructs exactly, 0 % gives f^0; the kept ones are the largest", "[property][wavelet]") {
-    rc::prop("random D, J, f", [] {
+TEST_CASE("WAV-7, WAV-14: keeping 100 % reconstructs exactly, 0 % gives f^0; the kept ones are the largest", "[property][wavelet]") {
+    rc::prop("random D (closed, or with boundary and several components), J, f", [] {
         const int J = *rc::gen::inRange(1, 4);
-        const fhr::testing::GeneratedMesh D = *test::gen_domain(J == 3 ? 150 : 400);
+        const bool open = *rc::gen::arbitrary<bool>();
+        const TriMesh D = test::draw_domain(open, J == 3 ? (open ? 60 : 150) : (open ? 130 : 400));
         const Refinement r = wavelet::refine(D, J);
         const FilterBank bank(r);
         const std::vector<Vec3> f = test::random_points(r.finest().n_vertices(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30));
@@ -98,13 +101,14 @@ TEST_CASE("WAV-7: keeping 100 % reconstructs exactly, 0 % gives f^0; the kept on
     });
 }
 
-TEST_CASE("WAV-8: keeping whole levels: ‖f − f^k‖² = Σ_{j ≥ k} ‖g^j‖² (Pythagoras), so the error decreases",
+TEST_CASE("WAV-8, WAV-14: keeping whole levels: ‖f − f^k‖² = Σ_{j ≥ k} ‖g^j‖² (Pythagoras), so the error decreases",
           "[property][wavelet]") {
     // W^j ⟂ S^j ⊇ S^0 ⊕ W^0 ⊕ … ⊕ W^{j−1}: the levels are mutually orthogonal. Each squared norm
     // sums positive terms computed to a few ulps: 1e−12 relative.
-    rc::prop("random D, J, smooth f with noise", [] {
+    rc::prop("random D (closed, or with boundary and several components), J, smooth f with noise", [] {
         const int J = *rc::gen::inRange(1, 4);
-        const fhr::testing::GeneratedMesh D = *test::gen_domain(J == 3 ? 150 : 400);
+        const bool open = *rc::gen::arbitrary<bool>();
+        const TriMesh D = test::draw_domain(open, J == 3 ? (open ? 60 : 150) : (open ? 130 : 400));
         const Refinement r = wavelet::refine(D, J);
         const FilterBank bank(r);
         const double noise = *rc::gen::element(0.0, 0.001, 0.01, 0.1);
@@ -142,16 +146,17 @@ TEST_CASE("WAV-8: keeping whole levels: ‖f − f^k‖² = Σ_{j ≥ k} ‖g^j�
     });
 }
 
-TEST_CASE("WAV-8: keeping the largest k: the error is within the Riesz bounds of Σ_{dropped} (|d_u|‖ψ_u‖)², "
+TEST_CASE("WAV-8, WAV-14: keeping the largest k: the error is within the Riesz bounds of Σ_{dropped} (|d_u|‖ψ_u‖)², "
           "which never increases with k",
           "[property][wavelet]") {
     // With the levels orthogonal, ‖f − f_K‖² = Σ_j ‖Σ_{u ∉ K, level j} d_u ψ_u‖², and on level j
     // ρ_j⁻ Σ (|d_u|‖ψ_u‖)² ≤ ‖Σ d_u ψ_u‖² ≤ ρ_j⁺ Σ (|d_u|‖ψ_u‖)² with ρ_j^± the extreme eigenvalues
     // of the prewavelets' normalized Gram matrix (computed here, dense). So k ↦ error can only grow
     // by the factor (max ρ⁺ / min ρ⁻)^½ between any two k, and the bound itself never increases.
-    rc::prop("random D, J ≤ 2, smooth f with noise", [] {
+    rc::prop("random D (closed, or with boundary and several components), J ≤ 2, smooth f with noise", [] {
         const int J = *rc::gen::inRange(1, 3);
-        const fhr::testing::GeneratedMesh D = *test::gen_domain(J == 2 ? 64 : 200);
+        const bool open = *rc::gen::arbitrary<bool>();
+        const TriMesh D = test::draw_domain(open, J == 2 ? (open ? 24 : 64) : (open ? 70 : 200));
         const Refinement r = wavelet::refine(D, J);
         const FilterBank bank(r);
         const double noise = *rc::gen::element(0.0, 0.01, 0.1);

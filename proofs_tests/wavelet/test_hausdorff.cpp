@@ -5,6 +5,7 @@
 #include <rapidcheck/catch.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include <fhr/wavelet/hausdorff.hpp>
@@ -110,12 +111,15 @@ TEST_CASE("WAV-9: lower ≤ h ≤ upper: lower is at least the vertices' brute-f
     });
 }
 
-TEST_CASE("WAV-9: the two-triangle and vertex-fan bounds are upper bounds of the distance on a piece", "[property][wavelet]") {
-    rc::prop("pieces near the vertices and edges of an irregular flat-faced octahedron, slightly off it", [] {
+TEST_CASE("WAV-9, WAV-14: the two-triangle and vertex-fan bounds are upper bounds of the distance on a piece, inside and at the boundary",
+          "[property][wavelet]") {
+    rc::prop("pieces near the vertices and edges of an irregular flat-faced octahedron or its open upper half, slightly off it", [] {
         const int n = *rc::gen::inRange(2, 9);
         const double jitter = *rc::gen::element(0.0, 0.1, 0.25);
-        const TriMesh B = test::refined_polyhedron(test::octahedron_corners, test::octahedron_faces, n, jitter,
-                                                   *rc::gen::inRange(0u, 1000u));
+        const bool open = *rc::gen::arbitrary<bool>();
+        const std::vector<Vec3> corners(test::octahedron_corners.begin(), test::octahedron_corners.begin() + (open ? 5 : 6));
+        const std::vector<Triangle> faces(test::octahedron_faces.begin(), test::octahedron_faces.begin() + (open ? 4 : 8));
+        const TriMesh B = test::refined_polyhedron(corners, faces, n, jitter, *rc::gen::inRange(0u, 1000u));
         const std::vector<Vec3>& x = B.positions();
         const std::vector<Triangle> t = B.triangles();
         const TriangleTree tree(x, t);
@@ -138,7 +142,7 @@ TEST_CASE("WAV-9: the two-triangle and vertex-fan bounds are upper bounds of the
             if (i != first && (has(t[first], t[i][0]) + has(t[first], t[i][1]) + has(t[first], t[i][2])) == 2) second = i;
         for (std::uint32_t i : {first, second}) pair.push_back(t[i]);
         const double fan_bound = tree.fan_bound(piece, v), pair_bound = tree.pair_bound(piece, first, second);
-        RC_TAG(std::isfinite(fan_bound) ? "fan bound finite" : "fan bound infinite",
+        RC_TAG(B.is_boundary(VertexId(v)) ? "boundary vertex" : "inner vertex", std::isfinite(fan_bound) ? "fan bound finite" : "fan bound infinite",
                std::isfinite(pair_bound) ? "pair bound finite" : "pair bound infinite");
         const int k = 24;
         double fan_sup = 0, pair_sup = 0;
@@ -166,6 +170,55 @@ TEST_CASE("WAV-9: two triangulations of one flat-faced surface: the bracket clos
     CHECK(H.upper() <= delta);
     INFO("samples " << H.a_to_b.samples << " + " << H.b_to_a.samples << " for " << a.size() << " + " << b.size() << " triangles");
     CHECK(H.a_to_b.samples + H.b_to_a.samples <= 40 * (a.size() + b.size()));
+}
+
+TEST_CASE("WAV-14: two triangulations of one flat-faced surface with boundary and two components: the bracket closes at δ "
+          "with few samples",
+          "[unit][wavelet]") {
+    // The octahedron's upper half (an open square pyramid, its boundary loop the equator) and,
+    // translated, its lower half: A and B triangulate the same two disks. At the boundary vertices
+    // of B the vertex fan is an open path (WAV-14), flattened the same way.
+    const std::vector<Vec3> upper_corners(test::octahedron_corners.begin(), test::octahedron_corners.begin() + 5);
+    const std::vector<Triangle> upper(test::octahedron_faces.begin(), test::octahedron_faces.begin() + 4);
+    auto two_halves = [&](int n, double jitter, unsigned seed) {
+        const TriMesh half = test::refined_polyhedron(upper_corners, upper, n, jitter, seed);
+        std::vector<Vec3> x = half.positions();
+        std::vector<Triangle> t = half.triangles();
+        const auto offset = static_cast<std::uint32_t>(x.size());
+        for (const Vec3& p : half.positions()) x.push_back(Vec3(p.x() + 3, p.y(), -p.z()));
+        for (const Triangle& f : half.triangles()) t.push_back({f[0] + offset, f[2] + offset, f[1] + offset});
+        return std::pair{x, t};
+    };
+    const auto [ax, a] = two_halves(12, 0.2, 7);
+    const auto [bx, b] = two_halves(9, 0.1, 3);
+    const double delta = 1e-5;
+    const wavelet::Hausdorff H = wavelet::hausdorff(ax, a, bx, b, {.resolution = delta});
+    CHECK(H.lower() <= 1e-15);
+    CHECK(H.upper() <= delta);
+    INFO("samples " << H.a_to_b.samples << " + " << H.b_to_a.samples << " for " << a.size() << " + " << b.size() << " triangles");
+    CHECK(H.a_to_b.samples + H.b_to_a.samples <= 40 * (a.size() + b.size()));
+}
+
+TEST_CASE("WAV-14: at a boundary vertex of B the open fan's bound settles a piece across it at once", "[unit][wavelet]") {
+    // B: the flat half disk as an open fan of 6 triangles around v = 0 (v on the straight side);
+    // A: the same half disk triangulated from the rim point r_0, so v lies inside A's edge r_6 r_0
+    // and the corners of A's pieces at v are nearest to different triangles of v's fan. The
+    // bound of a piece through v must come from the whole fan, or the piece is split down to δ.
+    const unsigned t = 6;
+    std::vector<Vec3> x{{0, 0, 0}};
+    for (unsigned k = 0; k <= t; ++k) x.emplace_back(std::cos(std::numbers::pi * k / t), std::sin(std::numbers::pi * k / t), 0);
+    std::vector<Triangle> b, a;
+    for (unsigned k = 1; k <= t; ++k) b.push_back({0, k, k + 1});
+    for (unsigned k = 2; k <= t; ++k) a.push_back({1, k, k + 1});
+    const TriangleTree tree(x, b);
+    const Vec3 piece[3] = {x[1], x[t], x[t + 1]};  // A's triangle through v
+    // The bound is exact up to its rounding slack 1e−12·(the link's radius 1) (hausdorff.cpp).
+    CHECK(tree.fan_bound(piece, 0) <= 2e-12);
+    const double delta = 1e-9;
+    const wavelet::Hausdorff H = wavelet::hausdorff(x, a, x, b, {.resolution = delta});
+    CHECK(H.upper() <= delta);
+    INFO("samples " << H.a_to_b.samples << " + " << H.b_to_a.samples);
+    CHECK(H.a_to_b.samples + H.b_to_a.samples <= 100);
 }
 
 TEST_CASE("WAV-9: rms_distance", "[unit][wavelet]") {

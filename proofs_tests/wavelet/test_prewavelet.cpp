@@ -1,8 +1,10 @@
 // FHR §5 — the Floater–Quak prewavelets are orthogonal to S^{j−1} (spec/wavelet.md WAV-3): for
 // every new vertex u and every coarse vertex w, ⟨ψ_u, φ^{j−1}_w⟩ = 0, in double and in 100-digit
 // arithmetic (boost::multiprecision), on bipyramids with a vertex of each valence 3..12 and on
-// random domains. The inner product here is integrated triangle by triangle from the mass matrix
-// of ⟨f,g⟩ = Σ_T 1/a(T) ∫_T f g, independently of the library's gram().
+// random domains; and with boundary (WAV-12): open fans with a boundary vertex of t = 1..12
+// triangles and random domains with boundary loops and several components. The inner product here
+// is integrated triangle by triangle from the mass matrix of ⟨f,g⟩ = Σ_T 1/a(T) ∫_T f g,
+// independently of the library's gram().
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
@@ -124,8 +126,35 @@ TEST_CASE("WAV-3: θ_n is the inverse of the circulant (1, 5, 1), n = 3..12, in 
     }
 }
 
-TEST_CASE("WAV-3: the Gram matrix and P match the per-triangle mass matrix and the coarse hats", "[unit][wavelet]") {
-    const TriMesh D = test::bipyramid(7);
+TEST_CASE("WAV-12: θ^∂_t is the inverse of the tridiagonal (1, 5, 1) with corners 5/2, t = 1..12, in double and 100 digits",
+          "[unit][wavelet]") {
+    for (std::size_t t = 1; t <= 12; ++t) {
+        for (std::size_t k = 0; k <= t; ++k) {
+            // Row k of T_t θ^∂_t against δ_kl, for every column l.
+            auto worst = [&](auto zero) {
+                using Real = decltype(zero);
+                using std::abs;
+                auto T = [&](std::size_t a, std::size_t b) {
+                    if (a == b) return Real(a == 0 || a == t ? 5 : 10) / Real(2);
+                    return Real((a > b ? a - b : b - a) == 1 ? 1 : 0);
+                };
+                Real w(0);
+                for (std::size_t l = 0; l <= t; ++l) {
+                    Real row = -Real(k == l ? 1 : 0);
+                    for (std::size_t i = 0; i <= t; ++i) row += T(k, i) * wavelet::theta_boundary<Real>(t, i, l);
+                    if (abs(row) > w) w = abs(row);
+                }
+                return w;
+            };
+            CHECK(worst(0.0) <= 1e-15);
+            CHECK(worst(Real100(0)) <= Real100(1e-95));
+        }
+    }
+}
+
+TEST_CASE("WAV-3, WAV-12: the Gram matrix and P match the per-triangle mass matrix and the coarse hats, closed and open",
+          "[unit][wavelet]") {
+    const TriMesh D = GENERATE(test::bipyramid(7), test::open_fan(5));
     const wavelet::Refinement r = wavelet::refine(D, 2);
     const TriMesh &coarse = r.levels[1], &fine = r.levels[2];
     std::vector<std::vector<std::uint32_t>> faces_of(fine.n_vertices());
@@ -174,6 +203,41 @@ TEST_CASE("WAV-3: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on bipyramids of v
 TEST_CASE("WAV-3: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on random domains, in double and 100 digits", "[property][wavelet]") {
     rc::prop("random closed D (genus 0..2), levels 1..2", [] {
         const fhr::testing::GeneratedMesh D = *test::gen_domain(160);
+        const int j = *rc::gen::inRange(1, 3);
+        const wavelet::Refinement r = wavelet::refine(D, j);
+        const Orthogonality d = orthogonality<double>(r.levels[j - 1], r.levels[j], j);
+        RC_LOG() << "double: " << d.pairs << " pairs, max cosine " << d.max_cosine << "\n";
+        RC_ASSERT(d.max_cosine <= 1e-14);
+        const Orthogonality h = orthogonality<Real100>(r.levels[j - 1], r.levels[j], j);
+        RC_LOG() << "100 digits: max cosine " << h.max_cosine << "\n";
+        RC_ASSERT(h.max_cosine <= 1e-60);
+    });
+}
+
+TEST_CASE("WAV-12: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on open fans with a boundary vertex of t = 1..12 triangles, levels 1..3",
+          "[property][wavelet]") {
+    // The same bounds as on the bipyramids (each inner product sums at most about 40 products).
+    for (unsigned t = 1; t <= 12; ++t) {
+        const wavelet::Refinement r = wavelet::refine(test::open_fan(t), 3);
+        for (int j = 1; j <= 3; ++j) {
+            const Orthogonality d = orthogonality<double>(r.levels[j - 1], r.levels[j], j);
+            INFO("t = " << t << ", level " << j << ": " << d.pairs << " pairs, max cosine " << d.max_cosine);
+            CHECK(d.pairs > 0);
+            CHECK(d.max_cosine <= 1e-14);
+            if (j <= 2) {
+                const Orthogonality h = orthogonality<Real100>(r.levels[j - 1], r.levels[j], j);
+                INFO("100 digits: max cosine " << h.max_cosine);
+                CHECK(h.pairs == d.pairs);
+                CHECK(h.max_cosine <= 1e-60);
+            }
+        }
+    }
+}
+
+TEST_CASE("WAV-12: ⟨ψ_u, φ^{j−1}_w⟩ = 0 on random domains with boundary and several components, in double and 100 digits",
+          "[property][wavelet]") {
+    rc::prop("random D: 1..5 boundary loops, 1..3 components of genus 0..2, levels 1..2", [] {
+        const test::OpenDomain D = *test::gen_open_domain(100);
         const int j = *rc::gen::inRange(1, 3);
         const wavelet::Refinement r = wavelet::refine(D, j);
         const Orthogonality d = orthogonality<double>(r.levels[j - 1], r.levels[j], j);

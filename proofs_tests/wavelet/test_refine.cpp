@@ -1,6 +1,7 @@
 // FHR §5 — dyadic refinement (Fig. 5) and where the vertices of D^J lie in D (spec/wavelet.md
-// WAV-1, WAV-2): counts and Euler characteristic, the numbering, exact dyadic coordinates, and
-// every vertex on an edge or vertex of D denoting one point from all its faces.
+// WAV-1, WAV-2, WAV-11): counts and Euler characteristic, the numbering, exact dyadic coordinates,
+// and every vertex on an edge or vertex of D denoting one point from all its faces; on closed
+// domains and on domains with boundary and several components (issue 19).
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
@@ -36,21 +37,37 @@ void check_counts(const TriMesh& D, const Refinement& r, int J) {
     for (int j = 1; j <= J; ++j) {
         const TriMesh &c = r.levels[j - 1], &f = r.levels[j];
         f.validate();
-        RC_ASSERT(f.is_closed());
         RC_ASSERT(f.n_vertices() == c.n_vertices() + c.n_edges());
         RC_ASSERT(f.n_faces() == 4 * c.n_faces());
         RC_ASSERT(f.n_edges() == 2 * c.n_edges() + 3 * c.n_faces());
         RC_ASSERT(euler(f) == euler(D));
-        // The old vertices keep their ids; new vertex #V(D^{j−1}) + e sits at the middle of edge e
-        // (faces of D^j are children 4f..4f+3 of face f of D^{j−1}).
-        for (VertexId v : c.vertices()) RC_ASSERT(f.valence(v) == c.valence(v));
+        // The same topology: boundary loops, components, and so genus.
+        RC_ASSERT(boundary_loops(f).size() == boundary_loops(D).size());
+        RC_ASSERT(connected_components(f).count == connected_components(D).count);
+        // The old vertices keep their ids and their kind; new vertex #V(D^{j−1}) + e sits at the
+        // middle of edge e, of valence 6, or 4 on a boundary edge, which it splits into two
+        // boundary edges (faces of D^j are children 4f..4f+3 of face f of D^{j−1}).
+        for (VertexId v : c.vertices()) {
+            RC_ASSERT(f.valence(v) == c.valence(v));
+            RC_ASSERT(f.is_boundary(v) == c.is_boundary(v));
+        }
+        std::size_t boundary_edges = 0;
         for (EdgeId e : c.edges()) {
             const HalfedgeId h = TriMesh::halfedge(e, 0);
             const VertexId u(static_cast<std::uint32_t>(c.n_vertices()) + e.idx());
-            RC_ASSERT(f.valence(u) == 6u);
-            RC_ASSERT(f.find_halfedge(u, c.from(h)).valid());
-            RC_ASSERT(f.find_halfedge(u, c.to(h)).valid());
+            const bool open = c.is_boundary(e);
+            boundary_edges += open;
+            RC_ASSERT(f.valence(u) == (open ? 4u : 6u));
+            RC_ASSERT(f.is_boundary(u) == open);
+            for (VertexId end : {c.from(h), c.to(h)}) {
+                const HalfedgeId half = f.find_halfedge(u, end);
+                RC_ASSERT(half.valid());
+                RC_ASSERT(f.is_boundary(TriMesh::edge(half)) == open);
+            }
         }
+        std::size_t fine_boundary_edges = 0;
+        for (EdgeId e : f.edges()) fine_boundary_edges += f.is_boundary(e);
+        RC_ASSERT(fine_boundary_edges == 2 * boundary_edges);
         for (FaceId g : c.faces()) {
             const auto parent = c.face_vertices(g);
             for (std::uint32_t k = 0; k < 3; ++k) RC_ASSERT(f.face_vertices(FaceId(4 * g.idx() + k))[k] == parent[k]);
@@ -117,6 +134,38 @@ TEST_CASE("WAV-1, WAV-2: refinement counts, numbering and exact locations on ran
     });
 }
 
+TEST_CASE("WAV-11: refinement counts, numbering and exact locations with boundary and several components, J = 0..3",
+          "[property][wavelet]") {
+    rc::prop("random D: 1..5 boundary loops, 1..3 components of genus 0..2", [] {
+        const test::OpenDomain D = *test::gen_open_domain(160);
+        RC_ASSERT(boundary_loops(D).size() == D.hole_count());
+        RC_ASSERT(connected_components(D).count == D.components.size());
+        RC_TAG(D.components.size(), D.hole_count());
+        const int J = *rc::gen::inRange(0, 4);
+        const Refinement r = wavelet::refine(D, J);
+        check_counts(D, r, J);
+        check_locations(D, r);
+    });
+}
+
+TEST_CASE("WAV-11: one triangle gives D² with 15 vertices, 16 faces and a boundary loop of 12 edges", "[unit][wavelet]") {
+    // (V, E, F) = (3, 3, 1) → (6, 9, 4) → (15, 30, 16); the boundary's 3 edges → 6 → 12.
+    const TriMesh D = TriMesh::from_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, std::vector<Triangle>{{0, 1, 2}});
+    const Refinement r = wavelet::refine(D, 2);
+    CHECK(r.finest().n_vertices() == 15);
+    CHECK(r.finest().n_edges() == 30);
+    CHECK(r.finest().n_faces() == 16);
+    const std::vector<HalfedgeId> loops = boundary_loops(r.finest());
+    REQUIRE(loops.size() == 1);
+    std::size_t length = 0;
+    HalfedgeId h = loops[0];
+    do {
+        ++length;
+        h = r.finest().next(h);
+    } while (h != loops[0]);
+    CHECK(length == 12);
+}
+
 TEST_CASE("WAV-1: a closed genus-0 domain with 114 faces (the fandisk's D) gives D³ with 3,650 vertices, 7,296 faces",
           "[unit][wavelet]") {
     // The counts depend on D's V, E, F only: V − E + F = 2 and 3F = 2E give 59 vertices and 171
@@ -144,11 +193,19 @@ TEST_CASE("WAV-2: sample() evaluates φ at each vertex's location; the first #V(
     }
 }
 
-TEST_CASE("WAV-1: refusals: open or garbage domains, negative or too deep levels", "[unit][wavelet]") {
+TEST_CASE("WAV-1, WAV-11: refusals: empty or garbage domains, negative or too deep levels", "[unit][wavelet]") {
     const TriMesh D = test::bipyramid(4);
     CHECK_THROWS_AS(wavelet::refine(D, -1), InvalidInput);
     CHECK_THROWS_AS(wavelet::refine(D, 12), InvalidInput);  // 8·4^12 > 2^26 faces
-    const std::vector<Vec3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-    const std::vector<Triangle> t{{0, 1, 2}};
-    CHECK_THROWS_AS(wavelet::refine(TriMesh::from_triangles(p, t), 1), InvalidInput);
+    CHECK_THROWS_AS(wavelet::refine(TriMesh{}, 1), InvalidInput);
+    TriMesh collapsed = test::bipyramid(6);
+    const HalfedgeId h = collapsed.find_halfedge(VertexId(0), VertexId(1));
+    REQUIRE(collapsed.is_collapse_ok(h));
+    collapsed.collapse(h);
+    REQUIRE(collapsed.has_garbage());
+    CHECK_THROWS_AS(wavelet::refine(collapsed, 1), InvalidInput);
+    // Boundary and several components are accepted (WAV-11): two disjoint triangles.
+    const std::vector<Vec3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {3, 0, 0}, {4, 0, 0}, {3, 1, 0}};
+    const std::vector<Triangle> t{{0, 1, 2}, {3, 4, 5}};
+    CHECK(wavelet::refine(TriMesh::from_triangles(p, t), 1).finest().n_faces() == 8);
 }

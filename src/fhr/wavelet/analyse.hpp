@@ -48,11 +48,12 @@ struct WaveletResult {
     double hausdorff_seconds = 0;         ///< all Hausdorff brackets (an error measure, not a stage of the paper)
 };
 
-/// The §5 wavelet stage for a closed domain D, φ: Ω_D → Ω_T and the input surface T. Hausdorff
-/// distances use `hausdorff_options`; a resolution of 0 there means 1e−4 of T's bounding-box
-/// diagonal (the bracket [lower, upper] of each distance is then that narrow). The brackets are
-/// independent tasks on `executor` (default_executor() when null).
-/// \pre D closed with every valence ≥ 3; phi defined on all of Ω_D (DomainMap); 0 ≤ levels with
+/// The §5 wavelet stage for a domain D (closed or with boundary, one component or several),
+/// φ: Ω_D → Ω_T and the input surface T. Hausdorff distances use `hausdorff_options`; a
+/// resolution of 0 there means 1e−4 of T's bounding-box diagonal (the bracket [lower, upper] of
+/// each distance is then that narrow). The brackets are independent tasks on `executor`
+/// (default_executor() when null).
+/// \pre D passes validate(); phi defined on all of Ω_D (DomainMap); 0 ≤ levels with
 ///      4^levels·#F(D) ≤ max_refined_faces; each keep_percent in [0, 100]; T has a face.
 /// \throws InvalidInput for a bad level or percentage, NumericalFailure when the decomposition's
 ///         solve fails (filter_bank.hpp), and whatever phi throws.

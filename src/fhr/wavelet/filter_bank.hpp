@@ -1,6 +1,7 @@
 // FHR §5 — the filter bank (Floater, Quak & Reimers 2000, "Filter bank algorithms for piecewise
 // linear prewavelets on arbitrary triangulations", J. Comput. Appl. Math. 119; paper §5
-// reference [9]) for S^j = S^{j−1} ⊕ W^{j−1} (paper eq. 3), adapted to closed manifolds.
+// reference [9]) for S^j = S^{j−1} ⊕ W^{j−1} (paper eq. 3), adapted to manifolds, closed (the
+// paper) or with boundary and several components (issue 19).
 //
 // Coefficients: f^j = Σ_w c^j_w φ^j_w (c^j a #V(D^j)×3 array: x, y, z together), its coarse part
 // Σ_v c^{j−1}_v φ^{j−1}_v and its detail Σ_u d^{j−1}_u ψ_u, one d per new vertex u of D^j. With
@@ -10,9 +11,11 @@
 //   decomposition:               A d^{j−1} = c^j_N − P_N c^j_O,   A = Q_N − P_N Q_O   (m × m)
 //                                c^{j−1} = c^j_O − Q_O d^{j−1}
 // (the new rows of c^j = P c^{j−1} + Q d^{j−1} after eliminating c^{j−1} through its old rows).
-// Theorem (paper_notes/wavelets.md): A = s Σ_v E_v (6/(7n_v) 𝟙𝟙ᵀ + C_{n_v}⁻¹) E_vᵀ, E_v picking the
-// new vertices around coarse vertex v: symmetric, with spectrum in [2s/7, 2s], so κ(A) ≤ 7
-// whatever the valences (WAV-5). We solve it by conjugate gradients with a Jacobi
+// Theorem (paper_notes/wavelets.md): A = s Σ_v E_v B_v E_vᵀ, E_v picking the new vertices around
+// coarse vertex v, with t_v coarse triangles at v and B_v = 6/(7t_v) 𝟙𝟙ᵀ + C_{t_v}⁻¹ inside,
+// 6/(7t_v) 𝟙𝟙ᵀ + T_{t_v}⁻¹ on the boundary (prewavelet.hpp): symmetric, with spectrum in
+// [2s/7, 2s] on a closed D and in [2s/7, 4s] with boundary, so κ(A) ≤ 7 (closed) or ≤ 14
+// whatever the valences (WAV-5, WAV-13). We solve it by conjugate gradients with a Jacobi
 // preconditioner; the round trip's error at the new vertices is exactly the solve's residual
 // (the old rows cancel identically), so CG stops on the true residual, in the max norm:
 //   ‖A d − b‖_∞ ≤ τ_j = 1e−14 ‖c^j‖_∞,
@@ -22,9 +25,9 @@
 // orthogonal projections, local weighted averages of f; WAV-4 tests the 1e−12). The true residual cannot be computed more accurately than its
 // rounding floor, measured at ≤ 4e−16 ‖b‖_∞ ≤ 8e−16 ‖c^j‖_∞ (|b| ≤ 2‖c^j‖_∞): τ_j lies 12× above
 // it. CG's error after k steps is ≤ 2((√κ − 1)/(√κ + 1))^k of the start; with κ ≤ 7 (≈ 6
-// measured) and the 2-norm to max-norm factor √m ≤ 10^4, about 65 steps reach τ_j; 31 are
-// measured on the fandisk at every level. More than max_cg_iterations means something is
-// broken: NumericalFailure.
+// measured) and the 2-norm to max-norm factor √m ≤ 10^4, about 65 steps reach τ_j (about 80 for
+// κ ≤ 14 with boundary); 31 are measured on the fandisk at every level. More than
+// max_cg_iterations means something is broken: NumericalFailure.
 #pragma once
 
 #include <span>
@@ -69,7 +72,7 @@ inline constexpr double cg_relative_tolerance = 1e-14;
 class FilterBank {
 public:
     /// Builds P, Q, A and the norms for every level of r.
-    /// \pre r = refine(D, J) for a closed D with every valence ≥ 3.
+    /// \pre r = refine(D, J) (D closed or with boundary, one component or several).
     explicit FilterBank(const Refinement& r);
 
     int depth() const { return static_cast<int>(levels_.size()); }  ///< J

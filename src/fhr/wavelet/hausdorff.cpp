@@ -165,8 +165,9 @@ double TriangleTree::pair_bound(const Vec3 (&x)[3], std::uint32_t t1, std::uint3
 double TriangleTree::fan_bound(const Vec3 (&x)[3], std::uint32_t v) const {
     constexpr double none = std::numeric_limits<double>::infinity();
     const std::uint32_t first = fan_start_[v], count = fan_start_[v + 1] - first;
-    if (count < 3) return none;
-    // The link as one closed cycle: triangle (v, p, q) in its own orientation gives p -> q.
+    // The link: triangle (v, p, q) in its own orientation gives the link edge p -> q. Around an
+    // inner vertex the edges make one closed cycle; around a boundary vertex (issue 19) one open
+    // path, walked from the neighbour that no link edge enters.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> link;
     link.reserve(count);
     for (std::uint32_t i = first; i < first + count; ++i) {
@@ -174,46 +175,56 @@ double TriangleTree::fan_bound(const Vec3 (&x)[3], std::uint32_t v) const {
         const int at = f[0] == v ? 0 : f[1] == v ? 1 : 2;
         link.emplace_back(f[(at + 1) % 3], f[(at + 2) % 3]);
     }
-    std::vector<std::uint32_t> cycle{link[0].first};
+    if (link.empty()) return none;
+    std::uint32_t start = link[0].first;
+    for (const auto& e : link)
+        if (std::none_of(link.begin(), link.end(), [&](const auto& g) { return g.second == e.first; })) start = e.first;
+    std::vector<std::uint32_t> cycle{start};
     for (std::uint32_t step = 0; step < count; ++step) {
         const std::uint32_t from = cycle.back();
         auto it = std::find_if(link.begin(), link.end(), [&](const auto& e) { return e.first == from; });
         if (it == link.end()) return none;
         cycle.push_back(it->second);
     }
-    if (cycle.back() != cycle.front()) return none;
-    cycle.pop_back();
+    const bool closed = cycle.back() == cycle.front();
+    if (closed) {
+        if (count < 3) return none;
+        cycle.pop_back();
+    }
     for (std::size_t i = 0; i < cycle.size(); ++i)
         for (std::size_t j = i + 1; j < cycle.size(); ++j)
-            if (cycle[i] == cycle[j]) return none;  // not a simple cycle: not a disk
+            if (cycle[i] == cycle[j]) return none;  // not a simple cycle or path: not a disk
+    const std::size_t k = cycle.size(), edges = closed ? k : k - 1;  // link edges (i, i + 1 mod k)
     // Flatten into the plane through v normal to the fan's area-weighted normal.
     const Vec3& o = positions_[v];
     Vec3 normal = Vec3::Zero();
-    double scale = 0;
-    for (std::size_t i = 0; i < cycle.size(); ++i) {
-        const Vec3 &p = positions_[cycle[i]], &q = positions_[cycle[(i + 1) % cycle.size()]];
+    for (std::size_t i = 0; i < edges; ++i) {
+        const Vec3 &p = positions_[cycle[i]], &q = positions_[cycle[(i + 1) % k]];
         normal += (p - o).cross(q - o);
-        scale = std::max(scale, (p - o).norm());
     }
     if (!(normal.norm() > 0)) return none;
     const Vec3 n = normal.normalized();
-    const double slack = 1e-12 * scale;  // rounding in the flattening and the measures below
-    std::vector<Vec3> w(cycle.size());
-    double lift = 0;
-    for (std::size_t i = 0; i < cycle.size(); ++i) {
+    std::vector<Vec3> w(k);
+    double lift = 0, scale = 0;
+    for (std::size_t i = 0; i < k; ++i) {
         const Vec3& p = positions_[cycle[i]];
         const double l = n.dot(p - o);
         lift = std::max(lift, std::abs(l));
+        scale = std::max(scale, (p - o).norm());
         w[i] = p - l * n;
     }
-    const std::size_t k = w.size();
+    const double slack = 1e-12 * scale;  // rounding in the flattening and the measures below
     auto turn = [&](const Vec3& a, const Vec3& b, const Vec3& c) { return n.dot((b - a).cross(c - b)); };
-    for (std::size_t i = 0; i < k; ++i)  // the flat fan's triangles keep their orientation
+    for (std::size_t i = 0; i < edges; ++i)  // the flat fan's triangles keep their orientation
         if (!(n.dot((w[i] - o).cross(w[(i + 1) % k] - o)) > 1e-9 * (w[i] - o).norm() * (w[(i + 1) % k] - o).norm())) return none;
-    // Corners: the link points that turn left by more than 1e−9 (sine); a right turn beyond it is reflex.
+    // The flat fan's outline P: the link cycle around v, or v followed by the link path. When P is
+    // convex the fan's positively oriented triangles tile it.
+    if (!closed) w.insert(w.begin(), o);
+    const std::size_t K = w.size();
+    // Corners: the outline points that turn left by more than 1e−9 (sine); a right turn beyond it is reflex.
     std::vector<std::size_t> corners;
-    for (std::size_t i = 0; i < k; ++i) {
-        const Vec3 &a = w[(i + k - 1) % k], &b = w[i], &c = w[(i + 1) % k];
+    for (std::size_t i = 0; i < K; ++i) {
+        const Vec3 &a = w[(i + K - 1) % K], &b = w[i], &c = w[(i + 1) % K];
         const double t = turn(a, b, c), tol = 1e-9 * (b - a).norm() * (c - b).norm();
         if (t < -tol) return none;
         if (t > tol) corners.push_back(i);
@@ -225,14 +236,16 @@ double TriangleTree::fan_bound(const Vec3 (&x)[3], std::uint32_t v) const {
     for (std::size_t j = 0; j < m; ++j) {
         const Vec3 &a = w[corners[j]], &b = w[corners[(j + 1) % m]], &c = w[corners[(j + 2) % m]];
         if (!(turn(a, b, c) > 1e-9 * (b - a).norm() * (c - b).norm())) return none;
-        for (std::size_t i = (corners[j] + 1) % k; i != corners[(j + 1) % m]; i = (i + 1) % k)
+        for (std::size_t i = (corners[j] + 1) % K; i != corners[(j + 1) % m]; i = (i + 1) % K)
             eps = std::max(eps, (b - a).cross(w[i] - a).norm() / (b - a).norm());
     }
+    // d(·, P) over a fan of P's corners: from v inside a closed fan, from the first corner otherwise.
+    const Vec3& apex = closed ? o : w[corners[0]];
     double sup = 0;
     for (const Vec3& p : x) {
         double d = std::numeric_limits<double>::infinity();
-        for (std::size_t j = 0; j < m; ++j)
-            d = std::min(d, (closest_point_on_triangle(p, o, w[corners[j]], w[corners[(j + 1) % m]]) - p).norm());
+        for (std::size_t j = closed ? 0 : 1; j < (closed ? m : m - 1); ++j)
+            d = std::min(d, (closest_point_on_triangle(p, apex, w[corners[j]], w[corners[(j + 1) % m]]) - p).norm());
         sup = std::max(sup, d);
     }
     return sup + lift + eps + slack;

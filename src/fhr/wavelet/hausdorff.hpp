@@ -22,11 +22,13 @@
 //             bound can only settle at the resolution's size, piece by piece.
 //             (a vertex fan) when the corners' closest triangles share a vertex v of B: flatten v's
 //             fan into the plane through v normal to its area-weighted normal (moving no point by
-//             more than the largest lift h of its link), then move each link point that is
+//             more than the largest lift h of its link), then move each point of the fan's outline
+//             (the link cycle; at a boundary vertex of B, v followed by the open link path) that is
 //             straight (turn below 1e−9) onto the chord of its neighbouring corners (by at most ε,
 //             measured). When the fan's triangles stay positively oriented and the corners make a
-//             convex polygon P, d(·, fan) ≤ d(·, P) + h + ε with d(·, P) convex:
-//             sup ≤ max_k d(x_k, P) + h + ε. This settles the pieces at the vertices of B.
+//             convex polygon P, the flat fan tiles P and d(·, fan) ≤ d(·, P) + h + ε with d(·, P)
+//             convex: sup ≤ max_k d(x_k, P) + h + ε. This settles the pieces at the vertices of B,
+//             inner or on its boundary.
 //             The piece's bound is the smallest of these
 //   search    lower <- max over A's vertices of d(v, B); then for each triangle of A (those with
 //             the farthest corner first), branch and bound: a piece whose bound is ≤ lower is
@@ -70,8 +72,8 @@ public:
     /// with a margin. \pre t1, t2 < the number of triangles.
     double pair_bound(const Vec3 (&x)[3], std::uint32_t t1, std::uint32_t t2) const;
     /// An upper bound of d(·, the triangles at vertex v) on the triangle x (the vertex-fan bound
-    /// of the file header), or +∞ when v's fan is not a closed disk that flattens to a convex
-    /// polygon. \pre v < the number of positions.
+    /// of the file header), or +∞ when v's fan is not a disk (a closed fan, or an open one at a
+    /// boundary vertex) that flattens to a convex polygon. \pre v < the number of positions.
     double fan_bound(const Vec3 (&x)[3], std::uint32_t v) const;
     /// The vertices of triangle t. \pre t < the number of triangles.
     const Triangle& triangle(std::uint32_t t) const { return triangles_[t]; }

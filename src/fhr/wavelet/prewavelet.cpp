@@ -7,12 +7,16 @@
 namespace fhr::wavelet {
 
 SparseRows gram(const TriMesh& fine, int j) {
-    // ∫_τ φ_a φ_b = a(τ)(1 + δ_ab)/12 on a triangle τ with a(τ) = 4^−j a(T).
+    // ∫_τ φ_a φ_b = a(τ)(1 + δ_ab)/12 on a triangle τ with a(τ) = 4^−j a(T). A vertex has as many
+    // triangles as edges, one fewer on the boundary; an edge has two, one on the boundary (unit/2
+    // is exact, so a closed mesh's entries are those of unit·valence and unit).
     const double unit = std::ldexp(1.0, -2 * j) / 6.0;
     std::vector<Eigen::Triplet<double>> t;
     t.reserve(fine.n_vertices() + fine.n_halfedges());
-    for (VertexId v : fine.vertices()) t.emplace_back(v.idx(), v.idx(), unit * static_cast<double>(fine.valence(v)));
-    for (HalfedgeId h : fine.halfedges()) t.emplace_back(fine.from(h).idx(), fine.to(h).idx(), unit);
+    for (VertexId v : fine.vertices())
+        t.emplace_back(v.idx(), v.idx(), unit * static_cast<double>(fine.valence(v) - (fine.is_boundary(v) ? 1 : 0)));
+    for (HalfedgeId h : fine.halfedges())
+        t.emplace_back(fine.from(h).idx(), fine.to(h).idx(), fine.is_boundary(TriMesh::edge(h)) ? 0.5 * unit : unit);
     SparseRows G(static_cast<Eigen::Index>(fine.n_vertices()), static_cast<Eigen::Index>(fine.n_vertices()));
     G.setFromTriplets(t.begin(), t.end());
     return G;

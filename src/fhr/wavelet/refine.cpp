@@ -63,8 +63,8 @@ TriMesh split_once(const TriMesh& coarse, const std::vector<std::array<Beta, 3>>
 
 Refinement refine(const TriMesh& D, int J) {
     if (J < 0) throw InvalidInput("", 0, "dyadic refinement: the level J = " + std::to_string(J) + " is negative");
-    if (D.has_garbage() || !D.is_closed() || D.n_faces() == 0)
-        throw InvalidInput("", 0, "dyadic refinement: the domain D must be a closed triangulation without garbage");
+    if (D.has_garbage() || D.n_faces() == 0)
+        throw InvalidInput("", 0, "dyadic refinement: the domain D must be a triangulation with a face and without garbage");
     std::size_t faces = D.n_faces();
     for (int j = 0; j < J; ++j) {
         faces *= 4;

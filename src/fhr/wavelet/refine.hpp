@@ -12,6 +12,10 @@
 //       of two of them
 //   location(v) <- the corner coordinates of v in the first face of D^J (lowest id) that has v
 //
+// D may have boundary (any number of loops) and several components (issue 19, beyond the paper,
+// which takes D closed): the split is face by face, so a boundary edge of D^{j−1} gives a boundary
+// vertex of valence 4 and two boundary edges of D^j, and each component refines on its own.
+//
 // So the face g of D^J lies in the face g >> 2J of D, and every barycentric coordinate is a
 // multiple of 2^−J: averaging two such numbers is exact in double, so the coordinates are the
 // exact dyadic rationals and a vertex on an edge (vertex) of D has exact zeros (WAV-2).
@@ -54,12 +58,15 @@ struct Refinement {
 /// The largest D^J accepted: 2^26 ≈ 6.7·10^7 faces (several GB of halfedges and coordinates).
 inline constexpr std::size_t max_refined_faces = std::size_t{1} << 26;
 
-/// The dyadic refinements of a closed D up to level J (paper §5, Fig. 5).
-/// \pre D is closed, without garbage, and passes validate().
+/// The dyadic refinements of D up to level J (paper §5, Fig. 5), D closed or with boundary, with
+/// one component or several.
+/// \pre D passes validate().
 /// \post depth() == J; for j ≥ 1, #V(D^j) = #V(D^{j−1}) + #E(D^{j−1}), #F(D^j) = 4 #F(D^{j−1}),
-///       #E(D^j) = 2 #E(D^{j−1}) + 3 #F(D^{j−1}) (so χ is kept); numbering as in the file header
-///       (WAV-1); every location and corner coordinate is exact (WAV-2).
-/// \throws InvalidInput("", 0, ...) when D is not closed, J < 0, or #F(D)·4^J > max_refined_faces.
+///       #E(D^j) = 2 #E(D^{j−1}) + 3 #F(D^{j−1}) (so χ is kept), each boundary edge of D^{j−1}
+///       split into two boundary edges of D^j; numbering as in the file header (WAV-1, WAV-11);
+///       every location and corner coordinate is exact (WAV-2).
+/// \throws InvalidInput("", 0, ...) when D has no face or has garbage, J < 0, or
+///         #F(D)·4^J > max_refined_faces.
 Refinement refine(const TriMesh& D, int J);
 
 /// f^J at every vertex of D^J: samples[v] = phi(location[v].face, location[v].beta). The first
