@@ -76,11 +76,10 @@ const std::vector<BadInput>& bad_inputs() {
          off("6 6 0", "1 0 -0.2\n1.3 0 0.2\n-0.5 0.866 -0.15\n-0.65 1.1258 0.27\n-0.5 -0.866 -0.1\n-0.65 -1.1258 0.34\n"
                       "3 0 2 1\n3 1 2 3\n3 2 4 3\n3 3 4 5\n3 4 1 5\n3 5 1 0\n"),
          "not orientable"},
-        {"boundary", "open.off", off("4 3 0", tet_v + "3 0 2 1\n3 0 1 3\n3 0 3 2\n"), "boundary"},
-        {"two components", "two.obj",
-         "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 5 0 0\nv 6 0 0\nv 5 1 0\nv 5 0 1\n"
+        {"flat closed component", "flat2.obj",
+         "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 5 0 0\nv 6 0 0\nv 5 1 0\nv 5.2 0.2 0\n"
          "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n",
-         "2 connected components"},
+         "closed component at vertex 4 is flat"},
         {"coordinates that overflow lengths", "big.off", off("4 4 0", "0 0 0\n1e200 0 0\n0 1 0\n0 0 1\n" + tet_f), "overflow"},
         {"missing file", "does-not-exist.off", "", "cannot open"},
     };
@@ -143,11 +142,28 @@ TEST_CASE("CLI-INFO-1: warnings for repaired input, exit code 0", "[cli]") {
 }
 
 TEST_CASE("CLI-INFO-2: an invalid mesh still gets its counts and the reason", "[cli]") {
-    const std::string path = write_temp("open2.off", off("4 3 0", tet_v + "3 0 2 1\n3 0 1 3\n3 0 3 2\n"));
+    // A cube of quadrilaterals (INV-IN-3): `fhr info` builds leniently, fan-triangulated, to report the topology.
+    const std::string path = write_temp("cube_quads.off", off("8 6 0", "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                                                                        "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n"));
     const auto r = run_fhr({"info", "--json", path});
     CHECK(r.exit_code == 2);
+    CHECK_THAT(r.out, Catch::Contains("\"faces\": 12") && Catch::Contains("\"genus\": 0") &&
+                          Catch::Contains("\"valid\": false") && Catch::Contains("--triangulate"));
+}
+
+TEST_CASE("CLI-INFO-3: boundary loops and several components are valid input, reported by info", "[cli][boundary]") {
+    const std::string open = write_temp("open3.off", off("4 3 0", tet_v + "3 0 2 1\n3 0 1 3\n3 0 3 2\n"));
+    const auto r = run_fhr({"info", "--json", open});
+    CHECK(r.exit_code == 0);
     CHECK_THAT(r.out, Catch::Contains("\"boundary_loops\": 1") && Catch::Contains("\"faces\": 3") &&
-                          Catch::Contains("\"valid\": false") && Catch::Contains("closed surface"));
+                          Catch::Contains("\"components\": 1") && Catch::Contains("\"valid\": true"));
+    const std::string two = write_temp("two3.obj",
+                                       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 5 0 0\nv 6 0 0\nv 5 1 0\nv 5 0 1\n"
+                                       "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n");
+    const auto t = run_fhr({"info", "--json", two});
+    CHECK(t.exit_code == 0);
+    CHECK_THAT(t.out, Catch::Contains("\"components\": 2") && Catch::Contains("\"boundary_loops\": 0") &&
+                          Catch::Contains("\"valid\": true"));
 }
 
 namespace {

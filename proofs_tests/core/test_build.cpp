@@ -182,20 +182,20 @@ TEST_CASE("INV-IN-9: a bow-tie vertex is refused", "[unit][build]") {
     CHECK(e.line() == 3);
 }
 
-TEST_CASE("INV-IN-10: boundary is refused unless allowed", "[unit][build]") {
+TEST_CASE("INV-IN-10: boundary is accepted, and refused when a closed surface is required", "[unit][build]") {
     const std::vector<std::vector<std::uint32_t>> open(tet_faces.begin(), tet_faces.begin() + 3);
-    const auto e = refused(soup(tet_points, open));
-    CHECK_THAT(e.problem(), Catch::Contains("boundary (1 boundary loop") && Catch::Contains("closed surface"));
-    BuildOptions o;
-    o.require_closed = false;
-    const TriMesh m = build(soup(tet_points, open), o);
+    const TriMesh m = build(soup(tet_points, open));
     m.validate();
     CHECK(boundary_loops(m).size() == 1);
     CHECK(genus(m) == 0);
     CHECK(euler_characteristic(m) == 1);
+    BuildOptions o;
+    o.require_closed = true;
+    const auto e = refused(soup(tet_points, open), o);
+    CHECK_THAT(e.problem(), Catch::Contains("boundary (1 boundary loop") && Catch::Contains("closed surface"));
 }
 
-TEST_CASE("INV-IN-11: several components are refused unless allowed", "[unit][build]") {
+TEST_CASE("INV-IN-11: several components are accepted, and refused when a connected surface is required", "[unit][build]") {
     auto pts = tet_points;
     for (const auto& p : tet_points) pts.push_back(p + Vec3(5, 0, 0));
     auto faces = tet_faces;
@@ -203,14 +203,14 @@ TEST_CASE("INV-IN-11: several components are refused unless allowed", "[unit][bu
         for (auto& v : f) v += 4;
         faces.push_back(f);
     }
-    const auto e = refused(soup(pts, faces));
-    CHECK_THAT(e.problem(), Catch::Contains("2 connected components"));
-    BuildOptions o;
-    o.require_connected = false;
-    const TriMesh m = build(soup(pts, faces), o);
+    const TriMesh m = build(soup(pts, faces));
     CHECK(connected_components(m).count == 2);
     CHECK(euler_characteristic(m) == 4);
     CHECK(genus(m) == 0);
+    BuildOptions o;
+    o.require_connected = true;
+    const auto e = refused(soup(pts, faces), o);
+    CHECK_THAT(e.problem(), Catch::Contains("2 connected components"));
 }
 
 TEST_CASE("INV-IN-12: isolated vertices are dropped with a warning", "[unit][build]") {

@@ -106,7 +106,7 @@ int run_info(const std::vector<std::string>& argv) {
     } catch (const InvalidInput& e) {
         f.reason = e.what();
         BuildOptions lenient = strict;
-        lenient.require_closed = lenient.require_connected = lenient.refuse_degenerate = false;
+        lenient.refuse_degenerate = false;
         lenient.triangulate = true;  // topology does not depend on how polygons are split
         f.log = BuildLog();
         try {

@@ -91,7 +91,7 @@ int run_verify(const std::vector<std::string>& argv) {
     try {
         file = exchange::read_param(path);
         // T may have boundary and several components, like D and T′ (spec/param.md PARAM-11).
-        if (mesh_path) mesh = load_mesh(*mesh_path, BuildOptions{.require_closed = false, .require_connected = false});
+        if (mesh_path) mesh = load_mesh(*mesh_path, {});
     } catch (const InvalidInput& e) {  // unreadable: exit 2 through main, with the one-line error
         if (args.flag("json")) {
             io::JsonWriter j;

@@ -258,10 +258,7 @@ PYBIND11_MODULE(_fhr, m) {
     m.def(
         "info",
         [](const py::array& V, const py::array& F) {
-            BuildOptions options;
-            options.require_closed = false;
-            options.require_connected = false;
-            const TriMesh mesh = mesh_of(V, F, options);
+            const TriMesh mesh = mesh_of(V, F);
             py::dict d;
             d["vertices"] = mesh.n_vertices();
             d["faces"] = mesh.n_faces();

@@ -10,9 +10,9 @@
 //   INV-IN-7  the surface is orientable
 //   INV-IN-8  faces are consistently oriented, outward (else re-oriented, with a warning)
 //   INV-IN-9  every vertex is manifold: its faces form one fan
-//   INV-IN-10 no boundary (the paper's §3 partition needs a closed surface)
-//   INV-IN-11 one connected component
-//   INV-IN-13 a closed surface is not flat (its vertices are not all in one plane)
+//   INV-IN-10 no boundary, when asked for (BuildOptions::require_closed)
+//   INV-IN-11 one connected component, when asked for (BuildOptions::require_connected)
+//   INV-IN-13 no closed component is flat (its vertices are not all in one plane)
 #include <fhr/core/build.hpp>
 
 #include <algorithm>
@@ -277,18 +277,37 @@ private:
                             vname(static_cast<std::uint32_t>(other)) + " is not connected to vertex " + vname(0) + ")");
             }
         }
-        if (options_.require_closed) check_not_flat(mesh);
+        check_not_flat(mesh);
     }
 
-    // INV-IN-13: a closed surface with every vertex in one plane (exact orient3d) encloses no
-    // volume: its faces cover a flat region twice, front and back, which §3 cannot partition.
+    // INV-IN-13: a closed component with every vertex in one plane (exact orient3d) encloses no
+    // volume: its faces cover a flat region twice, front and back, which §3 cannot partition. (A
+    // component with boundary may be flat: a disk in the plane is a surface like any other.)
     void check_not_flat(const TriMesh& mesh) const {
-        const auto corners = mesh.face_vertices(FaceId(0));
-        const Vec3 &a = mesh.position(corners[0]), &b = mesh.position(corners[1]), &c = mesh.position(corners[2]);
-        for (VertexId v : mesh.vertices())
-            if (orient3d(a, b, c, mesh.position(v)) != 0) return;
-        fail(0, "the closed surface is flat: all " + std::to_string(mesh.n_vertices()) +
-                    " vertices lie in the plane of face 0, so its faces cover a flat region twice");
+        const Components comp = connected_components(mesh);
+        std::vector<std::uint8_t> open(comp.count, 0), off_plane(comp.count, 0);
+        std::vector<FaceId> first(comp.count);
+        for (HalfedgeId h : mesh.halfedges())
+            if (mesh.is_boundary(h)) open[comp.vertex_component[mesh.from(h)]] = 1;
+        for (FaceId f : mesh.faces()) {
+            FaceId& lowest = first[comp.vertex_component[mesh.face_vertices(f)[0]]];
+            if (!lowest.valid()) lowest = f;
+        }
+        for (VertexId v : mesh.vertices()) {
+            const std::uint32_t c = comp.vertex_component[v];
+            if (open[c] || off_plane[c]) continue;
+            const auto corners = mesh.face_vertices(first[c]);
+            off_plane[c] = orient3d(mesh.position(corners[0]), mesh.position(corners[1]), mesh.position(corners[2]), mesh.position(v)) != 0;
+        }
+        for (std::uint32_t c = 0; c < comp.count; ++c) {
+            if (open[c] || off_plane[c]) continue;
+            std::size_t n = 0, lowest = comp.vertex_component.size();
+            for (std::size_t v = comp.vertex_component.size(); v-- > 0;)
+                if (comp.vertex_component[VertexId(static_cast<VertexId::Index>(v))] == c) ++n, lowest = v;
+            fail(0, (comp.count == 1 ? std::string("the closed surface") : "the closed component at vertex " + vname(static_cast<std::uint32_t>(lowest))) +
+                        " is flat: all " + std::to_string(n) + " vertices lie in the plane of face " + std::to_string(first[c].idx()) +
+                        ", so its faces cover a flat region twice");
+        }
     }
 };
 

@@ -162,6 +162,23 @@ void TriMesh::flip(EdgeId e) {
     if (out_[b.idx()] == o) out_[b.idx()] = h1;
 }
 
+VertexId TriMesh::fill_hole(HalfedgeId h, const Vec3& apex) {
+    FHR_DCHECK(h.valid() && h.idx() < n_halfedges() && is_boundary(h));
+    std::vector<HalfedgeId> loop;
+    for (HalfedgeId g = h; loop.empty() || g != h; g = next(g)) loop.push_back(g);
+    const VertexId c = new_vertex(apex);
+    // spoke[i]: the edge from from(loop[i]) to the apex; its halfedge 0 leaves the loop.
+    std::vector<EdgeId> spoke;
+    spoke.reserve(loop.size());
+    for (HalfedgeId g : loop) spoke.push_back(new_edge(from(g), c));
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+        const std::size_t j = (i + 1) % loop.size();  // to(loop[i]) = from(loop[j])
+        set_face_loop(new_face(), loop[i], halfedge(spoke[j], 0), halfedge(spoke[i], 1));
+    }
+    out_[c.idx()] = halfedge(spoke[0], 1);
+    return c;
+}
+
 EdgeId TriMesh::new_edge(VertexId a, VertexId b) {
     const EdgeId e(static_cast<EdgeId::Index>(n_edges()));
     to_.push_back(b);

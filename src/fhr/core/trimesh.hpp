@@ -128,6 +128,11 @@ public:
     /// Inserts a vertex at `p` inside face f, splitting it into three triangles (paper §3, Fig. 4).
     /// \return the new vertex.
     VertexId split_face(FaceId f, const Vec3& p);
+    /// Closes the boundary loop of the boundary halfedge h by a cone: a new vertex at `apex`
+    /// joined to every vertex of the loop, one new triangle (from(g), to(g), apex) per boundary
+    /// halfedge g of the loop. Every existing element keeps its id; the new vertex, edges and faces
+    /// come after them (core/cones.hpp). \pre is_boundary(h). \return the new vertex.
+    VertexId fill_hole(HalfedgeId h, const Vec3& apex);
     bool has_garbage() const { return deleted_vertices_ != 0; }
     bool is_deleted(VertexId v) const { return !out_[v.idx()].valid(); }
     bool is_deleted(FaceId f) const { return !fh_[f.idx()].valid(); }

@@ -1,6 +1,8 @@
 // FHR §2 — half-edge-collapse decimation (see decimate.hpp for the pseudocode and
 // paper_notes/domain.md for the choices: quadric error of the surviving vertex, link condition,
-// normal-deviation and minimum-angle rules).
+// normal-deviation and minimum-angle rules). Beyond the paper: a surface with boundary is
+// decimated as T̂, closed by cones (core/cones.hpp), with a boundary vertex collapsed only along
+// the boundary; several components each to their share of the faces (paper_notes/boundary.md).
 #include <fhr/core/detail/contract.hpp>
 #include <fhr/domain/decimate.hpp>
 
@@ -13,6 +15,7 @@
 
 #include <array>
 
+#include <fhr/core/cones.hpp>
 #include <fhr/core/errors.hpp>
 #include <fhr/core/geometry.hpp>
 #include <fhr/core/predicates.hpp>
@@ -77,31 +80,59 @@ double volume6_of(const TriMesh& m) {
     return v;
 }
 
-// Each vertex's quadric: the area-weighted plane quadrics of its faces.
-std::vector<Quadric> vertex_quadrics(const TriMesh& T) {
+// Each vertex's quadric: the area-weighted plane quadrics of its faces — on T̂ the faces of T only
+// (the first real_faces) — and at a boundary edge of T the plane through it perpendicular to its
+// face, weighted by its squared length, so that the boundary keeps its shape (Garland & Heckbert
+// 1997, §6.1).
+std::vector<Quadric> vertex_quadrics(const TriMesh& T, std::size_t real_faces) {
     std::vector<Quadric> q(T.n_vertices());
     for (FaceId f : T.faces()) {
+        if (f.idx() >= real_faces) break;
         const Quadric k = face_quadric(T, f);
         for (VertexId v : T.face_vertices(f)) q[v.idx()] += k;
+        HalfedgeId h = T.halfedge(f);
+        for (int i = 0; i < 3; ++i, h = T.next(h)) {
+            const FaceId across = T.face(TriMesh::twin(h));
+            if (across.valid() && across.idx() < real_faces) continue;
+            const Vec3 &a = T.position(T.from(h)), &b = T.position(T.to(h));
+            const Vec3 n = (b - a).cross(face_normal(T, f)).normalized();
+            const double d = -n.dot(a), w = (b - a).squaredNorm();
+            const Quadric side{{w * n.x() * n.x(), w * n.x() * n.y(), w * n.x() * n.z(), w * n.x() * d, w * n.y() * n.y(),
+                                w * n.y() * n.z(), w * n.y() * d, w * n.z() * n.z(), w * n.z() * d, w * d * d}};
+            q[T.from(h).idx()] += side;
+            q[T.to(h).idx()] += side;
+        }
     }
     return q;
 }
 
-// Decimates `start`, a decimation of T after the collapses `start.history` (T itself with none),
-// whose vertex j is T's vertex start.t_vertex[j] with quadric quadrics[j].
+// Decimates `start`, a decimation of T̂ after the collapses `start.history` (T̂ itself with none),
+// whose vertex j is T̂'s vertex start.t_vertex[j] with quadric quadrics[j]. Vertices of T̂ from
+// `real_vertices` on are the apexes of its cones; component c (of connected_components(start.mesh))
+// is decimated to targets[c] faces of T (cone faces not counted).
 class Decimator {
 public:
-    Decimator(const Domain& start, std::vector<Quadric> quadrics, double t_volume6, const DecimateOptions& o)
+    Decimator(const Domain& start, std::vector<Quadric> quadrics, double t_volume6, const DecimateOptions& o,
+              std::size_t real_vertices, std::vector<std::size_t> targets)
         : m_(start.mesh), t_of_(start.t_vertex), history_(start.history), options_(o), quadric_(std::move(quadrics)),
-          stamp_(m_.n_edges(), 0), rejected_(m_.n_halfedges(), false), keep_(m_.n_vertices(), 0) {
+          stamp_(m_.n_edges(), 0), rejected_(m_.n_halfedges(), false), keep_(m_.n_vertices(), 0), real_(real_vertices),
+          target_(std::move(targets)) {
         std::vector<std::uint8_t> kept(std::max_element(t_of_.begin(), t_of_.end())->idx() + 1, 0);
         for (VertexId v : o.keep)
             if (v.idx() < kept.size()) kept[v.idx()] = 1;
-        for (VertexId v : m_.vertices()) keep_[v.idx()] = kept[t_of_[v].idx()];
+        for (VertexId v : m_.vertices()) keep_[v.idx()] = kept[t_of_[v].idx()] || apex(v);
+        for (VertexId v : m_.vertices()) cones_ = cones_ || apex(v);
+        const Components comps = connected_components(m_);
+        component_ = comps.vertex_component;
+        faces_.assign(comps.count, 0);
+        for (FaceId f : m_.faces())
+            if (!cone_face(f)) ++faces_[component_[m_.face_vertices(f)[0]]];
+        for (std::size_t c = 0; c < comps.count; ++c) excess_ += faces_[c] > target_[c] ? faces_[c] - target_[c] : 0;
         cos_max_turn_ = std::cos(o.max_normal_deviation_deg * M_PI / 180.0);
         tan_min_angle_ = std::tan(o.min_angle_deg * M_PI / 180.0);
         volume_ = volume6_of(m_);
-        min_volume_ = 1e-6 * t_volume6;
+        // The volume rule needs closed components of T: T̂'s cones are no part of the surface.
+        min_volume_ = cones_ ? -INFINITY : 1e-6 * t_volume6;
         std::vector<Candidate> all;
         all.reserve(m_.n_edges());
         for (EdgeId e : m_.edges()) all.push_back(edge_candidate(e));
@@ -109,12 +140,13 @@ public:
     }
 
     Domain run() {
-        std::size_t faces = m_.n_faces();
         Domain d;
         d.history = std::move(history_);
-        while (faces > options_.target_faces) {
+        while (excess_ > 0) {
             if (queue_.empty()) {
-                if (options_.best_effort) break;
+                if (options_.best_effort || cones_) break;
+                std::size_t faces = 0;
+                for (std::size_t f : faces_) faces += f;
                 throw InvalidInput("", 0, "decimation stopped at " + std::to_string(faces) + " faces (target " +
                                               std::to_string(options_.target_faces) +
                                               "): no further half-edge collapse keeps the domain valid under "
@@ -125,17 +157,21 @@ public:
             queue_.pop();
             const HalfedgeId h(c.halfedge);
             if (c.stamp != stamp_[TriMesh::edge(h).idx()] || m_.is_deleted(TriMesh::edge(h))) continue;
+            const std::uint32_t comp = component_[m_.from(h)];
+            if (faces_[comp] <= target_[comp]) continue;  // this component is done
             if (!valid(h)) {  // try the edge's other direction at its own cost
                 rejected_[h.idx()] = true;
                 if (!rejected_[TriMesh::twin(h).idx()]) queue_.push(candidate(TriMesh::twin(h)));
                 continue;
             }
             const VertexId v0 = m_.from(h), v1 = m_.to(h);
-            d.history.push_back({t_of_[v0], t_of_[v1], t_of_[m_.to(m_.next(h))],
-                                 t_of_[m_.to(m_.next(TriMesh::twin(h)))]});
+            const VertexId va = m_.to(m_.next(h)), vb = m_.to(m_.next(TriMesh::twin(h)));
+            d.history.push_back({t_of_[v0], t_of_[v1], t_of_[va], t_of_[vb]});
+            const std::size_t removed = apex(va) || apex(vb) ? 1 : 2;  // faces of T
             m_.collapse(h);
             volume_ += change_;
-            faces -= 2;
+            faces_[comp] -= removed;
+            excess_ -= removed;
             quadric_[v1.idx()] += quadric_[v0.idx()];
             refresh_around(v1);
         }
@@ -148,13 +184,18 @@ public:
 
 private:
     TriMesh m_;
-    VertexData<VertexId> t_of_;       // vertex of m_ -> vertex of T
-    std::vector<Collapse> history_;   // the collapses that made `start` from T
+    VertexData<VertexId> t_of_;       // vertex of m_ -> vertex of T̂
+    std::vector<Collapse> history_;   // the collapses that made `start` from T̂
     const DecimateOptions& options_;
     std::vector<Quadric> quadric_;
     std::vector<std::uint32_t> stamp_;  // per edge
     std::vector<bool> rejected_;        // per halfedge: popped, found invalid, and not queued since
-    std::vector<std::uint8_t> keep_;    // per vertex: never removed (DecimateOptions::keep)
+    std::vector<std::uint8_t> keep_;    // per vertex: never removed (DecimateOptions::keep, apexes)
+    std::size_t real_;                  // vertices of T̂ from here on are apexes
+    bool cones_ = false;                // T has boundary: m_ is a decimation of T̂
+    VertexData<std::uint32_t> component_;
+    std::vector<std::size_t> faces_, target_;  // per component: faces of T now, and asked
+    std::size_t excess_ = 0;            // Σ over the components of the faces above their target
     using Queue = std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>>;
     Queue queue_;
     double cos_max_turn_ = 0, tan_min_angle_ = 0;
@@ -162,6 +203,12 @@ private:
     // oriented like T: per-face normal rules alone let a coarse domain turn inside out.
     double volume_ = 0, min_volume_ = 0;
     mutable double change_ = 0;  // the volume change of the collapse last found valid
+
+    bool apex(VertexId v) const { return t_of_[v].idx() >= real_; }
+    bool cone_face(FaceId f) const {
+        const auto v = m_.face_vertices(f);
+        return cones_ && (apex(v[0]) || apex(v[1]) || apex(v[2]));
+    }
 
     // Six times the signed volume of the tetrahedron (0, a, b, c).
     static double volume6(const Vec3& a, const Vec3& b, const Vec3& c) { return a.dot(b.cross(c)); }
@@ -200,11 +247,25 @@ private:
 
     // The collapse from(h) -> to(h) is allowed when it keeps D a closed 2-manifold of the same
     // topology (Theorem, Dey et al. 1999: the link condition suffices) and every face that moves
-    // with from(h) stays well shaped and does not turn over.
+    // with from(h) stays well shaped and does not turn over. On T̂ the link condition keeps every
+    // cone a cone when a boundary vertex moves only along a boundary edge (one of the edge's two
+    // faces is a cone face) and each loop keeps three vertices (its apex a valence above 3); the
+    // faces of T then stay a surface with the same boundary loops.
     bool valid(HalfedgeId h) const {
         if (keep_[m_.from(h).idx()] || !m_.is_collapse_ok(h)) return false;
         const VertexId v0 = m_.from(h), v1 = m_.to(h);  // v0 disappears into v1
         const FaceId gone0 = m_.face(h), gone1 = m_.face(TriMesh::twin(h));
+        if (cones_) {
+            const VertexId va = m_.to(m_.next(h)), vb = m_.to(m_.next(TriMesh::twin(h)));
+            const bool along = apex(va) || apex(vb);
+            bool on_boundary = false;
+            m_.for_each_outgoing(v0, [&](HalfedgeId g) { on_boundary = on_boundary || apex(m_.to(g)); });
+            if (on_boundary && !along) return false;
+            if (along && m_.valence(apex(va) ? va : vb) <= 3) return false;
+            // Exactly the target: with one face to go, only a collapse along the boundary.
+            const std::uint32_t c = component_[v0];
+            if (faces_[c] - target_[c] < (along ? 1u : 2u)) return false;
+        }
         const Vec3 &p0 = m_.position(v0), &p1 = m_.position(v1);
         bool ok = true;
         double change = 0;
@@ -214,7 +275,7 @@ private:
             const Vec3& a = m_.position(m_.to(g));
             const Vec3& b = m_.position(m_.to(m_.next(g)));
             change += (f == gone0 || f == gone1 ? 0.0 : volume6(p1, a, b)) - volume6(p0, a, b);
-            if (!ok || f == gone0 || f == gone1) return;
+            if (!ok || f == gone0 || f == gone1 || cone_face(f)) return;
             if (collinear(p1, a, b)) {
                 ok = false;
                 return;
@@ -247,45 +308,145 @@ std::size_t min_closed_faces(long genus) {
     return static_cast<std::size_t>(2 * (v - chi));
 }
 
+ComponentTargets component_targets(const TriMesh& T, std::size_t faces) {
+    if (faces == 0 || faces > T.n_faces())
+        throw InvalidInput("", 0, "--faces " + std::to_string(faces) + " must be between 1 and the mesh's " + std::to_string(T.n_faces()));
+    const Components comps = connected_components(T);
+    const std::size_t n = comps.count;
+    std::vector<double> area(n, 0);
+    std::vector<std::size_t> own(n, 0);
+    std::vector<long> chi(n, 0), loops(n, 0);
+    for (FaceId f : T.faces()) {
+        const std::uint32_t c = comps.vertex_component[T.face_vertices(f)[0]];
+        area[c] += face_area(T, f);
+        ++own[c];
+        ++chi[c];
+    }
+    for (VertexId v : T.vertices()) ++chi[comps.vertex_component[v]];
+    for (EdgeId e : T.edges()) --chi[comps.vertex_component[T.from(TriMesh::halfedge(e, 0))]];
+    for (HalfedgeId h : boundary_loops(T)) ++loops[comps.vertex_component[T.from(h)]];
+    ComponentTargets out;
+    out.faces.assign(n, 0);
+    if (n == 1) {
+        out.faces[0] = faces;
+        return out;
+    }
+    double total = 0;
+    for (double a : area) total += a;
+    // Shares in steps (2 faces closed, 1 with boundary); the remaining steps by largest remainder,
+    // ties to the lower component, in rounds until the request is met.
+    std::vector<double> remainder(n);
+    std::size_t given = 0;
+    for (std::size_t c = 0; c < n; ++c) {
+        const double step = loops[c] ? 1.0 : 2.0, share = static_cast<double>(faces) * area[c] / total;
+        out.faces[c] = static_cast<std::size_t>(std::floor(share / step)) * static_cast<std::size_t>(step);
+        remainder[c] = share - static_cast<double>(out.faces[c]);
+        given += out.faces[c];
+    }
+    std::vector<std::size_t> order(n);
+    for (std::size_t c = 0; c < n; ++c) order[c] = c;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return remainder[a] > remainder[b]; });
+    const bool any_boundary = std::any_of(loops.begin(), loops.end(), [](long b) { return b > 0; });
+    if (!any_boundary && faces % 2 != 0)
+        throw InvalidInput("", 0, "--faces " + std::to_string(faces) + " is odd: closed triangulations have an even number of faces");
+    while (given < faces) {
+        for (std::size_t c : order) {
+            const std::size_t step = loops[c] ? 1 : 2;
+            if (given + step > faces) continue;
+            out.faces[c] += step;
+            given += step;
+            if (given == faces) break;
+        }
+    }
+    for (std::size_t c = 0; c < n; ++c) {
+        const long g = (2 - loops[c] - chi[c]) / 2;
+        const std::size_t least = loops[c] ? static_cast<std::size_t>(std::max(1L, 5 * loops[c] + 4 * g - 4)) : min_closed_faces(g);
+        const std::size_t want = std::min(own[c], std::max(out.faces[c], least));
+        if (want > out.faces[c]) out.raised += want - out.faces[c];
+        out.faces[c] = want;
+    }
+    return out;
+}
+
 namespace {
 
-void check_target(const TriMesh& T, const DecimateOptions& options) {
-    const std::size_t target = options.target_faces;
-    const long g = genus(T);
-    if (target % 2 != 0)
-        throw InvalidInput("", 0, "--faces " + std::to_string(target) + " is odd: a closed triangulation has an even number of faces");
-    if (target > T.n_faces())
-        throw InvalidInput("", 0, "--faces " + std::to_string(target) + " is more than the mesh has (" +
-                                      std::to_string(T.n_faces()) + ")");
-    if (target < min_closed_faces(g))
-        throw InvalidInput("", 0, "--faces " + std::to_string(target) + " is fewer than a closed surface of genus " +
-                                      std::to_string(g) + " needs (at least " + std::to_string(min_closed_faces(g)) + ")");
+// The targets per component, after the range checks of decimate.
+std::vector<std::size_t> targets_of(const TriMesh& T, std::size_t target) {
+    if (T.is_closed() && connected_components(T).count == 1) {
+        const long g = genus(T);
+        if (target % 2 != 0)
+            throw InvalidInput("", 0, "--faces " + std::to_string(target) + " is odd: a closed triangulation has an even number of faces");
+        if (target > T.n_faces())
+            throw InvalidInput("", 0, "--faces " + std::to_string(target) + " is more than the mesh has (" +
+                                          std::to_string(T.n_faces()) + ")");
+        if (target < min_closed_faces(g))
+            throw InvalidInput("", 0, "--faces " + std::to_string(target) + " is fewer than a closed surface of genus " +
+                                          std::to_string(g) + " needs (at least " + std::to_string(min_closed_faces(g)) + ")");
+        return {target};
+    }
+    return component_targets(T, target).faces;
+}
+
+// The corners of T's boundary: vertices where it turns by more than `degrees`, in T's numbering.
+std::vector<VertexId> boundary_corners(const TriMesh& T, double degrees) {
+    const double cos_turn = std::cos(degrees * M_PI / 180.0);
+    std::vector<VertexId> corners;
+    for (HalfedgeId g : T.halfedges()) {
+        if (!T.is_boundary(g)) continue;
+        const HalfedgeId n = T.next(g);  // the loop goes on at to(g)
+        const Vec3 in = T.position(T.to(g)) - T.position(T.from(g)), out = T.position(T.to(n)) - T.position(T.from(n));
+        if (in.dot(out) < cos_turn * in.norm() * out.norm()) corners.push_back(T.to(g));
+    }
+    return corners;
+}
+
+// The identity decimation of T̂ (no collapse yet).
+Domain identity(const TriMesh& mesh) {
+    Domain d{mesh, {}, {}};
+    for (VertexId v : mesh.vertices()) d.t_vertex.push_back(v);
+    return d;
+}
+
+// options with T's boundary corners added to the vertices kept.
+DecimateOptions with_corners(const TriMesh& T, const DecimateOptions& options) {
+    DecimateOptions o = options;
+    for (VertexId v : boundary_corners(T, options.corner_angle_deg)) o.keep.push_back(v);
+    return o;
 }
 
 }  // namespace
 
 Domain decimate(const TriMesh& T, const DecimateOptions& options) {
-    check_target(T, options);
-    Domain start{T, {}, {}};
-    for (VertexId v : T.vertices()) start.t_vertex.push_back(v);
-    return Decimator(start, vertex_quadrics(T), volume6_of(T), options).run();
+    std::vector<std::size_t> targets = targets_of(T, options.target_faces);
+    if (T.is_closed()) return Decimator(identity(T), vertex_quadrics(T, T.n_faces()), volume6_of(T), options, T.n_vertices(), std::move(targets)).run();
+    const Coned C = add_cones(T);
+    const DecimateOptions o = with_corners(T, options);
+    Domain closed = Decimator(identity(C.mesh), vertex_quadrics(C.mesh, C.real_faces), 0, o, C.real_vertices, std::move(targets)).run();
+    return open_domain(std::move(closed), C.real_vertices);
 }
 
 Domain decimate_again(const TriMesh& T, const Domain& previous, const DecimateOptions& options) {
-    check_target(T, options);
+    std::vector<std::size_t> targets = targets_of(T, options.target_faces);
+    const Coned C = add_cones(T);
+    const DecimateOptions o = T.is_closed() ? options : with_corners(T, options);
+    const Domain prev = close_domain(previous, T);
     // The collapses of `previous` before its first that removes a vertex kept now, and leaving at
     // least the target's faces, are the ones a new decimation makes first.
-    std::vector<std::uint8_t> kept(T.n_vertices(), 0);
-    for (VertexId v : options.keep) kept[v.idx()] = 1;
-    std::size_t reuse = std::min(previous.history.size(), (T.n_faces() - options.target_faces) / 2);
-    for (std::size_t i = 0; i < reuse; ++i)
-        if (kept[previous.history[i].removed.idx()]) reuse = i;
-    const Domain start = undo_collapses(previous, T, previous.history.size() - reuse);
-    std::vector<Quadric> merged = vertex_quadrics(T);  // summed in the order decimate summed them
-    for (std::size_t i = 0; i < reuse; ++i) merged[previous.history[i].kept.idx()] += merged[previous.history[i].removed.idx()];
+    std::vector<std::uint8_t> kept(C.mesh.n_vertices(), 0);
+    for (VertexId v : o.keep) kept[v.idx()] = 1;
+    std::size_t reuse = 0;
+    for (std::size_t faces = T.n_faces(); reuse < prev.history.size(); ++reuse) {
+        const Collapse& c = prev.history[reuse];
+        const std::size_t removed = c.left.idx() >= C.real_vertices || c.right.idx() >= C.real_vertices ? 1 : 2;
+        if (kept[c.removed.idx()] || faces < options.target_faces + removed) break;
+        faces -= removed;
+    }
+    const Domain start = undo_collapses(prev, C.mesh, prev.history.size() - reuse);
+    std::vector<Quadric> merged = vertex_quadrics(C.mesh, C.real_faces);  // summed in the order decimate summed them
+    for (std::size_t i = 0; i < reuse; ++i) merged[prev.history[i].kept.idx()] += merged[prev.history[i].removed.idx()];
     std::vector<Quadric> quadrics;
     for (VertexId x : start.t_vertex) quadrics.push_back(merged[x.idx()]);
-    Domain d = Decimator(start, std::move(quadrics), volume6_of(T), options).run();
+    Domain d = Decimator(start, std::move(quadrics), volume6_of(C.mesh), o, C.real_vertices, std::move(targets)).run();
     // Number D's vertices in T's order, as decimate does (DOM-4): the undone prefix appended its
     // vertices at the end.
     std::vector<std::uint32_t> order(d.t_vertex.size()), rank(d.t_vertex.size());
@@ -304,11 +465,12 @@ Domain decimate_again(const TriMesh& T, const Domain& previous, const DecimateOp
         for (std::uint32_t& v : f) v = rank[v];
     d.mesh = TriMesh::from_triangles(std::move(positions), faces);
     d.t_vertex = std::move(t_vertex);
-    return d;
+    return T.is_closed() ? d : open_domain(std::move(d), C.real_vertices);
 }
 
 Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count) {
     FHR_DCHECK(count <= d.history.size());
+    if (!T.is_closed()) return open_domain(undo_collapses(close_domain(d, T), add_cones(T).mesh, count), T.n_vertices());
     Domain r;
     r.mesh = d.mesh;
     r.t_vertex = d.t_vertex;
@@ -326,6 +488,13 @@ Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count) {
 }
 
 bool history_describes(const Domain& d, const TriMesh& T) {
+    if (!T.is_closed()) {
+        try {
+            return history_describes(close_domain(d, T), add_cones(T).mesh);
+        } catch (const InvalidInput&) {
+            return false;  // D's boundary does not follow T's
+        }
+    }
     Domain back;
     try {
         back = undo_collapses(d, T, d.history.size());
@@ -343,6 +512,79 @@ bool history_describes(const Domain& d, const TriMesh& T) {
     for (Triangle& f : faces)
         for (std::uint32_t& v : f) v = back.t_vertex[VertexId(v)].idx();
     return canonical(std::move(faces)) == canonical(T.triangles());
+}
+
+Domain close_domain(const Domain& D, const TriMesh& T) {
+    if (T.is_closed()) {
+        if (!D.mesh.is_closed()) throw InvalidInput("", 0, "the domain has a boundary but the mesh has none");
+        return D;
+    }
+    // Each boundary vertex of T: its loop and its place along it.
+    const std::vector<HalfedgeId> t_loops = boundary_loops(T);
+    const std::vector<Vec3> apexes = cone_apexes(T);
+    std::vector<std::uint32_t> loop_of(T.n_vertices(), UINT32_MAX), place(T.n_vertices(), 0);
+    std::vector<std::uint32_t> length(t_loops.size(), 0);
+    for (std::uint32_t i = 0; i < t_loops.size(); ++i)
+        for (HalfedgeId g = t_loops[i]; loop_of[T.from(g).idx()] == UINT32_MAX; g = T.next(g)) {
+            loop_of[T.from(g).idx()] = i;
+            place[T.from(g).idx()] = length[i]++;
+        }
+    auto vertex = [&](VertexId v) { return "domain vertex " + std::to_string(v.idx()) + " (mesh vertex " + std::to_string(D.t_vertex[v].idx()) + ")"; };
+    // Each loop of D: on one loop of T, its boundary halfedges (which run as T's do) stepping
+    // forward along it, once around in all.
+    std::vector<HalfedgeId> d_loop_of(t_loops.size());
+    for (HalfedgeId h : boundary_loops(D.mesh)) {
+        const std::uint32_t loop = loop_of[D.t_vertex[D.mesh.from(h)].idx()];
+        std::size_t steps = 0;
+        for (HalfedgeId g = h; steps == 0 || g != h; g = D.mesh.next(g)) {
+            const VertexId a = D.mesh.from(g), b = D.mesh.to(g);
+            for (VertexId v : {a, b})
+                if (loop_of[D.t_vertex[v].idx()] != loop)
+                    throw InvalidInput("", 0, vertex(v) + " is on the domain's boundary but " +
+                                                  (loop_of[D.t_vertex[v].idx()] == UINT32_MAX ? std::string("not on the mesh's boundary")
+                                                                                              : "on another boundary loop of the mesh than its neighbour"));
+            steps += (place[D.t_vertex[b].idx()] + length[loop] - place[D.t_vertex[a].idx()]) % length[loop];
+        }
+        if (steps != length[loop] || d_loop_of[loop].valid())
+            throw InvalidInput("", 0, "the domain's boundary loop through " + vertex(D.mesh.from(h)) +
+                                          " does not go once around the mesh's boundary loop in the mesh's orientation");
+        d_loop_of[loop] = h;
+    }
+    Domain out = D;
+    for (std::uint32_t i = 0; i < t_loops.size(); ++i) {
+        if (!d_loop_of[i].valid())
+            throw InvalidInput("", 0, "the mesh's boundary loop through mesh vertex " + std::to_string(T.from(t_loops[i]).idx()) +
+                                          " has no boundary loop of the domain along it");
+        out.mesh.fill_hole(d_loop_of[i], apexes[i]);
+        out.t_vertex.emplace_back(static_cast<VertexId::Index>(T.n_vertices() + i));
+    }
+    return out;
+}
+
+bool on_cone(const TriMesh& closed, const VertexData<VertexId>& t_vertex, EdgeId e, std::size_t real_vertices) {
+    for (unsigned side = 0; side < 2; ++side)
+        for (VertexId v : closed.face_vertices(closed.face(TriMesh::halfedge(e, side))))
+            if (t_vertex[v].idx() >= real_vertices) return true;
+    return false;
+}
+
+Domain open_domain(const Domain& closed, std::size_t real_vertices) {
+    Domain out;
+    out.history = closed.history;
+    std::vector<std::uint32_t> index(closed.mesh.n_vertices(), UINT32_MAX);
+    std::vector<Vec3> positions;
+    for (VertexId v : closed.mesh.vertices()) {
+        if (closed.t_vertex[v].idx() >= real_vertices) continue;
+        index[v.idx()] = static_cast<std::uint32_t>(positions.size());
+        positions.push_back(closed.mesh.position(v));
+        out.t_vertex.push_back(closed.t_vertex[v]);
+    }
+    std::vector<Triangle> faces;
+    for (const Triangle& f : closed.mesh.triangles())
+        if (index[f[0]] != UINT32_MAX && index[f[1]] != UINT32_MAX && index[f[2]] != UINT32_MAX)
+            faces.push_back({index[f[0]], index[f[1]], index[f[2]]});
+    out.mesh = TriMesh::from_triangles(std::move(positions), faces);
+    return out;
 }
 
 }  // namespace fhr::domain

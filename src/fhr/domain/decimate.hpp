@@ -33,18 +33,24 @@ struct Collapse {
 };
 
 struct DecimateOptions {
-    std::size_t target_faces = 0;            ///< even, >= min_closed_faces(genus), <= T's faces
+    std::size_t target_faces = 0;            ///< the faces of D asked for (see decimate)
     double max_normal_deviation_deg = 90.0;  ///< no face may turn by more than this (flips)
     double min_angle_deg = 1.0;              ///< no new corner angle below this (needles, degeneracy)
+    /// A boundary vertex where T's boundary turns by more than this angle (between the directions
+    /// of its two boundary edges) is a corner of the boundary: D keeps it.
+    double corner_angle_deg = 60.0;
     std::vector<VertexId> keep{};            ///< vertices of T that D must keep (§3 recovery)
     bool best_effort = false;                ///< stop above the target instead of throwing when no collapse is valid
 };
 
 /// D together with its correspondence to T (paper §2).
 struct Domain {
-    TriMesh mesh;                     ///< D: compact, closed, with T's Euler characteristic
+    TriMesh mesh;                     ///< D: compact, with T's topology (components, genus, boundary loops)
     VertexData<VertexId> t_vertex;    ///< #V(D): the vertex x_j of T at vertex v_j of D
-    std::vector<Collapse> history;    ///< the collapses, in the order they were made
+    /// The collapses, in the order they were made, in the numbering of T̂ (core/cones.hpp): on a
+    /// surface with boundary, `left` or `right` of a collapse along the boundary is the apex of
+    /// its loop's cone, vertex #V(T) + (the loop's place in boundary_loops(T)).
+    std::vector<Collapse> history;
 };
 
 /// For each edge [v_j, v_k] of D (in edge order), the vertices x_j, x_k of T it stands for: the
@@ -56,13 +62,52 @@ std::vector<std::pair<VertexId, VertexId>> edge_endpoints(const Domain& d);
 /// g = 2, which needs 10 vertices; Jungerman & Ringel 1980).
 std::size_t min_closed_faces(long genus);
 
-/// Half-edge-collapse decimation of T to exactly options.target_faces faces.
-/// \pre T is valid, closed and connected (build_trimesh).
-/// \post D is valid and closed with χ(D) = χ(T); D's vertices are T's vertices at unchanged
-///       positions; no face of D has a corner below min_angle_deg; deterministic.
-/// \throws InvalidInput when the target is odd, larger than T's face count, below
-///         min_closed_faces(genus), or cannot be reached under the validity rules.
+/// The faces asked of each component of T (numbered as connected_components(T)) when D is asked
+/// for `faces` faces in all: shares in proportion to the components' areas, rounded by largest
+/// remainder so that they sum to `faces` exactly — in steps of two faces for a closed component
+/// (its face count is even), of one for a component with boundary — then each raised to the
+/// least its topology allows (min_closed_faces(g) closed; 5b + 4g − 4 with b ≥ 1 boundary loops,
+/// the faces of a triangulation whose vertices all lie on loops of three), and to at most the
+/// component's own faces. paper_notes/boundary.md.
+/// \throws InvalidInput when `faces` is 0 or more than T has, or odd with every component closed.
+struct ComponentTargets {
+    std::vector<std::size_t> faces;   ///< per component
+    std::size_t raised = 0;           ///< how many faces the minima added to the request
+};
+ComponentTargets component_targets(const TriMesh& T, std::size_t faces);
+
+/// Half-edge-collapse decimation of T to options.target_faces faces.
+/// \pre T is valid (build_trimesh): orientable, manifold, maybe with boundary and several components.
+/// \post D is valid with T's topology; D's vertices are T's vertices at unchanged positions; no
+///       face of D has a corner below min_angle_deg; deterministic. A boundary vertex of T that
+///       D keeps is on D's boundary, and a boundary vertex moves only along the boundary, so each
+///       boundary edge of D stands for the arc of T's boundary between its ends (boundary_arc);
+///       T's boundary corners (corner_angle_deg) are D's vertices. Each component c gets
+///       component_targets(T, target).faces[c] faces; a closed connected T gets exactly the
+///       target. A component with boundary may stop above its share when no collapse is valid
+///       (its loops and corners need more faces): D is then larger than asked.
+/// \throws InvalidInput when the target is out of range (component_targets; for a closed
+///         connected T also odd or below min_closed_faces(genus)), or when a closed component
+///         cannot reach its share under the validity rules (unless best_effort).
 Domain decimate(const TriMesh& T, const DecimateOptions& options);
+
+/// D̂: D closed by the cones of T̂ (core/cones.hpp) — each boundary loop of D gets the apex of the
+/// loop of T it lies on (t_vertex #V(T) + i, at T̂'s apex position), filled in the order of T's
+/// loops so that D̂'s vertices stay in T̂'s order. D's vertices, edges and faces keep their ids.
+/// D = D̂ when T is closed.
+/// \throws InvalidInput when D's boundary does not follow T's: a boundary vertex of D that is not
+///         on T's boundary, a boundary edge of D whose ends are not consecutive D vertices along one
+///         loop of T (in the orientation of T's faces), or loops of T and D that do not match one to one.
+Domain close_domain(const Domain& D, const TriMesh& T);
+
+/// True when edge e of D̂ has a cone face on a side: a cone edge, or a boundary edge of D (both
+/// stand for fixed curves in §3: the cone edge itself, the arc of T's boundary).
+/// `closed` is D̂'s mesh (or one being changed from it) and t_vertex its vertices in T̂.
+bool on_cone(const TriMesh& closed, const VertexData<VertexId>& t_vertex, EdgeId e, std::size_t real_vertices);
+
+/// D from D̂: the apexes (t_vertex >= real_vertices) and their faces taken off; the other
+/// vertices keep their order.
+Domain open_domain(const Domain& closed, std::size_t real_vertices);
 
 /// The decimation of T under `options` (typically more vertices to keep and more faces than
 /// before), reusing `previous` — a decimation of T that kept a subset of options.keep — up to its
@@ -72,12 +117,14 @@ Domain decimate(const TriMesh& T, const DecimateOptions& options);
 Domain decimate_again(const TriMesh& T, const Domain& previous, const DecimateOptions& options);
 
 /// True when undoing all of d.history gives T back, face for face: the history describes d.mesh
-/// (false, for instance, after an edge of d.mesh was flipped). O(#F(T) log #F(T)).
+/// (false, for instance, after an edge of d.mesh was flipped). O(#F(T) log #F(T)). With boundary,
+/// on D̂ and T̂ (close_domain, add_cones).
 bool history_describes(const Domain& d, const TriMesh& T);
 
 /// Undoes the last `count` collapses of d.history (vertex splits, most recent first), giving a
 /// finer domain whose vertices are again vertices of T. With count = d.history.size() the result
-/// is T itself, with its vertices renumbered: result.t_vertex maps them to T.
+/// is T itself, with its vertices renumbered: result.t_vertex maps them to T. With boundary, the
+/// collapses are undone on D̂ and T̂ and the cones taken off again.
 /// \pre count <= d.history.size().
 Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count);
 

@@ -318,10 +318,9 @@ private:
     }
 
     // ---- PARAM-3 ---------------------------------------------------------------------------
-    /// build_trimesh with every rule of spec/mesh.md strict but closed and connected (boundary
-    /// loops and several components are allowed; every vertex, boundary ones included, must be
-    /// manifold, which makes every boundary loop a simple closed curve), and INV-IN-13 for each
-    /// closed component. A file must need no repair: no isolated vertex (a vertex of T′ in no
+    /// build_trimesh with every rule of spec/mesh.md (boundary loops and several components are
+    /// allowed; every vertex, boundary ones included, must be manifold, which makes every boundary
+    /// loop a simple closed curve; no closed component is flat, INV-IN-13). A file must need no repair: no isolated vertex (a vertex of T′ in no
     /// face has no ψ) and no face turned — each component consistently oriented, a closed one
     /// with positive volume (the orientation is part of the contract: PARAM-8 reads it; a
     /// component with boundary has no outside, so either of its two orientations is accepted).
@@ -337,7 +336,6 @@ private:
             TriMesh mesh = build_trimesh(soup, BuildOptions{.require_closed = false, .require_connected = false}, log);
             if (log.dropped_vertices == 0 && log.reoriented_faces == 0) {
                 Topology topology = topology_of(mesh);
-                if (flat_closed_component(mesh, topology, what, rec)) return std::nullopt;
                 return Surface{std::move(mesh), std::move(topology)};
             }
             rec.fail([&] {
@@ -363,45 +361,6 @@ private:
         surface_ = build(f_.surface_vertices, triangles, "surface T'", rec);
         rec.examined(2);
         return rec.done();
-    }
-
-    /// INV-IN-13 for every closed component (build_trimesh checks it only when it requires the
-    /// whole surface to be closed): a closed component whose vertices all lie in the plane of its
-    /// lowest face (exact orient3d) covers a flat region twice. True when one is flat (recorded).
-    static bool flat_closed_component(const TriMesh& mesh, const Topology& t, const char* what, Recorder& rec) {
-        std::vector<std::uint32_t> plane(t.count(), none);  // the lowest face of each closed component
-        std::size_t closed = std::count(t.loops.begin(), t.loops.end(), 0u);
-        for (FaceId f : mesh.faces()) {
-            if (closed == 0) break;
-            const std::uint32_t c = t.of(mesh.to(mesh.halfedge(f)).idx());
-            if (t.loops[c] == 0 && plane[c] == none) {
-                plane[c] = f.idx();
-                --closed;
-            }
-        }
-        std::vector<std::uint8_t> flat(t.count());
-        std::size_t candidates = 0;
-        for (std::size_t c = 0; c < t.count(); ++c) candidates += flat[c] = plane[c] != none;
-        for (VertexId v : mesh.vertices()) {
-            if (candidates == 0) return false;
-            const std::uint32_t c = t.of(v.idx());
-            if (!flat[c]) continue;
-            const auto corners = mesh.face_vertices(FaceId(plane[c]));
-            if (orient3d(mesh.position(corners[0]), mesh.position(corners[1]), mesh.position(corners[2]),
-                         mesh.position(v)) != 0) {
-                flat[c] = 0;
-                --candidates;
-            }
-        }
-        const auto c = std::find(flat.begin(), flat.end(), 1) - flat.begin();
-        if (c == static_cast<std::ptrdiff_t>(flat.size())) return false;
-        rec.fail([&] {
-            return std::string(what) + ": the closed " +
-                   (t.count() == 1 ? std::string("surface") : "component at vertex " + std::to_string(t.first_vertex[c])) +
-                   " is flat: all " + std::to_string(t.vertices[c]) + " vertices lie in the plane of face " +
-                   std::to_string(plane[c]) + ", so its faces cover a flat region twice";
-        });
-        return true;
     }
 
     // ---- PARAM-4 ---------------------------------------------------------------------------

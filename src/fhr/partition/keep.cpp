@@ -10,6 +10,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include <fhr/core/cones.hpp>
 #include <fhr/core/errors.hpp>
 #include <fhr/core/executor.hpp>
 #include <fhr/partition/detail/restricted.hpp>
@@ -50,6 +51,7 @@ struct Curve {
     // A geodesic of the start is snapped as embed() snaps geodesics; a curve found later is placed
     // as found, since snapping could move it across a curve that it passes closer than snapping.
     bool snapped = false;
+    bool fixed = false;             // a cone edge or a boundary arc (domain::on_cone): never changed
 };
 
 // The network while D is being made: a domain, one curve per edge keyed by the edge's ends in T,
@@ -57,9 +59,11 @@ struct Curve {
 // again: each change is made in its region, partition/region.hpp).
 class Network_ {
 public:
-    Network_(const TriMesh& T, domain::Domain D) : T_(T), D_(std::move(D)) {}
+    Network_(const TriMesh& T, std::size_t real_vertices, domain::Domain D) : T_(T), real_(real_vertices), D_(std::move(D)) {}
 
     const TriMesh& T() const { return T_; }
+    std::size_t real_vertices() const { return real_; }
+    bool apex(VertexId x) const { return x.idx() >= real_; }  // x a vertex of T̂
     const domain::Domain& domain() const { return D_; }
     domain::Domain& domain() { return D_; }
     std::map<Pair, Curve>& curves() { return curves_; }
@@ -97,6 +101,7 @@ public:
 
 private:
     const TriMesh& T_;
+    std::size_t real_;
     domain::Domain D_;
     std::map<Pair, Curve> curves_;
     std::map<Corners, std::vector<FaceId>> touched_;
@@ -213,11 +218,14 @@ void redo(Network_& net, std::span<const domain::Collapse> collapses, const std:
                 const std::size_t valence = D.mesh.valence(v);
                 if (valence <= 3) continue;
                 // Spoke [v, u] in the face (v, w, u), or (w, v, u) on the other side; its other
-                // face (v, u, y), or (u, v, y): the flip makes [w, y].
+                // face (v, u, y), or (u, v, y): the flip makes [w, y]. Along the boundary only the
+                // side of the face of T (the other is a cone face).
                 const HalfedgeId vw = D.mesh.find_halfedge(v, w);
-                const HalfedgeId side = valence % 2 == 0 ? vw : TriMesh::twin(vw);
+                const bool along = net.apex(c.left) || net.apex(c.right);
+                const HalfedgeId side = along ? (net.apex(net.x(D.mesh.to(D.mesh.next(vw)))) ? TriMesh::twin(vw) : vw)
+                                              : valence % 2 == 0 ? vw : TriMesh::twin(vw);
                 const VertexId u = D.mesh.to(D.mesh.next(side));
-                const HalfedgeId spoke = valence % 2 == 0 ? D.mesh.find_halfedge(v, u) : D.mesh.find_halfedge(u, v);
+                const HalfedgeId spoke = side == vw ? D.mesh.find_halfedge(v, u) : D.mesh.find_halfedge(u, v);
                 const VertexId y = D.mesh.to(D.mesh.next(spoke));
                 if (!D.mesh.is_flip_ok(TriMesh::edge(spoke))) throw std::logic_error("keeping the domain: a spoke cannot be flipped");
                 jobs.push_back(Job{.e = TriMesh::edge(spoke), .a = w, .b = y});
@@ -232,6 +240,29 @@ void redo(Network_& net, std::span<const domain::Collapse> collapses, const std:
             const VertexId v = net.at(c.removed.idx()), w = net.at(c.kept.idx());
             const HalfedgeId vw = D.mesh.find_halfedge(v, w);
             if (!D.mesh.is_collapse_ok(vw)) throw std::logic_error("keeping the domain: a collapse cannot be redone");
+            if (net.apex(c.left) || net.apex(c.right)) {
+                // Along the boundary: v's face of T, (v, w, v') or (w, v, v'), joins the face across
+                // [v', w]; the new boundary edge [v', w] gets the arc of T's boundary.
+                const HalfedgeId side = net.apex(net.x(D.mesh.to(D.mesh.next(vw)))) ? TriMesh::twin(vw) : vw;
+                const VertexId vp = D.mesh.to(D.mesh.next(side));
+                const HalfedgeId inside = side == vw ? D.mesh.find_halfedge(w, vp) : D.mesh.find_halfedge(vp, w);
+                const FaceId own = D.mesh.face(side), across = D.mesh.face(TriMesh::twin(inside));
+                auto& joined = net.touched().at(corners_of(D, across));
+                auto& given = net.touched().at(corners_of(D, own));
+                joined = merged(std::move(joined), given);
+                given.clear();
+                // After the collapse, D's face of T beside [v', w] is `across`: left of v' -> w when
+                // own = (v, w, v') holds w -> v', else left of w -> v'. The arc passes x_v.
+                const VertexId a = side == vw ? vp : w, b = side == vw ? w : vp;
+                const std::vector<VertexId> arc = boundary_arc(net.T(), net.real_vertices(), net.x(a), net.x(b));
+                geodesic::GeodesicPath path;
+                for (std::size_t i = 0; i < arc.size(); ++i) {
+                    path.points.push_back(SurfacePoint::at_vertex(arc[i]));
+                    if (i) path.length += (net.T().position(arc[i]) - net.T().position(arc[i - 1])).norm();
+                }
+                if (arc.front().idx() > arc.back().idx()) path = reversed(std::move(path));
+                net.curves()[key_of(net.x(vp), net.x(w))] = Curve{std::move(path), true, {}, true, true};
+            }
             std::vector<FaceId> touched;
             D.mesh.for_each_outgoing(v, [&](HalfedgeId h) {
                 const auto it = net.touched().find(corners_of(D, D.mesh.face(h)));
@@ -332,6 +363,7 @@ void flip_to(Network_& net, const domain::Domain& target, const std::function<vo
             if (!have.count(k)) near[net.at(k.first).idx()] = near[net.at(k.second).idx()] = 1;
         auto candidate = [&](const TriMesh& m, EdgeId e) {
             const HalfedgeId h = TriMesh::halfedge(e, 0);
+            if (domain::on_cone(m, D.t_vertex, e, net.real_vertices())) return false;  // a cone edge or a boundary edge of D: fixed
             return (near[m.from(h).idx()] || near[m.to(h).idx()] || near[m.to(m.next(h)).idx()] ||
                     near[m.to(m.next(TriMesh::twin(h))).idx()]) &&
                    m.is_flip_ok(e);
@@ -379,14 +411,16 @@ std::pair<std::vector<geodesic::GeodesicPath>, std::vector<std::uint8_t>> in_edg
 // in as a restricted path in the polygon its two faces (and those of other removed edges) leave.
 // nullopt when the kept geodesics do not leave such polygons (disks bounded by kept curves, one
 // region of T each), or when anything on the way fails: the caller then steps back instead.
-std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::EllipsePath> geodesics,
-                               std::span<const Conflict> conflicts, std::span<const Pair> order) {
+std::optional<Network_> direct(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D,
+                               std::span<const geodesic::EllipsePath> geodesics, std::span<const Conflict> conflicts,
+                               std::span<const Pair> order) {
     const auto ends = domain::edge_endpoints(D);
     std::map<Pair, std::size_t> edge_of;
     for (std::size_t e = 0; e < ends.size(); ++e) edge_of[key_of(ends[e].first, ends[e].second)] = e;
     // The kept set, in the kept order: no conflict of its own (through a corner, a point twice),
     // none with a kept edge; the cyclic order (2) is settled among the kept ones below.
-    std::vector<std::uint8_t> kept(ends.size(), 0), alone(ends.size(), 1);
+    std::vector<std::uint8_t> kept(ends.size(), 0), alone(ends.size(), 1), fixed(ends.size(), 0);
+    for (EdgeId e : D.mesh.edges()) fixed[e.idx()] = domain::on_cone(D.mesh, D.t_vertex, e, real_vertices);
     std::vector<std::vector<std::size_t>> against(ends.size());
     for (const Conflict& c : conflicts) {
         if (c.kind == Conflict::Kind::order) continue;  // settled among the kept ones below
@@ -399,9 +433,9 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
     for (const Pair& k : order) {
         const std::size_t e = edge_of.at(k);
         rank[k] = rank.size();
-        kept[e] = alone[e] && std::none_of(against[e].begin(), against[e].end(), [&](std::size_t o) { return kept[o] != 0; });
+        kept[e] = fixed[e] || (alone[e] && std::none_of(against[e].begin(), against[e].end(), [&](std::size_t o) { return kept[o] != 0; }));
     }
-    Network_ net(T, make_domain(T, faces_in_t(D)));
+    Network_ net(T, real_vertices, make_domain(T, faces_in_t(D)));
     const domain::Domain& Dn = net.domain();
     const TriMesh& m = Dn.mesh;
     auto edge_key = [&](HalfedgeId h) { return key_of(net.x(m.from(h)), net.x(m.to(h))); };
@@ -470,8 +504,11 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
                 return true;
             };
             if (same_cycle(in_d, own)) continue;
-            std::size_t drop = edge_of.at(in_d.front());
+            const auto movable = std::find_if(in_d.begin(), in_d.end(), [&](const Pair& k) { return !fixed[edge_of.at(k)]; });
+            if (movable == in_d.end()) return std::nullopt;  // fixed curves alone out of order: not a domain of T
+            std::size_t drop = edge_of.at(*movable);
             for (const Pair& k : in_d) {
+                if (fixed[edge_of.at(k)]) continue;
                 std::vector<Pair> a, b;
                 std::copy_if(in_d.begin(), in_d.end(), std::back_inserter(a), [&](const Pair& x) { return x != k; });
                 std::copy_if(own.begin(), own.end(), std::back_inserter(b), [&](const Pair& x) { return x != k; });
@@ -485,7 +522,7 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
         if (out_of_order.empty()) break;
         for (std::size_t e : out_of_order) kept[e] = 0;
     }
-    for (const auto& [k, i] : index) net.curves()[k] = Curve{paths[i], true, {}, true};
+    for (const auto& [k, i] : index) net.curves()[k] = Curve{paths[i], true, {}, true, fixed[edge_of.at(k)] != 0};
     // Groups: D's faces joined across removed edges; each must be a disk, its boundary one closed
     // walk: with V vertices, E edges, F faces and r repeated boundary vertices, V − E + F = 1 − r
     // (a vertex met twice pinches the disk there).
@@ -646,7 +683,7 @@ std::optional<Network_> direct(const TriMesh& T, const domain::Domain& D, std::s
 
 }  // namespace
 
-KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain::Domain& H,
+KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D, const domain::Domain& H,
                         std::span<const geodesic::EllipsePath> geodesics,
                         std::span<const Conflict> conflicts,
                         const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,
@@ -663,7 +700,12 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
         for (EdgeId e : {c.d_edge_a, c.d_edge_b}) reason.emplace(key_of(ends[e.idx()].first, ends[e.idx()].second), c.describe());
     std::vector<Pair> order;
     for (const auto& [k, length] : geodesic_length) order.push_back(k);
+    std::set<Pair> fixed;  // the cone edges and D's boundary edges, first in the kept order
+    for (EdgeId e : D.mesh.edges())
+        if (domain::on_cone(D.mesh, D.t_vertex, e, real_vertices)) fixed.insert(key_of(ends[e.idx()].first, ends[e.idx()].second));
     std::stable_sort(order.begin(), order.end(), [&](const Pair& p, const Pair& q) {
+        const bool fp = fixed.count(p) != 0, fq = fixed.count(q) != 0;
+        if (fp != fq) return fp;
         const bool cp = reason.count(p) != 0, cq = reason.count(q) != 0;
         if (cp != cq) return !cp;
         return geodesic_length.at(p) < geodesic_length.at(q);
@@ -673,7 +715,7 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
     std::optional<Network_> net;
     if (start == Start::fast) {
         try {
-            if (std::optional<Network_> found = direct(T, D, geodesics, conflicts, order)) {
+            if (std::optional<Network_> found = direct(T, real_vertices, D, geodesics, conflicts, order)) {
                 // Checked as a whole before it is used: (1), (2) and the patches.
                 const auto [paths, unsnapped] = in_edge_order(D, found->curves());
                 const Embedding check = embed(T, D, paths, unsnapped);
@@ -708,11 +750,12 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
         }
         const Embedding embedding = embed(T, Di, paths);
         if (embedding.conflicts.empty()) {
-            net.emplace(T, make_domain(T, faces_in_t(Di)));
+            net.emplace(T, real_vertices, make_domain(T, faces_in_t(Di)));
             const auto di_ends = domain::edge_endpoints(Di);
             for (std::size_t e = 0; e < paths.size(); ++e) {
                 const auto [a, b] = di_ends[e];
-                net->curves()[key_of(a, b)] = Curve{a.idx() < b.idx() ? paths[e] : reversed(paths[e]), true, {}, true};
+                net->curves()[key_of(a, b)] = Curve{a.idx() < b.idx() ? paths[e] : reversed(paths[e]), true, {}, true,
+                                                    domain::on_cone(Di.mesh, Di.t_vertex, EdgeId(static_cast<EdgeId::Index>(e)), real_vertices)};
             }
             const Patches patches = extract_patches(Di, embedding.network);
             for (FaceId df : Di.mesh.faces()) {
@@ -785,6 +828,7 @@ KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain:
         out.unsnapped.push_back(!c.snapped);
         CurveInfo info;
         info.geodesic_length = geodesic_length.at(k);
+        if (c.fixed) info.kind = CurveKind::boundary;
         if (!c.exact) {
             info.kind = CurveKind::restricted;
             info.shortest = c.restricted.shortest;

@@ -27,6 +27,11 @@
 //       then the others, each group shortest geodesic first), in batches of edges with no face in
 //       common: the curve becomes the restricted path between its ends in its two patches when
 //       that is shorter, and the exact geodesic itself when that is what it found
+//   with boundary (T̂, D̂ closed by cones): the cone edges and D's boundary edges keep their fixed
+//       curves — kept first, never dropped, flipped or tightened; a collapse along the boundary
+//       v -> w flips v's spokes on the side of its face of T only, until v has its two boundary
+//       neighbours w, v' and the apex; then the two cone faces merge into the new cone face, v's
+//       face of T joins the face across [v', w], and [v', w] gets the boundary arc from v' to w
 //   every flip and tightening works in its region alone (partition/region.hpp): the faces of T
 //       the two patches touch are cut along the four curves around them, the new curve is found
 //       there, and cutting again along it gives the two new patches' faces of T; a conflict there
@@ -52,6 +57,7 @@ namespace fhr::partition {
 enum class CurveKind : std::uint8_t {
     geodesic,    ///< the exact shortest geodesic Γ(x_j, x_k) of T (paper §3)
     restricted,  ///< the restricted shortest path in the region the other curves leave free
+    boundary,    ///< a boundary edge of D: the arc of T's boundary between its ends (core/cones.hpp)
 };
 
 /// What the report says of one domain edge's curve.
@@ -77,14 +83,17 @@ enum class Start : std::uint8_t {
 };
 
 /// The network for exactly D.
-/// \pre H is a decimation of T whose history describes it (domain::history_describes) with D's
-///      vertices (H = D when D is itself that decimation); geodesics[e] is Γ for D's halfedge
-///      (e, 0); `conflicts` are those of their embedding; `geodesics_of` gives the geodesics of any
-///      domain of T (in its edge order); the separations of one round run on `executor`.
+/// \pre T is T̂ (core/cones.hpp; T itself when closed), whose vertices from `real_vertices` on are
+///      cone apexes, and D, H are D̂ and Ĥ (domain::close_domain); H is a decimation of T whose
+///      history describes it (domain::history_describes) with D's vertices (H = D when D is itself
+///      that decimation); geodesics[e] is the curve of D's halfedge (e, 0) — for an edge with a cone
+///      face beside it (domain::on_cone) the fixed curve, which is kept as it is; `conflicts` are
+///      those of their embedding; `geodesics_of` gives the curves of any domain of T (in its edge
+///      order); the separations of one round run on `executor`.
 /// \throws std::logic_error when a separated curve breaks (1) or (2) (a bug);
 ///         PartitionFailure when a curve has no room to be separated, or when no flips lead from H
 ///         to D.
-KeptNetwork keep_domain(const TriMesh& T, const domain::Domain& D, const domain::Domain& H,
+KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D, const domain::Domain& H,
                         std::span<const geodesic::EllipsePath> geodesics,
                         std::span<const Conflict> conflicts,
                         const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,

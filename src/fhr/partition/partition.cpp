@@ -8,24 +8,28 @@
 #include <stdexcept>
 #include <utility>
 
+#include <fhr/core/cones.hpp>
 #include <fhr/core/errors.hpp>
 
 namespace fhr::partition {
 namespace {
 
-// Γ(a, b) for every edge of D, reusing the paths of edges whose ends are unchanged.
+// Γ(a, b) for every edge of D̂ (D closed by the cones of T̂, core/cones.hpp), reusing the paths of
+// edges whose ends are unchanged: the exact geodesic on T for an edge of D inside the surface, the
+// arc of T's boundary for a boundary edge of D, the edge itself for a cone edge.
 class PathCache {
 public:
-    PathCache(const TriMesh& T, const geodesic::EllipseOptions& options, Executor& executor)
-        : T_(T), options_(options), executor_(executor) {}
+    PathCache(const TriMesh& T, const TriMesh& T_hat, const geodesic::EllipseOptions& options, Executor& executor)
+        : T_(T), T_hat_(T_hat), options_(options), executor_(executor) {}
 
-    std::vector<geodesic::EllipsePath> all(const domain::Domain& D) {
-        const auto ends = domain::edge_endpoints(D);
+    std::vector<geodesic::EllipsePath> all(const domain::Domain& D_hat) {
+        const auto ends = domain::edge_endpoints(D_hat);
         // The paths not known yet, computed in parallel (core/executor.hpp).
         std::vector<Key> missing;
-        for (const auto& [a, b] : ends) {
+        for (EdgeId e : D_hat.mesh.edges()) {
+            const auto& [a, b] = ends[e.idx()];
             const Key key = key_of(a, b);
-            if (!cache_.count(key) && std::find(missing.begin(), missing.end(), key) == missing.end()) missing.push_back(key);
+            if (!fixed(D_hat, e) && !cache_.count(key) && std::find(missing.begin(), missing.end(), key) == missing.end()) missing.push_back(key);
         }
         std::vector<geodesic::EllipsePath> found(missing.size());
         executor_.for_each(missing.size(), 8, [&](std::size_t i) {
@@ -34,7 +38,12 @@ public:
         for (std::size_t i = 0; i < missing.size(); ++i) cache_.emplace(missing[i], std::move(found[i]));
         std::vector<geodesic::EllipsePath> paths;
         paths.reserve(ends.size());
-        for (const auto& [a, b] : ends) {
+        for (EdgeId e : D_hat.mesh.edges()) {
+            const auto& [a, b] = ends[e.idx()];
+            if (fixed(D_hat, e)) {
+                paths.push_back(fixed_path(D_hat, e));
+                continue;
+            }
             geodesic::EllipsePath p = cache_.at(key_of(a, b));
             if (a.idx() > b.idx()) std::reverse(p.path.points.begin(), p.path.points.end());
             paths.push_back(std::move(p));
@@ -42,10 +51,38 @@ public:
         return paths;
     }
 
+    bool apex(VertexId x) const { return x.idx() >= T_.n_vertices(); }
+    bool fixed(const domain::Domain& D_hat, EdgeId e) const { return domain::on_cone(D_hat.mesh, D_hat.t_vertex, e, T_.n_vertices()); }
+
 private:
     using Key = std::pair<VertexId::Index, VertexId::Index>;
     static Key key_of(VertexId a, VertexId b) { return {std::min(a.idx(), b.idx()), std::max(a.idx(), b.idx())}; }
+
+    // The curve of D̂'s halfedge (e, 0), from x_a to x_b: a cone edge, or the boundary arc.
+    geodesic::EllipsePath fixed_path(const domain::Domain& D_hat, EdgeId e) const {
+        const HalfedgeId h = TriMesh::halfedge(e, 0);
+        const VertexId a = D_hat.t_vertex[D_hat.mesh.from(h)], b = D_hat.t_vertex[D_hat.mesh.to(h)];
+        std::vector<VertexId> nodes;
+        if (apex(a) || apex(b)) {
+            nodes = {a, b};
+        } else {
+            // D's face on the left of a -> b is a face of T when the cone face is on the right.
+            bool cone_on_left = false;
+            for (VertexId v : D_hat.mesh.face_vertices(D_hat.mesh.face(h))) cone_on_left = cone_on_left || apex(D_hat.t_vertex[v]);
+            nodes = cone_on_left ? boundary_arc(T_hat_, T_.n_vertices(), b, a) : boundary_arc(T_hat_, T_.n_vertices(), a, b);
+            if (cone_on_left) std::reverse(nodes.begin(), nodes.end());
+        }
+        geodesic::EllipsePath out;
+        out.certificate = geodesic::EllipsePath::Certificate::boundary_arc;
+        for (std::size_t i = 0; i < nodes.size(); ++i) {
+            out.path.points.push_back(SurfacePoint::at_vertex(nodes[i]));
+            if (i) out.path.length += (T_hat_.position(nodes[i]) - T_hat_.position(nodes[i - 1])).norm();
+        }
+        return out;
+    }
+
     const TriMesh& T_;
+    const TriMesh& T_hat_;
     geodesic::EllipseOptions options_;
     Executor& executor_;
     std::map<Key, geodesic::EllipsePath> cache_;
@@ -59,8 +96,8 @@ std::vector<VertexId> new_keep(const TriMesh& T, const domain::Domain& D, const 
     std::vector<std::uint8_t> in_d(T.n_vertices(), 0);
     for (VertexId x : D.t_vertex) in_d[x.idx()] = 1;
     std::vector<VertexId> keep;
-    auto add = [&](VertexId v) {
-        if (v.valid() && !in_d[v.idx()] && !kept[v.idx()]) {
+    auto add = [&](VertexId v) {  // never an apex of T̂ (it is in D̂ anyway)
+        if (v.valid() && v.idx() < T.n_vertices() && !in_d[v.idx()] && !kept[v.idx()]) {
             kept[v.idx()] = 1;
             keep.push_back(v);
         }
@@ -133,7 +170,8 @@ std::size_t flip_over_corners(domain::Domain& D, const std::vector<Conflict>& co
     std::vector<std::uint8_t> touched(D.mesh.n_edges(), 0);
     std::size_t flips = 0;
     for (const Conflict& c : conflicts) {
-        if (c.kind != Conflict::Kind::through_corner || touched[c.d_edge_a.idx()]) continue;
+        // D̂'s own edges beyond D's are cone edges: never flipped (nor are D's boundary edges).
+        if (c.kind != Conflict::Kind::through_corner || c.d_edge_a.idx() >= D.mesh.n_edges() || touched[c.d_edge_a.idx()]) continue;
         const EdgeId e = c.d_edge_a;
         const HalfedgeId h = TriMesh::halfedge(e, 0);
         const VertexId m = c.d_vertex;
@@ -158,6 +196,7 @@ std::optional<domain::Domain> decimation_to_vertices(const TriMesh& T, const dom
     o.target_faces = D.mesh.n_faces();
     o.keep = D.t_vertex.values();
     o.best_effort = true;
+    o.corner_angle_deg = 180;  // the given domain's boundary vertices, and no corners of their own
     try {
         domain::Domain H = domain::decimate(T, o);
         std::vector<VertexId> a = H.t_vertex.values(), b = D.t_vertex.values();
@@ -198,14 +237,20 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         return *base;
     };
     Executor& executor = executor_or_default(options.executor);
-    PathCache cache(T, options.ellipse, executor);
+    // With boundary, §3 works on T̂ and D̂, closed by cones (core/cones.hpp); D's own vertices,
+    // edges and faces are the first of D̂'s, so conflicts, paths and flips name them alike.
+    std::optional<Coned> cones;
+    if (!T.is_closed()) cones = add_cones(T);
+    const TriMesh& T_hat = cones ? cones->mesh : T;
+    PathCache cache(T, T_hat, options.ellipse, executor);
     Partition out;
     for (;;) {
-        out.paths = EdgeData<geodesic::EllipsePath>(cache.all(D));
+        const domain::Domain D_hat = domain::close_domain(D, T);
+        out.paths = EdgeData<geodesic::EllipsePath>(cache.all(D_hat));
         std::vector<geodesic::GeodesicPath> paths;
         paths.reserve(out.paths.size());
         for (const auto& p : out.paths) paths.push_back(p.path);
-        Embedding embedding = embed(T, D, paths);
+        Embedding embedding = embed(T_hat, D_hat, paths);
         std::optional<KeptNetwork> attempt;
         std::string keep_failure;  // why D could not be kept, for the message of a given domain
         if (!embedding.conflicts.empty() && options.keep_domain && out.retries == 0) {
@@ -215,13 +260,14 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             // no room to separate them: then again from the nearest valid level; failing that, a
             // decimated D is changed as the paper-only mode does and a given one is refused.
             std::optional<domain::Domain> H;
-            if (decimated && domain::history_describes(D, T)) H = D;
-            if (!decimated) H = decimation_to_vertices(T, D, keep_failure);
+            if (decimated && domain::history_describes(D, T)) H = D_hat;
+            if (!decimated)
+                if (const std::optional<domain::Domain> h = decimation_to_vertices(T, D, keep_failure)) H = domain::close_domain(*h, T);
             for (const Start start : {Start::fast, Start::gradual}) {
                 if (!H) break;
                 try {
-                    attempt = keep_domain(T, D, *H, out.paths.values(), embedding.conflicts, [&](const domain::Domain& d) { return cache.all(d); },
-                                          options.progress, executor, start);
+                    attempt = keep_domain(T_hat, T.n_vertices(), D_hat, *H, out.paths.values(), embedding.conflicts,
+                                          [&](const domain::Domain& d) { return cache.all(d); }, options.progress, executor, start);
                     break;
                 } catch (const PartitionFailure& e) {
                     keep_failure = e.what();
@@ -233,19 +279,35 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
                 }
             }
         }
+        std::vector<std::uint8_t> unsnapped;
         if (!embedding.conflicts.empty() && attempt) {
             const KeptNetwork& kept = *attempt;
             for (EdgeId e : kept.paths.ids()) out.paths[e].path = kept.paths[e];
             out.curves = kept.info;
             out.keep_start_faces = kept.start_faces;
             out.resolved = embedding.conflicts;
-            embedding = embed(T, D, kept.paths.values(), kept.unsnapped.values());
+            unsnapped = kept.unsnapped.values();
+            embedding = embed(T_hat, D_hat, kept.paths.values(), unsnapped);
             if (!embedding.conflicts.empty())
                 throw std::logic_error("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
         }
         if (embedding.conflicts.empty()) {
             if (out.curves.empty())
-                for (const auto& p : out.paths) out.curves.push_back(CurveInfo{CurveKind::geodesic, p.path.length, 0, 0, {}});
+                for (EdgeId e : out.paths.ids())
+                    out.curves.push_back(CurveInfo{cache.fixed(D_hat, e) ? CurveKind::boundary : CurveKind::geodesic, out.paths[e].path.length, 0, 0, {}});
+            if (cones) {
+                // The cones off: D's edges are D̂'s first ones; T′ is embedded on T itself, where
+                // the network must again satisfy (1) and (2) (the cones only closed the loops).
+                const std::size_t ne = D.mesh.n_edges();
+                out.paths.resize(ne);
+                out.curves.resize(ne);
+                if (!unsnapped.empty()) unsnapped.resize(ne);
+                std::vector<geodesic::GeodesicPath> open;
+                for (const auto& p : out.paths) open.push_back(p.path);
+                embedding = embed(T, D, open, unsnapped);
+                if (!embedding.conflicts.empty())
+                    throw std::logic_error("partition: the network breaks (1)/(2) without the cones: " + embedding.conflicts.front().describe());
+            }
             out.patches = extract_patches(D, embedding.network);
             out.network = std::move(embedding.network);
             out.vertices_added = D.mesh.n_vertices() - vertices0;
