@@ -62,11 +62,14 @@ int run_run(const std::vector<std::string>& argv) {
     auto start = std::chrono::steady_clock::now();
     TriMesh T = load_mesh(mesh_path, BuildOptions{});
     timings.stage("reading", since(start), true);
-    pipeline::InputInfo input{mesh_path, T.n_vertices(), T.n_faces(), genus(T), 0};
+    pipeline::InputInfo input{mesh_path, T.n_vertices(), T.n_faces(), genus(T), boundary_loops(T).size(), connected_components(T).count};
     method.progress("read " + mesh_path + ": " + std::to_string(T.n_vertices()) + " vertices, " + std::to_string(T.n_faces()) +
-                    " faces, genus " + std::to_string(input.genus));
+                    " faces, genus " + std::to_string(input.genus) +
+                    (input.boundary_loops ? ", " + std::to_string(input.boundary_loops) + " boundary loops" : std::string()) +
+                    (input.components > 1 ? ", " + std::to_string(input.components) + " components" : std::string()));
     if (by_faces) {
         options.faces = static_cast<std::size_t>(args.integer("faces", 0, 0, INT32_MAX));
+        input.domain_faces_asked = options.faces;
     } else {
         start = std::chrono::steady_clock::now();
         const domain::DomainSources sources{args.require("domain"), args.require("correspondence")};

@@ -683,6 +683,15 @@ std::optional<Network_> direct(const TriMesh& T, std::size_t real_vertices, cons
 
 }  // namespace
 
+const char* name(CurveKind kind) {
+    switch (kind) {
+        case CurveKind::geodesic: return "geodesic";
+        case CurveKind::restricted: return "restricted";
+        case CurveKind::boundary: return "boundary";
+    }
+    return "";
+}
+
 KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D, const domain::Domain& H,
                         std::span<const geodesic::EllipsePath> geodesics,
                         std::span<const Conflict> conflicts,

@@ -60,6 +60,9 @@ enum class CurveKind : std::uint8_t {
     boundary,    ///< a boundary edge of D: the arc of T's boundary between its ends (core/cones.hpp)
 };
 
+/// "geodesic", "restricted" or "boundary" (geodesics.obj, report.json).
+const char* name(CurveKind kind);
+
 /// What the report says of one domain edge's curve.
 struct CurveInfo {
     CurveKind kind = CurveKind::geodesic;

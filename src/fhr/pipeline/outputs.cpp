@@ -80,11 +80,11 @@ void write_report(const std::string& path, const InputInfo& input, const Paramet
     j.begin_object();
     j.key("input").begin_object();
     j.key("path").value(input.path).key("vertices").value(input.vertices).key("faces").value(input.faces);
-    j.key("genus").value(input.genus).end_object();
+    j.key("genus").value(input.genus).key("boundary_loops").value(input.boundary_loops).key("components").value(input.components).end_object();
 
     j.key("domain").begin_object();
     j.key("vertices").value(D.n_vertices()).key("edges").value(D.n_edges()).key("faces").value(D.n_faces());
-    j.key("faces_requested").value(input.domain_faces_requested);
+    j.key("faces_asked").value(input.domain_faces_asked).key("faces_requested").value(input.domain_faces_requested);
     j.key("retries").value(P.retries).key("vertices_added").value(P.vertices_added).key("kept_vertices").value(P.kept.size());
     j.key("conflicts_resolved").value(P.resolved.size()).end_object();
 
@@ -209,7 +209,7 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
         for (VertexId v : path) line.push_back(v.idx());
     }
     std::vector<std::string> kinds;  // each curve's kind (report.json's partition.restricted lists why)
-    for (const partition::CurveInfo& c : P.curves) kinds.push_back(c.kind == partition::CurveKind::geodesic ? "geodesic" : "restricted");
+    for (const partition::CurveInfo& c : P.curves) kinds.push_back(partition::name(c.kind));
     io::write_obj_polylines(base + "geodesics.obj", P.network.mesh.positions(), lines, kinds);
     io::write_ply(base + "refined.ply", p.refined_positions, p.refined_faces, p.face_patch);
     exchange::write_param(base + "param.fhrp", to_param_file(p));

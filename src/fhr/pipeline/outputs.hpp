@@ -31,6 +31,8 @@ struct InputInfo {
     std::string path;
     std::size_t vertices = 0, faces = 0;
     long genus = 0;
+    std::size_t boundary_loops = 0, components = 1;
+    std::size_t domain_faces_asked = 0;      ///< `--faces` (0 for a domain given by the user)
     std::size_t domain_faces_requested = 0;  ///< the domain's faces before §3's recovery
 };
 

@@ -41,7 +41,15 @@ RunResult run(const TriMesh& T, RunOptions options) {
         observe("mesh_reduction", since(start), true);
     }
     out.domain_faces_requested = D.mesh.n_faces();
-    say("domain: " + std::to_string(D.mesh.n_vertices()) + " vertices, " + std::to_string(D.mesh.n_faces()) + " faces");
+    std::string more;  // why §2 gave more faces than asked (surfaces with boundary, several components)
+    if (options.faces > 0 && D.mesh.n_faces() > options.faces) {
+        const std::size_t raised = domain::component_targets(T, options.faces).raised;
+        more = " (" + std::to_string(options.faces) + " asked";
+        if (raised) more += "; " + std::to_string(raised) + " more for the components' least sizes";
+        if (D.mesh.n_faces() > options.faces + raised) more += "; the boundary loops and corners need more, no collapse left";
+        more += ")";
+    }
+    say("domain: " + std::to_string(D.mesh.n_vertices()) + " vertices, " + std::to_string(D.mesh.n_faces()) + " faces" + more);
     // §3, §4.
     out.parameterization = parameterize(T, std::move(D), method);
     // The independent oracle (src/fhr/exchange) judges exactly what param.fhrp will hold.

@@ -43,7 +43,9 @@ struct RunResult {
 
 /// The method end to end. A result that is not certified is returned, not thrown: its files can
 /// still be written and inspected.
-/// \pre T is valid, closed and connected (build_trimesh); exactly one of faces > 0 and domain.
+/// \pre T is valid (build_trimesh; boundary loops and several components allowed); exactly one of
+///      faces > 0 and domain. With boundary or several components §2 may give D more faces than
+///      asked (domain::decimate; the progress line says why).
 /// \throws InvalidInput (a face count §2 cannot reach, levels or keep out of range),
 ///         PartitionFailure, NumericalFailure, InternalError (see parameterize).
 RunResult run(const TriMesh& T, RunOptions options);
