@@ -14,11 +14,13 @@
 #include <utility>
 #include <vector>
 
+#include <fhr/core/cones.hpp>
 #include <fhr/core/geometry.hpp>
 #include <fhr/core/topology.hpp>
 #include <fhr/core/trimesh.hpp>
 #include <fhr/testing/rapidcheck.hpp>
 
+using fhr::Coned;
 using fhr::EdgeId;
 using fhr::FaceId;
 using fhr::HalfedgeId;
@@ -228,7 +230,15 @@ TEST_CASE("a single triangle: one boundary loop of three halfedges", "[unit]") {
         CHECK(m.is_boundary(e));
         CHECK_FALSE(m.is_flip_ok(e));
         CHECK_FALSE(m.is_collapse_ok(TriMesh::halfedge(e, 0)));
-        CHECK_THROWS_AS(TriMesh(m).split_edge(e, Vec3(0.5, 0.5, 0)), std::logic_error);
+        // A boundary edge splits too: its one triangle becomes two, the loop gains a vertex.
+        TriMesh split = m;
+        const VertexId added = split.split_edge(e, 0.5 * (m.position(m.from(TriMesh::halfedge(e, 0))) + m.position(m.to(TriMesh::halfedge(e, 0)))));
+        split.validate();
+        CHECK(split.n_faces() == m.n_faces() + 1);
+        CHECK(split.is_boundary(added));
+        CHECK(split.valence(added) == 3);
+        CHECK(split.to(TriMesh::halfedge(e, 0)) == added);
+        CHECK(fhr::boundary_loops(split).size() == 1);
     }
 }
 
@@ -557,4 +567,71 @@ TEST_CASE("split_face inserts a vertex of valence 3 inside a face (paper Fig. 4)
         const Vec3 n = (m.position(corners[1]) - m.position(corners[0])).cross(m.position(corners[2]) - m.position(corners[0]));
         m.for_each_outgoing(c, [&](HalfedgeId g) { RC_ASSERT(fhr::face_normal(m, m.face(g)).dot(n) > 0); });
     });
+}
+
+// ---- Cones over boundary loops (core/cones.hpp; spec/mesh.md CONE-1, CONE-2) ----
+
+using fhr::add_cones;
+using fhr::boundary_arc;
+using fhr::boundary_loops;
+using fhr::euler_characteristic;
+using fhr::genus;
+
+TEST_CASE("CONE-1: fill_hole closes a loop by a cone and keeps every existing id", "[unit][trimesh][boundary]") {
+    rc::prop("random surfaces with holes", [] {
+        const fhr::testing::GeneratedMesh T = *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 600, .min_holes = 1, .max_holes = 5, .min_components = 1, .max_components = 3});
+        const Coned C = add_cones(T);
+        C.mesh.validate();
+        RC_ASSERT(C.mesh.is_closed());
+        const std::size_t loops = boundary_loops(T).size();
+        RC_ASSERT(C.mesh.n_vertices() == T.n_vertices() + loops);
+        RC_ASSERT(C.real_vertices == T.n_vertices());
+        RC_ASSERT(C.real_faces == T.n_faces());
+        // Each loop of b edges adds one vertex, b edges and b faces: χ grows by one per loop.
+        RC_ASSERT(euler_characteristic(C.mesh) == euler_characteristic(T) + static_cast<long>(loops));
+        RC_ASSERT(genus(C.mesh) == genus(T));
+        // T's elements keep their ids: every halfedge its head, and every face its corners.
+        for (HalfedgeId h : T.halfedges()) RC_ASSERT(C.mesh.to(h) == T.to(h));
+        for (FaceId f : T.faces()) RC_ASSERT(C.mesh.face_vertices(f) == T.face_vertices(f));
+        // Each apex is joined to exactly the vertices of its loop.
+        const std::vector<HalfedgeId> hs = boundary_loops(T);
+        for (std::size_t i = 0; i < hs.size(); ++i) {
+            std::size_t n = 0;
+            for (HalfedgeId g = hs[i]; n == 0 || g != hs[i]; g = T.next(g)) {
+                ++n;
+                RC_ASSERT(C.mesh.find_halfedge(T.from(g), VertexId(static_cast<VertexId::Index>(T.n_vertices() + i))).valid());
+            }
+            RC_ASSERT(C.mesh.valence(VertexId(static_cast<VertexId::Index>(T.n_vertices() + i))) == n);
+        }
+    });
+}
+
+TEST_CASE("CONE-2: boundary_arc walks T's boundary with T's faces on its left", "[unit][trimesh][boundary]") {
+    // A 3 x 1 strip of squares: boundary 0-1-2-3-7-6-5-4 (faces counter-clockwise seen from +z).
+    std::vector<Vec3> p;
+    for (int y = 0; y <= 1; ++y)
+        for (int x = 0; x <= 3; ++x) p.emplace_back(x, y, 0);
+    std::vector<Triangle> t;
+    for (std::uint32_t x = 0; x < 3; ++x) {
+        t.push_back({x, x + 1, x + 5});
+        t.push_back({x, x + 5, x + 4});
+    }
+    const TriMesh T = TriMesh::from_triangles(p, t);
+    const Coned C = add_cones(T);
+    auto ids = [](const std::vector<VertexId>& a) {
+        std::vector<std::uint32_t> out;
+        for (VertexId v : a) out.push_back(v.idx());
+        return out;
+    };
+    CHECK(ids(boundary_arc(C.mesh, C.real_vertices, VertexId(0), VertexId(3))) == std::vector<std::uint32_t>{0, 1, 2, 3});
+    CHECK(ids(boundary_arc(C.mesh, C.real_vertices, VertexId(3), VertexId(0))) == std::vector<std::uint32_t>{3, 7, 6, 5, 4, 0});
+    CHECK(ids(boundary_arc(C.mesh, C.real_vertices, VertexId(6), VertexId(1))) == std::vector<std::uint32_t>{6, 5, 4, 0, 1});
+    // Each step has a face of T on its left.
+    const auto arc = boundary_arc(C.mesh, C.real_vertices, VertexId(2), VertexId(1));
+    for (std::size_t i = 0; i + 1 < arc.size(); ++i) {
+        const HalfedgeId h = T.find_halfedge(arc[i], arc[i + 1]);
+        REQUIRE(h.valid());
+        CHECK(!T.is_boundary(h));
+        CHECK(T.is_boundary(TriMesh::twin(h)));
+    }
 }

@@ -2,7 +2,8 @@
 // of genus 0–4 and the paper's own meshes: D is a valid closed manifold with T's Euler
 // characteristic and exactly the requested face count; its vertices are vertices of T at
 // unchanged positions; no face is degenerate or below the angle threshold; every valence ≥ 3;
-// deterministic; undoing the recorded collapses gives T back (DOM-1..9 of spec/domain.md).
+// deterministic; undoing the recorded collapses gives T back (DOM-1..9 of spec/domain.md). Beyond
+// the paper: surfaces with boundary and several components (DOM-17..20).
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
@@ -15,6 +16,7 @@
 #include <fhr/core/predicates.hpp>
 #include <fhr/core/topology.hpp>
 #include <fhr/domain/decimate.hpp>
+#include <fhr/generate/random_mesh.hpp>
 #include <fhr/io/read.hpp>
 #include <fhr/testing/rapidcheck.hpp>
 #include "support/test_support.hpp"
@@ -250,4 +252,189 @@ TEST_CASE("DOM-14: kept vertices stay in D; best effort stops above an unreachab
         all.best_effort = true;
         RC_ASSERT(decimate(T, all).mesh.n_faces() == T.n_faces());
     });
+}
+
+// ---- Surfaces with boundary and several components (DOM-17..20; paper_notes/boundary.md) ----
+
+namespace {
+
+// T's boundary corners: vertices where the boundary turns by more than `degrees` (the rule
+// decimate keeps them by), computed here from the loop's own edges.
+std::vector<VertexId> corners_of(const TriMesh& T, double degrees) {
+    std::vector<VertexId> out;
+    for (HalfedgeId h : boundary_loops(T)) {
+        HalfedgeId g = h;
+        do {
+            const HalfedgeId n = T.next(g);
+            const Vec3 a = T.position(T.to(g)) - T.position(T.from(g)), b = T.position(T.to(n)) - T.position(T.from(n));
+            if (std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / M_PI > degrees) out.push_back(T.to(g));
+            g = n;
+        } while (g != h);
+    }
+    return out;
+}
+
+// The first violated property of DOM-1, 2, 4–6, 17–19 for a decimation of T with boundary or
+// several components, or "" if none.
+std::string open_violation(const TriMesh& T, const Domain& d, const DecimateOptions& o) {
+    const TriMesh& D = d.mesh;
+    try {
+        D.validate();
+    } catch (const std::logic_error& e) {
+        return std::string("DOM-1: ") + e.what();
+    }
+    // DOM-18: components correspond one to one, with T's χ and loops each.
+    const Components ct = connected_components(T), cd = connected_components(D);
+    if (cd.count != ct.count) return "DOM-18: " + std::to_string(cd.count) + " components, T has " + std::to_string(ct.count);
+    std::vector<long> chi_t(ct.count, 0), chi_d(ct.count, 0), loops_t(ct.count, 0), loops_d(ct.count, 0);
+    std::vector<std::uint32_t> match(cd.count, UINT32_MAX);
+    for (VertexId v : D.vertices()) {
+        std::uint32_t& m = match[cd.vertex_component[v]];
+        const std::uint32_t c = ct.vertex_component[d.t_vertex[v]];
+        if (m != UINT32_MAX && m != c) return "DOM-18: a component of D spans two of T";
+        m = c;
+    }
+    auto tally = [](const TriMesh& m, const Components& comp, const std::vector<std::uint32_t>* map, std::vector<long>& chi, std::vector<long>& loops) {
+        auto of = [&](VertexId v) { return map ? (*map)[comp.vertex_component[v]] : comp.vertex_component[v]; };
+        for (VertexId v : m.vertices()) ++chi[of(v)];
+        for (FaceId f : m.faces()) ++chi[of(m.face_vertices(f)[0])];
+        for (EdgeId e : m.edges()) --chi[of(m.from(TriMesh::halfedge(e, 0)))];
+        for (HalfedgeId h : boundary_loops(m)) ++loops[of(m.from(h))];
+    };
+    tally(T, ct, nullptr, chi_t, loops_t);
+    tally(D, cd, &match, chi_d, loops_d);
+    if (chi_t != chi_d) return "DOM-2: a component's Euler characteristic differs";
+    if (loops_t != loops_d) return "DOM-17: a component's number of boundary loops differs";
+    for (VertexId v : D.vertices())
+        if (D.position(v) != T.position(d.t_vertex[v])) return "DOM-4: vertex moved";
+    if (!std::is_sorted(d.t_vertex.begin(), d.t_vertex.end()) ||
+        std::adjacent_find(d.t_vertex.begin(), d.t_vertex.end()) != d.t_vertex.end())
+        return "DOM-4: correspondence not one-to-one";
+    for (FaceId f : D.faces()) {
+        const auto v = D.face_vertices(f);
+        if (collinear(D.position(v[0]), D.position(v[1]), D.position(v[2]))) return "DOM-5: degenerate face";
+        if (min_angle_deg(D, f) < o.min_angle_deg * (1 - 1e-12)) return "DOM-5: corner below the minimum angle";
+    }
+    // DOM-17: D's boundary vertices are T's, each loop of D goes once around one loop of T
+    // (close_domain checks it and throws otherwise), and T's corners are D's vertices.
+    for (VertexId v : D.vertices())
+        if (D.is_boundary(v) != T.is_boundary(d.t_vertex[v])) return "DOM-17: a vertex of D on the boundary of one mesh only";
+    try {
+        domain::close_domain(d, T).mesh.validate();
+    } catch (const std::exception& e) {
+        return std::string("DOM-17/19: ") + e.what();
+    }
+    for (VertexId c : corners_of(T, o.corner_angle_deg))
+        if (!std::binary_search(d.t_vertex.begin(), d.t_vertex.end(), c)) return "DOM-17: a boundary corner of T is not in D";
+    for (HalfedgeId h : boundary_loops(D)) {
+        std::size_t n = 0;
+        for (HalfedgeId g = h; n == 0 || g != h; g = D.next(g)) ++n;
+        if (n < 3) return "DOM-17: a boundary loop of D with fewer than 3 vertices";
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("DOM-17..19: decimation of random surfaces with 1-5 boundary loops and 1-3 components of genus 0-2", "[property][domain][boundary]") {
+    rc::prop("decimate, check, undo", [] {
+        const fhr::testing::GeneratedMesh T =
+            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1500, .min_holes = 0, .max_holes = 5, .min_components = 1, .max_components = 3});
+        RC_PRE(!T.is_closed() || connected_components(T).count > 1);
+        DecimateOptions o;
+        o.target_faces = *rc::gen::inRange<std::size_t>(1, T.n_faces() + 1);
+        if (T.is_closed()) o.target_faces += o.target_faces % 2;  // closed components: an even count (DOM-20)
+        Domain d;
+        try {
+            d = decimate(T, o);
+        } catch (const InvalidInput& e) {
+            // DOM-9: a closed component's share near its least size may be out of the rules' reach.
+            RC_ASSERT(std::string(e.what()).find("decimation stopped at") != std::string::npos);
+            RC_DISCARD("a closed component cannot reach its share under the validity rules");
+        }
+        RC_ASSERT(open_violation(T, d, o) == "");
+        // DOM-18: each component of D has at least its share (a closed one exactly; one with
+        // boundary stops above it only when no collapse is valid).
+        const auto targets = domain::component_targets(T, o.target_faces);
+        const Components ct = connected_components(T), cd = connected_components(d.mesh);
+        std::vector<std::size_t> faces(ct.count, 0);
+        for (FaceId f : d.mesh.faces()) ++faces[ct.vertex_component[d.t_vertex[d.mesh.face_vertices(f)[0]]]];
+        std::vector<std::uint8_t> open(ct.count, 0);
+        for (HalfedgeId h : boundary_loops(T)) open[ct.vertex_component[T.from(h)]] = 1;
+        for (std::size_t c = 0; c < ct.count; ++c) {
+            RC_ASSERT(faces[c] >= targets.faces[c]);
+            if (!open[c]) RC_ASSERT(faces[c] == targets.faces[c]);
+        }
+        (void)cd;
+        // DOM-19: undoing the history gives T back, face for face (on T̂, the cones taken off).
+        RC_ASSERT(undo_gives_back(T, d));
+        RC_ASSERT(domain::history_describes(d, T));
+        // DOM-7: deterministic.
+        const Domain again = decimate(T, o);
+        RC_ASSERT(again.mesh.triangles() == d.mesh.triangles());
+        RC_ASSERT(again.t_vertex == d.t_vertex);
+    });
+}
+
+TEST_CASE("DOM-17: a disk keeps its boundary corners and decimates to a single triangle when asked", "[unit][domain][boundary]") {
+    // A flat 4 x 4 grid of squares (32 faces): its four corners turn by 90°; the other boundary
+    // vertices by 0°.
+    std::vector<Vec3> p;
+    for (int y = 0; y <= 4; ++y)
+        for (int x = 0; x <= 4; ++x) p.emplace_back(x, y, 0);
+    std::vector<Triangle> t;
+    for (std::uint32_t y = 0; y < 4; ++y)
+        for (std::uint32_t x = 0; x < 4; ++x) {
+            const std::uint32_t a = 5 * y + x;
+            t.push_back({a, a + 1, a + 6});
+            t.push_back({a, a + 6, a + 5});
+        }
+    const TriMesh T = TriMesh::from_triangles(p, t);
+    DecimateOptions o;
+    o.target_faces = 2;
+    const Domain d = decimate(T, o);
+    CHECK(open_violation(T, d, o) == "");
+    // The square with its four corners: two triangles, nothing else left on the boundary.
+    CHECK(d.mesh.n_faces() == 2);
+    CHECK(d.t_vertex.values() == std::vector<VertexId>{VertexId(0), VertexId(4), VertexId(20), VertexId(24)});
+    // Asked for one face: the corners need two, so D stops there (DOM-18: a boundary component
+    // may stop above its share).
+    o.target_faces = 1;
+    CHECK(decimate(T, o).mesh.n_faces() == 2);
+    // Without corners (a turn must exceed 180°), one triangle is left: three boundary vertices.
+    o.corner_angle_deg = 180;
+    const Domain one = decimate(T, o);
+    CHECK(one.mesh.n_faces() == 1);
+    CHECK(open_violation(T, one, o) == "");
+}
+
+TEST_CASE("DOM-20: component_targets shares the faces by area, sums to the request, raises to the least sizes", "[unit][domain]") {
+    // Three closed generated components; their areas are measured here.
+    generate::RandomMeshOptions g{0, 48, 3, 0.0, 0, 3};
+    const TriMesh closed3 = generate::random_mesh(g);
+    const Components c = connected_components(closed3);
+    REQUIRE(c.count == 3);
+    std::vector<double> area(3, 0);
+    for (FaceId f : closed3.faces()) area[c.vertex_component[closed3.face_vertices(f)[0]]] += face_area(closed3, f);
+    const double total = area[0] + area[1] + area[2];
+    for (std::size_t request : {12u, 20u, 30u, 40u}) {
+        const auto t = domain::component_targets(closed3, request);
+        std::size_t sum = 0;
+        for (std::size_t k = 0; k < 3; ++k) {
+            sum += t.faces[k];
+            CHECK(t.faces[k] % 2 == 0);  // closed components: even
+            CHECK(t.faces[k] >= domain::min_closed_faces(0));
+            // Within one step (2 faces) of the proportional share, unless raised to the least size.
+            if (t.faces[k] > domain::min_closed_faces(0)) CHECK(std::abs(static_cast<double>(t.faces[k]) - request * area[k] / total) < 2 + 1e-9);
+        }
+        if (t.raised == 0) CHECK(sum == request);
+        CHECK(sum == request + t.raised);
+    }
+    CHECK_THROWS_AS(domain::component_targets(closed3, 13), InvalidInput);  // odd, every component closed
+    CHECK_THROWS_AS(domain::component_targets(closed3, 0), InvalidInput);
+    CHECK_THROWS_AS(domain::component_targets(closed3, closed3.n_faces() + 1), InvalidInput);
+    // With a component that has boundary an odd request is met exactly.
+    const TriMesh mixed = generate::random_mesh({0, 61, 5, 0.0, 1, 2});
+    const auto t = domain::component_targets(mixed, 41);
+    CHECK(t.faces[0] + t.faces[1] == 41 + t.raised);
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include <fhr/core/geometry.hpp>
 #include <fhr/core/topology.hpp>
@@ -24,13 +25,21 @@ double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
 // The faces of T whose closure holds vertex v of T′ (its own vertex's faces, or its edge's two).
 std::set<std::uint32_t> faces_holding(const TriMesh& T, const partition::Origin& o) {
     std::set<std::uint32_t> s;
+    auto add = [&](FaceId f) {
+        if (f.valid()) s.insert(f.idx());  // a boundary halfedge has no face
+    };
     if (o.vertex.valid()) {
-        T.for_each_outgoing(o.vertex, [&](HalfedgeId h) { s.insert(T.face(h).idx()); });
+        T.for_each_outgoing(o.vertex, [&](HalfedgeId h) { add(T.face(h)); });
     } else {
-        s.insert(T.face(TriMesh::halfedge(o.edge, 0)).idx());
-        s.insert(T.face(TriMesh::halfedge(o.edge, 1)).idx());
+        add(T.face(TriMesh::halfedge(o.edge, 0)));
+        add(T.face(TriMesh::halfedge(o.edge, 1)));
     }
     return s;
+}
+
+// Components, boundary loops and χ of a mesh (the topology §2–§3 keep).
+std::tuple<std::size_t, std::size_t, long> topology(const TriMesh& m) {
+    return {connected_components(m).count, boundary_loops(m).size(), euler_characteristic(m)};
 }
 
 }  // namespace
@@ -39,13 +48,13 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
     std::ostringstream why;
     const TriMesh& M = P.network.mesh;
     const domain::Domain& D = P.domain;
-    // PART-1: T′ is a valid closed triangulation with T's Euler characteristic.
+    // PART-1: T′ is a valid triangulation with T's Euler characteristic, boundary loops and components.
     try {
         M.validate();
     } catch (const std::logic_error& e) {
         return std::string("PART-1: ") + e.what();
     }
-    if (!boundary_loops(M).empty() || euler_characteristic(M) != euler_characteristic(T)) return "PART-1: T′ is not closed with χ(T)";
+    if (topology(M) != topology(T)) return "PART-1: T′ does not have T's components, boundary loops and χ";
     // PART-2: Ω_T′ = Ω_T — T's vertices kept in place, new vertices on T's edges, every face of
     // T′ inside a face of T, the same area.
     if (M.n_vertices() < T.n_vertices() || P.network.origin.size() != M.n_vertices()) return "PART-2: vertex count";
@@ -147,9 +156,14 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
     // PART-7: patch adjacency is D's — across every curve edge, the patches of D's two faces.
     for (HalfedgeId h : M.halfedges()) {
         const HalfedgeId dh = P.network.d_halfedge[h];
+        if (M.is_boundary(h)) {
+            // PART-12: T′'s boundary lies on the curves of D's boundary edges.
+            if (!dh.valid() || !D.mesh.is_boundary(dh)) return "PART-12: a boundary edge of T′ is on no boundary curve of D";
+            continue;
+        }
         if (dh.valid() && patches.patch_of_face[M.face(h)] != D.mesh.face(dh))
             return "PART-7: a patch borders a curve of a domain face it does not belong to";
-        if (!dh.valid() && patches.patch_of_face[M.face(h)] != patches.patch_of_face[M.face(TriMesh::twin(h))])
+        if (!dh.valid() && !M.is_boundary(TriMesh::twin(h)) && patches.patch_of_face[M.face(h)] != patches.patch_of_face[M.face(TriMesh::twin(h))])
             return "PART-7: two patches meet along an edge that is on no curve";
     }
     // PART-8: each patch is a disk bounded by the three curves of its face, corners at x_j, x_k, x_l.
@@ -175,7 +189,7 @@ std::string recovery_violation(const TriMesh& T, const domain::Domain& D0, const
     } catch (const std::logic_error& e) {
         return std::string("PART-9: ") + e.what();
     }
-    if (!boundary_loops(D.mesh).empty() || euler_characteristic(D.mesh) != euler_characteristic(T)) return "PART-9: D lost T's topology";
+    if (topology(D.mesh) != topology(T)) return "PART-9: D lost T's topology";
     if (D.t_vertex.size() != D.mesh.n_vertices()) return "PART-9: correspondence size";
     std::vector<int> in_d(T.n_vertices(), 0);
     for (VertexId j : D.t_vertex.ids()) {
@@ -200,6 +214,23 @@ std::string keep_violation(const TriMesh& T, const domain::Domain& D0, const par
         std::ostringstream why;
         why << "PART-10: domain edge " << e.idx() << " (L " << L << ", geodesic " << g << ", restricted shortest " << c.shortest
             << ", bound " << c.separation_bound << "): ";
+        if (c.kind == partition::CurveKind::boundary) {
+            // PART-12: the arc of T's boundary between the ends, T's faces on its left.
+            const auto& pts = P.paths[e].path.points;
+            if (!D0.mesh.is_boundary(e)) return why.str() + "an interior edge of D has a boundary curve";
+            for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+                if (pts[i].kind != SurfacePoint::Kind::vertex || pts[i + 1].kind != SurfacePoint::Kind::vertex)
+                    return why.str() + "a boundary curve leaves T's vertices";
+                const HalfedgeId h = T.find_halfedge(pts[i].vertex, pts[i + 1].vertex);
+                const bool d_face_left = !D0.mesh.is_boundary(TriMesh::halfedge(e, 0));
+                if (!h.valid() || T.is_boundary(h) == d_face_left || !T.is_boundary(TriMesh::twin(h)) == d_face_left)
+                    return why.str() + "a boundary curve is not along T's boundary with D's face on T's side";
+                if (i > 0 && std::binary_search(D0.t_vertex.begin(), D0.t_vertex.end(), pts[i].vertex))
+                    return why.str() + "a boundary curve passes a corner of D";
+            }
+            continue;
+        }
+        if (D0.mesh.is_boundary(e)) return why.str() + "a boundary edge of D without its boundary curve";
         if (std::abs(c.geodesic_length - g) > 1e-12 * g) return why.str() + "the reported geodesic length is wrong";
         if (c.kind == partition::CurveKind::geodesic) {
             if (std::abs(L - g) > 1e-9 * g) return why.str() + "a curve called geodesic is not a shortest path";

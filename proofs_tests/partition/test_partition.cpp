@@ -279,3 +279,55 @@ TEST_CASE("PART-10: random meshes of genus 0–3 keep their decimated domain", "
         RC_ASSERT(restricted_oracle_violation(T, P, false) == "");
     });
 }
+
+// ---- Surfaces with boundary and several components (PART-12; paper_notes/boundary.md) ----
+
+TEST_CASE("PART-10, PART-12: surfaces with 1-5 boundary loops and 1-3 components of genus 0-2 keep their domain", "[partition][keep][property][boundary]") {
+    std::size_t restricted_runs = 0, finer_starts = 0;
+    rc::prop("the partition of a random surface with boundary keeps its random decimated domain", [&] {
+        const fhr::testing::GeneratedMesh g =
+            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 1, .max_holes = 5, .min_components = 1, .max_components = 3});
+        const TriMesh& T = g;
+        const domain::Domain D = test::random_open_domain(T);
+        const partition::Partition P = partition::partition(T, D);
+        RC_TAG(P.keep_start_faces == 0 ? "geodesics only"
+               : P.keep_start_faces == D.mesh.n_faces() ? "kept directly (restricted paths in the polygons the others leave)"
+                                                        : "kept from a finer start");
+        restricted_runs += P.keep_start_faces > 0;
+        finer_starts += P.keep_start_faces > D.mesh.n_faces();
+        RC_ASSERT(test::partition_violation(T, P) == "");
+        RC_ASSERT(test::keep_violation(T, D, P) == "");
+    });
+    // The sample exercises both ways of keeping D beside the boundary.
+    CHECK(restricted_runs > 0);
+    CHECK(finer_starts > 0);
+}
+
+TEST_CASE("PART-9, PART-12: surfaces with boundary and components in the paper-only mode recover validly", "[partition][property][boundary]") {
+    rc::prop("the paper-only partition of a random surface with boundary", [] {
+        const fhr::testing::GeneratedMesh g =
+            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 1, .max_holes = 5, .min_components = 1, .max_components = 3});
+        const TriMesh& T = g;
+        const domain::Domain D = test::random_open_domain(T);
+        partition::PartitionOptions options;
+        options.keep_domain = false;
+        const partition::Partition P = partition::partition(T, D, options);
+        RC_TAG(P.retries > 0 ? "recovered" : "first try");
+        RC_ASSERT(test::partition_violation(T, P) == "");
+        RC_ASSERT(test::recovery_violation(T, D, P) == "");
+    });
+}
+
+TEST_CASE("PART-12: lion-head (one boundary loop) keeps a 300-face domain; its boundary edges are arcs of T's boundary", "[partition][keep][real][boundary]") {
+    const TriMesh T = cgal_mesh("lion-head.off");
+    const domain::Domain D0 = domain::decimate(T, {.target_faces = 300});
+    const partition::Partition P = partition::partition(T, D0);
+    const auto boundary = std::count_if(P.curves.begin(), P.curves.end(),
+                                        [](const partition::CurveInfo& c) { return c.kind == partition::CurveKind::boundary; });
+    std::size_t d_boundary = 0;
+    for (EdgeId e : D0.mesh.edges()) d_boundary += D0.mesh.is_boundary(e);
+    CHECK(boundary == static_cast<long>(d_boundary));
+    CHECK(d_boundary >= 3);
+    CHECK(test::keep_violation(T, D0, P) == "");
+    CHECK(test::partition_violation(T, P) == "");
+}

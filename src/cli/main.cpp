@@ -17,7 +17,8 @@ constexpr const char* usage = R"(fhr — Floater, Hormann & Reimers (2001), Para
 usage:
   fhr info MESH [--json] [--triangulate]
       vertices, edges, faces, genus, components, boundary loops, bounding box, edge lengths,
-      and whether MESH is a valid input (closed, connected, orientable manifold; spec/mesh.md)
+      and whether MESH is a valid input (an orientable manifold, maybe with boundary loops and
+      several components; spec/mesh.md)
   fhr generate --genus G --faces N [--holes H] [--components C] [--seed S] [--noise X] --out MESH
       a random orientable manifold mesh with exactly N faces: closed, connected, of genus G, or
       with H boundary loops (0-10000) in C components (1-10000), G and H spread over them
@@ -25,9 +26,11 @@ usage:
   fhr convert MESH --out MESH2 [--triangulate]
       validate MESH and write it as .off, .obj or .ply
   fhr decimate MESH (--faces N | --vertices N) --out DOMAIN.off [--min-angle DEG]
-               [--max-normal-deviation DEG]
+               [--max-normal-deviation DEG] [--corner-angle DEG]
       §2: the parameter domain D by half-edge collapses; writes DOMAIN.off and, beside it,
-      DOMAIN.correspondence (the vertex of MESH at each vertex of D)
+      DOMAIN.correspondence (the vertex of MESH at each vertex of D). With boundary, D keeps
+      the boundary's corners (turning by more than DEG, default 60) and --vertices is refused;
+      several components share the faces in proportion to their areas
   fhr attach MESH --domain D.off --correspondence FILE [--out MESH2]
       §2: check a user-given domain D and its points x_j on MESH (a vertex index, or
       `f FACE b0 b1 b2` per line); points in faces or on edges are inserted (Fig. 4); with --out,
@@ -38,6 +41,7 @@ usage:
   fhr run MESH (--faces N | --domain D.off --correspondence FILE) --out DIR
           [--weights shape-preserving|mean-value|uniform] [--solver sparse-lu|bicgstab]
           [--paths keep|geodesic] [--levels J [--keep P,Q,...]] [--figures [--up x|y|z]]
+          [--corner-angle DEG]
       §2–§4 end to end (--paths keep, the default: D is kept, edges whose geodesics conflict
       get restricted shortest paths; geodesic: the paper's geodesics only, D changed where they conflict): writes DIR/domain.off, geodesics.obj, refined.ply, param.fhrp,
       textured.obj, report.json, timings.json; with --levels also §5's remesh_LJ.off and

@@ -50,7 +50,7 @@ void write_correspondence(const std::string& mesh_path, const domain::Domain& d)
 }  // namespace
 
 int run_decimate(const std::vector<std::string>& argv) {
-    const Args args(argv, {}, {"faces", "vertices", "out", "min-angle", "max-normal-deviation"});
+    const Args args(argv, {}, {"faces", "vertices", "out", "min-angle", "max-normal-deviation", "corner-angle"});
     const TriMesh T = load_mesh(args.single_positional("MESH"), BuildOptions{});
     domain::DecimateOptions options;
     const bool by_faces = args.get("faces").has_value(), by_vertices = args.get("vertices").has_value();
@@ -58,12 +58,15 @@ int run_decimate(const std::vector<std::string>& argv) {
     if (by_faces) {
         options.target_faces = static_cast<std::size_t>(args.integer("faces", 0, 0, INT32_MAX));
     } else {
-        // A closed triangulation has F = 2(V − χ) faces.
+        // A closed triangulation has F = 2(V − χ) faces; with B boundary edges F = 2(V − χ) − B,
+        // and B is not known before the decimation.
+        if (!T.is_closed()) usage_error("--vertices needs a closed surface: with boundary give --faces N");
         const long v = static_cast<long>(args.integer("vertices", 0, 0, INT32_MAX));
         options.target_faces = static_cast<std::size_t>(std::max(0L, 2 * (v - euler_characteristic(T))));
     }
     options.min_angle_deg = args.real("min-angle", options.min_angle_deg, 0.0, 60.0);
     options.max_normal_deviation_deg = args.real("max-normal-deviation", options.max_normal_deviation_deg, 0.0, 180.0);
+    options.corner_angle_deg = args.real("corner-angle", options.corner_angle_deg, 0.0, 180.0);
     const std::string out = args.require("out");
     const domain::Domain d = domain::decimate(T, options);
     write_correspondence(out, d);

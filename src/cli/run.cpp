@@ -25,7 +25,7 @@ double since(std::chrono::steady_clock::time_point start) {
 
 int run_run(const std::vector<std::string>& argv) {
     // Parse.
-    const Args args(argv, {"figures"}, {"faces", "domain", "correspondence", "out", "weights", "solver", "up", "levels", "keep", "paths"});
+    const Args args(argv, {"figures"}, {"faces", "domain", "correspondence", "out", "weights", "solver", "up", "levels", "keep", "paths", "corner-angle"});
     const std::string& mesh_path = args.single_positional("MESH");
     const std::string out = args.require("out");
     const bool by_faces = args.get("faces").has_value(), by_domain = args.get("domain").has_value();
@@ -38,6 +38,7 @@ int run_run(const std::vector<std::string>& argv) {
         if (*paths != "keep" && *paths != "geodesic") usage_error("--paths must be keep or geodesic, not '" + *paths + "'");
         method.keep_domain = *paths == "keep";
     }
+    options.corner_angle_deg = args.real("corner-angle", options.corner_angle_deg, 0.0, 180.0);
     options.levels = static_cast<int>(args.integer("levels", 0, 0, 8));
     if (const auto k = args.get("keep")) {
         if (options.levels == 0) usage_error("--keep needs --levels J (J >= 1)");
@@ -62,14 +63,14 @@ int run_run(const std::vector<std::string>& argv) {
     auto start = std::chrono::steady_clock::now();
     TriMesh T = load_mesh(mesh_path, BuildOptions{});
     timings.stage("reading", since(start), true);
-    pipeline::InputInfo input{mesh_path, T.n_vertices(), T.n_faces(), genus(T), boundary_loops(T).size(), connected_components(T).count};
+    pipeline::InputInfo input{.path = mesh_path, .vertices = T.n_vertices(), .faces = T.n_faces(), .genus = genus(T),
+                              .boundary_loops = boundary_loops(T).size(), .components = connected_components(T).count};
     method.progress("read " + mesh_path + ": " + std::to_string(T.n_vertices()) + " vertices, " + std::to_string(T.n_faces()) +
                     " faces, genus " + std::to_string(input.genus) +
                     (input.boundary_loops ? ", " + std::to_string(input.boundary_loops) + " boundary loops" : std::string()) +
                     (input.components > 1 ? ", " + std::to_string(input.components) + " components" : std::string()));
     if (by_faces) {
         options.faces = static_cast<std::size_t>(args.integer("faces", 0, 0, INT32_MAX));
-        input.domain_faces_asked = options.faces;
     } else {
         start = std::chrono::steady_clock::now();
         const domain::DomainSources sources{args.require("domain"), args.require("correspondence")};
@@ -84,6 +85,7 @@ int run_run(const std::vector<std::string>& argv) {
     const pipeline::RunResult result = pipeline::run(T, options);  // a copy: `method` is used below
     const pipeline::Parameterization& p = result.parameterization;
     const wavelet::WaveletResult* wavelets = result.wavelets ? &*result.wavelets : nullptr;
+    input.domain_faces_asked = result.domain_faces_asked;
     input.domain_faces_requested = result.domain_faces_requested;
 
     // Write.

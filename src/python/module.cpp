@@ -411,7 +411,11 @@ PYBIND11_MODULE(_fhr, m) {
         .def("write_param", [](const Result& r, const std::string& path) { exchange::write_param(path, r.file()); },
              py::arg("path"), "write_param(path): the `fhr-param 1` file (spec/param.md), as `fhr run` writes it.")
         .def("write", [](const Result& r, const std::string& dir, bool figures) {
-                pipeline::InputInfo input{"(arrays)", r.T().n_vertices(), r.T().n_faces(), genus(r.T()), r.run().domain_faces_requested};
+                const pipeline::InputInfo input{.path = "(arrays)", .vertices = r.T().n_vertices(), .faces = r.T().n_faces(),
+                                                .genus = genus(r.T()), .boundary_loops = boundary_loops(r.T()).size(),
+                                                .components = connected_components(r.T()).count,
+                                                .domain_faces_asked = r.run().domain_faces_asked,
+                                                .domain_faces_requested = r.run().domain_faces_requested};
                 const wavelet::WaveletResult* wavelets = r.run().wavelets ? &*r.run().wavelets : nullptr;
                 py::gil_scoped_release unlocked;
                 pipeline::write_outputs(dir, input, r.p(), r.run().oracle, r.timings, r.options, wavelets);

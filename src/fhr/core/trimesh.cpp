@@ -189,21 +189,39 @@ EdgeId TriMesh::new_edge(VertexId a, VertexId b) {
 }
 
 VertexId TriMesh::split_edge(EdgeId e, const Vec3& p) {
-    if (is_boundary(e)) broken("split_edge: edge " + std::to_string(e.idx()) + " is on the boundary");
-    const HalfedgeId h = halfedge(e, 0), h1 = next(h), h2 = next(h1);
-    const HalfedgeId o = halfedge(e, 1), o1 = next(o), o2 = next(o1);
-    const VertexId b = to(h), c = to(h1), d = to(o1);
-    const FaceId f0 = face(h), f1 = face(o);
+    const HalfedgeId h = halfedge(e, 0), o = halfedge(e, 1);
+    const bool side_h = !is_boundary(h), side_o = !is_boundary(o);  // the sides that have a face
+    const HalfedgeId before_o = side_o ? HalfedgeId() : prev(o);    // o's predecessor along its boundary loop
+    const HalfedgeId h1 = next(h);
+    const VertexId b = to(h);
     const VertexId m = new_vertex(p);
-    const FaceId f2 = new_face(), f3 = new_face();
-    const HalfedgeId x = halfedge(new_edge(m, b), 0), y = halfedge(new_edge(m, c), 0), z = halfedge(new_edge(m, d), 0);
+    const FaceId f2 = side_h ? new_face() : FaceId(), f3 = side_o ? new_face() : FaceId();
+    const HalfedgeId x = halfedge(new_edge(m, b), 0);  // m -> b; twin b -> m
     to_[h.idx()] = m;  // h: a -> m, o: m -> a
-    set_face_loop(f0, h, y, h2);          // (a, m, c)
-    set_face_loop(f2, x, h1, twin(y));    // (m, b, c)
-    set_face_loop(f1, twin(x), z, o2);    // (b, m, d)
-    set_face_loop(f3, o, o1, twin(z));    // (m, a, d)
-    out_[m.idx()] = x;
-    if (out_[b.idx()] == o) out_[b.idx()] = h1;
+    if (side_h) {  // (a, b, c) -> (a, m, c), (m, b, c)
+        const HalfedgeId h2 = next(h1);
+        const HalfedgeId y = halfedge(new_edge(m, to(h1)), 0);
+        set_face_loop(face(h), h, y, h2);
+        set_face_loop(f2, x, h1, twin(y));
+    } else {  // h stays on the boundary, followed by x
+        next_[x.idx()] = next(h);
+        next_[h.idx()] = x;
+        face_[x.idx()] = FaceId();
+    }
+    if (side_o) {  // (b, a, d) -> (b, m, d), (m, a, d)
+        const HalfedgeId o1 = next(o), o2 = next(o1);
+        const HalfedgeId z = halfedge(new_edge(m, to(o1)), 0);
+        set_face_loop(face(o), twin(x), z, o2);
+        set_face_loop(f3, o, o1, twin(z));
+    } else {  // twin(x) then o along the boundary
+        next_[before_o.idx()] = twin(x);
+        next_[twin(x).idx()] = o;
+        face_[twin(x).idx()] = FaceId();
+    }
+    // On the boundary, out(m) and out(b) are their boundary halfedges (INV-MESH-7).
+    out_[m.idx()] = side_o ? x : o;
+    if (!side_h) out_[m.idx()] = x;
+    if (out_[b.idx()] == o) out_[b.idx()] = side_o ? h1 : twin(x);
     return m;
 }
 

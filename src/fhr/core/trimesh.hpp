@@ -108,8 +108,9 @@ public:
     bool is_flip_ok(EdgeId e) const;
     /// Replaces the diagonal of the two triangles at e by the other diagonal. \pre is_flip_ok(e).
     void flip(EdgeId e);
-    /// Inserts a vertex at `p` on interior edge e, splitting both adjacent triangles.
-    /// \return the new vertex; its outgoing halfedge out(new) points to the old to(halfedge(e,0)).
+    /// Inserts a vertex at `p` on edge e, splitting its one or two triangles; halfedge(e, 0) keeps
+    /// its tail and now ends at the new vertex. \return the new vertex; out(new) points to the old
+    /// to(halfedge(e, 0)), or on the boundary is its boundary halfedge.
     VertexId split_edge(EdgeId e, const Vec3& p);
     /// Link condition for the half-edge collapse from(h) -> to(h) on a closed mesh: the two
     /// ends share exactly the two opposite vertices as common neighbours, and the mesh keeps

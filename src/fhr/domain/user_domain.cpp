@@ -116,6 +116,13 @@ Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<io::Correspondence
                                " (genus " + std::to_string(genus(D)) + ") but the mesh has " +
                                std::to_string(euler_characteristic(T)) + " (genus " + std::to_string(genus(T)) +
                                "): they must have the same topology");
+    const std::size_t loops_d = boundary_loops(D).size(), loops_t = boundary_loops(T).size();
+    const std::size_t parts_d = connected_components(D).count, parts_t = connected_components(T).count;
+    if (loops_d != loops_t || parts_d != parts_t)
+        throw InvalidInput(sources.domain_file, 0,
+                           "the domain has " + std::to_string(loops_d) + " boundary loops in " + std::to_string(parts_d) +
+                               " components but the mesh has " + std::to_string(loops_t) + " in " + std::to_string(parts_t) +
+                               ": they must have the same topology");
     const std::size_t n = x.size();
     std::vector<SurfacePoint> p(n);
     std::vector<Vec3> pos(n);
@@ -167,6 +174,12 @@ Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<io::Correspondence
         while (end < n && p[order[end]].kind == SurfacePoint::Kind::edge && p[order[end]].halfedge == p[j0].halfedge) ++end;
         for (std::size_t k = end; k-- > i;) d.t_vertex[v_of(order[k])] = T.split_edge(TriMesh::edge(p[j0].halfedge), pos[order[k]]);
         i = end;
+    }
+    // DOM-21: D's boundary follows T's (each boundary edge of D an arc of T's boundary between its ends).
+    try {
+        close_domain(d, T);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(sources.domain_file, 0, e.problem());
     }
     return d;
 }

@@ -20,10 +20,12 @@ struct DomainSources {
 
 /// Attaches D to T. T gains one vertex per x_j that is not a vertex (its geometry Ω_T does not
 /// change); the result's t_vertex[j] is x_j's vertex of the modified T; history is empty.
-/// \pre T and D are valid closed meshes (build_trimesh); x was parsed against the unmodified T.
-/// \throws InvalidInput (DOM-10..13 of spec/domain.md): entry count differs from D's vertex
-///         count; D's Euler characteristic differs from T's; two entries name the same point
-///         (or points closer than 1e−12 in barycentric terms within a face).
+/// \pre T and D are valid meshes (build_trimesh; boundary loops and several components allowed);
+///      x was parsed against the unmodified T.
+/// \throws InvalidInput (DOM-10..13, 21 of spec/domain.md): entry count differs from D's vertex
+///         count; D's Euler characteristic, boundary loops or components differ from T's; two
+///         entries name the same point (or points closer than 1e−12 in barycentric terms within a
+///         face); D's boundary does not follow T's (close_domain).
 Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<io::CorrespondenceEntry>& x,
                      const DomainSources& sources);
 

@@ -100,16 +100,18 @@ void write_report(const std::string& path, const InputInfo& input, const Paramet
     j.key("paths").value(P.paths.size()).key("total_length").value(total_length);
     j.key("max_K").value(max_K).key("max_attempts").value(max_attempts).key("windows_created").value(windows);
     j.key("max_snap_distance").value(P.network.max_snap_distance);
-    std::size_t restricted = 0;
+    std::size_t restricted = 0, boundary_curves = 0;
     double restricted_length = 0, excess = 0, separation = 0;
     for (EdgeId e : P.curves.ids()) {
+        boundary_curves += P.curves[e].kind == partition::CurveKind::boundary;
         if (P.curves[e].kind != partition::CurveKind::restricted) continue;
         ++restricted;
         restricted_length += P.paths[e].path.length;
         excess += P.paths[e].path.length - P.curves[e].geodesic_length;
         separation = std::max(separation, P.curves[e].separation_bound);
     }
-    j.key("geodesic_edges").value(P.curves.size() - restricted).key("restricted_edges").value(restricted);
+    j.key("geodesic_edges").value(P.curves.size() - restricted - boundary_curves).key("restricted_edges").value(restricted);
+    j.key("boundary_edges").value(boundary_curves);
     j.key("restricted_length").value(restricted_length).key("restricted_excess").value(excess);
     j.key("max_separation_bound").value(separation).key("keep_start_faces").value(P.keep_start_faces);
     j.key("restricted").begin_array();

@@ -26,7 +26,7 @@ struct Timings final : StageObserver {
 /// The parameterization as the exchange format holds it (spec/param.md).
 exchange::ParamFile to_param_file(const Parameterization& p);
 
-/// What the report says about the input.
+/// What the report says about the input (and the domain asked for).
 struct InputInfo {
     std::string path;
     std::size_t vertices = 0, faces = 0;

@@ -37,9 +37,10 @@ RunResult run(const TriMesh& T, RunOptions options) {
         D = std::move(*options.domain);
     } else {
         const auto start = std::chrono::steady_clock::now();
-        D = domain::decimate(T, {.target_faces = options.faces});
+        D = domain::decimate(T, {.target_faces = options.faces, .corner_angle_deg = options.corner_angle_deg});
         observe("mesh_reduction", since(start), true);
     }
+    out.domain_faces_asked = options.faces;
     out.domain_faces_requested = D.mesh.n_faces();
     std::string more;  // why §2 gave more faces than asked (surfaces with boundary, several components)
     if (options.faces > 0 && D.mesh.n_faces() > options.faces) {

@@ -27,6 +27,7 @@ namespace fhr::pipeline {
 
 struct RunOptions {
     std::size_t faces = 0;                 ///< §2: decimate T to exactly this many faces, or 0 with `domain`
+    double corner_angle_deg = 60.0;        ///< §2 with boundary: boundary corners D keeps (DecimateOptions)
     std::optional<domain::Domain> domain;  ///< §2: a domain given by the user, attached to T (domain::attach_domain)
     Options method;                        ///< §3–§4: weights, solver, keeping D, progress, stage observer
     int levels = 0;                        ///< §5: J ≥ 1 to remesh and decompose; 0 for none
@@ -37,6 +38,7 @@ struct RunResult {
     Parameterization parameterization;              ///< D (final), T′, ψ, certificates
     exchange::VerifyReport oracle;                  ///< fhr verify's judgement of it against T
     std::optional<wavelet::WaveletResult> wavelets; ///< with levels > 0
+    std::size_t domain_faces_asked = 0;             ///< RunOptions::faces (0 with a given domain)
     std::size_t domain_faces_requested = 0;         ///< D's faces before §3 (equal to the final ones when D is kept)
     bool certified() const { return parameterization.certified() && oracle.valid(); }
 };
