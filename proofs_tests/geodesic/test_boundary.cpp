@@ -1,14 +1,12 @@
-// §3 exact geodesics Γ(x_j, x_k) and the ellipse search on surfaces with a real boundary and
-// several components (beyond the paper, issue 19: the geodesics of D's interior edges are computed
-// on T itself, holes and all). Checks GEO-10..GEO-14 of paper_notes/exact_geodesics.md and GEO-E5,
-// GEO-E6 of paper_notes/ellipse.md: distances equal CGAL's exact Surface_mesh_shortest_path on
-// random meshes with 1–5 holes and 1–3 components and on libcgal-demo meshes with boundary, for
-// sources on the boundary and pairs whose shortest path wraps around a hole; every path is a
-// geodesic polyline whose bends at boundary vertices are on the side where the surface angle is
-// ≥ π (geodesic_checks.hpp); a flat square with a square hole has analytic distances; targets on
-// another component are unreachable (and the ellipse search says so); the ellipse path is the
-// global shortest path, and a path that hugs a hole inside T_jk is not taken for one pressed
-// against T_jk's artificial border.
+// §3 exact geodesics Γ(x_j, x_k) on surfaces with holes and several components (beyond the paper,
+// issue 19: the geodesics of D's interior edges are computed on T itself, holes and all). Checks
+// GEO-10..GEO-14 of paper_notes/exact_geodesics.md and, on the real meshes, GEO-E5 of
+// paper_notes/ellipse.md: distances equal CGAL's exact Surface_mesh_shortest_path on random meshes
+// with 1–5 holes and 1–3 components and on libcgal-demo meshes with boundary, from boundary
+// sources and for pairs whose shortest path wraps around a hole; every path is a geodesic
+// polyline that bends at a boundary vertex only with an angle ≥ π on the fan side
+// (geodesic_checks.hpp); a flat square with a square hole has analytic distances; a target on
+// another component is unreachable; the ellipse search's lengths equal CGAL's on the real meshes.
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
