@@ -8,21 +8,25 @@
 
 #include <cmath>
 #include <map>
+#include <tuple>
 
 #include <fhr/core/build.hpp>
 #include <fhr/core/errors.hpp>
+#include <fhr/core/topology.hpp>
 #include <fhr/domain/decimate.hpp>
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/geodesic/ellipse.hpp>
 #include <fhr/geodesic/fast_marching.hpp>
 #include <fhr/io/read.hpp>
 #include <fhr/testing/rapidcheck.hpp>
+#include "geodesic/geodesic_checks.hpp"
 #include "support/test_support.hpp"
 
 using namespace fhr;
 using geodesic::ellipse_shortest_path;
 using geodesic::ExactGeodesic;
 using Certificate = geodesic::EllipsePath::Certificate;
+using test::paper_ellipse;
 
 namespace {
 
@@ -33,21 +37,6 @@ double unrestricted(const TriMesh& m, VertexId a, VertexId b) {
 }
 
 bool same_length(double x, double y) { return std::abs(x - y) <= 1e-12 * std::max(1.0, std::abs(y)); }
-
-// The paper's T_jk for one K, built here from its definition (independently of ellipse.cpp):
-// the faces with a vertex v such that d_a(v, a) + d_a(v, b) <= K d_a(a, b), d_a by fast marching.
-FaceData<std::uint8_t> paper_ellipse(const TriMesh& m, VertexId a, VertexId b, double K) {
-    const geodesic::DistanceField fa = geodesic::fast_marching(m, std::span(&a, 1));
-    const geodesic::DistanceField fb = geodesic::fast_marching(m, std::span(&b, 1));
-    const double bound = K * fa.distance[b];
-    FaceData<std::uint8_t> mask(m.n_faces(), 0);
-    for (VertexId v : m.vertices())
-        if (fa.distance[v] + fb.distance[v] <= bound)
-            m.for_each_outgoing(v, [&](HalfedgeId h) {
-                if (!m.is_boundary(h)) mask[m.face(h)] = 1;
-            });
-    return mask;
-}
 
 }  // namespace
 
@@ -167,4 +156,110 @@ TEST_CASE("GEO-E2: bad requests are refused", "[unit][geodesic]") {
     CHECK_THROWS_AS(ellipse_shortest_path(m, VertexId(3), VertexId(3)), InvalidInput);
     CHECK_THROWS_WITH(ellipse_shortest_path(m, VertexId(3), VertexId(9999)), Catch::Contains("out of range"));
     CHECK_THROWS_WITH(ellipse_shortest_path(m, VertexId(3), VertexId(4), {1.0}), Catch::Contains("K must be greater than 1"));
+    // Issue 19: a target on another component (the first and last vertex of a 3-component mesh).
+    const TriMesh three = generate::random_mesh({1, 300, 7, 0.1, 3, 3});
+    const VertexId last(static_cast<std::uint32_t>(three.n_vertices() - 1));
+    CHECK_THROWS_WITH(ellipse_shortest_path(three, VertexId(0), last), Catch::Contains("not connected"));
+    CHECK_THROWS_AS(ellipse_shortest_path(three, last, VertexId(0)), InvalidInput);
+}
+
+// Issue 19: T is a surface with holes and several components; the path may run along a hole.
+// The certificates' argument only needs that a path leaves T_jk through its artificial border
+// (paper_notes/ellipse.md), so every kind must still agree with the unrestricted length.
+TEST_CASE("GEO-E5: on meshes with holes and components the ellipse path is a shortest path of T", "[property][geodesic]") {
+    std::map<Certificate, std::size_t> seen, seen_reaching_hole;
+    std::size_t hugging = 0, grown = 0;
+    rc::prop("ellipse vs whole mesh, with boundary", [&] {
+        const fhr::testing::GeneratedMesh m =
+            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 1, .max_holes = 5, .max_components = 3});
+        const auto pairs = test::hugging_pairs(m);
+        const Components comp = connected_components(m);
+        VertexId a, b;
+        if (*rc::gen::arbitrary<bool>()) {
+            std::tie(a, b) = pairs[*rc::gen::inRange<std::size_t>(0, pairs.size())];
+        } else {  // any two vertices of one component
+            const auto n = static_cast<std::uint32_t>(m.n_vertices());
+            a = VertexId(*rc::gen::inRange<std::uint32_t>(0, n));
+            b = VertexId(*rc::gen::inRange<std::uint32_t>(0, n));
+            RC_PRE(comp.vertex_component[a] == comp.vertex_component[b]);
+        }
+        RC_PRE(a != b);
+        const double K0 = *rc::gen::element(1.0001, 1.01, 1.06, 1.3);
+        const auto e = ellipse_shortest_path(m, a, b, {K0});
+        RC_ASSERT(same_length(e.path.length, unrestricted(m, a, b)));
+        RC_ASSERT(test::path_violation(m, e.path, a, b) == "");
+        RC_ASSERT((e.certificate == Certificate::whole_mesh) == (e.ellipse_faces == m.n_faces()));
+        // Does the final T_jk reach a hole of T (a face of it has an edge on T's boundary)?
+        const FaceData<std::uint8_t> T_jk = paper_ellipse(m, a, b, e.K);
+        bool reaches_hole = false;
+        for (FaceId f : m.faces()) {
+            const HalfedgeId h = m.halfedge(f);
+            for (HalfedgeId g : {h, m.next(h), m.next(m.next(h))}) reaches_hole = reaches_hole || (T_jk[f] && m.is_boundary(TriMesh::twin(g)));
+        }
+        const test::VertexPassages p = test::vertex_passages(m, e.path);
+        ++seen[e.certificate];
+        seen_reaching_hole[e.certificate] += reaches_hole;
+        hugging += p.boundary + p.boundary_edges > 0;
+        grown += e.attempts > 1;
+    });
+    CAPTURE(seen[Certificate::border], seen[Certificate::search], seen[Certificate::replaced], seen[Certificate::whole_mesh],
+            seen_reaching_hole[Certificate::border], seen_reaching_hole[Certificate::search], hugging, grown);
+    CHECK(seen_reaching_hole[Certificate::border] > 0);
+    CHECK(seen_reaching_hole[Certificate::search] > 0);
+    CHECK(hugging > 0);
+}
+
+// touches_boundary (ellipse.cpp) must not take a hole of T for T_jk's artificial border: when the
+// restricted path at K_0 runs along or around a hole and touches no left-out face, the paper's test
+// passes and the search stops at K_0. (A mutant whose touches_boundary counted holes as border
+// grows K for every such path, and never stops on a mesh of several components: T_jk cannot grow
+// beyond a's component, so "T_jk is all of T" never ends the loop.)
+TEST_CASE("GEO-E6: a path that hugs a hole inside T_jk is accepted at K_0", "[property][geodesic]") {
+    std::size_t checked = 0;
+    rc::prop("hugging pairs at K_0 = 1.06", [&] {
+        const fhr::testing::GeneratedMesh m =
+            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 1, .max_holes = 5, .max_components = 3});
+        const auto pairs = test::hugging_pairs(m);
+        const auto [a, b] = pairs[*rc::gen::inRange<std::size_t>(0, pairs.size())];
+        const double K0 = 1.06;
+        const FaceData<std::uint8_t> T_jk = paper_ellipse(m, a, b, K0);
+        ExactGeodesic inside(m, a, {&T_jk});
+        inside.propagate(std::span(&b, 1));
+        const geodesic::GeodesicPath path = inside.path_to(b);
+        const test::VertexPassages p = test::vertex_passages(m, path);
+        RC_PRE(p.boundary + p.boundary_edges > 0);  // it hugs a hole of T
+        // ... and touches no left-out face (parenthesised: RC_PRE's expression captor would not
+        // short-circuit ||, and T_jk[invalid face] is out of range)
+        for (const SurfacePoint& q : path.points)
+            for (FaceId f : test::faces_at(m, q)) RC_PRE((!f.valid() || T_jk[f] != 0));
+        const auto e = ellipse_shortest_path(m, a, b, {K0});
+        RC_TAG(static_cast<int>(e.certificate));
+        RC_ASSERT(e.attempts == 1u);
+        RC_ASSERT(same_length(e.path.length, unrestricted(m, a, b)));
+        ++checked;
+    });
+    CAPTURE(checked);
+    CHECK(checked > 0);
+}
+
+// With several components T_jk can grow at most to a's component, never to all of T: the search
+// then has no artificial border left and the border certificate must hold (ellipse.md).
+TEST_CASE("GEO-E5: a T_jk that covers its whole component (of several) is certified by the border", "[unit][geodesic]") {
+    std::map<Certificate, std::size_t> seen;
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+        const TriMesh m = generate::random_mesh({0, 60, seed, 0.1, 2, 2});
+        const Components comp = connected_components(m);
+        std::size_t faces0 = 0;
+        for (FaceId f : m.faces()) faces0 += comp.vertex_component[m.face_vertices(f)[0]] == 0;
+        for (VertexId a : m.vertices())
+            for (VertexId b : m.vertices()) {
+                if (!(a < b) || comp.vertex_component[a] != 0 || comp.vertex_component[b] != 0) continue;
+                const auto e = ellipse_shortest_path(m, a, b, {3.0});  // a wide first ellipse
+                CHECK(same_length(e.path.length, unrestricted(m, a, b)));
+                if (e.ellipse_faces == faces0) ++seen[e.certificate];
+            }
+    }
+    CAPTURE(seen[Certificate::border], seen[Certificate::search], seen[Certificate::replaced], seen[Certificate::whole_mesh]);
+    CHECK(seen[Certificate::border] > 0);
+    CHECK(seen[Certificate::search] + seen[Certificate::replaced] + seen[Certificate::whole_mesh] == 0);
 }

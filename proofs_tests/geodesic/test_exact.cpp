@@ -33,6 +33,7 @@
 #include "support/analytic_meshes.hpp"
 #include "support/cgal_oracle.hpp"
 #include "support/test_support.hpp"
+#include "geodesic/geodesic_checks.hpp"
 
 using namespace fhr;
 using test::icosphere;
@@ -40,144 +41,14 @@ using geodesic::ExactGeodesic;
 using geodesic::ExactOptions;
 using geodesic::GeodesicPath;
 using test::cgal_distances;
+using test::faces_at;
+using test::needle_ratio;
+using test::passes_a_vertex;
+using test::path_violation;
+using test::rel_dev;
+using test::sci;
 
 namespace {
-
-/// |a − b| relative to the larger; 0 when equal (also both infinite), infinite when one is.
-double rel_dev(double a, double b) {
-    if (a == b) return 0;
-    if (std::isinf(a) || std::isinf(b)) return INFINITY;
-    return std::abs(a - b) / std::max(std::abs(a), std::abs(b));
-}
-
-/// x in scientific notation (Catch prints doubles in fixed notation, hiding small deviations).
-std::string sci(double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3e", x);
-    return buf;
-}
-
-
-bool face_kept(const FaceData<std::uint8_t>* mask, FaceId f) { return f.valid() && (!mask || (*mask)[f]); }
-
-/// The faces a path point lies in (a vertex: its fan; an edge point: the edge's faces).
-std::vector<FaceId> faces_at(const TriMesh& m, const SurfacePoint& p) {
-    std::vector<FaceId> fs;
-    if (p.kind == SurfacePoint::Kind::vertex)
-        m.for_each_outgoing(p.vertex, [&](HalfedgeId h) { fs.push_back(m.face(h)); });
-    else
-        fs = {m.face(p.halfedge), m.face(TriMesh::twin(p.halfedge))};
-    return fs;
-}
-
-double angle(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
-
-/// The angular position of q around vertex v, counter-clockwise from out(v) in the unfolded fan
-/// (corner angles of v's faces), for a point q that shares a face with v. \pre v is interior.
-double fan_position(const TriMesh& m, VertexId v, const SurfacePoint& q) {
-    const Vec3 pv = m.position(v), pq = position(m, q);
-    double theta = 0;
-    HalfedgeId g = m.out(v);
-    do {
-        const bool at_edge = q.kind == SurfacePoint::Kind::vertex ? q.vertex == m.to(g)
-                                                                   : TriMesh::edge(q.halfedge) == TriMesh::edge(g);
-        if (at_edge) return theta;
-        if (q.kind == SurfacePoint::Kind::edge && TriMesh::edge(q.halfedge) == TriMesh::edge(m.next(g)))
-            return theta + angle(m.position(m.to(g)) - pv, pq - pv);
-        theta += corner_angle(m, g);
-        g = m.ccw_rotated(g);
-    } while (g != m.out(v));
-    return NAN;
-}
-
-/// GEO-4: the first way in which `p` is not a geodesic from s to t on the kept faces, or "".
-/// Tolerances: a path node carries an absolute rounding error of at most node_error = 10⁻¹²·diag
-/// (≤ 10³ unfoldings of ~4 ulps each, coordinates ≤ diag: 4.4·10⁻¹³·diag), and a vertex node
-/// may be off the straight line by snap_tolerance·ℓ_v + cover_tolerance·ℓ_max (see below); an angle at a node between
-/// segments of lengths ℓ1, ℓ2 is then off by at most (e_prev + 2 e + e_next)/min(ℓ1, ℓ2).
-/// Vertex side angles are checked at interior vertices when there is no mask (a boundary vertex
-/// has only one side, and it may be < π: the path then hugs the boundary).
-/// `conditioning` multiplies the rounding errors: an unfolding across a needle whose longest edge
-/// is r times its height magnifies them up to r times (GEO-9 passes its meshes' largest r).
-std::string path_violation(const TriMesh& m, const GeodesicPath& p, VertexId s, VertexId t,
-                           const FaceData<std::uint8_t>* mask = nullptr, double conditioning = 1) {
-    if (p.points.empty()) return "empty path";
-    const auto is_vertex = [](const SurfacePoint& q, VertexId v) { return q.kind == SurfacePoint::Kind::vertex && q.vertex == v; };
-    if (!is_vertex(p.points.front(), s) || !is_vertex(p.points.back(), t)) return "does not run from source to target";
-    const BoundingBox box = bounding_box(m);
-    const double diag = box.diagonal();
-    const double node_error = 1e-12 * diag * conditioning;
-    double longest_edge = 0;
-    for (EdgeId e : m.edges()) longest_edge = std::max(longest_edge, edge_length(m, e));
-    double sum = 0;
-    std::vector<Vec3> x;
-    std::vector<double> err;
-    for (const SurfacePoint& q : p.points) {
-        x.push_back(position(m, q));
-        err.push_back(node_error);
-    }
-    for (std::size_t i = 0; i + 1 < p.points.size(); ++i) {
-        const auto a = faces_at(m, p.points[i]), b = faces_at(m, p.points[i + 1]);
-        const bool share = std::any_of(a.begin(), a.end(), [&](FaceId f) {
-            return face_kept(mask, f) && std::find(b.begin(), b.end(), f) != b.end();
-        });
-        if (!share) return "points " + std::to_string(i) + " and " + std::to_string(i + 1) + " share no kept face";
-        sum += (x[i + 1] - x[i]).norm();
-        // A vertex node may be a snapped crossing (the line passes it within snap_tolerance·ℓ_v,
-        // ℓ_v its longest edge), or a vertex that a ray passed on the wrong side when the next
-        // node was reached within cover_tolerance·|edge| of a window (exact.hpp): ≤ ℓ_max·that.
-        if (p.points[i].kind == SurfacePoint::Kind::vertex) {
-            double longest = 0;
-            m.for_each_outgoing(p.points[i].vertex, [&](HalfedgeId h) { longest = std::max(longest, edge_length(m, TriMesh::edge(h))); });
-            err[i] += geodesic::snap_tolerance * longest + geodesic::cover_tolerance * longest_edge;
-        }
-    }
-    // 1e-12 relative, plus the rounding of the nodes' coordinates (about 4 ulps of the largest
-    // coordinate per node, whatever the path's length: it matters for paths of ~10⁻⁴·diag).
-    const double coordinate = std::max(box.min.cwiseAbs().maxCoeff(), box.max.cwiseAbs().maxCoeff());
-    const double length_tol = (1e-12 * p.length + 4 * DBL_EPSILON * coordinate * static_cast<double>(p.points.size())) * conditioning;
-    if (std::abs(sum - p.length) > length_tol)
-        return "length " + std::to_string(p.length) + " != segment sum, off by " + sci(rel_dev(sum, p.length));
-    for (std::size_t i = 1; i + 1 < p.points.size(); ++i) {
-        const SurfacePoint& q = p.points[i];
-        const double shortest = std::min((x[i] - x[i - 1]).norm(), (x[i + 1] - x[i]).norm());
-        const double tol = (err[i - 1] + 2 * err[i] + err[i + 1]) / shortest;
-        if (q.kind == SurfacePoint::Kind::edge) {
-            const Vec3 a = m.position(m.from(q.halfedge));
-            const double unfolded = angle(x[i - 1] - x[i], a - x[i]) + angle(a - x[i], x[i + 1] - x[i]);
-            if (std::abs(unfolded - std::numbers::pi) > tol)
-                return "bends by " + sci(unfolded - std::numbers::pi) + " (tolerance " + sci(tol) + ") at edge point " + std::to_string(i);
-        } else if (!mask && !m.is_boundary(q.vertex)) {
-            // Bending by ε at a vertex between segments a, b saves only ab·ε²/(2(a + b)) against
-            // the straight way past it: a tie below node_error makes either way a shortest path.
-            const double a = (x[i] - x[i - 1]).norm(), b = (x[i + 1] - x[i]).norm();
-            const double tie = std::sqrt(2 * node_error * (a + b) / (a * b));
-            const VertexId v = q.vertex;
-            const double total = angle_sum(m, v);
-            const double side = std::fmod(fan_position(m, v, p.points[i + 1]) - fan_position(m, v, p.points[i - 1]) + total, total);
-            if (std::min(side, total - side) < std::numbers::pi - tol - tie)
-                return "a side angle is π − " + sci(std::numbers::pi - std::min(side, total - side)) + " (tolerance " + sci(tol + tie) +
-                       ") at vertex " + std::to_string(i);
-        }
-    }
-    return "";
-}
-
-/// The largest ratio of a triangle's longest edge to its height on that edge (1.15 equilateral).
-double needle_ratio(const TriMesh& m) {
-    double worst = 1;
-    for (FaceId f : m.faces()) {
-        const auto v = m.face_vertices(f);
-        const Vec3 &a = m.position(v[0]), &b = m.position(v[1]), &c = m.position(v[2]);
-        const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-        worst = std::max(worst, longest2 / (b - a).cross(c - a).norm());  // ℓ² / (2·area) = ℓ / height
-    }
-    return worst;
-}
-
-bool passes_a_vertex(const GeodesicPath& p) {
-    return std::any_of(p.points.begin() + 1, p.points.end() - 1, [](const SurfacePoint& q) { return q.kind == SurfacePoint::Kind::vertex; });
-}
 
 /// Shortest edge paths (Dijkstra): an upper bound of the polyhedral distance (GEO-2).
 std::vector<double> edge_path_distances(const TriMesh& m, VertexId s) {

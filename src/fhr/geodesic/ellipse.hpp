@@ -39,7 +39,10 @@ struct EllipseOptions {
 struct EllipsePath {
     /// How the returned path is known to be a shortest path of all of T.
     enum class Certificate : std::uint8_t {
-        whole_mesh,  ///< T_jk grew to all of T: no artificial boundary
+        /// T_jk grew to all of T: no artificial boundary. (On a mesh of several components T_jk
+        /// can at most cover a's component; there is then no artificial border either, nothing
+        /// reaches one, and the border certificate holds: paper_notes/ellipse.md.)
+        whole_mesh,
         border,      ///< nothing the restricted search brought to T_jk's border can be shorter
         search,      ///< the exact search on all of T, pruned above L, found nothing shorter
         replaced,    ///< that search found a shorter path (outside T_jk): its path is returned
@@ -57,7 +60,9 @@ struct EllipsePath {
     std::size_t certificate_windows = 0;  ///< by the certificate search (0 unless it ran)
 };
 
-/// Γ(a, b) by the ellipse search. \pre mesh valid, closed, connected; a != b.
+/// Γ(a, b) by the ellipse search. \pre mesh valid without garbage; holes and several components
+///      are allowed (issue 19): a hole of T is no part of T_jk's artificial border, a path may run
+///      along it, and no path can leave T_jk through it (paper_notes/ellipse.md).
 /// \post path.length is the exact polyhedral distance on the whole mesh (up to the rounding of
 ///       the exact algorithm, paper_notes/exact_geodesics.md): the sub-mesh's path is returned
 ///       only when certified, and a certificate that fails yields the whole-mesh search's path.
