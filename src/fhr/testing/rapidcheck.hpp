@@ -26,7 +26,7 @@ using generate::generate_command;
 
 /// The ranges recipes are drawn from (closed ranges; genus and holes are totals over the
 /// components, generate::RandomMeshOptions). Holes and components are opt-in: the defaults give
-/// closed connected meshes, the only ones fhr's pipeline accepts.
+/// closed connected meshes, the paper's input class (§1).
 struct MeshRanges {
     int min_genus = 0, max_genus = 4;
     std::size_t max_faces = 2000;
