@@ -1,13 +1,14 @@
-// FHR §2–§4 — libFuzzer target for the whole pipeline: the bytes choose a small random closed
-// mesh T with the generator's recipe (genus 0–2, at most min_faces + 300 faces, seed, noise;
-// src/fhr/generate), a domain size, the weights and the solver; §2 decimates T to D and
-// pipeline::parameterize runs §3 and §4. Every run must end certified (Proposition 1, the
-// per-patch certificate) and accepted by the independent oracle (spec/param.md PARAM-2..11
-// against T). The one expected refusal is InvalidInput from the decimation (the size cannot be
-// reached under its validity rules, spec/domain.md); a PartitionFailure is a finding too, since
-// §3's recovery ends at the latest at D = T. A finding prints the `fhr` commands that reproduce it
-// and traps. Every input is a valid recipe; the seeds (fuzz/corpus/pipeline/) are 24 bytes long
-// so that libFuzzer's length limit starts where a whole recipe fits (about 15 bytes).
+// FHR §2–§4 — libFuzzer target for the whole pipeline: the bytes choose a small random mesh T
+// with the generator's recipe (genus 0–2, 0–5 boundary loops, 1–3 components, at most
+// min_faces + 300 faces, seed, noise; src/fhr/generate), a domain size, the weights and the
+// solver; §2 decimates T to D and pipeline::parameterize runs §3 and §4. Every run must end
+// certified (Proposition 1, the per-patch certificate) and accepted by the independent oracle
+// (spec/param.md PARAM-2..11 against T). The one expected refusal is InvalidInput from the
+// decimation (the size cannot be reached under its validity rules, spec/domain.md DOM-9); a
+// PartitionFailure is a finding too, since §3's recovery ends at the latest at D = T. A finding
+// prints the `fhr` commands that reproduce it and traps. Every input is a valid recipe; the seeds
+// (fuzz/corpus/pipeline/) are 24 bytes long so that libFuzzer's length limit starts where a whole
+// recipe fits (about 17 bytes).
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <cstddef>
@@ -28,11 +29,9 @@ using namespace fhr;
 
 [[noreturn]] void finding(const generate::RandomMeshOptions& o, std::size_t target, const pipeline::Options& options,
                           const std::string& what) {
-    std::fprintf(stderr,
-                 "fuzz_pipeline finding: %s\nreproduce: fhr generate --genus %d --faces %zu --seed %llu --noise %.2f "
-                 "--out m.off && fhr run m.off --faces %zu --weights %s --solver %s --out run\n",
-                 what.c_str(), o.genus, o.faces, static_cast<unsigned long long>(o.seed), o.noise, target,
-                 std::string(param::name(options.map.weights)).c_str(), std::string(param::name(options.map.solver)).c_str());
+    std::fprintf(stderr, "fuzz_pipeline finding: %s\nreproduce: %s && fhr run mesh.off --faces %zu --weights %s --solver %s --out run\n",
+                 what.c_str(), generate::generate_command(o).c_str(), target, std::string(param::name(options.map.weights)).c_str(),
+                 std::string(param::name(options.map.solver)).c_str());
     __builtin_trap();
 }
 
@@ -42,18 +41,22 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     FuzzedDataProvider bytes(data, size);
     generate::RandomMeshOptions o;
     o.genus = bytes.ConsumeIntegralInRange(0, 2);
-    const std::size_t least = generate::min_faces(o.genus);
-    o.faces = least + 2 * bytes.ConsumeIntegralInRange<std::size_t>(0, 150);
+    o.holes = bytes.ConsumeIntegralInRange(0, 5);
+    o.components = bytes.ConsumeIntegralInRange(1, 3);
+    const std::size_t step = o.holes == 0 ? 2 : 1;  // F is even without holes
+    o.faces = generate::min_faces(o.genus, o.holes, o.components) + step * bytes.ConsumeIntegralInRange<std::size_t>(0, 300 / step);
     o.seed = bytes.ConsumeIntegral<std::uint64_t>() >> 1;  // `fhr generate --seed` takes < 2^63
     o.noise = bytes.ConsumeIntegralInRange(0, 45) / 100.0;  // the generator accepts [0, 0.5)
-    const std::size_t lowest = domain::min_closed_faces(o.genus);
-    const std::size_t target = lowest + 2 * bytes.ConsumeIntegralInRange<std::size_t>(0, (o.faces - lowest) / 2);
+    // The domain size: even and from Heawood's bound for a closed connected T (DOM-9); otherwise
+    // any count §2 accepts (component_targets raises each component's share to its least).
+    const std::size_t lowest = o.holes == 0 && o.components == 1 ? domain::min_closed_faces(o.genus) : step;
+    const std::size_t target = lowest + step * bytes.ConsumeIntegralInRange<std::size_t>(0, (o.faces - lowest) / step);
     pipeline::Options options;
     options.map.weights = bytes.PickValueInArray({param::Weights::shape_preserving, param::Weights::mean_value,
                                                   param::Weights::uniform});
     options.map.solver = bytes.PickValueInArray({param::Solver::sparse_lu, param::Solver::bicgstab});
 
-    const TriMesh T = generate::random_closed_mesh(o);
+    const TriMesh T = generate::random_mesh(o);
     domain::Domain D;
     try {
         D = domain::decimate(T, {.target_faces = target});

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -11,7 +12,6 @@
 #include <fhr/core/errors.hpp>
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/io/read.hpp>
-#include <fhr/testing/rapidcheck.hpp>
 #include "cli/common.hpp"
 #include "support/test_support.hpp"
 
@@ -219,16 +219,20 @@ TEST_CASE("CLI-GEN-1: fhr generate writes meshes that fhr info accepts, with the
     }
 }
 
-TEST_CASE("CLI-GEN-2: --holes and --components: the file holds exactly random_mesh's mesh, and fhr info counts it",
+TEST_CASE("CLI-GEN-2, GEN-7: --holes and --components: the file of generate_command's command holds exactly random_mesh's "
+          "mesh, and fhr info counts it",
           "[cli]") {
     const std::vector<fhr::generate::RandomMeshOptions> recipes{
         {1, 501, 5, 0.1, 3, 2}, {0, 400, 6, 0.0, 5, 3}, {2, 900, 7, 0.25, 0, 3}, {0, 13, 8, 0.0, 1, 1}};
     for (const fhr::generate::RandomMeshOptions& o : recipes) {
-        DYNAMIC_SECTION(fhr::testing::generate_command(o)) {
+        DYNAMIC_SECTION(fhr::generate::generate_command(o)) {
             const std::string out = temp_path("holes.off");
-            const auto gen = run_fhr({"generate", "--genus", std::to_string(o.genus), "--holes", std::to_string(o.holes),
-                                      "--components", std::to_string(o.components), "--faces", std::to_string(o.faces),
-                                      "--seed", std::to_string(o.seed), "--noise", std::to_string(o.noise), "--out", out});
+            // The words of the command (the path has no spaces), without the leading `fhr`.
+            std::vector<std::string> args;
+            std::istringstream words(fhr::generate::generate_command(o, out));
+            for (std::string w; words >> w;) args.push_back(w);
+            args.erase(args.begin());
+            const auto gen = run_fhr(args);
             INFO(gen.err);
             REQUIRE(gen.exit_code == 0);
             fhr::BuildLog log;

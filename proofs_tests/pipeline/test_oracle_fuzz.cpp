@@ -1,7 +1,8 @@
 // `fhr oracle-fuzz` (spec/cli.md CLI-ORACLE-*): fhr itself, posing as another implementation
-// (proofs_tests/data/fhr_as_other_program.py), passes on every mesh; the same wrapper made to
-// flip one triangle's image fails on every mesh, and each failure is kept with its reason and a
-// smaller mesh that fails the same way.
+// (proofs_tests/data/fhr_as_other_program.py), passes on every mesh — with boundary loops and
+// several components too, which the defaults draw; the same wrapper made to flip one triangle's
+// image fails on every mesh, and each failure is kept with its reason and a smaller mesh that
+// fails the same way; a program failing only with boundary shrinks to the smallest mesh with one hole.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -38,6 +39,9 @@ TEST_CASE("CLI-ORACLE-1: fhr itself as the program: no failures", "[cli][oracle]
     CHECK(count_of(r.out, ": valid\n") == 12);
     CHECK(r.out.find("12 meshes, 0 failures\n") != std::string::npos);
     CHECK(!fs::exists(keep));
+    // The defaults draw surfaces with boundary loops and with several components (CLI-ORACLE-4).
+    CHECK(count_of(r.out, " --holes ") >= 3);
+    CHECK(count_of(r.out, " --components ") >= 3);
 }
 
 TEST_CASE("CLI-ORACLE-2: a program that flips a triangle fails on every mesh; each failure is kept and shrunk",
@@ -48,6 +52,7 @@ TEST_CASE("CLI-ORACLE-2: a program that flips a triangle fails on every mesh; ea
                             "--genus-max", "3", "--seed", "11", "--keep", keep});
     INFO(r.out << r.err);
     CHECK(r.exit_code == 1);
+    CHECK(count_of(r.out, " --holes ") >= 2);  // shrinking takes holes and components away too
     CHECK(r.out.find(std::to_string(count) + " meshes, " + std::to_string(count) + " failures\n") != std::string::npos);
     for (int i = 0; i < count; ++i) {
         const fs::path dir = fs::path(keep) / ("mesh-" + std::to_string(i));
@@ -58,9 +63,10 @@ TEST_CASE("CLI-ORACLE-2: a program that flips a triangle fails on every mesh; ea
         // Swapping two corners' β breaks continuity (PARAM-7) or orientation (PARAM-8) first.
         CHECK((reason.find("\nreason: PARAM-7: ") != std::string::npos || reason.find("\nreason: PARAM-8: ") != std::string::npos));
         // The shrunk mesh fails the same way and is strictly smaller: the flip breaks any mesh, so
-        // shrinking reaches the smallest the generator makes, the 12-face cube.
+        // shrinking reaches the smallest closed connected mesh the generator makes, the 12-face cube.
         const std::string kind = reason.substr(reason.find("\nreason: ") + 9, 8);
         CHECK(reason.find("\nsmaller reason: " + kind) != std::string::npos);
+        CHECK(reason.find("\nsmaller.off: fhr generate --genus 0 --faces 12 --seed ") != std::string::npos);
         CHECK(fhr::test::load_mesh((dir / "smaller.off").string()).n_faces() == 12);
         CHECK(fhr::test::load_mesh((dir / "mesh.off").string()).n_faces() > 12);
         // The kept mesh and output reproduce the failure with `fhr verify`.
@@ -90,9 +96,51 @@ TEST_CASE("CLI-ORACLE-4: a program that writes nothing, or not a fhr-param file,
     CHECK(r.out.find("FAILED: PARAM-1: ") != std::string::npos);
 }
 
+TEST_CASE("CLI-ORACLE-4: recipes in the ranges asked; without holes and components those of earlier versions",
+          "[cli][oracle]") {
+    // `true` writes nothing: every mesh fails at once ("no output"), so the lines come fast.
+    const std::string keep = temp_path("oracle-keep-ranges");
+    auto r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "8", "--holes-max", "0", "--components-max", "1",
+                      "--keep", keep});
+    INFO(r.out << r.err);
+    CHECK(count_of(r.out, "FAILED") == 8);
+    CHECK(count_of(r.out, " --holes ") == 0);
+    CHECK(count_of(r.out, " --components ") == 0);
+    // Mesh 0 of seed 1 as `fhr oracle-fuzz` drew it before --holes-max and --components-max existed.
+    CHECK(r.out.find("mesh 0: fhr generate --genus 2 --faces 256 --seed 417422127403058876 --noise 0.05 --out mesh.off: ") == 0);
+    r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "12", "--holes-max", "2", "--components-max", "2",
+                 "--seed", "5", "--keep", keep});
+    INFO(r.out);
+    CHECK(count_of(r.out, " --holes 1 ") + count_of(r.out, " --holes 2 ") == count_of(r.out, " --holes "));
+    CHECK(count_of(r.out, " --components 2 ") == count_of(r.out, " --components "));
+    CHECK(count_of(r.out, " --holes ") > 0);
+    CHECK(count_of(r.out, " --components ") > 0);
+}
+
+TEST_CASE("CLI-ORACLE-5: a program failing only on surfaces with boundary shrinks to one hole and 10 faces", "[cli][oracle]") {
+    // Exit code 3 on a mesh with boundary, a closed one gets exit code 0 and no output (another kind).
+    const std::string keep = temp_path("oracle-keep-open");
+    const std::string cmd = "'" FHR_EXE "' info --json {mesh} | grep -q '\"boundary_loops\": 0' && exit 0; exit 3 # {out}";
+    const auto r = run_fhr({"oracle-fuzz", "--cmd", cmd, "--count", "4", "--seed", "3", "--keep", keep});
+    INFO(r.out << r.err);
+    int open = 0;
+    for (int i = 0; i < 4; ++i) {
+        const std::string reason = read_file(keep + "/mesh-" + std::to_string(i) + "/reason.txt");
+        if (reason.find("\nreason: the program exited with code 3") == std::string::npos) continue;
+        ++open;
+        INFO(reason);
+        CHECK(reason.find("\nsmaller reason: the program exited with code 3") != std::string::npos);
+        CHECK(reason.find("\nsmaller.off: fhr generate --genus 0 --holes 1 --faces 10 --seed ") != std::string::npos);
+        CHECK(fhr::test::load_mesh(keep + "/mesh-" + std::to_string(i) + "/smaller.off").n_faces() == 10);
+    }
+    CHECK(open >= 2);
+}
+
 TEST_CASE("CLI-ORACLE-5: usage errors", "[cli][oracle]") {
     CHECK(run_fhr({"oracle-fuzz", "--count", "1"}).exit_code == 2);
     CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh}", "--count", "1"}).exit_code == 2);
     CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}"}).exit_code == 2);
     CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "0"}).exit_code == 2);
+    CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "1", "--holes-max", "-1"}).exit_code == 2);
+    CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "1", "--components-max", "0"}).exit_code == 2);
 }

@@ -269,6 +269,22 @@ def test_random_meshes_parameterize_and_verify(mesh):
     assert len(p.domain[1]) == domain_faces
 
 
+# PY-4, PY-6 with boundary loops and several components (issue 19): certified, accepted by the
+# oracle, D with T's components, boundary loops and genus; with boundary a component may stop
+# above its share of the faces asked, so D has at least as many.
+@settings(max_examples=30, derandomize=True, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(fhr.testing.meshes(genus=(0, 2), faces=(100, 2000), holes=(1, 5), components=(1, 3)))
+def test_random_surfaces_with_boundary_parameterize_and_verify(mesh):
+    domain_faces = max(40, len(mesh.F) // 40)
+    p = fhr.parameterize(mesh.V, mesh.F, faces=domain_faces)
+    assert p.certified, mesh
+    assert p.oracle["valid"], (mesh, p.oracle["first_failure"])
+    DV, DF = p.domain
+    t, d = fhr.info(mesh.V, mesh.F), fhr.info(DV, DF)
+    assert (d["components"], d["boundary_loops"], d["genus"]) == (t["components"], t["boundary_loops"], t["genus"]), mesh
+    assert len(DF) >= domain_faces, mesh
+
+
 # PY-6
 def test_the_strategy_shrinks_toward_the_smallest_recipe():
     from hypothesis import find

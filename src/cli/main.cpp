@@ -49,10 +49,12 @@ usage:
       Figures 6-9 as PNG, patches and the rate-distortion plot as SVG; exit 3 if §3 cannot partition, 4 if not certified
   fhr verify PARAM.fhrp [--mesh INPUT] [--json]
       the oracle: check a `fhr-param 1` file against PARAM-1..11 (spec/param.md); exit 1 if invalid
-  fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--genus-max G] [--seed S] [--keep DIR]
-                  [--timeout SECONDS]
-      fuzz another implementation: N random closed meshes, each run through PROGRAM and its output
-      checked by the oracle; failures kept in DIR with their reason and a smaller failing mesh
+  fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--genus-max G] [--holes-max H]
+                  [--components-max C] [--seed S] [--keep DIR] [--timeout SECONDS]
+      fuzz another implementation: N random meshes (genus 0-G, default 2; 0-H boundary loops,
+      default 5; 1-C components, default 3; H = 0, C = 1: closed and connected only), each run
+      through PROGRAM and its output checked by the oracle; failures kept in DIR with their reason
+      and a smaller failing mesh
   fhr help
 
 MESH files: .off/.coff, .obj, .ply (ascii or binary), .stl (ascii or binary).

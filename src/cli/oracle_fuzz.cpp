@@ -1,12 +1,16 @@
-// FHR cli — `fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--genus-max G] [--seed S]
-// [--keep DIR] [--timeout SECONDS]`: fuzzing another implementation of the paper with fhr's oracle
-// (spec/cli.md CLI-ORACLE-*). Random closed meshes T (§1's input class, src/fhr/generate) go to the
-// program; whatever it writes must be a `fhr-param 1` file that `fhr verify --mesh T` accepts
-// (PARAM-1..11, src/fhr/exchange). Each failure is kept with its reason and shrunk.
+// FHR cli — `fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--genus-max G] [--holes-max H]
+// [--components-max C] [--seed S] [--keep DIR] [--timeout SECONDS]`: fuzzing another
+// implementation of the paper with fhr's oracle (spec/cli.md CLI-ORACLE-*). Random meshes T
+// (src/fhr/generate) go to the program: by default surfaces with up to 5 boundary loops in up to 3
+// components (issue 19, what `fhr run` and the oracle accept), with `--holes-max 0
+// --components-max 1` the closed connected surfaces of §1 only. Whatever the program writes must
+// be a `fhr-param 1` file that `fhr verify --mesh T` accepts (PARAM-1..11, src/fhr/exchange).
+// Each failure is kept with its reason and shrunk.
 //
 // Pseudocode:
 //   for i in 0 .. N−1:
-//       recipe_i <- (genus, faces, seed, noise) drawn from splitmix64(S, i)   (deterministic)
+//       recipe_i <- (genus, holes, components, faces, seed, noise) drawn from splitmix64(S, i)
+//                   (deterministic; holes and components drawn only when H > 0, C > 1)
 //       outcome  <- judge(recipe_i): write T to a temporary mesh.off; /bin/sh -c CMD with {mesh}
 //                   and {out} replaced by the shell-quoted paths; exit 0, then read {out}
 //                   (PARAM-1) and verify it against T (PARAM-2..11); the first failure is the reason
@@ -14,11 +18,14 @@
 //   print `N meshes, K failures`; exit 0 when K = 0, else 1
 //
 // Shrinking (greedy, as in delta debugging): a candidate is "smaller" when it has fewer faces, or
-// as many faces and a lower genus, or the same size without noise. From the current smallest
-// failing recipe, try in order: each lower genus with the same face count; min_faces(genus),
-// then the face count halfway and three quarters of the way down to it, then 2 faces fewer, each
-// with the recipe's seed and two more seeds (a smaller size is a different mesh, and a bug may
-// need a lucky one); no noise. The first candidate that fails *the same way* (same check id, same
+// as many faces and fewer components, or as many of both and fewer holes, or a lower genus, or the
+// same of all four without noise (a comparison in this order). From the current smallest failing
+// recipe, try in order, each with the same face count (one fewer when no hole is left and the
+// count is odd) where the generator can make it: each smaller number of components, from 1; each
+// smaller number of holes, from 0; each lower genus, from 0; then min_faces(genus, holes,
+// components), the face count halfway and three quarters of the way down to it, then 2 faces
+// fewer, each with the recipe's seed and two more seeds (a smaller size is a different mesh, and
+// a bug may need a lucky one); no noise. The first candidate that fails *the same way* (same check id, same
 // exit code, a timeout or no output) becomes the current one and the search starts again; it
 // ends when no candidate fails or after shrink_budget runs of the program.
 #include <fcntl.h>
@@ -51,8 +58,8 @@ namespace fs = std::filesystem;
 
 /// Runs of the program spent on shrinking one failure.
 constexpr int shrink_budget = 40;
-/// The largest face count above min_faces(genus) of a drawn mesh: modest, so that a slow
-/// implementation still gets through hundreds of meshes.
+/// The largest face count above min_faces(genus, holes, components) of a drawn mesh: modest, so
+/// that a slow implementation still gets through hundreds of meshes.
 constexpr std::uint64_t extra_faces_max = 600;
 /// Bytes of the program's stderr kept in a reason.
 constexpr std::size_t stderr_tail = 600;
@@ -77,24 +84,36 @@ private:
 
 using Recipe = generate::RandomMeshOptions;
 
-/// Mesh i of the run with seed S: genus in [0, G], faces in [min_faces, min_faces + 600], a seed
-/// that `fhr generate --seed` accepts (< 2^63), noise 0, 0.05, 0.1 or 0.25.
-Recipe draw_recipe(std::uint64_t seed, std::uint64_t i, int genus_max) {
+/// The ranges recipes are drawn from: [0, genus], [0, holes], [1, components].
+struct Ranges {
+    int genus = 2, holes = 5, components = 3;
+};
+
+/// Mesh i of the run with seed S: genus, holes and components in their ranges (holes and
+/// components drawn only when their range has more than one value, so `--holes-max 0
+/// --components-max 1` draws the closed recipes of the versions before them), faces in
+/// [min_faces, min_faces + 600] (even without holes), a seed that `fhr generate --seed` accepts
+/// (< 2^63), noise 0, 0.05, 0.1 or 0.25.
+Recipe draw_recipe(std::uint64_t seed, std::uint64_t i, const Ranges& ranges) {
     SplitMix r(SplitMix(seed).next() ^ (i * 0xD1B54A32D192ED03ull));
     Recipe o;
-    o.genus = static_cast<int>(r.below(static_cast<std::uint64_t>(genus_max) + 1));
-    o.faces = generate::min_faces(o.genus) + 2 * r.below(extra_faces_max / 2 + 1);
+    o.genus = static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.genus) + 1));
+    if (ranges.holes > 0) o.holes = static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.holes) + 1));
+    if (ranges.components > 1) o.components = 1 + static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.components)));
+    const std::uint64_t step = o.holes == 0 ? 2 : 1;  // F is even without holes
+    o.faces = generate::min_faces(o.genus, o.holes, o.components) + step * r.below(extra_faces_max / step + 1);
     o.seed = r.next() >> 1;
     constexpr double noises[] = {0.0, 0.05, 0.1, 0.25};
     o.noise = noises[r.below(4)];
     return o;
 }
 
-std::string generate_command(const Recipe& o) {
-    char noise[32];
-    std::snprintf(noise, sizeof noise, "%g", o.noise);
-    return "fhr generate --genus " + std::to_string(o.genus) + " --faces " + std::to_string(o.faces) + " --seed " +
-           std::to_string(o.seed) + (o.noise != 0 ? std::string(" --noise ") + noise : std::string()) + " --out mesh.off";
+/// "F faces, genus g", then ", holes b" and ", components c" unless closed and connected.
+std::string size_of(const Recipe& o) {
+    std::string s = std::to_string(o.faces) + " faces, genus " + std::to_string(o.genus);
+    if (o.holes != 0) s += ", holes " + std::to_string(o.holes);
+    if (o.components != 1) s += ", components " + std::to_string(o.components);
+    return s;
 }
 
 /// POSIX shell single quotes: nothing inside is special except the quote itself.
@@ -166,7 +185,7 @@ Outcome judge(const Recipe& recipe, const std::string& cmd, const fs::path& dir,
     fs::remove_all(dir);
     fs::create_directories(dir);
     const fs::path mesh = dir / "mesh.off", out = dir / "out.fhrp";
-    save_mesh(mesh.string(), generate::random_closed_mesh(recipe));
+    save_mesh(mesh.string(), generate::random_mesh(recipe));
     const int status = run_shell(substitute(cmd, mesh.string(), out.string()), dir, timeout);
     Outcome o;
     o.ok = false;
@@ -211,9 +230,11 @@ Outcome judge(const Recipe& recipe, const std::string& cmd, const fs::path& dir,
     return o;
 }
 
-/// Fewer faces, then lower genus, then less noise.
+/// Fewer faces, then fewer components, then fewer holes, then lower genus, then less noise.
 bool smaller(const Recipe& a, const Recipe& b) {
     if (a.faces != b.faces) return a.faces < b.faces;
+    if (a.components != b.components) return a.components < b.components;
+    if (a.holes != b.holes) return a.holes < b.holes;
     if (a.genus != b.genus) return a.genus < b.genus;
     return a.noise < b.noise;
 }
@@ -221,12 +242,17 @@ bool smaller(const Recipe& a, const Recipe& b) {
 /// The candidates tried from `r`, in order (see the file comment).
 std::vector<Recipe> shrink_candidates(const Recipe& r) {
     std::vector<Recipe> c;
-    for (int g = 0; g < r.genus; ++g) {
+    // r with one of components, holes, genus lowered to v, when the generator can make it.
+    const auto lowered = [&](int Recipe::*knob, int v) {
         Recipe x = r;
-        x.genus = g;
-        c.push_back(x);
-    }
-    const std::size_t least = generate::min_faces(r.genus), excess = (r.faces - least) / 2;
+        x.*knob = v;
+        if (x.holes == 0) x.faces -= x.faces % 2;
+        if (x.faces >= generate::min_faces(x.genus, x.holes, x.components)) c.push_back(x);
+    };
+    for (int k = 1; k < r.components; ++k) lowered(&Recipe::components, k);
+    for (int h = 0; h < r.holes; ++h) lowered(&Recipe::holes, h);
+    for (int g = 0; g < r.genus; ++g) lowered(&Recipe::genus, g);
+    const std::size_t least = generate::min_faces(r.genus, r.holes, r.components), excess = (r.faces - least) / 2;
     for (std::size_t faces : {least, least + 2 * (excess / 2), least + 2 * (excess * 3 / 4), r.faces - 2}) {
         if (faces >= r.faces || faces < least) continue;
         for (std::uint64_t k = 0; k < 3; ++k) {
@@ -280,13 +306,12 @@ void keep_failure(const fs::path& keep, std::uint64_t i, const Recipe& recipe, c
     fs::copy_file(run_dir / "mesh.off", dir / "mesh.off", fs::copy_options::overwrite_existing);
     if (fs::is_regular_file(run_dir / "out.fhrp"))
         fs::copy_file(run_dir / "out.fhrp", dir / "out.fhrp", fs::copy_options::overwrite_existing);
-    save_mesh((dir / "smaller.off").string(), generate::random_closed_mesh(shrunk.recipe));
+    save_mesh((dir / "smaller.off").string(), generate::random_mesh(shrunk.recipe));
     std::string text = "command: " + cmd + "\n";
-    text += "mesh.off: " + generate_command(recipe) + " (" + std::to_string(recipe.faces) + " faces, genus " +
-            std::to_string(recipe.genus) + ")\n";
+    text += "mesh.off: " + generate::generate_command(recipe) + " (" + size_of(recipe) + ")\n";
     text += "reason: " + outcome.reason + "\n";
-    text += "smaller.off: " + generate_command(shrunk.recipe) + " (" + std::to_string(shrunk.recipe.faces) + " faces, genus " +
-            std::to_string(shrunk.recipe.genus) + "; " + std::to_string(shrunk.runs) + " shrinking runs)\n";
+    text += "smaller.off: " + generate::generate_command(shrunk.recipe) + " (" + size_of(shrunk.recipe) + "; " +
+            std::to_string(shrunk.runs) + " shrinking runs)\n";
     text += "smaller reason: " + shrunk.outcome.reason + "\n";
     io::write_file_atomically((dir / "reason.txt").string(), text);
 }
@@ -310,14 +335,15 @@ struct TempDir {
 }  // namespace
 
 int run_oracle_fuzz(const std::vector<std::string>& argv) {
-    const Args args(argv, {}, {"cmd", "count", "genus-max", "seed", "keep", "timeout"});
+    const Args args(argv, {}, {"cmd", "count", "genus-max", "holes-max", "components-max", "seed", "keep", "timeout"});
     if (!args.positional().empty()) usage_error("fhr oracle-fuzz takes no positional arguments");
     const std::string cmd = args.require("cmd");
     if (cmd.find("{mesh}") == std::string::npos || cmd.find("{out}") == std::string::npos)
         usage_error("--cmd must contain {mesh} and {out}");
     args.require("count");
     const auto count = static_cast<std::uint64_t>(args.integer("count", 0, 1, 1'000'000));
-    const int genus_max = static_cast<int>(args.integer("genus-max", 2, 0, 20));
+    const Ranges ranges{static_cast<int>(args.integer("genus-max", 2, 0, 20)), static_cast<int>(args.integer("holes-max", 5, 0, 100)),
+                        static_cast<int>(args.integer("components-max", 3, 1, 20))};
     const auto seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, INT64_MAX));
     const fs::path keep = args.get("keep").value_or("oracle-fuzz-failures");
     const double timeout = args.real("timeout", 60.0, 0.1, 86400.0);
@@ -326,17 +352,17 @@ int run_oracle_fuzz(const std::vector<std::string>& argv) {
     const fs::path run_dir = tmp.path / "run", shrink_dir = tmp.path / "shrink";
     std::uint64_t failures = 0;
     for (std::uint64_t i = 0; i < count; ++i) {
-        const Recipe recipe = draw_recipe(seed, i, genus_max);
+        const Recipe recipe = draw_recipe(seed, i, ranges);
         const Outcome outcome = judge(recipe, cmd, run_dir, timeout);
-        std::printf("mesh %llu: %s: ", static_cast<unsigned long long>(i), generate_command(recipe).c_str());
+        std::printf("mesh %llu: %s: ", static_cast<unsigned long long>(i), generate::generate_command(recipe).c_str());
         if (outcome.ok) {
             std::printf("valid\n");
         } else {
             ++failures;
             const Shrunk shrunk = shrink(recipe, outcome, cmd, shrink_dir, timeout);
             keep_failure(keep, i, recipe, outcome, run_dir, shrunk, cmd);
-            std::printf("FAILED: %s; smaller: %zu faces, genus %d; kept in %s\n", first_line(outcome.reason).c_str(),
-                        shrunk.recipe.faces, shrunk.recipe.genus, (keep / ("mesh-" + std::to_string(i))).string().c_str());
+            std::printf("FAILED: %s; smaller: %s; kept in %s\n", first_line(outcome.reason).c_str(), size_of(shrunk.recipe).c_str(),
+                        (keep / ("mesh-" + std::to_string(i))).string().c_str());
         }
         std::fflush(stdout);
     }

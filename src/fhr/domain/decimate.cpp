@@ -70,12 +70,13 @@ struct Candidate {
     }
 };
 
-// Six times the signed volume enclosed by m (the sum over its faces of a · (b × c)).
-double volume6_of(const TriMesh& m) {
-    double v = 0;
+// Six times the signed volume enclosed by each component of m (numbered as `comps` numbers them):
+// the sum over its faces of a · (b × c).
+std::vector<double> volume6_per_component(const TriMesh& m, const Components& comps) {
+    std::vector<double> v(comps.count, 0);
     for (FaceId f : m.faces()) {
         const auto [a, b, c] = m.face_vertices(f);
-        v += m.position(a).dot(m.position(b).cross(m.position(c)));
+        v[comps.vertex_component[a]] += m.position(a).dot(m.position(b).cross(m.position(c)));
     }
     return v;
 }
@@ -112,7 +113,7 @@ std::vector<Quadric> vertex_quadrics(const TriMesh& T, std::size_t real_faces) {
 // is decimated to targets[c] faces of T (cone faces not counted).
 class Decimator {
 public:
-    Decimator(const Domain& start, std::vector<Quadric> quadrics, double t_volume6, const DecimateOptions& o,
+    Decimator(const Domain& start, const TriMesh& t_hat, std::vector<Quadric> quadrics, const DecimateOptions& o,
               std::size_t real_vertices, std::vector<std::size_t> targets)
         : m_(start.mesh), t_of_(start.t_vertex), history_(start.history), options_(o), quadric_(std::move(quadrics)),
           stamp_(m_.n_edges(), 0), rejected_(m_.n_halfedges(), false), keep_(m_.n_vertices(), 0), real_(real_vertices),
@@ -125,14 +126,22 @@ public:
         const Components comps = connected_components(m_);
         component_ = comps.vertex_component;
         faces_.assign(comps.count, 0);
+        open_.assign(comps.count, 0);
+        for (VertexId v : m_.vertices()) open_[component_[v]] |= apex(v);
         for (FaceId f : m_.faces())
             if (!cone_face(f)) ++faces_[component_[m_.face_vertices(f)[0]]];
         for (std::size_t c = 0; c < comps.count; ++c) excess_ += faces_[c] > target_[c] ? faces_[c] - target_[c] : 0;
         cos_max_turn_ = std::cos(o.max_normal_deviation_deg * M_PI / 180.0);
         tan_min_angle_ = std::tan(o.min_angle_deg * M_PI / 180.0);
-        volume_ = volume6_of(m_);
-        // The volume rule needs closed components of T: T̂'s cones are no part of the surface.
-        min_volume_ = cones_ ? -INFINITY : 1e-6 * t_volume6;
+        // The volume rule, per closed component (a sum over components would let a small one turn
+        // inside out beside a large one); a component with boundary has no rule: T̂'s cones are no
+        // part of the surface.
+        volume_ = volume6_per_component(m_, comps);
+        const Components t_comps = connected_components(t_hat);
+        const std::vector<double> t_volume = volume6_per_component(t_hat, t_comps);
+        min_volume_.assign(comps.count, -INFINITY);
+        for (VertexId v : m_.vertices())
+            if (!open_[component_[v]]) min_volume_[component_[v]] = 1e-6 * t_volume[t_comps.vertex_component[t_of_[v]]];
         std::vector<Candidate> all;
         all.reserve(m_.n_edges());
         for (EdgeId e : m_.edges()) all.push_back(edge_candidate(e));
@@ -144,7 +153,11 @@ public:
         d.history = std::move(history_);
         while (excess_ > 0) {
             if (queue_.empty()) {
-                if (options_.best_effort || cones_) break;
+                // A component with boundary may stop above its share (its loops and corners may need
+                // more faces); a closed one may not, unless best_effort.
+                bool closed_above = false;
+                for (std::size_t c = 0; c < faces_.size(); ++c) closed_above = closed_above || (!open_[c] && faces_[c] > target_[c]);
+                if (options_.best_effort || !closed_above) break;
                 std::size_t faces = 0;
                 for (std::size_t f : faces_) faces += f;
                 throw InvalidInput("", 0, "decimation stopped at " + std::to_string(faces) + " faces (target " +
@@ -169,7 +182,7 @@ public:
             d.history.push_back({t_of_[v0], t_of_[v1], t_of_[va], t_of_[vb]});
             const std::size_t removed = apex(va) || apex(vb) ? 1 : 2;  // faces of T
             m_.collapse(h);
-            volume_ += change_;
+            volume_[comp] += change_;
             faces_[comp] -= removed;
             excess_ -= removed;
             quadric_[v1.idx()] += quadric_[v0.idx()];
@@ -195,13 +208,15 @@ private:
     bool cones_ = false;                // T has boundary: m_ is a decimation of T̂
     VertexData<std::uint32_t> component_;
     std::vector<std::size_t> faces_, target_;  // per component: faces of T now, and asked
+    std::vector<std::uint8_t> open_;           // per component: 1 when it has boundary (an apex of T̂)
     std::size_t excess_ = 0;            // Σ over the components of the faces above their target
     using Queue = std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>>;
     Queue queue_;
     double cos_max_turn_ = 0, tan_min_angle_ = 0;
-    // D's signed volume, kept above min_volume_ (a small part of T's) so that D stays outward
-    // oriented like T: per-face normal rules alone let a coarse domain turn inside out.
-    double volume_ = 0, min_volume_ = 0;
+    // Per component: D's signed volume, kept above min_volume_ (a small part of T's) so that a
+    // closed component stays outward oriented like T's: per-face normal rules alone let a coarse
+    // domain turn inside out.
+    std::vector<double> volume_, min_volume_;
     mutable double change_ = 0;  // the volume change of the collapse last found valid
 
     bool apex(VertexId v) const { return t_of_[v].idx() >= real_; }
@@ -254,6 +269,7 @@ private:
     bool valid(HalfedgeId h) const {
         if (keep_[m_.from(h).idx()] || !m_.is_collapse_ok(h)) return false;
         const VertexId v0 = m_.from(h), v1 = m_.to(h);  // v0 disappears into v1
+        const std::uint32_t comp = component_[v0];
         const FaceId gone0 = m_.face(h), gone1 = m_.face(TriMesh::twin(h));
         if (cones_) {
             const VertexId va = m_.to(m_.next(h)), vb = m_.to(m_.next(TriMesh::twin(h)));
@@ -263,8 +279,7 @@ private:
             if (on_boundary && !along) return false;
             if (along && m_.valence(apex(va) ? va : vb) <= 3) return false;
             // Exactly the target: with one face to go, only a collapse along the boundary.
-            const std::uint32_t c = component_[v0];
-            if (faces_[c] - target_[c] < (along ? 1u : 2u)) return false;
+            if (faces_[comp] - target_[comp] < (along ? 1u : 2u)) return false;
         }
         const Vec3 &p0 = m_.position(v0), &p1 = m_.position(v1);
         bool ok = true;
@@ -283,7 +298,7 @@ private:
             const Vec3 n_new = (a - p1).cross(b - p1).normalized();
             if (n_new.dot(face_normal(m_, f)) < cos_max_turn_ || !corners_at_least(p1, a, b, tan_min_angle_)) ok = false;
         });
-        if (!ok || volume_ + change <= min_volume_) return false;
+        if (!ok || volume_[comp] + change <= min_volume_[comp]) return false;
         change_ = change;
         return true;
     }
@@ -418,10 +433,10 @@ DecimateOptions with_corners(const TriMesh& T, const DecimateOptions& options) {
 
 Domain decimate(const TriMesh& T, const DecimateOptions& options) {
     std::vector<std::size_t> targets = targets_of(T, options.target_faces);
-    if (T.is_closed()) return Decimator(identity(T), vertex_quadrics(T, T.n_faces()), volume6_of(T), options, T.n_vertices(), std::move(targets)).run();
+    if (T.is_closed()) return Decimator(identity(T), T, vertex_quadrics(T, T.n_faces()), options, T.n_vertices(), std::move(targets)).run();
     const Coned C = add_cones(T);
     const DecimateOptions o = with_corners(T, options);
-    Domain closed = Decimator(identity(C.mesh), vertex_quadrics(C.mesh, C.real_faces), 0, o, C.real_vertices, std::move(targets)).run();
+    Domain closed = Decimator(identity(C.mesh), C.mesh, vertex_quadrics(C.mesh, C.real_faces), o, C.real_vertices, std::move(targets)).run();
     return open_domain(std::move(closed), C.real_vertices);
 }
 
@@ -446,7 +461,7 @@ Domain decimate_again(const TriMesh& T, const Domain& previous, const DecimateOp
     for (std::size_t i = 0; i < reuse; ++i) merged[prev.history[i].kept.idx()] += merged[prev.history[i].removed.idx()];
     std::vector<Quadric> quadrics;
     for (VertexId x : start.t_vertex) quadrics.push_back(merged[x.idx()]);
-    Domain d = Decimator(start, std::move(quadrics), volume6_of(C.mesh), o, C.real_vertices, std::move(targets)).run();
+    Domain d = Decimator(start, C.mesh, std::move(quadrics), o, C.real_vertices, std::move(targets)).run();
     // Number D's vertices in T's order, as decimate does (DOM-4): the undone prefix appended its
     // vertices at the end.
     std::vector<std::uint32_t> order(d.t_vertex.size()), rank(d.t_vertex.size());

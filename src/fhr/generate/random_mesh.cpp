@@ -38,6 +38,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 #include <string>
@@ -534,6 +535,17 @@ TriMesh random_closed_mesh(const RandomMeshOptions& options) {
         invalid("random_closed_mesh makes closed surfaces: the number of holes must be 0 (got " +
                 std::to_string(options.holes) + "); random_mesh makes surfaces with holes");
     return random_mesh(options);
+}
+
+std::string generate_command(const RandomMeshOptions& o, const std::string& out) {
+    char noise[32];
+    std::snprintf(noise, sizeof noise, "%g", o.noise);
+    std::string s = "fhr generate --genus " + std::to_string(o.genus);
+    if (o.holes != 0) s += " --holes " + std::to_string(o.holes);
+    if (o.components != 1) s += " --components " + std::to_string(o.components);
+    s += " --faces " + std::to_string(o.faces) + " --seed " + std::to_string(o.seed);
+    if (o.noise != 0) s += std::string(" --noise ") + noise;
+    return s + " --out " + out;
 }
 
 }  // namespace fhr::generate

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 #include <fhr/core/trimesh.hpp>
 
@@ -54,6 +55,11 @@ TriMesh random_mesh(const RandomMeshOptions& options);
 /// random_mesh for a closed surface (the paper's input class, §1, when components = 1).
 /// \throws InvalidInput("", 0, ...) when options.holes != 0, or as random_mesh.
 TriMesh random_closed_mesh(const RandomMeshOptions& options);
+
+/// The `fhr generate` command line that writes the mesh of these options to `out`, options at
+/// their defaults left out (no --holes 0, --components 1, --noise 0), the noise as %g prints it:
+/// what a failing property test or a fuzzer's finding shows to reproduce its mesh.
+std::string generate_command(const RandomMeshOptions& options, const std::string& out = "mesh.off");
 
 /// The largest face count accepted (the connectivity of 5·10^7 faces takes about 3 GB).
 inline constexpr std::size_t max_faces = 50'000'000;

@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <limits>
 #include <ostream>
-#include <sstream>
 #include <string>
 
 #include <fhr/core/errors.hpp>
@@ -22,21 +21,12 @@
 
 namespace fhr::testing {
 
-/// The command line that writes the mesh of these options.
-inline std::string generate_command(const generate::RandomMeshOptions& o) {
-    std::ostringstream s;
-    s << "fhr generate --genus " << o.genus;
-    if (o.holes != 0) s << " --holes " << o.holes;
-    if (o.components != 1) s << " --components " << o.components;
-    s << " --faces " << o.faces << " --seed " << o.seed;
-    if (o.noise != 0) s << " --noise " << o.noise;
-    s << " --out mesh.off";
-    return s.str();
-}
+/// The command line that writes the mesh of these options (generate/random_mesh.hpp).
+using generate::generate_command;
 
 /// The ranges recipes are drawn from (closed ranges; genus and holes are totals over the
 /// components, generate::RandomMeshOptions). Holes and components are opt-in: the defaults give
-/// closed connected meshes, the only ones fhr's pipeline accepts.
+/// closed connected meshes, the paper's input class (§1).
 struct MeshRanges {
     int min_genus = 0, max_genus = 4;
     std::size_t max_faces = 2000;

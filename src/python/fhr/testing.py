@@ -4,8 +4,8 @@ A mesh is drawn as a recipe of `fhr generate` (genus, face count, seed, noise, a
 holes and components) and built by the C++ generator, so a failing example is reproducible from its
 recipe on any machine. Hypothesis shrinks the recipe: lower genus, fewer holes and components, fewer
 faces, seed 0, no noise -- the same notion of "smaller" as the C++ RapidCheck generator
-(<fhr/testing/rapidcheck.hpp>). By default the meshes are closed and connected, the only ones
-fhr.parameterize accepts; `holes=(1, 5), components=(1, 3)` gives surfaces with boundary loops
+(<fhr/testing/rapidcheck.hpp>). By default the meshes are closed and connected, the paper's input
+class; `holes=(1, 5), components=(1, 3)` gives surfaces with boundary loops
 and several components (genus and holes are totals over the components).
 
     from hypothesis import given
