@@ -1,17 +1,21 @@
 // LIB-3 (spec/library.md): pipeline::run, the method end to end as one library call: §2–§5 on the
 // fandisk with the paper's settings, every stage reported to the observer in order, the oracle's
 // verdict and the wavelets in the result; options it cannot take are refused as InvalidInput; the
-// independent tasks run on the caller's executor, with the same result on any number of threads.
+// independent tasks run on the caller's executor, with the same result on any number of threads;
+// pipeline::write_figures draws the boundary of a surface with holes in every figure (REN-15).
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <fhr/core/errors.hpp>
 #include <fhr/core/executor.hpp>
 #include <fhr/pipeline/outputs.hpp>
+#include <fhr/generate/random_mesh.hpp>
 #include <fhr/pipeline/run.hpp>
+#include "render/png_reader.hpp"
 #include "support/test_support.hpp"
 
 using namespace fhr;
@@ -107,4 +111,35 @@ TEST_CASE("LIB-3: the tasks run on the caller's executor, bit-identical on 1 and
     CHECK(a.wavelets->kept[0].positions == b.wavelets->kept[0].positions);
     CHECK(a.wavelets->remesh_hausdorff.lower() == b.wavelets->remesh_hausdorff.lower());
     CHECK(a.wavelets->remesh_hausdorff.upper() == b.wavelets->remesh_hausdorff.upper());
+}
+
+TEST_CASE("REN-15: write_figures draws the boundary of a surface with holes in both panels of Figs. 6-9", "[pipeline][render]") {
+    // Two boundary loops; §2–§5 on it, then the figures.
+    const TriMesh T = generate::random_mesh({0, 1200, 5, 0.1, 2});
+    pipeline::RunOptions options;
+    options.faces = 60;
+    options.levels = 2;
+    options.keep = {5, 20};
+    const pipeline::RunResult r = pipeline::run(T, options);
+    REQUIRE(r.certified());
+    REQUIRE(r.wavelets);
+    std::size_t boundary_curves = 0;
+    for (const partition::CurveInfo& c : r.parameterization.partition.curves)
+        boundary_curves += c.kind == partition::CurveKind::boundary;
+    CHECK(boundary_curves > 0);
+    const std::string dir = test::temp_path("boundary-run-figures");
+    std::filesystem::create_directories(dir);
+    pipeline::write_figures(dir, T, r.parameterization, 1, &*r.wavelets);
+    for (const char* name : {"fig6", "fig7", "fig8", "fig9"}) {
+        INFO(name);
+        const render::Image image = render::reader::decode_png(test::read_file(dir + "/figures/" + name + ".png")).image;
+        int left = 0, right = 0;  // pixels of the boundary's green (visible or hidden)
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                const render::Rgb8 c = image.at(x, y);
+                if (c.g > c.r + 60 && c.g > c.b + 60) ++(x < image.width / 2 ? left : right);
+            }
+        CHECK(left > 50);
+        CHECK(right > 50);
+    }
 }

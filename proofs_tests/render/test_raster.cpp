@@ -1,7 +1,8 @@
 // FHR §6 figures — the rasterizer and Figures 6–9 (spec/render.md REN-4..10, REN-13): the
 // z-buffer independent of draw order, perspective-correct texture coordinates, the checkerboard,
 // flat and Gouraud shading, polylines over the surface thanks to the depth bias (and hidden
-// behind it), near-plane clipping, camera framing, determinism, and the two-panel figures.
+// behind it), near-plane clipping, camera framing, determinism, the boundary of a surface with
+// holes (REN-15), and the two-panel figures.
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
@@ -402,11 +403,11 @@ TEST_CASE("REN-13: two panels share one camera, and Figures 6–9 are written as
     std::vector<Eigen::Vector2d> uv;
     for (std::size_t f = 0; f < t_triangles.size(); ++f) uv.insert(uv.end(), {{0, 0}, {1, 0}, {0, 1}});
     const std::vector<std::vector<std::uint32_t>> paths{{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10}}, restricted_paths{{300, 301, 302, 303, 304, 305, 306, 307}};
-    const PathData network{t.positions(), paths}, restricted{t.positions(), restricted_paths};
+    const PathData network{t.positions(), paths}, restricted{t.positions(), restricted_paths}, no_boundary{};
     const std::string dir = fhr::test::temp_path("figures");
     std::filesystem::create_directories(dir);
     write_fig6(dir + "/fig6.png", camera, t_data, d_data, size);
-    write_fig7(dir + "/fig7.png", camera, t_data, network, restricted, t_data, uv, size);
+    write_fig7(dir + "/fig7.png", camera, t_data, network, restricted, no_boundary, t_data, uv, size);
     write_fig8(dir + "/fig8.png", camera, d_data, t_data, size);
     write_fig9(dir + "/fig9.png", camera, d_data, t_data, size);
     for (const char* name : {"fig6", "fig7", "fig8", "fig9"}) {
@@ -434,6 +435,112 @@ TEST_CASE("REN-13: two panels share one camera, and Figures 6–9 are written as
     CHECK(gold_left > 0);
     CHECK(gold_right == 0);
     CHECK(dark_right > 0);
+}
+
+TEST_CASE("REN-15: the boundary edges are drawn in the boundary colour where they project, and only they", "[unit][render]") {
+    // The square [−1, 1]² seen from the front: its four sides are boundary edges, its diagonal is not.
+    const Square square(1, 0);
+    const Camera camera = front_camera();
+    const int size = 200;
+    MeshView with_boundary = square.view();
+    with_boundary.boundary = true;
+    const Image image = render_panel(Panel{{with_boundary}, {}}, camera, size, size);
+    for (int side = 0; side < 4; ++side) {
+        const auto [x, y] = pixel_of(camera, (square.positions[side] + square.positions[(side + 1) % 4]) / 2, size, size);
+        CHECK(green(image.at(x, y)));
+    }
+    const auto [dx, dy] = pixel_of(camera, Vec3(0.3, 0.3, 0), size, size);  // on the diagonal
+    CHECK_FALSE(green(image.at(dx, dy)));
+    // Every green pixel lies within 2 pixels of the square's projected outline.
+    const auto [x0, y1] = pixel_of(camera, square.positions[0], size, size);
+    const auto [x1, y0] = pixel_of(camera, square.positions[2], size, size);
+    int greens = 0;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            if (!green(image.at(x, y))) continue;
+            ++greens;
+            const int to_outline = std::min({std::abs(x - x0), std::abs(x - x1), std::abs(y - y0), std::abs(y - y1)});
+            const bool in_band = x >= x0 - 2 && x <= x1 + 2 && y >= y0 - 2 && y <= y1 + 2;
+            REQUIRE((in_band && to_outline <= 2));
+        }
+    CHECK(greens > 4 * (x1 - x0));  // all four sides, end to end
+    // Without the flag, no green at all.
+    const Image plain = render_panel(Panel{{square.view()}, {}}, camera, size, size);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) REQUIRE_FALSE(green(plain.at(x, y)));
+
+    // Behind a surface: the boundary's hidden part in the hidden style, the visible part over it.
+    const std::vector<Vec3> occluder_positions{{-0.4, 0.6, 1}, {0.4, 0.6, 1}, {0.4, 1.4, 1}, {-0.4, 1.4, 1}};
+    MeshView occluder = square.view();
+    occluder.positions = occluder_positions;
+    occluder.colour = Colour(0, 0, 1);
+    RenderStyle style;
+    style.supersample = 1;
+    style.boundary_colour = Colour(0, 1, 0);
+    style.hidden_boundary_colour = Colour(1, 0, 1);
+    style.hidden_boundary_width_pixels = 3;
+    const Image behind = render_panel(Panel{{with_boundary, occluder}, {}}, camera, size, size, style);
+    const auto [hx, hy] = pixel_of(camera, Vec3(0, 1, 0), size, size);   // the top side, behind the occluder
+    const auto [vx, vy] = pixel_of(camera, Vec3(0.8, 1, 0), size, size);  // the top side, in view
+    CHECK(behind.at(hx, hy) == (Rgb8{255, 0, 255}));
+    CHECK(behind.at(vx, vy) == (Rgb8{0, 255, 0}));
+    style.hidden_boundary_width_pixels = 0;  // no hidden part: the occluder shows
+    CHECK(blue(render_panel(Panel{{with_boundary, occluder}, {}}, camera, size, size, style).at(hx, hy)));
+
+    // A closed mesh has no boundary edge: the flag changes no pixel.
+    const TriMesh closed = generate::random_closed_mesh({1, 600, 3, 0.1});
+    const std::vector<Triangle> closed_triangles = closed.triangles();
+    MeshView closed_view;
+    closed_view.positions = closed.positions();
+    closed_view.triangles = closed_triangles;
+    const Camera closed_camera = camera_for(bounds_of(closed.positions()), 1.0);
+    const Image closed_plain = render_panel(Panel{{closed_view}, {}}, closed_camera, 160, 160);
+    closed_view.boundary = true;
+    CHECK(render_panel(Panel{{closed_view}, {}}, closed_camera, 160, 160).rgb == closed_plain.rgb);
+}
+
+TEST_CASE("REN-15: Figures 6–9 draw the boundary of a surface with holes, and none of a closed one", "[unit][render]") {
+    // Counts the boundary-coloured pixels of each half of a figure.
+    const auto greens = [](const std::string& file) {
+        const Image image = reader::decode_png(fhr::test::read_file(file)).image;
+        std::pair<int, int> count{0, 0};
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x)
+                if (green(image.at(x, y))) ++(x < image.width / 2 ? count.first : count.second);
+        return count;
+    };
+    const std::string dir = fhr::test::temp_path("boundary-figures");
+    std::filesystem::create_directories(dir);
+    const FigureSize size{320, 160};
+    for (const int holes : {0, 3}) {
+        INFO("holes " << holes);
+        const TriMesh t = generate::random_mesh({0, 800, 7, 0.1, holes});
+        const std::vector<Triangle> triangles = t.triangles();
+        const MeshData data{t.positions(), triangles};
+        const Camera camera = figure_camera(t.positions(), size);
+        // Fig. 7's boundary curves: here each boundary edge of T as a path of two points.
+        std::vector<std::vector<std::uint32_t>> arcs;
+        for (EdgeId e : t.edges())
+            if (t.is_boundary(e)) arcs.push_back({t.from(TriMesh::halfedge(e, 0)).idx(), t.to(TriMesh::halfedge(e, 0)).idx()});
+        CHECK(arcs.empty() == (holes == 0));
+        std::vector<Eigen::Vector2d> uv(3 * triangles.size(), Eigen::Vector2d(0.5, 0.5));
+        const PathData none{}, boundary{t.positions(), arcs};
+        write_fig6(dir + "/fig6.png", camera, data, data, size);
+        write_fig7(dir + "/fig7.png", camera, data, none, none, boundary, data, uv, size);
+        write_fig8(dir + "/fig8.png", camera, data, data, size);
+        write_fig9(dir + "/fig9.png", camera, data, data, size);
+        for (const char* name : {"fig6", "fig7", "fig8", "fig9"}) {
+            INFO(name);
+            const auto [left, right] = greens(dir + "/" + name + ".png");
+            if (holes == 0) {
+                CHECK(left == 0);
+                CHECK(right == 0);
+            } else {
+                CHECK(left > 20);
+                CHECK(right > 20);
+            }
+        }
+    }
 }
 
 TEST_CASE("REN-4: bad input is refused with InvalidInput", "[unit][render]") {

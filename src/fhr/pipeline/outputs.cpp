@@ -239,9 +239,10 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
     const std::vector<Triangle> t_faces = T.triangles(), d_faces = P.domain.mesh.triangles();
     const render::MeshData t{T.positions(), t_faces}, d{P.domain.mesh.positions(), d_faces};
     render::write_fig6(base + "fig6.png", camera, t, d, size);
-    std::vector<std::vector<std::uint32_t>> geodesic_lines, restricted_lines;  // by each curve's kind
+    // The network by each curve's kind: geodesic, restricted, boundary (an arc of T's boundary).
+    std::array<std::vector<std::vector<std::uint32_t>>, 3> lines;
     for (EdgeId e : P.network.path.ids()) {
-        auto& line = (P.curves[e].kind == partition::CurveKind::geodesic ? geodesic_lines : restricted_lines).emplace_back();
+        auto& line = lines[static_cast<std::size_t>(P.curves[e].kind)].emplace_back();
         for (VertexId v : P.network.path[e]) line.push_back(v.idx());
     }
     // The checkerboard coordinates: (β1, β2) of every corner, the same square cells in every patch.
@@ -249,8 +250,12 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
     uv.reserve(3 * p.refined_faces.size());
     for (const auto& face : p.face_beta)
         for (const auto& beta : face) uv.emplace_back(beta[1], beta[2]);
-    render::write_fig7(base + "fig7.png", camera, t, {P.network.mesh.positions(), geodesic_lines},
-                       {P.network.mesh.positions(), restricted_lines}, {p.refined_positions, p.refined_faces}, uv, size);
+    const auto paths_of = [&](partition::CurveKind kind) {
+        return render::PathData{P.network.mesh.positions(), lines[static_cast<std::size_t>(kind)]};
+    };
+    render::write_fig7(base + "fig7.png", camera, t, paths_of(partition::CurveKind::geodesic),
+                       paths_of(partition::CurveKind::restricted), paths_of(partition::CurveKind::boundary),
+                       {p.refined_positions, p.refined_faces}, uv, size);
     if (wavelets) {
         // Fig. 8: D^J (the refined domain, flat) and f^J(Ω_D); Fig. 9: two compressed surfaces.
         const wavelet::Refinement r = wavelet::refine(P.domain.mesh, wavelets->levels);

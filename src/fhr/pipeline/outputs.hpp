@@ -50,7 +50,8 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
 /// with `up_axis` (0, 1, 2) up; with §5's result also fig8.png (D^J and f^J(Ω_D)) and, with two
 /// or more kept percentages, fig9.png (the first two reconstructions), and rate_distortion.svg
 /// (§6's compression: L2 and Hausdorff errors at 1, 2, 5, 10, 20, 50, 100 % and the kept
-/// percentages; REN-14). Deterministic bytes.
+/// percentages; REN-14). On a surface with boundary every figure draws it, and fig7.png's left
+/// panel draws D's boundary curves (REN-15). Deterministic bytes.
 void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis,
                    const wavelet::WaveletResult* wavelets);
 

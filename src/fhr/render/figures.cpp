@@ -7,12 +7,33 @@
 namespace fhr::render {
 namespace {
 
-MeshView shaded(const MeshData& mesh, bool outline) {
+// A mesh flat-shaded, its edges outlined when asked, its boundary drawn unless the caller draws
+// it as curves (Fig. 7 left) — REN-15.
+MeshView shaded(const MeshData& mesh, bool outline, bool boundary = true) {
     MeshView view;
     view.positions = mesh.positions;
     view.triangles = mesh.triangles;
     view.outline = outline;
+    view.boundary = boundary;
     return view;
+}
+
+PolylineView lines_of(const PathData& data, const Colour& colour, double width_pixels) {
+    PolylineView lines;
+    lines.points = data.points;
+    lines.paths = data.paths;
+    lines.colour = colour;
+    lines.width_pixels = width_pixels;
+    return lines;
+}
+
+// The boundary curves drawn as a mesh's boundary is (RenderStyle's boundary and hidden boundary).
+PolylineView boundary_lines(const PathData& data) {
+    const RenderStyle style;
+    PolylineView lines = lines_of(data, style.boundary_colour, style.boundary_width_pixels);
+    lines.hidden_colour = style.hidden_boundary_colour;
+    lines.hidden_width_pixels = style.hidden_boundary_width_pixels;
+    return lines;
 }
 
 Panel panel_of(const MeshView& mesh) { return Panel{{mesh}, {}}; }
@@ -48,20 +69,12 @@ void write_fig6(const std::string& path, const Camera& camera, const MeshData& t
 }
 
 void write_fig7(const std::string& path, const Camera& camera, const MeshData& t, const PathData& geodesics,
-                const PathData& restricted, const MeshData& t_prime, std::span<const Eigen::Vector2d> corner_uv,
-                const FigureSize& size) {
-    Panel left = panel_of(shaded(t, false));
-    PolylineView lines;
-    lines.points = geodesics.points;
-    lines.paths = geodesics.paths;
-    left.polylines.push_back(lines);
-    if (!restricted.paths.empty()) {
-        PolylineView gold;
-        gold.points = restricted.points;
-        gold.paths = restricted.paths;
-        gold.colour = Colour(0.95, 0.72, 0.05);
-        left.polylines.push_back(gold);
-    }
+                const PathData& restricted, const PathData& boundary, const MeshData& t_prime,
+                std::span<const Eigen::Vector2d> corner_uv, const FigureSize& size) {
+    const PolylineView red;  // the default polyline colour and width
+    Panel left = panel_of(shaded(t, false, false));
+    left.polylines = {lines_of(geodesics, red.colour, red.width_pixels),
+                      lines_of(restricted, Colour(0.95, 0.72, 0.05), red.width_pixels), boundary_lines(boundary)};
     MeshView textured = shaded(t_prime, false);
     textured.corner_uv = corner_uv;
     write_two_panel_png(path, camera, left, panel_of(textured), size.width, size.height);

@@ -5,6 +5,8 @@
 //           T′ with a checkerboard over each patch S_i through φ (per-corner uv of ψ_i)
 //   Fig. 8  the dyadic refinement D³ (left) and the approximation f³(Ω_D) of Ω_T (right)
 //   Fig. 9  wavelet reconstructions of f³ from 5 % (left) and 20 % (right) of the coefficients
+// Beyond the paper (issue 19): a surface with boundary shows its boundary in every panel, thick and
+// green (REN-15).
 // Data only: positions, triangles, index lists and uv arrays; no dependence on the pipeline.
 // One camera for both panels (and, when the caller passes the same one, for every figure), so
 // left and right panels show the surface from the same place at the same scale.
@@ -55,23 +57,29 @@ struct PathData {
 /// surface (pass T's positions to give every figure the same view).
 Camera figure_camera(std::span<const Vec3> positions, const FigureSize& size = {}, const ViewDirection& view = {});
 
-/// Fig. 6: T flat-shaded (left), D flat-shaded with its edges outlined (right).
+// In every panel the boundary of a surface with holes is drawn as thick lines of
+// RenderStyle::boundary_colour (REN-15): the edges of exactly one triangle of each mesh, and in
+// Fig. 7 (left) the boundary curves of D (partition::CurveKind::boundary) on T.
+
+/// Fig. 6: T flat-shaded (left), D flat-shaded with its edges outlined (right); both boundaries drawn.
 void write_fig6(const std::string& path, const Camera& camera, const MeshData& t, const MeshData& d,
                 const FigureSize& size = {});
 
 /// Fig. 7: T flat-shaded with the network drawn over it (left): the domain edges that are exact
-/// geodesics in red, those that are restricted shortest paths (keeping D) in gold; T′
-/// flat-shaded with the checkerboard (8 × 8 cells over the unit square) at the per-corner uv (right).
+/// geodesics in red, those that are restricted shortest paths (keeping D) in gold, the boundary
+/// curves (arcs of T's boundary) thick in the boundary colour; T′ flat-shaded with the
+/// checkerboard (8 × 8 cells over the unit square) at the per-corner uv and its boundary drawn (right).
 /// \param corner_uv  3·#F(t_prime) coordinates, corner k of triangle f at 3f + k; for patch S_i,
 ///                   the image ψ_i in the unit square, e.g. (β1, β2) of the exchange file.
 void write_fig7(const std::string& path, const Camera& camera, const MeshData& t, const PathData& geodesics,
-                const PathData& restricted, const MeshData& t_prime, std::span<const Eigen::Vector2d> corner_uv, const FigureSize& size = {});
+                const PathData& restricted, const PathData& boundary, const MeshData& t_prime,
+                std::span<const Eigen::Vector2d> corner_uv, const FigureSize& size = {});
 
-/// Fig. 8: D³ flat-shaded with its edges outlined (left), f³(Ω_D) flat-shaded (right).
+/// Fig. 8: D³ flat-shaded with its edges outlined (left), f³(Ω_D) flat-shaded (right); both boundaries drawn.
 void write_fig8(const std::string& path, const Camera& camera, const MeshData& d3, const MeshData& f3,
                 const FigureSize& size = {});
 
-/// Fig. 9: two reconstructions of f³ flat-shaded (left: 5 %, right: 20 % in the paper).
+/// Fig. 9: two reconstructions of f³ flat-shaded (left: 5 %, right: 20 % in the paper); boundaries drawn.
 void write_fig9(const std::string& path, const Camera& camera, const MeshData& left, const MeshData& right,
                 const FigureSize& size = {});
 

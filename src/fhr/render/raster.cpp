@@ -142,8 +142,9 @@ public:
 
     // Step 5 for one segment of half-width `radius` samples: a sample within `radius` of the
     // segment takes `colour` when its depth (1/w interpolated along the segment) is at most the
-    // buffer's depth + bias.
-    void draw_segment(const ScreenVertex& a, const ScreenVertex& b, double radius, double bias, std::uint32_t colour) {
+    // buffer's depth + bias — or, with `hidden`, when it is more (the part behind the surface).
+    void draw_segment(const ScreenVertex& a, const ScreenVertex& b, double radius, double bias, std::uint32_t colour,
+                      bool hidden) {
         const auto [x0, x1] = sample_range(std::min(a.x, b.x) - radius, std::max(a.x, b.x) + radius, width_);
         const auto [y0, y1] = sample_range(std::min(a.y, b.y) - radius, std::max(a.y, b.y) + radius, height_);
         const double dx = b.x - a.x, dy = b.y - a.y, length2 = dx * dx + dy * dy;
@@ -157,7 +158,7 @@ public:
                 if (ex * ex + ey * ey > radius * radius) continue;
                 const double w = 1 / (a.q + t * (b.q - a.q));
                 const std::size_t i = index(x, y);
-                if (w - bias <= double(depth_[i])) colour_[i] = colour;
+                if ((w - bias <= double(depth_[i])) != hidden) colour_[i] = colour;
             }
         }
     }
@@ -214,6 +215,25 @@ void check_mesh(const MeshView& mesh, std::size_t m) {
     if (!mesh.colour.allFinite()) refuse(name + ": colour is not finite");
 }
 
+// The undirected edges of a mesh's triangles, each once, sorted (REN-9); with only_boundary,
+// those of exactly one triangle (REN-15). Also a polyline's segments (indices into its points).
+using Edge = std::pair<std::uint32_t, std::uint32_t>;
+std::vector<Edge> edges_of(const MeshView& mesh, bool only_boundary) {
+    std::vector<Edge> all;
+    all.reserve(3 * mesh.triangles.size());
+    for (const Triangle& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) all.emplace_back(std::minmax(t[k], t[(k + 1) % 3]));
+    std::sort(all.begin(), all.end());
+    std::vector<Edge> out;
+    for (std::size_t i = 0; i < all.size();) {
+        std::size_t j = i + 1;
+        while (j < all.size() && all[j] == all[i]) ++j;
+        if (!only_boundary || j - i == 1) out.push_back(all[i]);
+        i = j;
+    }
+    return out;
+}
+
 void check_polylines(const PolylineView& lines, std::size_t l) {
     const std::string name = "polylines " + std::to_string(l);
     for (std::size_t i = 0; i < lines.points.size(); ++i)
@@ -223,8 +243,9 @@ void check_polylines(const PolylineView& lines, std::size_t l) {
             if (v >= lines.points.size())
                 refuse(name + ": path " + std::to_string(p) + " has point " + std::to_string(v) + " ≥ " +
                        std::to_string(lines.points.size()));
-    if (!lines.colour.allFinite() || !(lines.width_pixels > 0) || !std::isfinite(lines.width_pixels))
-        refuse(name + ": colour not finite or width not positive");
+    if (!lines.colour.allFinite() || !(lines.width_pixels > 0) || !std::isfinite(lines.width_pixels) ||
+        !lines.hidden_colour.allFinite() || !(lines.hidden_width_pixels >= 0) || !std::isfinite(lines.hidden_width_pixels))
+        refuse(name + ": colour not finite, width not positive or hidden width negative");
 }
 
 void draw_mesh(Canvas& canvas, const View& view, const Light& light, const MeshView& mesh, const RenderStyle& style) {
@@ -351,32 +372,41 @@ Image render_panel(const Panel& panel, const Camera& camera, int width, int heig
     const Light light;
     for (const MeshView& mesh : panel.meshes) draw_mesh(canvas, view, light, mesh, style);
 
-    ScreenVertex a, b;
-    const std::uint32_t outline = pack(style.outline_colour);
-    for (const MeshView& mesh : panel.meshes) {
-        if (!mesh.outline) continue;
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
-        edges.reserve(3 * mesh.triangles.size());
-        for (const Triangle& t : mesh.triangles)
-            for (int k = 0; k < 3; ++k) edges.emplace_back(std::minmax(t[k], t[(k + 1) % 3]));
-        std::sort(edges.begin(), edges.end());
-        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-        for (const auto& [v, w] : edges)
-            if (project_segment(view, mesh.positions[v], mesh.positions[w], a, b))
-                canvas.draw_segment(a, b, style.outline_width_pixels * ss / 2, view.depth_bias, outline);
-    }
-    for (const PolylineView& lines : panel.polylines) {
-        const std::uint32_t colour = pack(lines.colour);
-        const double radius = lines.width_pixels * ss / 2;
-        const auto segment = [&](std::uint32_t p, std::uint32_t q) {
-            if (project_segment(view, lines.points[p], lines.points[q], a, b))
-                canvas.draw_segment(a, b, radius, view.depth_bias, colour);
-        };
-        for (const std::vector<std::uint32_t>& path : lines.paths) {
-            if (path.size() == 1) segment(path[0], path[0]);  // a dot
-            for (std::size_t k = 0; k + 1 < path.size(); ++k) segment(path[k], path[k + 1]);
+    // Step 5: every line as segments with its style — the outlines, the boundary edges, the
+    // polylines, in this order; the hidden parts of all of them first, then the visible parts.
+    struct Lines {
+        std::span<const Vec3> points;
+        std::vector<Edge> segments;
+        Colour colour, hidden_colour;
+        double width_pixels, hidden_width_pixels;
+    };
+    std::vector<Lines> lines;
+    for (const MeshView& mesh : panel.meshes)
+        if (mesh.outline)
+            lines.push_back({mesh.positions, edges_of(mesh, false), style.outline_colour, style.outline_colour,
+                             style.outline_width_pixels, 0.0});
+    for (const MeshView& mesh : panel.meshes)
+        if (mesh.boundary)
+            lines.push_back({mesh.positions, edges_of(mesh, true), style.boundary_colour, style.hidden_boundary_colour,
+                             style.boundary_width_pixels, style.hidden_boundary_width_pixels});
+    for (const PolylineView& polyline : panel.polylines) {
+        Lines& l = lines.emplace_back(Lines{polyline.points, {}, polyline.colour, polyline.hidden_colour,
+                                            polyline.width_pixels, polyline.hidden_width_pixels});
+        for (const std::vector<std::uint32_t>& path : polyline.paths) {
+            if (path.size() == 1) l.segments.emplace_back(path[0], path[0]);  // a dot
+            for (std::size_t k = 0; k + 1 < path.size(); ++k) l.segments.emplace_back(path[k], path[k + 1]);
         }
     }
+    ScreenVertex a, b;
+    for (const bool hidden : {true, false})
+        for (const Lines& l : lines) {
+            const double width = hidden ? l.hidden_width_pixels : l.width_pixels;
+            if (!(width > 0)) continue;
+            const std::uint32_t colour = pack(hidden ? l.hidden_colour : l.colour);
+            for (const auto& [p, q] : l.segments)
+                if (project_segment(view, l.points[p], l.points[q], a, b))
+                    canvas.draw_segment(a, b, width * ss / 2, view.depth_bias, colour, hidden);
+        }
 
     // Step 6: the box filter over ss × ss samples, rounded to nearest.
     Image image(width, height, Rgb8{});

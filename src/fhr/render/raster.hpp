@@ -13,10 +13,14 @@
 //      is perspective-correct
 //   4. for every sample centre inside the triangle (edge functions, boundary included): if its
 //      depth w is strictly less than the buffer's, shade it and store colour and depth
-//   5. after all triangles: the outline edges of meshes with `outline`, then the polylines, as
-//      segments of constant width in pixels, each sample within half the width of the segment
-//      drawn when its depth is at most the buffer's depth plus Camera::depth_bias (lines never
-//      write depth)
+//   5. after all triangles: the outline edges of meshes with `outline`, then the boundary edges of
+//      meshes with `boundary` (edges of exactly one triangle: the boundary of a surface with
+//      holes, issue 19), then the polylines, as segments of constant width in pixels, each sample
+//      within half the width of the segment drawn when its depth is at most the buffer's depth
+//      plus Camera::depth_bias (lines never write depth). Lines with a hidden style (the
+//      boundary; polylines that ask) first get their parts behind the surface — the samples
+//      failing that test — drawn in it, before any visible part of any line
+//      (so a boundary behind the surface still shows, faintly, and never over a visible line)
 //   6. each output pixel = the rounded mean of its supersample × supersample samples
 // Deterministic: one thread, a fixed order of operations (-ffp-contract=off), no uninitialized
 // memory; the same input gives the same pixels.
@@ -92,6 +96,9 @@ struct MeshView {
     Colour colour = Colour(0.72, 0.76, 0.84);  ///< the colour when neither of the above is given
     Shading shading = Shading::flat;
     bool outline = false;                       ///< draw every edge as a thin line (RenderStyle)
+    /// draw the boundary edges — those of exactly one triangle — as thick lines of
+    /// RenderStyle::boundary_colour (REN-15); a closed mesh has none
+    bool boundary = false;
 };
 
 /// Polylines over the surfaces: paths[i] lists indices into `points`, drawn as consecutive
@@ -101,6 +108,9 @@ struct PolylineView {
     std::span<const std::vector<std::uint32_t>> paths;
     Colour colour = Colour(0.85, 0.10, 0.08);
     double width_pixels = 1.6;  ///< in output pixels
+    /// > 0: the parts behind the surface are drawn too, this wide in hidden_colour (step 5)
+    double hidden_width_pixels = 0;
+    Colour hidden_colour = Colour(0.6, 0.6, 0.6);
 };
 
 /// What one panel shows.
@@ -121,6 +131,11 @@ struct RenderStyle {
     Colour background = Colour(1, 1, 1);
     Colour outline_colour = Colour(0.2, 0.2, 0.24);
     double outline_width_pixels = 0.5;
+    Colour boundary_colour = Colour(0.0, 0.62, 0.30);  ///< green: unlike the surface, outlines and the network
+    double boundary_width_pixels = 2.4;
+    /// the parts of the boundary behind the surface: thinner and paler
+    Colour hidden_boundary_colour = Colour(0.45, 0.80, 0.55);
+    double hidden_boundary_width_pixels = 1.0;
     Checkerboard checker;
 };
 
