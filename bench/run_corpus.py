@@ -4,7 +4,7 @@
 components — and on ../shared/meshes/{horse,rocker}.off when present; each output is checked by
 `fhr verify --mesh`. Prints one row per mesh (mesh, genus, boundary loops, components, faces,
 domain faces requested -> final, §3 retries, domain edges that are exact geodesics / restricted
-shortest paths, certified, time), then `K of N certified (P %)`, `D kept on K of N`, the same two
+shortest paths / boundary arcs, certified, time), then `K of N certified (P %)`, `D kept on K of N`, the same two
 counts for the closed connected meshes alone, the total time, and every failure with its exit code
 and message (a domain that §3 does not keep is one).
 
@@ -104,7 +104,7 @@ def run_one(path, faces, genus, loops, components):
             r = json.load(f)
         d, p = r["domain"], r["partition"]
         row["delivered"], row["final"], row["retries"] = d["faces_requested"], d["faces"], d["retries"]
-        row["curves"] = "%d / %d" % (p["geodesic_edges"], p["restricted_edges"])
+        row["curves"] = "%d / %d / %d" % (p["geodesic_edges"], p["restricted_edges"], p["boundary_edges"])
     if code == -1:
         progress = stderr.splitlines()[:-1]
         row["failure"] = "fhr run timed out after %g s; its last line: %s" % (timeout, progress[-1] if progress else "-")
@@ -150,8 +150,8 @@ for path in candidates:
         inputs.append((path, d["faces"], d["genus"], d["boundary_loops"], d["components"]))
 os.makedirs(out_dir, exist_ok=True)
 
-print("%-33s %5s %5s %5s %8s %22s %7s %13s %9s %8s  %s" % (
-    "mesh", "genus", "loops", "comp.", "faces", "domain faces", "retries", "geod / restr", "certified", "time s", "note"))
+print("%-33s %5s %5s %5s %8s %22s %7s %17s %9s %8s  %s" % (
+    "mesh", "genus", "loops", "comp.", "faces", "domain faces", "retries", "geod/restr/bound", "certified", "time s", "note"))
 rows = []
 for path, faces, genus, loops, components in inputs:
     row = run_one(path, faces, genus, loops, components)
@@ -159,7 +159,7 @@ for path, faces, genus, loops, components in inputs:
     domain = "%s -> %s" % (row["requested"], row["final"])
     if row["delivered"] not in ("-", row["requested"]):
         domain += " (§2: %s)" % row["delivered"]
-    print("%-33s %5d %5d %5d %8d %22s %7s %13s %9s %8.2f  %s" % (
+    print("%-33s %5d %5d %5d %8d %22s %7s %17s %9s %8.2f  %s" % (
         row["mesh"], row["genus"], row["loops"], row["components"], row["faces"], domain, row["retries"],
         row["curves"], "yes" if row["certified"] else "NO", row["seconds"], row["note"]), flush=True)
 summary(rows, "")

@@ -87,9 +87,10 @@ struct Embedding {
 };
 
 /// Embeds one path per edge of D into T.
-/// \pre T valid and closed; paths[e] runs from x_j to x_k for D's halfedge (e, 0) and is a
+/// \pre T valid (T̂ closed by cones, or T with boundary: then D's boundary edges carry T's boundary
+///      arcs, PART-12); paths[e] runs from x_j to x_k for D's halfedge (e, 0) and is a
 ///      polyline with consecutive nodes in a common face of T (GeodesicPath's contract).
-/// \post when no conflict: network.mesh is valid and closed with χ(T′) = χ(T), Ω_T′ = Ω_T, and
+/// \post when no conflict: network.mesh is valid with T's topology (χ, loops, components), Ω_T′ = Ω_T, and
 ///       every segment of every (snapped) path is an edge of T′ labelled with its D halfedge.
 /// `unsnapped` (empty, or one flag per path): a path flagged 1 is placed exactly as given, without
 /// snapping — a restricted path whose separation points lie closer to a vertex of T than

@@ -71,7 +71,8 @@ struct Partition {
 };
 
 /// §3 for T and D.
-/// \pre T valid, closed, connected; D's vertices are vertices of T (decimate or attach_domain).
+/// \pre T valid (maybe with boundary and several components: PART-12, paper_notes/boundary.md);
+///      D's vertices are vertices of T (decimate or attach_domain), D of T's topology.
 /// \throws PartitionFailure when (1)/(2) fail for a user-given domain (one without decimation
 ///         history); the message names the conflicting domain edges.
 Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& options = {});
