@@ -392,3 +392,17 @@ TEST_CASE("LIB-2: the library's errors carry no exit code; the command maps each
     CHECK(fhr::cli::exit_code_of(fhr::InternalError("a patch §3 made is refused by §4")) == 70);
     CHECK(fhr::cli::exit_code_of(std::logic_error("a broken precondition")) == 70);
 }
+
+TEST_CASE("CLI-DECIMATE-1, CLI-RUN-7: with boundary --vertices is refused, --corner-angle is taken; fhr run says why D is larger", "[cli][boundary]") {
+    const std::string mesh = temp_path("holes2.off");
+    REQUIRE(run_fhr({"generate", "--genus", "0", "--holes", "2", "--faces", "401", "--seed", "3", "--out", mesh}).exit_code == 0);
+    const auto by_vertices = run_fhr({"decimate", mesh, "--vertices", "20", "--out", temp_path("d.off")});
+    CHECK(by_vertices.exit_code == 2);
+    CHECK_THAT(by_vertices.err, Catch::Contains("--vertices needs a closed surface"));
+    CHECK(run_fhr({"decimate", mesh, "--faces", "40", "--corner-angle", "200", "--out", temp_path("d.off")}).exit_code == 2);
+    CHECK(run_fhr({"decimate", mesh, "--faces", "40", "--corner-angle", "90", "--out", temp_path("d.off")}).exit_code == 0);
+    // Asked for 2 faces: the two loops (an annulus needs at least 6) give more, and the run says so.
+    const auto r = run_fhr({"run", mesh, "--faces", "2", "--out", temp_path("run-holes2")});
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.err, Catch::Contains("(2 asked;"));
+}

@@ -47,7 +47,8 @@ RunResult run(const TriMesh& T, RunOptions options) {
         const std::size_t raised = domain::component_targets(T, options.faces).raised;
         more = " (" + std::to_string(options.faces) + " asked";
         if (raised) more += "; " + std::to_string(raised) + " more for the components' least sizes";
-        if (D.mesh.n_faces() > options.faces + raised) more += "; the boundary loops and corners need more, no collapse left";
+        if (D.mesh.n_faces() > options.faces + raised)
+            more += "; no valid collapse left: the boundary's loops and corners (--corner-angle) or the angle and normal rules need more";
         more += ")";
     }
     say("domain: " + std::to_string(D.mesh.n_vertices()) + " vertices, " + std::to_string(D.mesh.n_faces()) + " faces" + more);
