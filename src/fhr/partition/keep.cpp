@@ -778,6 +778,13 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
         }
         if (undone == H.history.size()) throw std::logic_error("keeping the domain: conflicts on D = T, whose paths are T's edges");
     }
+    // The start's size as the caller counts D: its faces on T, without the cone faces of D̂_i (the
+    // direct start has exactly D's faces then; on a closed T nothing is left out).
+    std::size_t start_faces = 0;
+    for (FaceId f : net->domain().mesh.faces()) {
+        const auto v = net->domain().mesh.face_vertices(f);
+        start_faces += std::none_of(v.begin(), v.end(), [&](VertexId u) { return net->apex(net->x(u)); });
+    }
     // 3. The undone collapses, redone on the network.
     if (undone > 0) {
         redo(*net, std::span<const domain::Collapse>(H.history).subspan(H.history.size() - undone), say, executor);
@@ -828,7 +835,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
 
     // 6. The curves in D's edge order.
     KeptNetwork out;
-    out.start_faces = faces;
+    out.start_faces = start_faces;
     for (std::size_t e = 0; e < ends.size(); ++e) {
         const auto [a, b] = ends[e];
         const Pair k = key_of(a, b);

@@ -76,7 +76,7 @@ struct KeptNetwork {
     EdgeData<geodesic::GeodesicPath> paths;     ///< #E(D): the curve of D's halfedge (e, 0)
     EdgeData<CurveInfo> info;                   ///< #E(D)
     EdgeData<std::uint8_t> unsnapped;           ///< #E(D): 1 when embed() must place it as given
-    std::size_t start_faces = 0;                ///< #F(D_i), the valid start
+    std::size_t start_faces = 0;                ///< #F(D_i), the start, on T (D̂_i's cone faces not counted)
 };
 
 /// How far the valid start steps back (see the pseudocode above).

@@ -67,7 +67,7 @@ struct Partition {
     std::vector<VertexId> kept;                ///< the vertices of T that the recovery made D keep
     std::vector<Conflict> resolved;            ///< the conflicts met on the way, in order
     EdgeData<CurveInfo> curves;                ///< #E(D): each curve's kind (geodesic or restricted)
-    std::size_t keep_start_faces = 0;          ///< keeping D: the faces of the valid start (0: not needed)
+    std::size_t keep_start_faces = 0;          ///< keeping D: the faces of the start on T (D's own count when kept directly; 0: not needed)
 };
 
 /// §3 for T and D.
