@@ -12,6 +12,7 @@
 #include <fhr/core/geometry.hpp>
 #include <fhr/core/topology.hpp>
 #include <fhr/domain/decimate.hpp>
+#include <fhr/generate/random_mesh.hpp>
 #include <fhr/partition/detail/region.hpp>
 #include <fhr/partition/detail/restricted.hpp>
 #include <fhr/partition/partition.hpp>
@@ -333,4 +334,21 @@ TEST_CASE("PART-12: lion-head (one boundary loop) keeps a 300-face domain; its b
     CHECK(d_boundary >= 3);
     CHECK(test::keep_violation(T, D0, P) == "");
     CHECK(test::partition_violation(T, P) == "");
+}
+
+TEST_CASE("PART-4: two paths through one point of an edge, given on the edge's two halfedges, are one node (a shared node, recovered)", "[partition][regression]") {
+    // Found by the pipeline property over several components: two geodesics of this domain meet
+    // an edge of T at one point, one of them with t and the other with 1 − t on the other
+    // halfedge; they became two vertices of T′ at one position, and embed threw "a piece of a
+    // face has no proper triangulation" instead of reporting condition (1).
+    const TriMesh T = generate::random_mesh({.genus = 0, .faces = 278, .seed = 402034551980990743ull, .noise = 0, .holes = 0, .components = 2});
+    const domain::Domain D = domain::decimate(T, {.target_faces = 12});
+    for (bool keep : {true, false}) {
+        partition::PartitionOptions options;
+        options.keep_domain = keep;
+        const partition::Partition P = partition::partition(T, D, options);
+        CHECK(test::partition_violation(T, P) == "");
+        if (keep) CHECK(test::keep_violation(T, D, P) == "");
+        else CHECK(test::recovery_violation(T, D, P) == "");
+    }
 }

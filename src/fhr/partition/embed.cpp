@@ -122,15 +122,22 @@ private:
         return Node{{}, e, t};
     }
 
-    // The vertex of T′ at a node, created on first use.
+    // The vertex of T′ at a node, created on first use. Two nodes on one edge are one point when
+    // their parameters differ by at most same_point_t or give the same position: a node given on
+    // the edge's other halfedge has t = 1 − t′, exact only to half an ulp of 1, and two windows of
+    // the exact algorithm meet an edge at parameters a few ulps apart. Two vertices of T′ there
+    // would leave a piece of the face with no proper triangle (a regression: two paths through
+    // one point of an edge, found by the pipeline property over several components).
+    static constexpr double same_point_t = 0x1p-50;
     VertexId vertex_of(const Node& n) {
         if (n.vertex.valid()) return n.vertex;
         auto& list = on_edge_[n.edge.idx()];
-        for (const auto& [t, v] : list)
-            if (t == n.t) return v;
-        const VertexId v(static_cast<VertexId::Index>(positions_.size()));
         const HalfedgeId h = TriMesh::halfedge(n.edge, 0);
-        positions_.push_back((1 - n.t) * T_.position(T_.from(h)) + n.t * T_.position(T_.to(h)));
+        const Vec3 at = (1 - n.t) * T_.position(T_.from(h)) + n.t * T_.position(T_.to(h));
+        for (const auto& [t, v] : list)
+            if (std::abs(t - n.t) <= same_point_t || positions_[v.idx()] == at) return v;
+        const VertexId v(static_cast<VertexId::Index>(positions_.size()));
+        positions_.push_back(at);
         Network& net = out_.network;
         net.origin.push_back(Origin{{}, n.edge, n.t});
         net.on_path.push_back(PathPosition{});
