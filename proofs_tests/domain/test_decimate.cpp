@@ -44,17 +44,9 @@ double min_angle_deg(const TriMesh& m, FaceId f) {
     return smallest;
 }
 
-// The first violated property of spec/domain.md DOM-1..6 for one decimation, or "" if none.
-std::string domain_violation(const TriMesh& T, const Domain& d, const DecimateOptions& o) {
+// DOM-4 and DOM-5 for one decimation, or "" if they hold.
+std::string correspondence_and_shape_violation(const TriMesh& T, const Domain& d, const DecimateOptions& o) {
     const TriMesh& D = d.mesh;
-    try {
-        D.validate();
-    } catch (const std::logic_error& e) {
-        return std::string("DOM-1: ") + e.what();
-    }
-    if (!D.is_closed() || connected_components(D).count != 1) return "DOM-1: not closed and connected";
-    if (euler_characteristic(D) != euler_characteristic(T)) return "DOM-2: Euler characteristic differs";
-    if (D.n_faces() != o.target_faces) return "DOM-3: face count " + std::to_string(D.n_faces());
     if (d.t_vertex.size() != D.n_vertices()) return "DOM-4: correspondence size";
     for (VertexId v : D.vertices())
         if (D.position(v) != T.position(d.t_vertex[v])) return "DOM-4: vertex moved";
@@ -66,6 +58,21 @@ std::string domain_violation(const TriMesh& T, const Domain& d, const DecimateOp
         if (collinear(D.position(v[0]), D.position(v[1]), D.position(v[2]))) return "DOM-5: degenerate face";
         if (min_angle_deg(D, f) < o.min_angle_deg * (1 - 1e-12)) return "DOM-5: corner below the minimum angle";
     }
+    return "";
+}
+
+// The first violated property of spec/domain.md DOM-1..6 for one decimation, or "" if none.
+std::string domain_violation(const TriMesh& T, const Domain& d, const DecimateOptions& o) {
+    const TriMesh& D = d.mesh;
+    try {
+        D.validate();
+    } catch (const std::logic_error& e) {
+        return std::string("DOM-1: ") + e.what();
+    }
+    if (!D.is_closed() || connected_components(D).count != 1) return "DOM-1: not closed and connected";
+    if (euler_characteristic(D) != euler_characteristic(T)) return "DOM-2: Euler characteristic differs";
+    if (D.n_faces() != o.target_faces) return "DOM-3: face count " + std::to_string(D.n_faces());
+    if (const std::string why = correspondence_and_shape_violation(T, d, o); !why.empty()) return why;
     for (VertexId v : D.vertices())
         if (D.valence(v) < 3) return "DOM-6: valence below 3";
     if (!(signed_volume(D) >= 1e-6 * signed_volume(T) * (1 - 1e-9))) return "DOM-15: D is not outward oriented (volume)";
@@ -358,16 +365,7 @@ std::string open_violation(const TriMesh& T, const Domain& d, const DecimateOpti
     tally(D, cd, &match, chi_d, loops_d);
     if (chi_t != chi_d) return "DOM-2: a component's Euler characteristic differs";
     if (loops_t != loops_d) return "DOM-17: a component's number of boundary loops differs";
-    for (VertexId v : D.vertices())
-        if (D.position(v) != T.position(d.t_vertex[v])) return "DOM-4: vertex moved";
-    if (!std::is_sorted(d.t_vertex.begin(), d.t_vertex.end()) ||
-        std::adjacent_find(d.t_vertex.begin(), d.t_vertex.end()) != d.t_vertex.end())
-        return "DOM-4: correspondence not one-to-one";
-    for (FaceId f : D.faces()) {
-        const auto v = D.face_vertices(f);
-        if (collinear(D.position(v[0]), D.position(v[1]), D.position(v[2]))) return "DOM-5: degenerate face";
-        if (min_angle_deg(D, f) < o.min_angle_deg * (1 - 1e-12)) return "DOM-5: corner below the minimum angle";
-    }
+    if (const std::string why = correspondence_and_shape_violation(T, d, o); !why.empty()) return why;
     // DOM-17: D's boundary vertices are T's, each loop of D goes once around one loop of T
     // (close_domain checks it and throws otherwise), and T's corners are D's vertices.
     for (VertexId v : D.vertices())
