@@ -21,6 +21,7 @@
 #include <fhr/domain/user_domain.hpp>
 #include <fhr/exchange/fhr_param.hpp>
 #include <fhr/exchange/verify.hpp>
+#include <fhr/generate/embedding.hpp>
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/geodesic/ellipse.hpp>
 #include <fhr/geodesic/exact.hpp>

@@ -37,49 +37,27 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <string>
 #include <vector>
 
 #include <fhr/core/errors.hpp>
+#include <fhr/generate/detail/family.hpp>
 
 namespace fhr::generate {
 namespace {
 
-[[noreturn]] void invalid(const std::string& what) { throw InvalidInput("", 0, what); }
-
-// --- deterministic randomness --------------------------------------------------------------
-
-class Random {
-public:
-    explicit Random(std::uint64_t seed) : engine_(seed) {}
-    /// Uniform in [0, n), n > 0: draws below 2^64 mod n are rejected, leaving a multiple of n values.
-    std::uint64_t below(std::uint64_t n) {
-        const std::uint64_t threshold = (0 - n) % n;
-        for (;;) {
-            const std::uint64_t x = engine_();
-            if (x >= threshold) return x % n;
-        }
-    }
-    /// Uniform in [−1, 1) on a grid of 2^−52.
-    double symmetric() { return static_cast<double>(engine_() >> 11) * 0x1.0p-52 - 1.0; }
-    bool coin() { return (engine_() >> 63) != 0; }
-
-private:
-    std::mt19937_64 engine_;
-};
-
-// --- geometry with a fixed evaluation order (reproducible decisions) -------------------------
-
-double dot(const Vec3& a, const Vec3& b) { return a.x() * b.x() + a.y() * b.y() + a.z() * b.z(); }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-    return Vec3(a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x());
-}
-double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
-Vec3 normal(const Vec3& a, const Vec3& b, const Vec3& c) { return cross(b - a, c - a); }
+using detail::cross;
+using detail::dot;
+using detail::invalid;
+using detail::length;
+using detail::normal;
+using detail::Random;
 
 // sin and cos of min_corner_angle_degrees (20°), correctly rounded.
 constexpr double sin_min_angle = 0.34202014332566873;
@@ -466,31 +444,9 @@ TriMesh component_mesh(int genus, int holes, std::uint64_t faces, double noise, 
     return mesh;
 }
 
-}  // namespace
-
-std::size_t min_faces(int genus, int holes, int components) {
-    check_counts(genus, holes, components);
-    std::uint64_t sum = 0;
-    for (int c = 0; c < components; ++c)
-        sum += component_min_faces(share(genus, components, c), share(holes, components, c));
-    return sum;
-}
-
-TriMesh random_mesh(const RandomMeshOptions& options) {
+/// The block family (steps 1–5 above), the options checked by random_mesh.
+TriMesh block_mesh(const RandomMeshOptions& options) {
     const std::size_t faces = options.faces, least = min_faces(options.genus, options.holes, options.components);
-    if (faces % 2 != 0 && options.holes == 0)
-        invalid("the face count must be even without holes (got " + std::to_string(faces) +
-                "): a closed triangle mesh has 3F/2 edges");
-    if (faces < least) {
-        std::string what = "genus " + std::to_string(options.genus);
-        if (options.holes > 0) what += " with " + std::to_string(options.holes) + " holes";
-        if (options.components > 1) what += " in " + std::to_string(options.components) + " components";
-        invalid(what + " needs at least " + std::to_string(least) + " faces (got " + std::to_string(faces) + ")");
-    }
-    if (faces > max_faces)
-        invalid("at most " + std::to_string(max_faces) + " faces can be generated (got " + std::to_string(faces) + ")");
-    if (!(options.noise >= 0 && options.noise < 0.5))
-        invalid("the noise must be in [0, 0.5) (got " + std::to_string(options.noise) + ")");
     // Faces: every component gets its minimum, then the pairs of faces left over are dealt out
     // as evenly as possible (the first ones get one pair more), and an odd last face goes to
     // component 0, which has a hole whenever F may be odd.
@@ -530,6 +486,68 @@ TriMesh random_mesh(const RandomMeshOptions& options) {
     return TriMesh::from_triangles(std::move(positions), triangles);
 }
 
+}  // namespace
+
+std::size_t min_faces(int genus, int holes, int components) {
+    check_counts(genus, holes, components);
+    std::uint64_t sum = 0;
+    for (int c = 0; c < components; ++c)
+        sum += component_min_faces(share(genus, components, c), share(holes, components, c));
+    return sum;
+}
+
+std::size_t min_faces(const RandomMeshOptions& options) {
+    switch (options.family) {
+        case Family::block: return min_faces(options.genus, options.holes, options.components);
+        case Family::smooth: return detail::smooth_min_faces(options);
+        case Family::quality: return detail::quality_min_faces(options);
+        case Family::valence: return detail::valence_min_faces(options);
+        case Family::density: return detail::density_min_faces(options);
+        case Family::degenerate: return detail::degenerate_min_faces(options);
+        case Family::immersed: return detail::immersed_min_faces(options);
+    }
+    invalid("unknown family " + std::to_string(static_cast<int>(options.family)));
+}
+
+TriMesh random_mesh(const RandomMeshOptions& options) {
+    const std::size_t faces = options.faces, least = min_faces(options);
+    if (faces % 2 != 0 && options.holes == 0)
+        invalid("the face count must be even without holes (got " + std::to_string(faces) +
+                "): a closed triangle mesh has 3F/2 edges");
+    if (faces < least) {
+        std::string what = "genus " + std::to_string(options.genus);
+        if (options.holes > 0) what += " with " + std::to_string(options.holes) + " holes";
+        if (options.components > 1) what += " in " + std::to_string(options.components) + " components";
+        if (options.family != Family::block) what += std::string(" in the ") + family_name(options.family) + " family";
+        invalid(what + " needs at least " + std::to_string(least) + " faces (got " + std::to_string(faces) + ")");
+    }
+    if (faces > max_faces)
+        invalid("at most " + std::to_string(max_faces) + " faces can be generated (got " + std::to_string(faces) + ")");
+    if (!(options.noise >= 0 && options.noise < 0.5))
+        invalid("the noise must be in [0, 0.5) (got " + std::to_string(options.noise) + ")");
+    if (options.noise != 0 && options.family != Family::block)
+        invalid(std::string("the noise is a knob of the block family only (the ") + family_name(options.family) +
+                " family starts from a block without noise)");
+    switch (options.family) {
+        case Family::block: return block_mesh(options);
+        case Family::smooth: return detail::smooth_mesh(options);
+        case Family::quality: return detail::quality_mesh(options);
+        case Family::valence: return detail::valence_mesh(options);
+        case Family::density: return detail::density_mesh(options);
+        case Family::degenerate: return detail::degenerate_mesh(options);
+        case Family::immersed: return detail::immersed_mesh(options);
+    }
+    invalid("unknown family " + std::to_string(static_cast<int>(options.family)));
+}
+
+TriMesh detail::base_block(const RandomMeshOptions& options, std::size_t faces) {
+    RandomMeshOptions block = options;
+    block.family = Family::block;
+    block.faces = faces;
+    block.noise = 0;
+    return random_mesh(block);
+}
+
 TriMesh random_closed_mesh(const RandomMeshOptions& options) {
     if (options.holes != 0)
         invalid("random_closed_mesh makes closed surfaces: the number of holes must be 0 (got " +
@@ -537,14 +555,66 @@ TriMesh random_closed_mesh(const RandomMeshOptions& options) {
     return random_mesh(options);
 }
 
+namespace {
+
+constexpr const char* family_names[] = {"block", "smooth", "quality", "valence", "density", "degenerate", "immersed"};
+
+/// The shortest decimal that reads back as x (std::to_chars): a knob printed so exactly reproduces.
+std::string shortest(double x) {
+    char buffer[32];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, x).ptr;
+    return std::string(buffer, end);
+}
+
+}  // namespace
+
+const char* family_name(Family family) { return family_names[static_cast<int>(family)]; }
+
+Family parse_family(const std::string& name) {
+    for (int k = 0; k < static_cast<int>(std::size(family_names)); ++k)
+        if (name == family_names[k]) return static_cast<Family>(k);
+    invalid("unknown family '" + name + "' (one of block, smooth, quality, valence, density, degenerate, immersed)");
+}
+
 std::string generate_command(const RandomMeshOptions& o, const std::string& out) {
     char noise[32];
     std::snprintf(noise, sizeof noise, "%g", o.noise);
-    std::string s = "fhr generate --genus " + std::to_string(o.genus);
+    std::string s = "fhr generate";
+    if (o.family != Family::block) s += std::string(" --family ") + family_name(o.family);
+    s += " --genus " + std::to_string(o.genus);
     if (o.holes != 0) s += " --holes " + std::to_string(o.holes);
     if (o.components != 1) s += " --components " + std::to_string(o.components);
     s += " --faces " + std::to_string(o.faces) + " --seed " + std::to_string(o.seed);
     if (o.noise != 0) s += std::string(" --noise ") + noise;
+    // The family's own knobs, where they differ from the defaults.
+    const FamilyKnobs d{}, &k = o.knobs;
+    const auto real = [&](const char* name, double value, double fallback) {
+        if (value != fallback) s += std::string(" --") + name + " " + shortest(value);
+    };
+    const auto integer = [&](const char* name, int value, int fallback) {
+        if (value != fallback) s += std::string(" --") + name + " " + std::to_string(value);
+    };
+    switch (o.family) {
+        case Family::block: break;
+        case Family::smooth:
+            real("roundness", k.roundness, d.roundness);
+            real("amplitude", k.amplitude, d.amplitude);
+            break;
+        case Family::quality:
+            real("bad-fraction", k.bad_fraction, d.bad_fraction);
+            real("smallest-angle", k.smallest_angle_deg, d.smallest_angle_deg);
+            break;
+        case Family::valence:
+            integer("high-valence", k.high_valence, d.high_valence);
+            real("low-fraction", k.low_fraction, d.low_fraction);
+            break;
+        case Family::density:
+            real("edge-ratio", k.edge_ratio, d.edge_ratio);
+            real("anisotropy", k.anisotropy, d.anisotropy);
+            break;
+        case Family::degenerate: integer("grid-cells", k.grid_cells, d.grid_cells); break;
+        case Family::immersed: real("depth", k.depth, d.depth); break;
+    }
     return s + " --out " + out;
 }
 

@@ -14,6 +14,53 @@
 
 namespace fhr::generate {
 
+/// The kinds of mesh the generator makes (issue 17: meshes as hard as real ones). `block` is the
+/// generator's first kind, the re-triangulated perforated slab (paper_notes/generator.md); the
+/// others start from a block mesh of the same genus, holes and components and make it hard in one
+/// way each, keeping the exact face count. All but `immersed` are embedded, which their
+/// construction guarantees edit by edit with exact predicates (generate/embedding.hpp).
+/// `immersed` is drawn only when asked for by name.
+enum class Family {
+    block,       ///< the perforated slab: corners >= 20°, valences 3–10, flat facets, creases
+    smooth,      ///< curved: the slab rounded and smoothly deformed, no flat facet left
+    quality,     ///< needles, caps and slivers down to a chosen smallest angle
+    valence,     ///< vertices of valence 3 and a fan of very high valence, by flips and splits
+    density,     ///< graded and anisotropic refinement: edge-length ratios of 10^4 and more
+    degenerate,  ///< coordinates on a coarse grid: exact coplanarity and collinearity, no zero area
+    immersed,    ///< combinatorially manifold and oriented, but self-intersecting (opt-in only)
+};
+
+/// The family's name as `fhr generate --family` spells it ("block", "smooth", ...).
+const char* family_name(Family family);
+/// The family of that name. \throws InvalidInput("", 0, ...) naming the families for another.
+Family parse_family(const std::string& name);
+/// The embedded families (all but immersed), in the order of the enum: what fuzzers and
+/// property tests draw from.
+inline constexpr Family embedded_families[] = {Family::block,   Family::smooth,  Family::quality,
+                                               Family::valence, Family::density, Family::degenerate};
+
+/// Each family's own knobs; a family reads only its own. The defaults are the ones the issue's
+/// guarantees are stated for (spec/generator.md GEN-8..13).
+struct FamilyKnobs {
+    // smooth
+    double roundness = 0.3;   ///< radius of the rounding of the slab's creases, in unit cells, in (0, 0.45]
+    double amplitude = 0.25;  ///< size of the random smooth deformation, in unit cells, in [0, 0.5]
+    // quality
+    double bad_fraction = 0.1;         ///< share of the faces that are needles, caps or slivers, in (0, 0.5]
+    double smallest_angle_deg = 1e-4;  ///< the thinnest triangle's smallest corner, degrees, in [1e-9, 1]
+    // valence
+    int high_valence = 64;         ///< one vertex per component reaches at least this valence, in [7, 1000]
+    double low_fraction = 0.05;    ///< share of the vertices made valence 3, in [0, 0.2]
+    // density
+    double edge_ratio = 1e5;   ///< longest / shortest edge reached by graded refinement, in [10, 1e9]
+    double anisotropy = 100;   ///< aspect ratio of the anisotropic band's triangles, in [1, 1e6]
+    // degenerate
+    int grid_cells = 8;        ///< grid points per unit cell (coordinates snapped to 1/grid_cells), in [2, 1024]
+    // immersed
+    double depth = 1.5;        ///< how far a bump is pushed through the slab, in slab thicknesses, in [1.1, 4]
+    bool operator==(const FamilyKnobs&) const = default;
+};
+
 /// A recipe. genus and holes are totals over the components, spread as evenly as possible:
 /// component c (0-based, of C) gets ⌊g/C⌋ handles, plus one if c < g mod C, and likewise
 /// ⌊b/C⌋ (+1 if c < b mod C) holes. Existing recipes (holes = 0, components = 1) give the
@@ -25,6 +72,8 @@ struct RandomMeshOptions {
     double noise = 0.0;       ///< in [0, 0.5): vertex jitter, as a fraction of the mean length of its edges
     int holes = 0;            ///< b in [0, max_holes]: number of boundary loops, in total
     int components = 1;       ///< C in [1, max_components]: number of connected components
+    Family family = Family::block;  ///< what kind of mesh; block recipes give the meshes of before families existed
+    FamilyKnobs knobs{};            ///< the family's own options (ignored by block)
 };
 
 /// Smallest face count the generator can produce for these totals: the sum over the components
@@ -35,6 +84,12 @@ struct RandomMeshOptions {
 /// \throws InvalidInput("", 0, ...) when genus < 0, holes is not in [0, max_holes] or components
 ///         is not in [1, max_components].
 std::size_t min_faces(int genus, int holes = 0, int components = 1);
+
+/// The smallest face count random_mesh accepts for this recipe (its faces ignored): min_faces of
+/// its genus, holes and components for block, more for families that add features of a given
+/// size (quality's insertions, valence's fan, density's refinement levels).
+/// \throws InvalidInput as min_faces, or when a knob of the family is out of its range.
+std::size_t min_faces(const RandomMeshOptions& options);
 
 /// A random mesh with exactly `options.faces` faces, `options.components` connected components
 /// and `options.holes` boundary loops in total, component c having Euler characteristic
