@@ -139,6 +139,10 @@ TEST_CASE("CLI-INFO-1: warnings for repaired input, exit code 0", "[cli]") {
                           Catch::Contains("re-oriented 1 faces"));
     CHECK_THAT(r.out, Catch::Contains("\"vertices\": 4") && Catch::Contains("\"genus\": 0") &&
                           Catch::Contains("\"valid\": true"));
+    // The tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1): corners of 45°, 60° and 90°, valence 3.
+    CHECK_THAT(r.out, Catch::Contains("\"valence\": {\n    \"min\": 3,\n    \"max\": 3") &&
+                          Catch::Contains("\"corner_angle_deg\": {\n    \"min\": 45") &&
+                          Catch::Contains("\"max\": 90"));
 }
 
 TEST_CASE("CLI-INFO-2: an invalid mesh still gets its counts and the reason", "[cli]") {

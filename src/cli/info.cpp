@@ -2,6 +2,7 @@
 // orientable manifold triangulation; §2: its topology, χ = 2 − 2g, which the domain D must share).
 // A file that is not a valid input still gets every count that can be computed, plus the reason.
 #include <cstdio>
+#include <numbers>
 #include <optional>
 
 #include <fhr/core/errors.hpp>
@@ -55,7 +56,11 @@ std::string print_human(const std::string& path, const Facts& f) {
                                  "], diagonal " + num(b.diagonal()));
         const EdgeLengthStats e = edge_length_stats(m);
         line("edge length", "min " + num(e.min) + ", mean " + num(e.mean) + ", median " + num(e.median) +
-                                ", max " + num(e.max));
+                                ", max " + num(e.max) + ", max/min " + num(e.max / e.min));
+        const ShapeStats q = shape_stats(m);
+        line("corner angle", "min " + num(q.min_angle * 180 / std::numbers::pi) + " deg, max " +
+                                 num(q.max_angle * 180 / std::numbers::pi) + " deg");
+        line("valence", "min " + std::to_string(q.min_valence) + ", max " + std::to_string(q.max_valence));
     }
     line("valid input", f.reason.empty() ? "yes" : "no: " + f.reason);
     return s;
@@ -80,6 +85,10 @@ std::string print_json(const std::string& path, const Facts& f) {
         const EdgeLengthStats e = edge_length_stats(m);
         j.key("edge_length").begin_object().key("min").value(e.min).key("mean").value(e.mean);
         j.key("median").value(e.median).key("max").value(e.max).end_object();
+        const ShapeStats q = shape_stats(m);
+        j.key("corner_angle_deg").begin_object().key("min").value(q.min_angle * 180 / std::numbers::pi);
+        j.key("max").value(q.max_angle * 180 / std::numbers::pi).end_object();
+        j.key("valence").begin_object().key("min").value(q.min_valence).key("max").value(q.max_valence).end_object();
     }
     j.key("dropped_isolated_vertices").value(f.log.dropped_vertices);
     j.key("reoriented_faces").value(f.log.reoriented_faces);

@@ -84,6 +84,25 @@ EdgeLengthStats edge_length_stats(const TriMesh& m) {
     return s;
 }
 
+ShapeStats shape_stats(const TriMesh& m) {
+    ShapeStats s;
+    if (m.n_faces() == 0) return s;
+    s.min_angle = INFINITY;
+    for (HalfedgeId h : m.halfedges()) {
+        if (m.is_boundary(h)) continue;
+        const double a = corner_angle(m, h);
+        s.min_angle = std::min(s.min_angle, a);
+        s.max_angle = std::max(s.max_angle, a);
+    }
+    s.min_valence = SIZE_MAX;
+    for (VertexId v : m.vertices()) {
+        const std::size_t k = m.valence(v);
+        s.min_valence = std::min(s.min_valence, k);
+        s.max_valence = std::max(s.max_valence, k);
+    }
+    return s;
+}
+
 namespace {
 
 Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {

@@ -33,6 +33,16 @@ struct EdgeLengthStats {
 };
 EdgeLengthStats edge_length_stats(const TriMesh& m);
 
+/// How hard a mesh is for numerical code (issue 17 compares generated meshes with real ones by
+/// these): the smallest and largest corner angle (radians, atan2 of |u × v| and u · v, accurate
+/// for needles and caps alike) and the smallest and largest vertex valence (boundary vertices
+/// count their edges too). All zero for a mesh without faces.
+struct ShapeStats {
+    double min_angle = 0, max_angle = 0;
+    std::size_t min_valence = 0, max_valence = 0;
+};
+ShapeStats shape_stats(const TriMesh& m);
+
 /// The point of triangle abc closest to p (Ericson 2005, "Real-Time Collision Detection", §5.1.5:
 /// the Voronoi regions of the vertices, then of the edges, else the face). Shared by the oracle's
 /// PARAM-11 (src/fhr/exchange) and the Hausdorff distance of §5 (src/fhr/wavelet).
