@@ -1,6 +1,6 @@
 // FHR §2–§4 — libFuzzer target for the whole pipeline: the bytes choose a small random mesh T
-// with the generator's recipe (genus 0–2, 0–5 boundary loops, 1–3 components, at most
-// min_faces + 300 faces, seed, noise; src/fhr/generate), a domain size, the weights and the
+// with the generator's recipe (an embedded family, genus 0–2, 0–5 boundary loops, 1–3 components,
+// at most min_faces + 300 faces, seed, and noise for block; src/fhr/generate), a domain size, the weights and the
 // solver; §2 decimates T to D and pipeline::parameterize runs §3 and §4. Every run must end
 // certified (Proposition 1, the per-patch certificate) and accepted by the independent oracle
 // (spec/param.md PARAM-2..11 against T). The one expected refusal is InvalidInput from the
@@ -8,7 +8,7 @@
 // PartitionFailure is a finding too, since §3's recovery ends at the latest at D = T. A finding
 // prints the `fhr` commands that reproduce it and traps. Every input is a valid recipe; the seeds
 // (fuzz/corpus/pipeline/) are 24 bytes long so that libFuzzer's length limit starts where a whole
-// recipe fits (about 17 bytes).
+// recipe fits (about 18 bytes).
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <cstddef>
@@ -40,13 +40,15 @@ using namespace fhr;
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     FuzzedDataProvider bytes(data, size);
     generate::RandomMeshOptions o;
+    o.family = bytes.PickValueInArray(generate::embedded_families);
     o.genus = bytes.ConsumeIntegralInRange(0, 2);
     o.holes = bytes.ConsumeIntegralInRange(0, 5);
     o.components = bytes.ConsumeIntegralInRange(1, 3);
     const std::size_t step = o.holes == 0 ? 2 : 1;  // F is even without holes
-    o.faces = generate::min_faces(o.genus, o.holes, o.components) + step * bytes.ConsumeIntegralInRange<std::size_t>(0, 300 / step);
+    o.faces = generate::min_faces(o) + step * bytes.ConsumeIntegralInRange<std::size_t>(0, 300 / step);
     o.seed = bytes.ConsumeIntegral<std::uint64_t>() >> 1;  // `fhr generate --seed` takes < 2^63
-    o.noise = bytes.ConsumeIntegralInRange(0, 45) / 100.0;  // the generator accepts [0, 0.5)
+    const int noise = bytes.ConsumeIntegralInRange(0, 45);  // the generator accepts [0, 0.5), for block only
+    if (o.family == generate::Family::block) o.noise = noise / 100.0;
     // The domain size: even and from Heawood's bound for a closed connected T (DOM-9); otherwise
     // any count §2 accepts (component_targets raises each component's share to its least).
     const std::size_t lowest = o.holes == 0 && o.components == 1 ? domain::min_closed_faces(o.genus) : step;

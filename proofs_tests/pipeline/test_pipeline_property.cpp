@@ -234,3 +234,18 @@ TEST_CASE("pipeline: 2–3 closed components of genus 0–2 in all keep their to
                                                .max_components = 3}));
     });
 }
+
+TEST_CASE("pipeline: meshes of every embedded generator family (genus 0–3, 0–2 holes, 1–2 components) are certified and "
+          "verify-valid, keeping their topology",
+          "[pipeline][property][families]") {
+    // Issue 17: the generator's hard families — curved, slivers and needles down to 10⁻⁴°, a
+    // valence-64 fan, edge-length ratios of 10⁵, exactly coplanar and collinear neighbours.
+    rc::prop("run(T of any embedded family, --faces N) is certified", [] {
+        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh(
+            {.min_genus = 0, .max_genus = 3, .max_faces = 2500, .min_holes = 0, .max_holes = 2, .min_components = 1,
+             .max_components = 2,
+             .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+        RC_TAG(generate::family_name(g.options.family));
+        run_and_check(g);
+    });
+}

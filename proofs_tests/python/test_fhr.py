@@ -147,6 +147,37 @@ def test_generate_with_holes_and_components_gives_the_bits_of_fhr_generate(tmp_p
     assert fhr.min_faces(2, 5, 3) == 130 and fhr.min_faces(2) == 100
 
 
+# PY-3, spec/generator.md GEN-8: every family, its knobs by keyword, the bits of `fhr generate`
+@pytest.mark.parametrize("family,knobs,cli_knobs", [
+    ("smooth", {"amplitude": 0.125}, ["--amplitude", 0.125]),
+    ("quality", {"smallest_angle": 1e-5}, ["--smallest-angle", 1e-5]),
+    ("valence", {"high_valence": 60}, ["--high-valence", 60]),
+    ("density", {"edge_ratio": 2e4}, ["--edge-ratio", 2e4]),
+    ("degenerate", {"grid_cells": 16}, ["--grid-cells", 16]),
+    ("immersed", {}, []),
+])
+def test_generate_families_give_the_bits_of_fhr_generate(tmp_path, family, knobs, cli_knobs):
+    path = tmp_path / "g.off"
+    faces = max(600, fhr.min_faces(1, family=family, **knobs))
+    cli("generate", "--family", family, "--genus", 1, "--faces", faces, "--seed", 3, *cli_knobs, "--out", path)
+    V, F = fhr.generate(1, faces, seed=3, family=family, **knobs)
+    V2, F2 = read_off_arrays(path)
+    assert np.array_equal(V, V2) and np.array_equal(F, F2)
+    assert fhr.info(V, F)["genus"] == 1 and len(F) == faces
+
+
+# PY-3: a knob of another family, an unknown knob or family is a ValueError naming it
+def test_generate_refuses_foreign_and_unknown_knobs():
+    with pytest.raises(ValueError, match="roundness is a knob of the smooth family"):
+        fhr.generate(1, 500, roundness=0.2)
+    with pytest.raises(ValueError, match="unknown knob 'sharpness'"):
+        fhr.generate(1, 500, family="smooth", sharpness=1.0)
+    with pytest.raises(ValueError, match="unknown family 'spiky'"):
+        fhr.generate(1, 500, family="spiky")
+    with pytest.raises(ValueError, match="noise is a knob of the block family only"):
+        fhr.generate(1, 500, noise=0.1, family="quality")
+
+
 # PY-6, spec/generator.md GEN-2, GEN-3
 @settings(max_examples=40, derandomize=True, deadline=None)
 @given(fhr.testing.meshes(genus=(0, 2), faces=(12, 1500), holes=(0, 5), components=(1, 3)))

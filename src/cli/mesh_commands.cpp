@@ -15,9 +15,9 @@
 namespace fhr::cli {
 
 int run_generate(const std::vector<std::string>& argv) {
-    const Args args(argv, {}, {"family", "genus", "holes", "components", "faces", "seed", "noise", "out",
-                               "roundness", "amplitude", "bad-fraction", "smallest-angle", "high-valence",
-                               "low-fraction", "edge-ratio", "anisotropy", "grid-cells", "depth"});
+    std::vector<std::string> options_taken{"family", "genus", "holes", "components", "faces", "seed", "noise", "out"};
+    for (const generate::KnobName& k : generate::knob_names) options_taken.push_back(k.name);
+    const Args args(argv, {}, options_taken);
     if (!args.positional().empty()) usage_error("fhr generate takes no positional arguments");
     generate::RandomMeshOptions options;
     options.family = generate::parse_family(args.get("family").value_or("block"));
@@ -27,33 +27,11 @@ int run_generate(const std::vector<std::string>& argv) {
     options.faces = static_cast<std::size_t>(args.integer("faces", 1000, 4, 100'000'000));
     options.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, INT64_MAX));
     options.noise = args.real("noise", 0.0, 0.0, 0.5);  // the generator refuses 0.5 itself
-    // The family's own knobs: each accepted only with its family (a knob of another would be
-    // silently ignored); their ranges are checked by the generator (spec/generator.md).
-    struct Knob {
-        const char* name;
-        generate::Family family;
-    };
-    using generate::Family;
-    constexpr Knob knobs[] = {{"roundness", Family::smooth},        {"amplitude", Family::smooth},
-                              {"bad-fraction", Family::quality},    {"smallest-angle", Family::quality},
-                              {"high-valence", Family::valence},    {"low-fraction", Family::valence},
-                              {"edge-ratio", Family::density},      {"anisotropy", Family::density},
-                              {"grid-cells", Family::degenerate},   {"depth", Family::immersed}};
-    for (const Knob& k : knobs)
-        if (args.get(k.name) && k.family != options.family)
-            usage_error(std::string("--") + k.name + " is a knob of --family " + generate::family_name(k.family));
-    generate::FamilyKnobs& k = options.knobs;
-    const double huge = 1e300;  // real knobs: any finite value here, the generator checks the range
-    k.roundness = args.real("roundness", k.roundness, -huge, huge);
-    k.amplitude = args.real("amplitude", k.amplitude, -huge, huge);
-    k.bad_fraction = args.real("bad-fraction", k.bad_fraction, -huge, huge);
-    k.smallest_angle_deg = args.real("smallest-angle", k.smallest_angle_deg, -huge, huge);
-    k.high_valence = static_cast<int>(args.integer("high-valence", k.high_valence, INT32_MIN, INT32_MAX));
-    k.low_fraction = args.real("low-fraction", k.low_fraction, -huge, huge);
-    k.edge_ratio = args.real("edge-ratio", k.edge_ratio, -huge, huge);
-    k.anisotropy = args.real("anisotropy", k.anisotropy, -huge, huge);
-    k.grid_cells = static_cast<int>(args.integer("grid-cells", k.grid_cells, INT32_MIN, INT32_MAX));
-    k.depth = args.real("depth", k.depth, -huge, huge);
+    // The family's own knobs, each accepted only with its family (generate::set_knob); their ranges
+    // are checked by the generator (spec/generator.md).
+    for (const generate::KnobName& k : generate::knob_names)
+        if (args.get(k.name))
+            generate::set_knob(options.knobs, options.family, k.name, args.real(k.name, 0, -1e300, 1e300));
     const std::string out = args.require("out");
     save_mesh(out, generate::random_mesh(options));
     return 0;

@@ -272,18 +272,37 @@ PYBIND11_MODULE(_fhr, m) {
         py::arg("V"), py::arg("F"),
         "info(V, F) -> dict: counts, Euler characteristic, boundary loops, components and genus of a valid "
         "manifold triangle mesh (boundary and several components allowed here).");
+    // A recipe from Python's arguments: the family by name and its knobs as keyword arguments
+    // (generate::set_knob: the CLI's names with '_' for '-').
+    const auto recipe = [](int genus, std::size_t faces, std::uint64_t seed, double noise, int holes, int components,
+                           const std::string& family, const py::kwargs& knobs) {
+        generate::RandomMeshOptions o{genus, faces, seed, noise, holes, components};
+        o.family = generate::parse_family(family);
+        for (const auto& [name, value] : knobs)
+            generate::set_knob(o.knobs, o.family, py::str(name), value.cast<double>());
+        return o;
+    };
     m.def(
         "generate",
-        [](int genus, std::size_t faces, std::uint64_t seed, double noise, int holes, int components) {
-            return mesh_arrays(generate::random_mesh({genus, faces, seed, noise, holes, components}));
+        [recipe](int genus, std::size_t faces, std::uint64_t seed, double noise, int holes, int components,
+                 const std::string& family, const py::kwargs& knobs) {
+            return mesh_arrays(generate::random_mesh(recipe(genus, faces, seed, noise, holes, components, family, knobs)));
         },
         py::arg("genus"), py::arg("faces"), py::arg("seed") = 0, py::arg("noise") = 0.0, py::arg("holes") = 0,
-        py::arg("components") = 1,
-        "generate(genus, faces, seed=0, noise=0.0, holes=0, components=1) -> (V, F): the random mesh that "
-        "`fhr generate` writes for the same options, bit for bit. genus and holes (boundary loops) are totals "
-        "over the components; the defaults give a closed connected mesh.");
-    m.def("min_faces", &generate::min_faces, py::arg("genus"), py::arg("holes") = 0, py::arg("components") = 1,
-          "min_faces(genus, holes=0, components=1) -> int: the fewest faces generate() makes for these totals.");
+        py::arg("components") = 1, py::arg("family") = "block",
+        "generate(genus, faces, seed=0, noise=0.0, holes=0, components=1, family='block', **knobs) -> (V, F): the "
+        "random mesh that `fhr generate` writes for the same options, bit for bit. genus and holes (boundary loops) "
+        "are totals over the components; the defaults give a closed connected mesh. family is one of block, smooth, "
+        "quality, valence, density, degenerate, immersed; knobs are the family's own options, named as "
+        "`fhr generate`'s with '_' for '-' (e.g. smallest_angle=1e-5 for quality).");
+    m.def(
+        "min_faces",
+        [recipe](int genus, int holes, int components, const std::string& family, const py::kwargs& knobs) {
+            return generate::min_faces(recipe(genus, 0, 0, 0.0, holes, components, family, knobs));
+        },
+        py::arg("genus"), py::arg("holes") = 0, py::arg("components") = 1, py::arg("family") = "block",
+        "min_faces(genus, holes=0, components=1, family='block', **knobs) -> int: the fewest faces generate() makes "
+        "for these totals, family and knobs.");
     m.def(
         "decimate",
         [](const py::array& V, const py::array& F, std::size_t faces) {

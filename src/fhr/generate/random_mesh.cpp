@@ -576,6 +576,28 @@ Family parse_family(const std::string& name) {
     invalid("unknown family '" + name + "' (one of block, smooth, quality, valence, density, degenerate, immersed)");
 }
 
+void set_knob(FamilyKnobs& knobs, Family family, const std::string& name, double value) {
+    std::string dashed = name;
+    std::replace(dashed.begin(), dashed.end(), '_', '-');
+    const auto known = std::find_if(std::begin(knob_names), std::end(knob_names),
+                                    [&](const KnobName& k) { return dashed == k.name; });
+    if (known == std::end(knob_names)) invalid("unknown knob '" + name + "'");
+    if (known->family != family)
+        invalid("--" + dashed + " is a knob of the " + family_name(known->family) + " family, not of " +
+                family_name(family));
+    const auto integer = [&] {
+        if (!(value == std::floor(value) && std::abs(value) < 2e9))
+            invalid("--" + dashed + " must be an integer (got " + shortest(value) + ")");
+        return static_cast<int>(value);
+    };
+    double* const reals[] = {&knobs.roundness, &knobs.amplitude, &knobs.bad_fraction, &knobs.smallest_angle_deg,
+                             nullptr, &knobs.low_fraction, &knobs.edge_ratio, &knobs.anisotropy, nullptr, &knobs.depth};
+    const auto index = known - std::begin(knob_names);
+    if (dashed == "high-valence") knobs.high_valence = integer();
+    else if (dashed == "grid-cells") knobs.grid_cells = integer();
+    else *reals[index] = value;
+}
+
 std::string generate_command(const RandomMeshOptions& o, const std::string& out) {
     char noise[32];
     std::snprintf(noise, sizeof noise, "%g", o.noise);

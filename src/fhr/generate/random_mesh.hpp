@@ -61,6 +61,25 @@ struct FamilyKnobs {
     bool operator==(const FamilyKnobs&) const = default;
 };
 
+/// The knobs by the names `fhr generate` gives them (`--smallest-angle` is "smallest-angle"), each
+/// with its family, in the order of FamilyKnobs.
+struct KnobName {
+    const char* name;
+    Family family;
+};
+inline constexpr KnobName knob_names[] = {
+    {"roundness", Family::smooth},       {"amplitude", Family::smooth},      {"bad-fraction", Family::quality},
+    {"smallest-angle", Family::quality}, {"high-valence", Family::valence},  {"low-fraction", Family::valence},
+    {"edge-ratio", Family::density},     {"anisotropy", Family::density},    {"grid-cells", Family::degenerate},
+    {"depth", Family::immersed}};
+
+/// Sets the knob of that name (as in knob_names; '_' may stand for '-') to value: the one place
+/// the CLI and the Python package turn a name into a knob. Integer knobs take an integral value.
+/// \throws InvalidInput("", 0, ...) for an unknown name, a knob of another family than `family`
+///         (it would be silently ignored) or a non-integral value for an integer knob. Ranges are
+///         checked by min_faces(options) and random_mesh.
+void set_knob(FamilyKnobs& knobs, Family family, const std::string& name, double value);
+
 /// A recipe. genus and holes are totals over the components, spread as evenly as possible:
 /// component c (0-based, of C) gets ⌊g/C⌋ handles, plus one if c < g mod C, and likewise
 /// ⌊b/C⌋ (+1 if c < b mod C) holes. Existing recipes (holes = 0, components = 1) give the

@@ -14,6 +14,7 @@
 #include <limits>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include <fhr/core/errors.hpp>
 #include <fhr/core/trimesh.hpp>
@@ -32,14 +33,18 @@ struct MeshRanges {
     std::size_t max_faces = 2000;
     int min_holes = 0, max_holes = 0;
     int min_components = 1, max_components = 1;
+    /// The families drawn from, knobs at their defaults (drawn only when there is more than one;
+    /// e.g. `std::span(generate::embedded_families)` for every embedded family).
+    std::vector<generate::Family> families{generate::Family::block};
 };
 
-/// Random options: genus, holes and components in their ranges (holes and components are drawn
-/// only when their range has more than one value, so the default ranges draw what they drew
-/// before these two knobs existed), a face count in [min_faces(genus, holes, components), max_faces] (even when there
-/// are no holes), a seed the CLI accepts (< 2^63) and a noise of 0, 0.05, 0.1 or 0.25 (exact in
-/// decimal, so the shown command reproduces it). Shrinks towards the smallest genus, holes and
-/// components, the fewest faces, seed 0 and no noise. Properties pick gen_mesh or
+/// Random options: a family of `families`, genus, holes and components in their ranges (family,
+/// holes and components are drawn only when their range has more than one value, so the default
+/// ranges draw what they drew before these knobs existed), a face count in [min_faces(options),
+/// max_faces] (even when there are no holes), a seed the CLI accepts (< 2^63) and, for the block
+/// family, a noise of 0, 0.05, 0.1 or 0.25 (exact in decimal, so the shown command reproduces
+/// it). Shrinks towards the first family, the smallest genus, holes and components, the fewest
+/// faces, seed 0 and no noise. Properties pick gen_mesh or
 /// gen_closed_mesh, whose values show their options in a counterexample.
 /// \pre 0 <= min_genus <= max_genus, 0 <= min_holes <= max_holes <= generate::max_holes,
 ///      1 <= min_components <= max_components <= generate::max_components.
@@ -49,10 +54,12 @@ inline rc::Gen<generate::RandomMeshOptions> gen_mesh_options(const MeshRanges& r
     return rc::gen::exec([=] {
         const auto draw_if_varies = [](int lo, int hi) { return lo == hi ? lo : *rc::gen::inRange(lo, hi + 1); };
         generate::RandomMeshOptions o;
+        if (r.families.size() > 1) o.family = r.families[*rc::gen::inRange<std::size_t>(0, r.families.size())];
+        else if (r.families.size() == 1) o.family = r.families[0];
         o.genus = *rc::gen::inRange(r.min_genus, r.max_genus + 1);
         o.holes = draw_if_varies(r.min_holes, r.max_holes);
         o.components = draw_if_varies(r.min_components, r.max_components);
-        const std::size_t least = generate::min_faces(o.genus, o.holes, o.components);
+        const std::size_t least = generate::min_faces(o);
         if (least > r.max_faces)
             throw InvalidInput("", 0, "gen_mesh_options: " + generate_command(o) + " needs at least " +
                                           std::to_string(least) + " faces, more than max_faces = " +
@@ -62,7 +69,7 @@ inline rc::Gen<generate::RandomMeshOptions> gen_mesh_options(const MeshRanges& r
         o.seed = *rc::gen::inRange<std::uint64_t>(0, std::numeric_limits<std::int64_t>::max());
         // an index, not gen::element (which never shrinks): shrinks toward no noise
         constexpr double noises[] = {0.0, 0.05, 0.1, 0.25};
-        o.noise = noises[*rc::gen::inRange(0, 4)];
+        if (o.family == generate::Family::block) o.noise = noises[*rc::gen::inRange(0, 4)];  // a knob of block only
         return o;
     });
 }
