@@ -255,7 +255,8 @@ TEST_CASE("CLI-GEN-2, GEN-7: --holes and --components: the file of generate_comm
     }
 }
 
-TEST_CASE("CLI-GEN-3: out-of-range --holes, --components and face counts are refused in one line, exit code 2",
+TEST_CASE("CLI-GEN-3, CLI-GEN-4: out-of-range --holes, --components, face counts, families and knobs are refused in "
+          "one line, exit code 2",
           "[cli]") {
     struct Refused {
         std::vector<std::string> options;
@@ -269,6 +270,12 @@ TEST_CASE("CLI-GEN-3: out-of-range --holes, --components and face counts are ref
         {{"--holes", "two"}, "option --holes needs an integer, got 'two'"},
         {{"--holes", "5", "--faces", "33"}, "genus 0 with 5 holes needs at least 34 faces (got 33)"},
         {{"--components", "2", "--faces", "25"}, "the face count must be even without holes (got 25)"},
+        // CLI-GEN-4: families and their knobs
+        {{"--family", "spiky"}, "unknown family 'spiky'"},
+        {{"--roundness", "0.2"}, "--roundness is a knob of the smooth family, not of block"},
+        {{"--family", "quality", "--depth", "2"}, "--depth is a knob of the immersed family, not of quality"},
+        {{"--family", "valence", "--high-valence", "60.5"}, "--high-valence must be an integer (got 60.5)"},
+        {{"--family", "smooth", "--noise", "0.1"}, "the noise is a knob of the block family only"},
     };
     for (const Refused& c : cases) {
         DYNAMIC_SECTION(c.expect) {

@@ -510,6 +510,11 @@ std::size_t min_faces(const RandomMeshOptions& options) {
 }
 
 TriMesh random_mesh(const RandomMeshOptions& options) {
+    if (!(options.noise >= 0 && options.noise < 0.5))
+        invalid("the noise must be in [0, 0.5) (got " + std::to_string(options.noise) + ")");
+    if (options.noise != 0 && options.family != Family::block)
+        invalid(std::string("the noise is a knob of the block family only (the ") + family_name(options.family) +
+                " family starts from a block without noise)");
     const std::size_t faces = options.faces, least = min_faces(options);
     if (faces % 2 != 0 && options.holes == 0)
         invalid("the face count must be even without holes (got " + std::to_string(faces) +
@@ -523,11 +528,6 @@ TriMesh random_mesh(const RandomMeshOptions& options) {
     }
     if (faces > max_faces)
         invalid("at most " + std::to_string(max_faces) + " faces can be generated (got " + std::to_string(faces) + ")");
-    if (!(options.noise >= 0 && options.noise < 0.5))
-        invalid("the noise must be in [0, 0.5) (got " + std::to_string(options.noise) + ")");
-    if (options.noise != 0 && options.family != Family::block)
-        invalid(std::string("the noise is a knob of the block family only (the ") + family_name(options.family) +
-                " family starts from a block without noise)");
     switch (options.family) {
         case Family::block: return block_mesh(options);
         case Family::smooth: return detail::smooth_mesh(options);
