@@ -15,7 +15,7 @@
 namespace fhr::cli {
 
 int run_generate(const std::vector<std::string>& argv) {
-    const Args args(argv, {}, {"family", "genus", "holes", "components", "faces", "seed", "noise", "out",
+    const Args args(argv, {"min-faces"}, {"family", "genus", "holes", "components", "faces", "seed", "noise", "out",
                                "roundness", "amplitude", "bad-fraction", "smallest-angle", "high-valence",
                                "low-fraction", "edge-ratio", "anisotropy", "grid-cells", "depth"});
     if (!args.positional().empty()) usage_error("fhr generate takes no positional arguments");
@@ -54,6 +54,10 @@ int run_generate(const std::vector<std::string>& argv) {
     k.anisotropy = args.real("anisotropy", k.anisotropy, -huge, huge);
     k.grid_cells = static_cast<int>(args.integer("grid-cells", k.grid_cells, INT32_MIN, INT32_MAX));
     k.depth = args.real("depth", k.depth, -huge, huge);
+    if (args.flag("min-faces")) {  // what a caller drawing face counts needs (bench/run_families.py)
+        std::printf("%zu\n", generate::min_faces(options));
+        return 0;
+    }
     const std::string out = args.require("out");
     save_mesh(out, generate::random_mesh(options));
     return 0;
