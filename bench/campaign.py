@@ -67,10 +67,15 @@ def run_shard(count, shard, work, jobs, describe):
     rows = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
         futures = [pool.submit(work, i) for i in indices]
-        for done, future in enumerate(concurrent.futures.as_completed(futures), 1):
-            row = future.result()
-            print("[%d/%d] %s" % (done, len(futures), describe(row)), file=sys.stderr, flush=True)
-            rows.append(row)
+        try:
+            for done, future in enumerate(concurrent.futures.as_completed(futures), 1):
+                row = future.result()
+                print("[%d/%d] %s" % (done, len(futures), describe(row)), file=sys.stderr, flush=True)
+                rows.append(row)
+        except BaseException:  # a CampaignError (or ^C): the items not started are not run
+            for future in futures:
+                future.cancel()
+            raise
     return sorted(rows, key=lambda r: r["index"])
 
 
