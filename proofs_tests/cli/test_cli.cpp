@@ -3,6 +3,7 @@
 // and leaves no output file behind; `fhr info` reports the right topology for real meshes.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -291,6 +292,34 @@ TEST_CASE("CLI-GEN-3, CLI-GEN-4: out-of-range --holes, --components, face counts
             CHECK_THAT(r.err, Catch::StartsWith("fhr: error: ") && Catch::Contains(c.expect));
             CHECK(fs::is_empty(dir));
         }
+    }
+}
+
+TEST_CASE("CLI-GEN-5: --min-faces prints min_faces of the recipe and writes nothing", "[cli]") {
+    const std::array<std::array<int, 3>, 5> recipes{{{0, 0, 1}, {2, 0, 1}, {0, 5, 1}, {3, 5, 3}, {1, 0, 2}}};
+    for (const auto& [genus, holes, components] : recipes) {
+        const auto r = run_fhr({"generate", "--genus", std::to_string(genus), "--holes", std::to_string(holes), "--components",
+                                std::to_string(components), "--min-faces"});
+        INFO(r.err);
+        CHECK(r.exit_code == 0);
+        CHECK(r.out == std::to_string(fhr::generate::min_faces(genus, holes, components)) + "\n");
+    }
+    CHECK(run_fhr({"generate", "--genus", "-1", "--min-faces"}).exit_code == 2);
+    CHECK(run_fhr({"generate", "--family", "nonsense", "--min-faces"}).exit_code == 2);
+}
+
+TEST_CASE("CLI-GEN-5: --min-faces of each family is min_faces(options) (needs every family)", "[cli]") {
+    for (const fhr::generate::Family family : fhr::generate::embedded_families) {
+        fhr::generate::RandomMeshOptions o;
+        o.family = family;
+        o.genus = 2;
+        o.holes = 1;
+        o.components = 2;
+        const auto r = run_fhr({"generate", "--family", fhr::generate::family_name(family), "--genus", "2", "--holes", "1",
+                                "--components", "2", "--min-faces"});
+        INFO(fhr::generate::family_name(family) << ": " << r.err);
+        CHECK(r.exit_code == 0);
+        CHECK(r.out == std::to_string(fhr::generate::min_faces(o)) + "\n");
     }
 }
 

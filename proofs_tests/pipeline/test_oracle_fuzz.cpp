@@ -1,8 +1,12 @@
 // `fhr oracle-fuzz` (spec/cli.md CLI-ORACLE-*): fhr itself, posing as another implementation
 // (proofs_tests/data/fhr_as_other_program.py), passes on every mesh — with boundary loops and
-// several components too, which the defaults draw; the same wrapper made to flip one triangle's
-// image fails on every mesh, and each failure is kept with its reason and a smaller mesh that
-// fails the same way; a program failing only with boundary shrinks to the smallest mesh with one hole.
+// several components too, which the defaults draw, and of every embedded family; the same wrapper
+// made to flip one triangle's image fails on every mesh, and each failure is kept with its reason
+// and a smaller mesh that fails the same way; a program failing only with boundary shrinks to the
+// smallest mesh with one hole. The tests of exact shrinking results use block meshes (`--family
+// block`), whose least sizes are known (12 faces closed, 10 with one hole); the families' tests
+// (CLI-ORACLE-6) hold for any family. Sharding and merging are tested with GNU parallel in
+// proofs_tests/campaign/test_campaigns.py.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -30,10 +34,10 @@ int count_of(const std::string& text, const std::string& what) {
 
 }  // namespace
 
-TEST_CASE("CLI-ORACLE-1: fhr itself as the program: no failures", "[cli][oracle]") {
+TEST_CASE("CLI-ORACLE-1: fhr itself as the program, on block meshes: no failures", "[cli][oracle]") {
     const std::string keep = temp_path("oracle-keep-good");
     const auto r = run_fhr({"oracle-fuzz", "--cmd", wrapper_command(""), "--count", "12", "--genus-max", "3", "--seed", "7",
-                            "--keep", keep});
+                            "--family", "block", "--keep", keep});
     INFO(r.out << r.err);
     CHECK(r.exit_code == 0);
     CHECK(count_of(r.out, ": valid\n") == 12);
@@ -49,7 +53,7 @@ TEST_CASE("CLI-ORACLE-2: a program that flips a triangle fails on every mesh; ea
     const std::string keep = temp_path("oracle-keep-broken");
     const int count = 5;
     const auto r = run_fhr({"oracle-fuzz", "--cmd", wrapper_command(" --flip"), "--count", std::to_string(count),
-                            "--genus-max", "3", "--seed", "11", "--keep", keep});
+                            "--genus-max", "3", "--seed", "11", "--family", "block", "--keep", keep});
     INFO(r.out << r.err);
     CHECK(r.exit_code == 1);
     CHECK(count_of(r.out, " --holes ") >= 2);  // shrinking takes holes and components away too
@@ -77,7 +81,7 @@ TEST_CASE("CLI-ORACLE-2: a program that flips a triangle fails on every mesh; ea
 TEST_CASE("CLI-ORACLE-3: the program's exit code and stderr are the reason when it fails", "[cli][oracle]") {
     const std::string keep = temp_path("oracle-keep-exit");
     const auto r = run_fhr({"oracle-fuzz", "--cmd", "echo broken {mesh} >&2; exit 3 # {out}", "--count", "2", "--genus-max",
-                            "0", "--keep", keep});
+                            "0", "--family", "block", "--keep", keep});
     INFO(r.out << r.err);
     CHECK(r.exit_code == 1);
     CHECK(r.out.find("2 meshes, 2 failures\n") != std::string::npos);
@@ -88,20 +92,20 @@ TEST_CASE("CLI-ORACLE-3: the program's exit code and stderr are the reason when 
 
 TEST_CASE("CLI-ORACLE-4: a program that writes nothing, or not a fhr-param file, fails", "[cli][oracle]") {
     const std::string keep = temp_path("oracle-keep-nothing");
-    auto r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "1", "--keep", keep});
+    auto r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "1", "--family", "block", "--keep", keep});
     CHECK(r.exit_code == 1);
     CHECK(r.out.find("wrote no file at {out}") != std::string::npos);
-    r = run_fhr({"oracle-fuzz", "--cmd", "cp {mesh} {out}", "--count", "1", "--keep", keep});
+    r = run_fhr({"oracle-fuzz", "--cmd", "cp {mesh} {out}", "--count", "1", "--family", "block", "--keep", keep});
     CHECK(r.exit_code == 1);
     CHECK(r.out.find("FAILED: PARAM-1: ") != std::string::npos);
 }
 
-TEST_CASE("CLI-ORACLE-4: recipes in the ranges asked; without holes and components those of earlier versions",
+TEST_CASE("CLI-ORACLE-4: recipes in the ranges asked; block without holes and components those of earlier versions",
           "[cli][oracle]") {
     // `true` writes nothing: every mesh fails at once ("no output"), so the lines come fast.
     const std::string keep = temp_path("oracle-keep-ranges");
     auto r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "8", "--holes-max", "0", "--components-max", "1",
-                      "--keep", keep});
+                      "--family", "block", "--keep", keep});
     INFO(r.out << r.err);
     CHECK(count_of(r.out, "FAILED") == 8);
     CHECK(count_of(r.out, " --holes ") == 0);
@@ -109,7 +113,7 @@ TEST_CASE("CLI-ORACLE-4: recipes in the ranges asked; without holes and componen
     // Mesh 0 of seed 1 as `fhr oracle-fuzz` drew it before --holes-max and --components-max existed.
     CHECK(r.out.find("mesh 0: fhr generate --genus 2 --faces 256 --seed 417422127403058876 --noise 0.05 --out mesh.off: ") == 0);
     r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "12", "--holes-max", "2", "--components-max", "2",
-                 "--seed", "5", "--keep", keep});
+                 "--seed", "5", "--family", "block", "--keep", keep});
     INFO(r.out);
     CHECK(count_of(r.out, " --holes 1 ") + count_of(r.out, " --holes 2 ") == count_of(r.out, " --holes "));
     CHECK(count_of(r.out, " --components 2 ") == count_of(r.out, " --components "));
@@ -121,7 +125,7 @@ TEST_CASE("CLI-ORACLE-5: a program failing only on surfaces with boundary shrink
     // Exit code 3 on a mesh with boundary, a closed one gets exit code 0 and no output (another kind).
     const std::string keep = temp_path("oracle-keep-open");
     const std::string cmd = "'" FHR_EXE "' info --json {mesh} | grep -q '\"boundary_loops\": 0' && exit 0; exit 3 # {out}";
-    const auto r = run_fhr({"oracle-fuzz", "--cmd", cmd, "--count", "4", "--seed", "3", "--keep", keep});
+    const auto r = run_fhr({"oracle-fuzz", "--cmd", cmd, "--count", "4", "--seed", "3", "--family", "block", "--keep", keep});
     INFO(r.out << r.err);
     int open = 0;
     for (int i = 0; i < 4; ++i) {
@@ -143,4 +147,69 @@ TEST_CASE("CLI-ORACLE-5: usage errors", "[cli][oracle]") {
     CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "0"}).exit_code == 2);
     CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "1", "--holes-max", "-1"}).exit_code == 2);
     CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "1", "--components-max", "0"}).exit_code == 2);
+    CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "1", "--family", "blocks"}).exit_code == 2);
+    for (const char* shard : {"0/2", "3/2", "1/0", "2", "a/b", "1/2/3", "-1/2", "01/2"})
+        CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "1", "--shard", shard}).exit_code == 2);
+    CHECK(run_fhr({"oracle-fuzz", "--merge"}).exit_code == 2);
+    CHECK(run_fhr({"oracle-fuzz", "--merge", "a.tsv", "--cmd", "prog {mesh} {out}"}).exit_code == 2);
+    CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "1", "stray.tsv"}).exit_code == 2);
+}
+
+// The tests below need every family of the generator (issue 17).
+
+TEST_CASE("CLI-ORACLE-6: fhr itself as the program, on meshes of every embedded family: no failures", "[cli][oracle]") {
+    // Seed 116 draws each of the six embedded families once in its first 6 meshes (--family all, the default).
+    const std::string keep = temp_path("oracle-keep-families");
+    const auto r = run_fhr({"oracle-fuzz", "--cmd", wrapper_command(""), "--count", "6", "--genus-max", "3", "--seed", "116",
+                            "--keep", keep});
+    INFO(r.out << r.err);
+    CHECK(r.exit_code == 0);
+    CHECK(r.out.find("6 meshes, 0 failures\n") != std::string::npos);
+    for (const char* family : {"smooth", "quality", "valence", "density", "degenerate"})
+        CHECK(count_of(r.out, std::string(" --family ") + family + " ") == 1);
+    CHECK(count_of(r.out, " --family ") == 5);  // and block, which generate_command does not name
+}
+
+TEST_CASE("CLI-ORACLE-6: --family all draws the embedded families from (seed, i); a block draw is --family block's; "
+          "shrinking keeps the family", "[cli][oracle]") {
+    const std::string keep = temp_path("oracle-keep-all");
+    const auto all = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "18", "--seed", "5", "--keep", keep});
+    const auto block = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "18", "--seed", "5", "--family", "block",
+                                "--keep", temp_path("oracle-keep-all-block")});
+    INFO(all.out << all.err);
+    CHECK(all.exit_code == 1);
+    CHECK(all.out.find("18 meshes, 18 failures\n") != std::string::npos);
+    CHECK(count_of(all.out, " --family immersed ") == 0);  // immersed only when named
+    int blocks = 0;
+    for (int i = 0; i < 18; ++i) {
+        const std::string head = "mesh " + std::to_string(i) + ": ";
+        const auto line_of = [&](const std::string& out) {  // "mesh i: <recipe>" (the keep folders differ)
+            const std::size_t at = out.find(head);
+            return at == std::string::npos ? std::string() : out.substr(at, out.find(": FAILED", at) - at);
+        };
+        const std::string line = line_of(all.out);
+        REQUIRE(!line.empty());
+        const std::string reason = read_file(keep + "/mesh-" + std::to_string(i) + "/reason.txt");
+        INFO(line << "\n" << reason);
+        const std::size_t named = line.find(" --family ");
+        if (named == std::string::npos) {  // block: the very recipe of --family block
+            ++blocks;
+            CHECK(line == line_of(block.out));
+            CHECK(reason.find("\nsmaller.off: fhr generate --genus ") != std::string::npos);
+        } else {
+            const std::string family = line.substr(named, line.find(' ', named + 10) - named);
+            CHECK(reason.find("\nsmaller.off: fhr generate" + family + " ") != std::string::npos);
+            CHECK(line.find(" --noise ") == std::string::npos);  // noise is block's alone
+        }
+    }
+    CHECK(blocks >= 2);
+    CHECK(blocks <= 12);
+}
+
+TEST_CASE("CLI-ORACLE-6: --family immersed when named", "[cli][oracle]") {
+    const auto r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "2", "--family", "immersed", "--keep",
+                            temp_path("oracle-keep-immersed")});
+    INFO(r.out << r.err);
+    CHECK(r.out.find("2 meshes, 2 failures\n") != std::string::npos);
+    CHECK(count_of(r.out, ": fhr generate --family immersed ") == 2);
 }

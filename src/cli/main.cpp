@@ -23,6 +23,8 @@ usage:
       a random orientable manifold mesh with exactly N faces: closed, connected, of genus G, or
       with H boundary loops (0-10000) in C components (1-10000), G and H spread over them
       (N even when H = 0)
+  fhr generate [--family F] --genus G [--holes H] [--components C] [knobs] --min-faces
+      prints the least face count N of that recipe (bench/run_families.py draws from it up)
   fhr convert MESH --out MESH2 [--triangulate]
       validate MESH and write it as .off, .obj or .ply
   fhr decimate MESH (--faces N | --vertices N) --out DOMAIN.off [--min-angle DEG]
@@ -49,12 +51,18 @@ usage:
       Figures 6-9 as PNG, patches and the rate-distortion plot as SVG; exit 3 if §3 cannot partition, 4 if not certified
   fhr verify PARAM.fhrp [--mesh INPUT] [--json]
       the oracle: check a `fhr-param 1` file against PARAM-1..11 (spec/param.md); exit 1 if invalid
-  fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--genus-max G] [--holes-max H]
-                  [--components-max C] [--seed S] [--keep DIR] [--timeout SECONDS]
-      fuzz another implementation: N random meshes (genus 0-G, default 2; 0-H boundary loops,
-      default 5; 1-C components, default 3; H = 0, C = 1: closed and connected only), each run
-      through PROGRAM and its output checked by the oracle; failures kept in DIR with their reason
-      and a smaller failing mesh
+  fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--family NAME|all] [--genus-max G]
+                  [--holes-max H] [--components-max C] [--seed S] [--keep DIR] [--timeout SECONDS]
+                  [--shard K/N'] [--table FILE]
+      fuzz another implementation: N random meshes (of every embedded family, or of NAME;
+      genus 0-G, default 2; 0-H boundary loops, default 5; 1-C components, default 3; H = 0,
+      C = 1: closed and connected only), each run through PROGRAM and its output checked by the
+      oracle; failures kept in DIR with their reason and a smaller failing mesh of the same
+      family. --shard K/N': only the meshes i with i mod N' = K-1; --table: the results as a
+      table (tab-separated, no times)
+  fhr oracle-fuzz --merge FILE... [--table FILE]
+      the tables of a campaign's shards as the one table of the unsharded run; its failures and
+      `N meshes, K failures`; exit 0 without failures, 1 with, 2 if the tables do not fit together
   fhr help
 
 MESH files: .off/.coff, .obj, .ply (ascii or binary), .stl (ascii or binary).

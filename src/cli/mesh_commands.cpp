@@ -17,7 +17,7 @@ namespace fhr::cli {
 int run_generate(const std::vector<std::string>& argv) {
     std::vector<std::string> options_taken{"family", "genus", "holes", "components", "faces", "seed", "noise", "out"};
     for (const generate::KnobName& k : generate::knob_names) options_taken.push_back(k.name);
-    const Args args(argv, {}, options_taken);
+    const Args args(argv, {"min-faces"}, options_taken);
     if (!args.positional().empty()) usage_error("fhr generate takes no positional arguments");
     generate::RandomMeshOptions options;
     options.family = generate::parse_family(args.get("family").value_or("block"));
@@ -32,6 +32,10 @@ int run_generate(const std::vector<std::string>& argv) {
     for (const generate::KnobName& k : generate::knob_names)
         if (args.get(k.name))
             generate::set_knob(options.knobs, options.family, k.name, args.real(k.name, 0, -1e300, 1e300));
+    if (args.flag("min-faces")) {  // what a caller drawing face counts needs (bench/run_families.py)
+        std::printf("%zu\n", generate::min_faces(options));
+        return 0;
+    }
     const std::string out = args.require("out");
     save_mesh(out, generate::random_mesh(options));
     return 0;

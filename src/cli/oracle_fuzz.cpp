@@ -1,33 +1,56 @@
-// FHR cli — `fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--genus-max G] [--holes-max H]
-// [--components-max C] [--seed S] [--keep DIR] [--timeout SECONDS]`: fuzzing another
-// implementation of the paper with fhr's oracle (spec/cli.md CLI-ORACLE-*). Random meshes T
-// (src/fhr/generate) go to the program: by default surfaces with up to 5 boundary loops in up to 3
-// components (issue 19, what `fhr run` and the oracle accept), with `--holes-max 0
-// --components-max 1` the closed connected surfaces of §1 only. Whatever the program writes must
-// be a `fhr-param 1` file that `fhr verify --mesh T` accepts (PARAM-1..11, src/fhr/exchange).
-// Each failure is kept with its reason and shrunk.
+// FHR cli — `fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--family NAME|all]
+// [--genus-max G] [--holes-max H] [--components-max C] [--seed S] [--keep DIR] [--timeout SECONDS]
+// [--shard K/N] [--table FILE]` and `fhr oracle-fuzz --merge FILE... [--table FILE]`: fuzzing
+// another implementation of the paper with fhr's oracle (spec/cli.md CLI-ORACLE-*). Random meshes
+// T (src/fhr/generate) go to the program: by default of every embedded family (issue 17: block,
+// smooth, quality, valence, density, degenerate; immersed only when named), surfaces with up to 5
+// boundary loops in up to 3 components (issue 19, what `fhr run` and the oracle accept), with
+// `--holes-max 0 --components-max 1` the closed connected surfaces of §1 only. Whatever the
+// program writes must be a `fhr-param 1` file that `fhr verify --mesh T` accepts (PARAM-1..11,
+// src/fhr/exchange). Each failure is kept with its reason and shrunk. A campaign too long for one
+// machine is split into shards whose tables merge into the unsharded run's (oracle_table.hpp).
 //
 // Pseudocode:
-//   for i in 0 .. N−1:
-//       recipe_i <- (genus, holes, components, faces, seed, noise) drawn from splitmix64(S, i)
-//                   (deterministic; holes and components drawn only when H > 0, C > 1)
+//   for i in 0 .. N−1 with i mod N' = K−1 (--shard K/N', default 1/1: every i):
+//       recipe_i <- (family, genus, holes, components, faces, seed, noise) drawn from
+//                   splitmix64(S, i) (deterministic, and from (S, i) alone, whatever the shard;
+//                   the family from a stream of its own, so that a block draw of --family all
+//                   is the recipe of --family block; holes and components drawn only when
+//                   H > 0, C > 1; faces from the family's min_faces up; noise for block only)
 //       outcome  <- judge(recipe_i): write T to a temporary mesh.off; /bin/sh -c CMD with {mesh}
 //                   and {out} replaced by the shell-quoted paths; exit 0, then read {out}
 //                   (PARAM-1) and verify it against T (PARAM-2..11); the first failure is the reason
 //       if it failed: shrink(recipe_i) (below); keep mesh, output, reason and the smaller mesh
-//   print `N meshes, K failures`; exit 0 when K = 0, else 1
+//       row i <- (family, recipe, outcome, the failure's kind and reason, the shrunk recipe)
+//   print `M meshes, K failures`; write the rows as the table; exit 0 when K = 0, else 1
 //
-// Shrinking (greedy, as in delta debugging): a candidate is "smaller" when it has fewer faces, or
-// as many faces and fewer components, or as many of both and fewer holes, or a lower genus, or the
-// same of all four without noise (a comparison in this order). From the current smallest failing
-// recipe, try in order, each with the same face count (one fewer when no hole is left and the
-// count is odd) where the generator can make it: each smaller number of components, from 1; each
-// smaller number of holes, from 0; each lower genus, from 0; then min_faces(genus, holes,
-// components), the face count halfway and three quarters of the way down to it, then 2 faces
-// fewer, each with the recipe's seed and two more seeds (a smaller size is a different mesh, and
-// a bug may need a lucky one); no noise. The first candidate that fails *the same way* (same check id, same
-// exit code, a timeout or no output) becomes the current one and the search starts again; it
-// ends when no candidate fails or after shrink_budget runs of the program.
+// Shrinking (greedy, as in delta debugging) keeps the recipe's family and knobs — they are what
+// makes the mesh hard — and makes the rest smaller, in one order for every family: a candidate
+// is "smaller" when it has fewer faces, or as many faces and fewer components, or as many of both
+// and fewer holes, or a lower genus, or (block only: the one family with noise) the same of all
+// four without noise. From the current smallest failing recipe, try in order, each with the same
+// face count (one fewer when no hole is left and the count is odd) where the family can make it
+// (faces >= min_faces(recipe)): each smaller number of components, from 1; each smaller number of
+// holes, from 0; each lower genus, from 0; then min_faces(recipe), the face count halfway and
+// three quarters of the way down to it, then 2 faces fewer, each with the recipe's seed and two
+// more seeds (a smaller size is a different mesh, and a bug may need a lucky one); no noise. The
+// first candidate that fails *the same way* (same check id, same exit code, a timeout or no
+// output) becomes the current one and the search starts again; it ends when no candidate fails
+// or after shrink_budget runs of the program. What a smaller recipe is, family by family (the
+// knobs are kept, so each is as hard in its own way at any size; the floor is min_faces(recipe),
+// which holds the family's own features):
+//   block       the perforated slab of the genus and holes, re-triangulated with fewer faces, at
+//               least two per unit square of its surface; then without noise
+//   smooth      the same rounded and deformed slab (roundness, amplitude) sampled by fewer faces
+//   quality     fewer needles, caps and slivers (bad_fraction is a share of the faces), the
+//               thinnest as thin as before (smallest_angle_deg)
+//   valence     fewer high-valence fans (one per component, each of valence >= high_valence) and
+//               fewer valence-3 vertices (low_fraction is a share of the vertices)
+//   density     the same graded and anisotropic refinement (edge_ratio, anisotropy) in fewer
+//               faces around it
+//   degenerate  fewer vertices on the same coarse grid (grid_cells): as exactly coplanar and
+//               collinear, in fewer faces
+//   immersed    (only by name) fewer faces around the bump pushed through the slab (depth)
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -37,6 +60,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <string>
 #include <thread>
 #include <vector>
@@ -46,8 +70,10 @@
 #include <fhr/exchange/verify.hpp>
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/io/atomic_file.hpp>
+#include <fhr/io/detail/number_text.hpp>
 #include <fhr/io/read.hpp>
 #include "cli/common.hpp"
+#include "cli/oracle_table.hpp"
 
 extern char** environ;
 
@@ -58,8 +84,8 @@ namespace fs = std::filesystem;
 
 /// Runs of the program spent on shrinking one failure.
 constexpr int shrink_budget = 40;
-/// The largest face count above min_faces(genus, holes, components) of a drawn mesh: modest, so
-/// that a slow implementation still gets through hundreds of meshes.
+/// The largest face count above min_faces(recipe) of a drawn mesh: modest, so that a slow
+/// implementation still gets through hundreds of meshes.
 constexpr std::uint64_t extra_faces_max = 600;
 /// Bytes of the program's stderr kept in a reason.
 constexpr std::size_t stderr_tail = 600;
@@ -83,28 +109,41 @@ private:
 };
 
 using Recipe = generate::RandomMeshOptions;
+using generate::Family;
+
+/// The least face count of the recipe's family, genus, holes and components (its faces ignored):
+/// min_faces(recipe), made even without holes (a closed mesh has an even face count).
+std::size_t least_faces(const Recipe& r) {
+    const std::size_t least = generate::min_faces(r);
+    return least + (r.holes == 0 ? least % 2 : 0);
+}
 
 /// The ranges recipes are drawn from: [0, genus], [0, holes], [1, components].
 struct Ranges {
     int genus = 2, holes = 5, components = 3;
 };
 
-/// Mesh i of the run with seed S: genus, holes and components in their ranges (holes and
-/// components drawn only when their range has more than one value, so `--holes-max 0
-/// --components-max 1` draws the closed recipes of the versions before them), faces in
-/// [min_faces, min_faces + 600] (even without holes), a seed that `fhr generate --seed` accepts
-/// (< 2^63), noise 0, 0.05, 0.1 or 0.25.
-Recipe draw_recipe(std::uint64_t seed, std::uint64_t i, const Ranges& ranges) {
-    SplitMix r(SplitMix(seed).next() ^ (i * 0xD1B54A32D192ED03ull));
+/// Mesh i of the run with seed S: the family asked for, or (nullptr: `--family all`) one of the
+/// embedded families drawn from a stream of its own, so that the other draws do not depend on it;
+/// genus, holes and components in their ranges (holes and components drawn only when their range
+/// has more than one value, so `--family block --holes-max 0 --components-max 1` draws the closed
+/// recipes of the versions before them), faces in [least_faces, least_faces + 600] (even without
+/// holes), a seed that `fhr generate --seed` accepts (< 2^63), for block noise 0, 0.05, 0.1 or
+/// 0.25; the family's knobs at their defaults.
+Recipe draw_recipe(std::uint64_t seed, std::uint64_t i, const Ranges& ranges, const Family* family) {
+    const std::uint64_t stream = SplitMix(seed).next() ^ (i * 0xD1B54A32D192ED03ull);
+    SplitMix r(stream);
     Recipe o;
+    o.family = family ? *family
+                      : generate::embedded_families[SplitMix(stream ^ 0x6A09E667F3BCC909ull).below(std::size(generate::embedded_families))];
     o.genus = static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.genus) + 1));
     if (ranges.holes > 0) o.holes = static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.holes) + 1));
     if (ranges.components > 1) o.components = 1 + static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.components)));
     const std::uint64_t step = o.holes == 0 ? 2 : 1;  // F is even without holes
-    o.faces = generate::min_faces(o.genus, o.holes, o.components) + step * r.below(extra_faces_max / step + 1);
+    o.faces = least_faces(o) + step * r.below(extra_faces_max / step + 1);
     o.seed = r.next() >> 1;
     constexpr double noises[] = {0.0, 0.05, 0.1, 0.25};
-    o.noise = noises[r.below(4)];
+    if (o.family == Family::block) o.noise = noises[r.below(4)];
     return o;
 }
 
@@ -247,12 +286,12 @@ std::vector<Recipe> shrink_candidates(const Recipe& r) {
         Recipe x = r;
         x.*knob = v;
         if (x.holes == 0) x.faces -= x.faces % 2;
-        if (x.faces >= generate::min_faces(x.genus, x.holes, x.components)) c.push_back(x);
+        if (x.faces >= least_faces(x)) c.push_back(x);
     };
     for (int k = 1; k < r.components; ++k) lowered(&Recipe::components, k);
     for (int h = 0; h < r.holes; ++h) lowered(&Recipe::holes, h);
     for (int g = 0; g < r.genus; ++g) lowered(&Recipe::genus, g);
-    const std::size_t least = generate::min_faces(r.genus, r.holes, r.components), excess = (r.faces - least) / 2;
+    const std::size_t least = least_faces(r), excess = (r.faces - least) / 2;
     for (std::size_t faces : {least, least + 2 * (excess / 2), least + 2 * (excess * 3 / 4), r.faces - 2}) {
         if (faces >= r.faces || faces < least) continue;
         for (std::uint64_t k = 0; k < 3; ++k) {
@@ -332,42 +371,81 @@ struct TempDir {
     }
 };
 
+/// `fhr oracle-fuzz --merge FILE... [--table OUT]`: the shards' tables as the unsharded run's
+/// (CLI-ORACLE-9); its failures and summary on stdout, the exit code of that run.
+int merge(const Args& args) {
+    for (const char* name : {"cmd", "count", "family", "genus-max", "holes-max", "components-max", "seed", "keep", "timeout", "shard"})
+        if (args.get(name)) usage_error(std::string("--merge takes table files and --table only (not --") + name + ")");
+    const oracle::Table merged = oracle::merge_tables(args.positional());
+    std::uint64_t failures = 0;
+    for (const oracle::TableRow& row : merged.rows) {
+        if (!row.failed()) continue;
+        ++failures;
+        std::printf("mesh %llu: %s: FAILED: %s; smaller: %s\n", static_cast<unsigned long long>(row.index), row.recipe.c_str(),
+                    row.reason.c_str(), row.smaller.c_str());
+    }
+    if (const auto out = args.get("table")) io::write_file_atomically(*out, oracle::table_text(merged));
+    std::printf("%llu meshes, %llu failures\n", static_cast<unsigned long long>(merged.rows.size()),
+                static_cast<unsigned long long>(failures));
+    return failures == 0 ? 0 : 1;
+}
+
 }  // namespace
 
 int run_oracle_fuzz(const std::vector<std::string>& argv) {
-    const Args args(argv, {}, {"cmd", "count", "genus-max", "holes-max", "components-max", "seed", "keep", "timeout"});
-    if (!args.positional().empty()) usage_error("fhr oracle-fuzz takes no positional arguments");
+    const Args args(argv, {"merge"}, {"cmd", "count", "family", "genus-max", "holes-max", "components-max", "seed", "keep", "timeout",
+                                      "shard", "table"});
+    if (args.flag("merge")) return merge(args);
+    if (!args.positional().empty()) usage_error("fhr oracle-fuzz takes no positional arguments (but table files with --merge)");
     const std::string cmd = args.require("cmd");
     if (cmd.find("{mesh}") == std::string::npos || cmd.find("{out}") == std::string::npos)
         usage_error("--cmd must contain {mesh} and {out}");
     args.require("count");
     const auto count = static_cast<std::uint64_t>(args.integer("count", 0, 1, 1'000'000));
+    const std::string family_arg = args.get("family").value_or("all");
+    const Family named = family_arg == "all" ? Family::block : generate::parse_family(family_arg);
+    const Family* family = family_arg == "all" ? nullptr : &named;
     const Ranges ranges{static_cast<int>(args.integer("genus-max", 2, 0, 20)), static_cast<int>(args.integer("holes-max", 5, 0, 100)),
                         static_cast<int>(args.integer("components-max", 3, 1, 20))};
     const auto seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, INT64_MAX));
     const fs::path keep = args.get("keep").value_or("oracle-fuzz-failures");
     const double timeout = args.real("timeout", 60.0, 0.1, 86400.0);
+    const oracle::Shard shard = args.get("shard") ? oracle::parse_shard(*args.get("shard")) : oracle::Shard{};
+    std::string timeout_text;  // the shortest decimal that reads back as the timeout: 60 and 60.0 alike
+    io::append_number(timeout_text, timeout);
+    oracle::Table table{{cmd, std::to_string(count), std::to_string(seed), family_arg, std::to_string(ranges.genus),
+                         std::to_string(ranges.holes), std::to_string(ranges.components), timeout_text},
+                        shard,
+                        {}};
 
     const TempDir tmp;
     const fs::path run_dir = tmp.path / "run", shrink_dir = tmp.path / "shrink";
     std::uint64_t failures = 0;
-    for (std::uint64_t i = 0; i < count; ++i) {
-        const Recipe recipe = draw_recipe(seed, i, ranges);
+    for (std::uint64_t i = shard.k - 1; i < count; i += shard.n) {
+        const Recipe recipe = draw_recipe(seed, i, ranges, family);
         const Outcome outcome = judge(recipe, cmd, run_dir, timeout);
-        std::printf("mesh %llu: %s: ", static_cast<unsigned long long>(i), generate::generate_command(recipe).c_str());
+        oracle::TableRow row{i, generate::family_name(recipe.family), generate::generate_command(recipe), "", "", ""};
+        std::printf("mesh %llu: %s: ", static_cast<unsigned long long>(i), row.recipe.c_str());
         if (outcome.ok) {
             std::printf("valid\n");
         } else {
             ++failures;
             const Shrunk shrunk = shrink(recipe, outcome, cmd, shrink_dir, timeout);
             keep_failure(keep, i, recipe, outcome, run_dir, shrunk, cmd);
-            std::printf("FAILED: %s; smaller: %s; kept in %s\n", first_line(outcome.reason).c_str(), size_of(shrunk.recipe).c_str(),
+            row.check = outcome.kind;
+            row.reason = first_line(outcome.reason);
+            row.smaller = generate::generate_command(shrunk.recipe, "smaller.off");
+            std::printf("FAILED: %s; smaller: %s; kept in %s\n", row.reason.c_str(), size_of(shrunk.recipe).c_str(),
                         (keep / ("mesh-" + std::to_string(i))).string().c_str());
         }
+        table.rows.push_back(std::move(row));
         std::fflush(stdout);
     }
-    std::printf("%llu meshes, %llu failures\n", static_cast<unsigned long long>(count),
+    if (const auto out = args.get("table")) io::write_file_atomically(*out, oracle::table_text(table));
+    std::printf("%llu meshes, %llu failures", static_cast<unsigned long long>(table.rows.size()),
                 static_cast<unsigned long long>(failures));
+    if (shard.n > 1) std::printf(" (shard %s of %llu meshes)", shard.text().c_str(), static_cast<unsigned long long>(count));
+    std::printf("\n");
     return failures == 0 ? 0 : 1;
 }
 
