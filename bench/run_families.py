@@ -8,14 +8,9 @@ certified). Prints, in markdown for paper_notes, one row per family (meshes, cer
 and a total, then every failure with the `fhr generate` command of its mesh and the first line of
 its error; the exit code is 0 when every mesh is certified with its domain kept, else 1.
 
-Mesh i of family f is drawn from (seed, f, i) alone — Python's random.Random seeded with the
-string "S f i" (SHA-512 of the string: the same on every platform and Python ≥ 3.2) — so the
-recipes do not depend on COUNT's other meshes, on --families, or on the shard: genus in
-[0, --genus-max] (default 3), boundary loops in [0, --holes-max] (default 5), components in
-[1, --components-max] (default 3), genus and loops being totals over the components as in `fhr
-generate`; faces uniform in [max(1000, min_faces), 20000] (--faces-min, --faces-max; the even
-ones without holes), min_faces being the family's least for that topology (`fhr generate
---min-faces`); a seed below 2^63; the family's knobs at their defaults.
+Mesh i of family f is drawn from (seed, f, i) alone (family_recipes.py: genus 0–3, 0–5 boundary
+loops, 1–3 components, 1,000–20,000 faces, default knobs), so the recipes do not depend on
+COUNT's other meshes, on --families, or on the shard.
 
 A campaign (campaign.py): the items are family-major, item f·COUNT + i being mesh i of the f-th
 family asked for; `--shard K/N` runs the items i with i mod N = K − 1, `-j J` runs J meshes at a
@@ -28,26 +23,17 @@ Usage: run_families.py FHR OUT_DIR [COUNT] [--families a,b] [--seed S] [--genus-
                        [--timeout SECONDS] [--shard K/N] [-j J]
        run_families.py --merge RESULTS... [--results FILE]   (results files, or folders holding them)"""
 import argparse
-import functools
 import os
-import random
 import shutil
 import subprocess
 
 import campaign
 import certify
-
-EMBEDDED = ("block", "smooth", "quality", "valence", "density", "degenerate")
+import family_recipes
 
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("paths", nargs="*", metavar="FHR OUT_DIR [COUNT] | RESULTS")
-parser.add_argument("--families", default=",".join(EMBEDDED), help="comma-separated (default: every embedded family)")
-parser.add_argument("--seed", type=int, default=1)
-parser.add_argument("--genus-max", type=int, default=3)
-parser.add_argument("--holes-max", type=int, default=5)
-parser.add_argument("--components-max", type=int, default=3)
-parser.add_argument("--faces-min", type=int, default=1000)
-parser.add_argument("--faces-max", type=int, default=20000)
+family_recipes.add_options(parser)
 parser.add_argument("--timeout", type=float, default=1800.0, help="seconds per `fhr run`")
 campaign.add_options(parser)
 options = parser.parse_args()
@@ -60,33 +46,9 @@ def start():
     count = int(options.paths[2]) if len(options.paths) == 3 else 500
     families = options.families.split(",")
 
-    @functools.lru_cache(maxsize=None)
-    def min_faces(family, genus, holes, components):
-        proc = subprocess.run([fhr, "generate", "--family", family, "--genus", str(genus), "--holes", str(holes),
-                               "--components", str(components), "--min-faces"], capture_output=True, text=True)
-        if proc.returncode != 0:
-            raise campaign.CampaignError("fhr generate --family %s --min-faces: %s" % (family, certify.error_line(proc.stderr)))
-        return int(proc.stdout)
-
-    def recipe(family, i):
-        """Mesh i of the family: its `fhr generate` arguments (without --out) and sizes."""
-        rng = random.Random("%d %s %d" % (options.seed, family, i))
-        genus = rng.randint(0, options.genus_max)
-        holes = rng.randint(0, options.holes_max)
-        components = rng.randint(1, options.components_max)
-        least = max(options.faces_min, min_faces(family, genus, holes, components))
-        if least > options.faces_max:
-            raise campaign.CampaignError("%s meshes of genus %d with %d holes in %d components need %d faces, more than --faces-max"
-                                         % (family, genus, holes, components, least))
-        faces = rng.randint(least, options.faces_max) if holes else 2 * rng.randint((least + 1) // 2, options.faces_max // 2)
-        args = ([] if family == "block" else ["--family", family]) + ["--genus", str(genus)]
-        args += (["--holes", str(holes)] if holes else []) + (["--components", str(components)] if components > 1 else [])
-        args += ["--faces", str(faces), "--seed", str(rng.getrandbits(63))]
-        return args, faces, genus, holes, components
-
     def work(index):
         family, i = families[index // count], index % count
-        args, faces, genus, holes, components = recipe(family, i)
+        args, faces, genus, holes, components = family_recipes.recipe(fhr, options, family, i)
         folder = os.path.join(out_dir, "%s-%d" % (family, i))
         os.makedirs(folder, exist_ok=True)
         mesh = os.path.join(folder, "mesh.off")
