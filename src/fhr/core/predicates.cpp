@@ -25,7 +25,58 @@ bool decided_by_filter(double det, double permanent, double bound) {
            std::abs(det) > bound * permanent;
 }
 
+// Error-free transformations, exact in round-to-nearest when nothing overflows or underflows:
+// a + b = s + e (Knuth's TwoSum) and a · b = p + e (Dekker's TwoProduct, Veltkamp's splitting).
+void two_sum(double a, double b, double& s, double& e) {
+    s = a + b;
+    const double bv = s - a, av = s - bv;
+    e = (a - av) + (b - bv);
+}
+
+void two_product(double a, double b, double& p, double& e) {
+    constexpr double splitter = 134217729.0;  // 2^27 + 1
+    p = a * b;
+    const double ca = splitter * a, ah = ca - (ca - a), al = a - ah;
+    const double cb = splitter * b, bh = cb - (cb - b), bl = b - bh;
+    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+}
+
+/// Coordinates for which the expansion below is exact: 0, or a magnitude in [2^-450, 2^450]
+/// (every product and its rounding error then lies far inside the normal range).
+bool expansion_safe(double x) {
+    const double m = std::abs(x);
+    return m == 0 || (m >= 0x1.0p-450 && m <= 0x1.0p450);
+}
+
+/// The exact sign of orient2d without rationals (Shewchuk 1997, §2): the determinant is the sum
+/// ax·by − ax·cy − cx·by − ay·bx + ay·cx + bx·cy (cx·cy cancels); each product is split exactly
+/// into two doubles and the twelve are summed exactly by Grow-Expansion into a nonoverlapping
+/// expansion, whose sign is that of its largest non-zero component. \pre expansion_safe for
+/// every coordinate.
+int orient2d_expansion(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+    const double factors[6][3] = {{a.x(), b.y(), 1},  {a.x(), c.y(), -1}, {c.x(), b.y(), -1},
+                                  {a.y(), b.x(), -1}, {a.y(), c.x(), 1},  {b.x(), c.y(), 1}};
+    double expansion[12];
+    int n = 0;
+    const auto grow = [&](double q) {
+        for (int i = 0; i < n; ++i) two_sum(q, expansion[i], q, expansion[i]);
+        expansion[n++] = q;
+    };
+    for (const auto& f : factors) {
+        double p, e;
+        two_product(f[0], f[1], p, e);
+        grow(f[2] * p);
+        grow(f[2] * e);
+    }
+    for (int i = n - 1; i >= 0; --i)
+        if (expansion[i] != 0) return expansion[i] > 0 ? 1 : -1;
+    return 0;
+}
+
 int orient2d_exact(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+    if (expansion_safe(a.x()) && expansion_safe(a.y()) && expansion_safe(b.x()) && expansion_safe(b.y()) &&
+        expansion_safe(c.x()) && expansion_safe(c.y()))
+        return orient2d_expansion(a, b, c);
     const mpq_class ax(a.x()), ay(a.y());
     const mpq_class det = (mpq_class(b.x()) - ax) * (mpq_class(c.y()) - ay) -
                           (mpq_class(b.y()) - ay) * (mpq_class(c.x()) - ax);

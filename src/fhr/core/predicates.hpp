@@ -3,8 +3,11 @@
 // round-off would certify a fold. So these signs are exact for all finite double inputs:
 // a floating-point evaluation with a forward error bound (Shewchuk 1997, "Adaptive precision
 // floating-point arithmetic and fast robust geometric predicates", the bounds ccwerrboundA and
-// o3derrboundA), and when the bound cannot decide, an exact evaluation in GMP rationals
-// (every double is a rational, so the determinant is computed without error).
+// o3derrboundA), and when the bound cannot decide, an exact evaluation: for orient2d with
+// coordinates of moderate exponent (0 or 2^-450..2^450) a sum of error-free products (Shewchuk's
+// expansions, about 100 flops; collinear points of generated meshes need it constantly),
+// otherwise in GMP rationals (every double is a rational, so the determinant is computed without
+// error).
 #pragma once
 
 #include <Eigen/Core>
