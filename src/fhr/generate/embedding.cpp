@@ -1,5 +1,6 @@
 // FHR generate — the exact embedding check and guard (beyond the paper, issue 17); the argument is
-// in embedding.hpp. Every sign comes from core/predicates.hpp (exact for all finite doubles).
+// in embedding.hpp. Every sign comes from core/predicates.hpp (exact for all finite doubles), or is an
+// exact zero decided without arithmetic (points sharing a coordinate; below).
 #include <fhr/generate/embedding.hpp>
 
 #include <algorithm>
