@@ -14,6 +14,25 @@ using Vec2 = Eigen::Vector2d;
 
 Vec2 drop_axis(const Vec3& p, int axis) { return Vec2(p[(axis + 1) % 3], p[(axis + 2) % 3]); }
 
+// The signs below first look for an exact zero that needs no arithmetic: points with one
+// coordinate in common lie in an axis-aligned plane (or line). The generator's meshes start from
+// blocks made of such planes, where the floating-point filter of orient3d/orient2d can never
+// decide a zero and the exact (GMP) fallback would run for nearly every pair of faces of a facet.
+
+/// orient3d(a, b, c, d); 0 at once when the four points share a coordinate.
+int orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    for (int k = 0; k < 3; ++k)
+        if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return 0;
+    return orient3d(a, b, c, d);
+}
+
+/// orient2d(a, b, c); 0 at once when the three points share a coordinate.
+int orient(const Vec2& a, const Vec2& b, const Vec2& c) {
+    for (int k = 0; k < 2; ++k)
+        if (a[k] == b[k] && a[k] == c[k]) return 0;
+    return orient2d(a, b, c);
+}
+
 /// The axis of the largest component of the normal of (p, q, r): dropping it maps the triangle's
 /// plane one-to-one onto a coordinate plane. Only used where (p, q, r) is non-degenerate, and any
 /// axis whose normal component is non-zero works, so rounding in n cannot give a wrong answer
@@ -28,7 +47,7 @@ int projection_axis(const Vec3& p, const Vec3& q, const Vec3& r) {
 
 /// Closed segments ab and cd of a plane meet.
 bool segments_meet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-    const int o1 = orient2d(a, b, c), o2 = orient2d(a, b, d), o3 = orient2d(c, d, a), o4 = orient2d(c, d, b);
+    const int o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
     if (o1 * o2 > 0 || o3 * o4 > 0) return false;
     if (o1 != 0 || o2 != 0 || o3 != 0 || o4 != 0) return true;  // not collinear: they cross
     for (int k = 0; k < 2; ++k)  // collinear: their extents overlap on both axes
@@ -38,12 +57,12 @@ bool segments_meet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
 
 /// The closed segment ab meets the closed non-degenerate triangle pqr.
 bool segment_meets_triangle(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r) {
-    const int oa = orient3d(p, q, r, a), ob = orient3d(p, q, r, b);
+    const int oa = orient(p, q, r, a), ob = orient(p, q, r, b);
     if (oa * ob > 0) return false;
     if (oa != 0 || ob != 0) {
         // ab crosses the plane within the segment; the crossing is in the triangle iff the line
         // ab passes on no two strictly different sides of the three edge lines.
-        const int s[3] = {orient3d(a, b, p, q), orient3d(a, b, q, r), orient3d(a, b, r, p)};
+        const int s[3] = {orient(a, b, p, q), orient(a, b, q, r), orient(a, b, r, p)};
         const bool positive = s[0] > 0 || s[1] > 0 || s[2] > 0, negative = s[0] < 0 || s[1] < 0 || s[2] < 0;
         return !(positive && negative);
     }
@@ -51,9 +70,9 @@ bool segment_meets_triangle(const Vec3& a, const Vec3& b, const Vec3& p, const V
     const int axis = projection_axis(p, q, r);
     const Vec2 a2 = drop_axis(a, axis), b2 = drop_axis(b, axis), p2 = drop_axis(p, axis), q2 = drop_axis(q, axis),
                r2 = drop_axis(r, axis);
-    const int o = orient2d(p2, q2, r2);
+    const int o = orient(p2, q2, r2);
     const auto inside = [&](const Vec2& x) {
-        return o * orient2d(p2, q2, x) >= 0 && o * orient2d(q2, r2, x) >= 0 && o * orient2d(r2, p2, x) >= 0;
+        return o * orient(p2, q2, x) >= 0 && o * orient(q2, r2, x) >= 0 && o * orient(r2, p2, x) >= 0;
     };
     return inside(a2) || inside(b2) || segments_meet(a2, b2, p2, q2) || segments_meet(a2, b2, q2, r2) ||
            segments_meet(a2, b2, r2, p2);
@@ -112,6 +131,17 @@ double default_cell(const TriMesh& m) {
     return count == 0 || !(sum > 0) ? 1.0 : 2 * sum / static_cast<double>(count);
 }
 
+/// The closed bounding boxes of a and b overlap: two triangles whose boxes are disjoint cannot
+/// meet (nor share a vertex), so meet_improperly is false for them. Exact comparisons.
+bool boxes_overlap(const TriangleAt& a, const TriangleAt& b) {
+    for (int k = 0; k < 3; ++k) {
+        const double a_lo = std::min({a.p[0][k], a.p[1][k], a.p[2][k]}), a_hi = std::max({a.p[0][k], a.p[1][k], a.p[2][k]});
+        const double b_lo = std::min({b.p[0][k], b.p[1][k], b.p[2][k]}), b_hi = std::max({b.p[0][k], b.p[1][k], b.p[2][k]});
+        if (a_hi < b_lo || b_hi < a_lo) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 TriangleAt triangle_at(const TriMesh& m, FaceId f) {
@@ -138,10 +168,10 @@ bool meet_improperly(const TriangleAt& a, const TriangleAt& b) {
     }
     if (n == 2) {  // common edge uv: improper iff coplanar with the third corners on one side
         const Vec3 &u = a.p[ia[0]], &v = a.p[ia[1]], &x = a.p[3 - ia[0] - ia[1]], &y = b.p[3 - ib[0] - ib[1]];
-        if (orient3d(u, v, x, y) != 0) return false;
+        if (orient(u, v, x, y) != 0) return false;
         const int axis = projection_axis(u, v, x);
         const Vec2 u2 = drop_axis(u, axis), v2 = drop_axis(v, axis);
-        return orient2d(u2, v2, drop_axis(x, axis)) * orient2d(u2, v2, drop_axis(y, axis)) > 0;
+        return orient(u2, v2, drop_axis(x, axis)) * orient(u2, v2, drop_axis(y, axis)) > 0;
     }
     return true;  // the same three vertices twice
 }
@@ -188,7 +218,7 @@ std::optional<std::array<FaceId, 2>> find_self_intersection(const TriMesh& m) {
         }
         std::sort(candidates.begin(), candidates.end());
         for (std::uint32_t g : candidates)
-            if (meet_improperly(tri[f], tri[g])) return std::array<FaceId, 2>{FaceId(f), FaceId(g)};
+            if (boxes_overlap(tri[f], tri[g]) && meet_improperly(tri[f], tri[g])) return std::array<FaceId, 2>{FaceId(f), FaceId(g)};
     }
     return std::nullopt;
 }
@@ -235,16 +265,29 @@ bool EmbeddingGuard::accepts(const TriMesh& m, std::span<const FaceId> removed, 
     const auto is_removed = [&](std::uint32_t g) {
         return std::find(removed.begin(), removed.end(), FaceId(g)) != removed.end();
     };
+    // Faces whose boxes miss t's cannot meet it. A face in several of t's (few) cells is tested
+    // once; against an oversize t, which visits every bucket, faces are not tracked.
+    std::vector<std::uint32_t> tested;
+    bool track = true;
     const auto clashes = [&](const TriangleAt& t, Key key) {
         const auto it = buckets_.find(key);
         if (it == buckets_.end()) return false;
-        for (std::uint32_t g : it->second)
-            if (!is_removed(g) && meet_improperly(t, triangle_at(m, FaceId(g)))) return true;
+        for (std::uint32_t g : it->second) {
+            if (is_removed(g)) continue;
+            if (track) {
+                if (std::find(tested.begin(), tested.end(), g) != tested.end()) continue;
+                tested.push_back(g);
+            }
+            const TriangleAt u = triangle_at(m, FaceId(g));
+            if (boxes_overlap(t, u) && meet_improperly(t, u)) return true;
+        }
         return false;
     };
     for (const TriangleAt& t : added) {
+        tested.clear();
+        track = cell_range(t.p, cell_).count() <= max_cells_per_face;
         bool clash = clashes(t, Key(0));
-        if (cell_range(t.p, cell_).count() > max_cells_per_face) {  // an oversize triangle: every face
+        if (!track) {  // an oversize triangle: every face
             for (const auto& [key, faces] : buckets_) clash = clash || clashes(t, key);
         } else {
             for_each_cell(t.p, [&](Key key) { clash = clash || clashes(t, key); });
