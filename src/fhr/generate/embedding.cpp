@@ -135,6 +135,17 @@ double default_cell(const TriMesh& m) {
     return count == 0 || !(sum > 0) ? 1.0 : 2 * sum / static_cast<double>(count);
 }
 
+/// The closed bounding boxes of a and b overlap: two triangles whose boxes are disjoint cannot
+/// meet (nor share a vertex), so meet_improperly is false for them. Exact comparisons.
+bool boxes_overlap(const TriangleAt& a, const TriangleAt& b) {
+    for (int k = 0; k < 3; ++k) {
+        const double a_lo = std::min({a.p[0][k], a.p[1][k], a.p[2][k]}), a_hi = std::max({a.p[0][k], a.p[1][k], a.p[2][k]});
+        const double b_lo = std::min({b.p[0][k], b.p[1][k], b.p[2][k]}), b_hi = std::max({b.p[0][k], b.p[1][k], b.p[2][k]});
+        if (a_hi < b_lo || b_hi < a_lo) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 TriangleAt triangle_at(const TriMesh& m, FaceId f) {
@@ -211,7 +222,7 @@ std::optional<std::array<FaceId, 2>> find_self_intersection(const TriMesh& m) {
         }
         std::sort(candidates.begin(), candidates.end());
         for (std::uint32_t g : candidates)
-            if (meet_improperly(tri[f], tri[g])) return std::array<FaceId, 2>{FaceId(f), FaceId(g)};
+            if (boxes_overlap(tri[f], tri[g]) && meet_improperly(tri[f], tri[g])) return std::array<FaceId, 2>{FaceId(f), FaceId(g)};
     }
     return std::nullopt;
 }
@@ -258,16 +269,29 @@ bool EmbeddingGuard::accepts(const TriMesh& m, std::span<const FaceId> removed, 
     const auto is_removed = [&](std::uint32_t g) {
         return std::find(removed.begin(), removed.end(), FaceId(g)) != removed.end();
     };
+    // Faces whose boxes miss t's cannot meet it. A face in several of t's (few) cells is tested
+    // once; against an oversize t, which visits every bucket, faces are not tracked.
+    std::vector<std::uint32_t> tested;
+    bool track = true;
     const auto clashes = [&](const TriangleAt& t, Key key) {
         const auto it = buckets_.find(key);
         if (it == buckets_.end()) return false;
-        for (std::uint32_t g : it->second)
-            if (!is_removed(g) && meet_improperly(t, triangle_at(m, FaceId(g)))) return true;
+        for (std::uint32_t g : it->second) {
+            if (is_removed(g)) continue;
+            if (track) {
+                if (std::find(tested.begin(), tested.end(), g) != tested.end()) continue;
+                tested.push_back(g);
+            }
+            const TriangleAt u = triangle_at(m, FaceId(g));
+            if (boxes_overlap(t, u) && meet_improperly(t, u)) return true;
+        }
         return false;
     };
     for (const TriangleAt& t : added) {
+        tested.clear();
+        track = cell_range(t.p, cell_).count() <= max_cells_per_face;
         bool clash = clashes(t, Key(0));
-        if (cell_range(t.p, cell_).count() > max_cells_per_face) {  // an oversize triangle: every face
+        if (!track) {  // an oversize triangle: every face
             for (const auto& [key, faces] : buckets_) clash = clash || clashes(t, key);
         } else {
             for_each_cell(t.p, [&](Key key) { clash = clash || clashes(t, key); });

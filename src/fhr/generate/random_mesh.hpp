@@ -55,7 +55,7 @@ struct FamilyKnobs {
     double edge_ratio = 1e5;   ///< longest / shortest edge reached by graded refinement, in [10, 1e9]
     double anisotropy = 100;   ///< aspect ratio of the anisotropic band's triangles, in [1, 1e6]
     // degenerate
-    int grid_cells = 8;        ///< grid points per unit cell (coordinates snapped to 1/grid_cells), in [2, 1024]
+    int grid_cells = 8;        ///< grid steps per mean edge length (coordinates on a power-of-two grid <= mean edge / grid_cells), in [2, 1024]
     // immersed
     double depth = 1.5;        ///< how far a bump is pushed through the slab, in slab thicknesses, in [1.1, 4]
     bool operator==(const FamilyKnobs&) const = default;
