@@ -3,8 +3,10 @@
 // at most min_faces + 300 faces, seed, and noise for block; src/fhr/generate), a domain size, the weights and the
 // solver; §2 decimates T to D and pipeline::parameterize runs §3 and §4. Every run must end
 // certified (Proposition 1, the per-patch certificate) and accepted by the independent oracle
-// (spec/param.md PARAM-2..11 against T). The one expected refusal is InvalidInput from the
-// decimation (the size cannot be reached under its validity rules, spec/domain.md DOM-9); a
+// (spec/param.md PARAM-2..11 against T), except uniform weights on the density family's graded
+// meshes, which may end not certified and must then be refused by the oracle too. The one
+// expected refusal is InvalidInput from the decimation (the size cannot be reached under its
+// validity rules, spec/domain.md DOM-9); a
 // PartitionFailure is a finding too, since §3's recovery ends at the latest at D = T. A finding
 // prints the `fhr` commands that reproduce it and traps. Every input is a valid recipe; the seeds
 // (fuzz/corpus/pipeline/) are 24 bytes long so that libFuzzer's length limit starts where a whole
@@ -67,10 +69,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     try {
         const pipeline::Parameterization p = pipeline::parameterize(T, std::move(D), options);
-        if (!p.certified()) finding(o, target, options, "a patch certificate failed");
         const exchange::VerifyReport oracle = exchange::verify(pipeline::to_param_file(p), &T);
-        if (const exchange::CheckResult* bad = oracle.first_failure())
-            finding(o, target, options, "fhr verify: " + bad->id + ": " + bad->first_failure);
+        const exchange::CheckResult* bad = oracle.first_failure();
+        // Tutte's uniform weights crush graded refinement (the density family) below what doubles
+        // resolve: not certified is then the right answer, if the oracle agrees (never a wrong
+        // certificate; paper_notes/generator.md).
+        if (!p.certified() && options.map.weights == param::Weights::uniform && o.family == generate::Family::density) {
+            if (!bad) finding(o, target, options, "not certified, but the oracle accepts the output");
+            return 0;
+        }
+        if (!p.certified()) finding(o, target, options, "a patch certificate failed");
+        if (bad) finding(o, target, options, "fhr verify: " + bad->id + ": " + bad->first_failure);
     } catch (const Error& e) {  // PartitionFailure, NumericalFailure, or InvalidInput after §2
         finding(o, target, options, std::string("exception: ") + e.what());
     }

@@ -164,7 +164,12 @@ std::string boundary_follows(const TriMesh& T, const partition::Partition& P) {
 /// T (even when T is closed: odd counts are refused, DOM-9) and random weights and curves, and every
 /// check of the file comment. The small requests are raised to each component's least
 /// (component_targets), or stop above where a component's boundary needs more.
-void run_and_check(const TriMesh& T) {
+///
+/// `graded`: T has graded refinement (the density family, edge-length ratios of 10⁵): Tutte's
+/// uniform weights ignore the geometry and shrink the image of a refined corner geometrically per
+/// level, below what doubles resolve, so with them a run may end not certified — the certificate
+/// and the oracle must then say so (never a wrong certificate); paper_notes/generator.md.
+void run_and_check(const TriMesh& T, bool graded = false) {
     const std::vector<Piece> tp = pieces(T, connected_components(T));
     const auto closed = static_cast<std::size_t>(std::count_if(tp.begin(), tp.end(), [](const Piece& p) { return p.loops == 0; }));
     const std::size_t step = closed == tp.size() ? 2 : 1, most = std::max<std::size_t>(1, T.n_faces() / 3 / step);
@@ -203,12 +208,18 @@ void run_and_check(const TriMesh& T) {
     }
     RC_TAG(above ? "a component with boundary stopped above its share" : "every share met");
 
+    const param::Weights weights = options.method.map.weights;
     const pipeline::RunResult r = pipeline::run(T, std::move(options));
     const pipeline::Parameterization& p = r.parameterization;
     RC_TAG(p.partition.retries > 0 ? "recovered" : "first try");
     RC_ASSERT(r.domain_faces_requested == D0.mesh.n_faces());
-    RC_ASSERT(p.certified());
     const exchange::CheckResult* bad = r.oracle.first_failure();
+    if (graded && weights == param::Weights::uniform && !p.certified()) {
+        RC_ASSERT(bad != nullptr);  // the oracle agrees: not one-to-one in double precision
+        RC_TAG("uniform weights on graded refinement: not certified, and said so");
+        return;
+    }
+    RC_ASSERT(p.certified());
     RC_ASSERT((bad ? bad->id + ": " + bad->first_failure : std::string()) == "");
     std::vector<std::size_t> faces;
     RC_ASSERT(same_topology(T, p.partition.domain, faces) == "");
@@ -246,6 +257,6 @@ TEST_CASE("pipeline: meshes of every embedded generator family (genus 0–3, 0�
              .max_components = 2,
              .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
         RC_TAG(generate::family_name(g.options.family));
-        run_and_check(g);
+        run_and_check(g, g.options.family == generate::Family::density);
     });
 }
