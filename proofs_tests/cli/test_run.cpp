@@ -127,6 +127,20 @@ TEST_CASE("CLI-RUN-1: --weights and --solver are honoured and still certified", 
     CHECK(json_true(report, "certified"));
 }
 
+TEST_CASE("CLI-RUN-1: a solver that fails says how far it got, in numbers (fuzz_pipeline finding, session 8)", "[cli][run]") {
+    // Uniform weights on the density family's graded mesh: Tutte's system is too ill-conditioned
+    // for BiCGSTAB (paper_notes/generator.md). The message printed 0.000000 for both numbers.
+    const std::string mesh = temp_path("bicgstab.off");
+    REQUIRE(run_fhr({"generate", "--family", "density", "--genus", "0", "--components", "2", "--faces", "564", "--seed",
+                     "2420457183278695252", "--out", mesh})
+                .exit_code == 0);
+    const auto r = run_fhr({"run", mesh, "--faces", "86", "--weights", "uniform", "--solver", "bicgstab", "--out",
+                            temp_path("bicgstab-run")});
+    CHECK(r.exit_code == 4);  // a numerical failure (spec/cli.md), deterministic: -ffp-contract=off
+    CHECK_THAT(r.err, Catch::Contains("BiCGSTAB did not reach relative residual 1e-14 (reached ") &&
+                          !Catch::Contains("0.000000"));
+}
+
 TEST_CASE("CLI-RUN-5: bad input and bad options exit 2 and write nothing", "[cli][run]") {
     const std::string dir = temp_path("run-bad");
     const std::string bad = fhr::test::write_temp("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");

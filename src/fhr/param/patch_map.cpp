@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -94,9 +95,12 @@ Eigen::MatrixXd solve(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
     for (Eigen::Index j = 0; j < rhs.cols(); ++j) {
         x.col(j) = it.solve(rhs.col(j));
         if (it.info() != Eigen::Success || !x.col(j).allFinite())
-            throw NumericalFailure("patch: BiCGSTAB did not reach relative residual " + std::to_string(bicgstab_tolerance) +
-                                   " (reached " + std::to_string(it.error()) + " after " + std::to_string(it.iterations()) +
-                                   " iterations)");
+        {
+            char what[160];  // %g: the tolerance is 1e-12-ish, which std::to_string prints as 0.000000
+            std::snprintf(what, sizeof what, "patch: BiCGSTAB did not reach relative residual %g (reached %g after %ld iterations)",
+                          bicgstab_tolerance, it.error(), static_cast<long>(it.iterations()));
+            throw NumericalFailure(what);
+        }
     }
     return x;
 }
