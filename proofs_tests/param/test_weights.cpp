@@ -182,4 +182,10 @@ TEST_CASE("MAP-2: degenerate 1-rings are refused, naming the vertex", "[unit][pa
     const std::vector<Vec3> coincident{Vec3(1, 0, 0), Vec3(0, 0, 0), Vec3(-1, -1, 0)};
     for (Weights kind : {Weights::shape_preserving, Weights::mean_value})
         CHECK_THROWS_AS(one_ring_weights(kind, p, coincident, 2), NumericalFailure);
+    // A weight of exactly 0, finite among positive ones: q_1 lies between q_0 and q_2 on one ray
+    // from p, so both of its angles at p are 0 and its mean-value weight (tan 0 + tan 0) / r_1 is
+    // 0. MAP-2 asks for strictly positive weights: refused, not passed on as a zero.
+    const std::vector<Vec3> needle{Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(3, 0, 0), Vec3(-1, 1, 0), Vec3(-1, -1, 0)};
+    CHECK_THROWS_WITH(one_ring_weights(Weights::mean_value, p, needle, 23),
+                      Catch::Contains("MAP-2") && Catch::Contains("vertex 23") && Catch::Contains(" 0 "));
 }
