@@ -2,8 +2,9 @@
 """`./run coverage`: line and branch coverage of src/ by the test suites, per folder (issue 20).
 
 Runs every suite of BUILD_DIR (a build with -Db_coverage=true, see ./run) through run_suites.py,
-after clearing the counters of any earlier run; the library-* checks are left out, since they
-build copies of fhr elsewhere and add no counts here. gcovr then reads the counters of src/ and
+after clearing the counters of any earlier run, with 4 times the usual time limits (the build is
+instrumented and barely optimized); the library-* checks are left out, since they build copies
+of fhr elsewhere and add no counts here. gcovr then reads the counters of src/ and
 writes an HTML report (OUT_DIR/index.html, one page per file) and a table per folder of src/fhr
 (and src/cli, src/python): lines and branches covered. Printed, and written to OUT_DIR/summary.md.
 
@@ -26,7 +27,7 @@ for folder, _, files in os.walk(build):
         if name.endswith(".gcda"):
             os.remove(os.path.join(folder, name))
 tests = subprocess.run([sys.executable, os.path.join(root, "proofs_tests", "run_suites.py"), build,
-                        "--except", "library-"])
+                        "--timeout-multiplier", "4", "--except", "library-"])
 
 summary_json = os.path.join(out, "summary.json")
 subprocess.run(["gcovr", "--root", root, "--object-directory", build, "--filter", os.path.join(root, "src") + "/",
