@@ -93,6 +93,14 @@ TEST_CASE("weight names parse and print", "[unit][param]") {
     CHECK(param::name(Weights::uniform) == "uniform");
     CHECK_THROWS_AS(param::parse_weights("harmonic"), InvalidInput);
     CHECK_THROWS_WITH(param::parse_weights("Shape-Preserving"), Catch::Contains("expected shape-preserving, mean-value or uniform"));
+    // A bad option value comes from no file and no line: the message is the problem alone.
+    try {
+        param::parse_weights("harmonic");
+    } catch (const InvalidInput& e) {
+        CHECK(e.file().empty());
+        CHECK(e.line() == 0);
+        CHECK(std::string(e.what()) == e.problem());
+    }
 }
 
 TEST_CASE("MAP-2, MAP-3: planar 1-rings of valence 3..12: positive, partition of unity, linear reproduction", "[property][param]") {
