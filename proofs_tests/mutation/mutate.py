@@ -105,6 +105,7 @@ class Mutant:
     replacement: str
     text: str         # the line, stripped
     occurrence: int = 1  # among this line's mutants with the same original and replacement
+    copy: int = 1     # the line is the copy-th of the file's lines with this text
     result: str = ""  # caught, survived, stillborn, equivalent, timeout (caught by the time limit)
     by: str = ""
     seconds: float = 0.0
@@ -112,7 +113,9 @@ class Mutant:
     reason: str = field(default="", repr=False)
 
     def key(self):
-        return (self.path, self.text, self.original, self.replacement, self.occurrence)
+        """The mutant's identity: not its line number, which edits elsewhere in the file change."""
+        copy = (self.copy,) if self.copy > 1 else ()
+        return (self.path, self.text, self.original, self.replacement, self.occurrence) + copy
 
     def where(self):
         return "%s:%d" % (self.path, self.line)
@@ -190,7 +193,7 @@ def nudged(literal):
 
 def sites(path, text):
     lines = text.split("\n")
-    found = []
+    found, copies = [], {}
     for number, (line, code) in enumerate(zip(lines, code_only(lines)), start=1):
         stripped = code.strip()
         if not stripped or stripped.startswith("#") or stripped.startswith("static_assert"):
@@ -209,9 +212,10 @@ def sites(path, text):
             if new is not None and not in_template_arguments(code, m.start()):
                 here.append((m.start(1), "constant", m.group(1), new))
         seen = {}
+        copies[line.strip()] = copies.get(line.strip(), 0) + 1
         for col, op, orig, repl in sorted(here):
             seen[(orig, repl)] = seen.get((orig, repl), 0) + 1
-            found.append(Mutant(path, number, col, op, orig, repl, line.strip(), seen[(orig, repl)]))
+            found.append(Mutant(path, number, col, op, orig, repl, line.strip(), seen[(orig, repl)], copies[line.strip()]))
     return found
 
 
@@ -239,7 +243,8 @@ def folder(path):
 
 def read_equivalents():
     """equivalent.txt: entries of `file:`, `line:` (the line, stripped), `mutant: ORIG -> REPL (K)`
-    (K-th such change on the line) and `why:` (continued on more indented lines)."""
+    (K-th such change on the line), `copy: C` when the file has several such lines and it is the
+    C-th (else the first), and `why:` (continued on more indented lines)."""
     entries, current = {}, None
     if not os.path.exists(EQUIVALENT):
         return entries
@@ -252,14 +257,16 @@ def read_equivalents():
             m = re.fullmatch(r"(\S*) -> (\S*) \((\d+)\)", current["mutant"])
             if not m:
                 sys.exit("equivalent.txt: bad mutant %r (expected ORIG -> REPL (K))" % current["mutant"])
-            entries[(current["file"], current["line"], m.group(1), m.group(2), int(m.group(3)))] = current["why"]
+            copy = int(current.get("copy", "1"))
+            entries[(current["file"], current["line"], m.group(1), m.group(2), int(m.group(3))) +
+                    ((copy,) if copy > 1 else ())] = current["why"]
 
     last = None
     for raw in open(EQUIVALENT, encoding="utf-8"):
         line = raw.rstrip("\n")
         if not line.strip() or line.lstrip().startswith("#"):
             continue
-        m = re.match(r"(- )?(file|line|mutant|why): ?(.*)$", line.strip())
+        m = re.match(r"(- )?(file|line|mutant|copy|why): ?(.*)$", line.strip())
         if m and (m.group(1) or current is not None):
             if m.group(1):
                 close()
@@ -275,8 +282,8 @@ def read_equivalents():
 
 
 def equivalent_entry(m):
-    return "- file: %s\n  line: %s\n  mutant: %s -> %s (%d)\n  why: " % (
-        m.path, m.text, m.original, m.replacement, m.occurrence)
+    return "- file: %s\n  line: %s\n  mutant: %s -> %s (%d)\n%s  why: " % (
+        m.path, m.text, m.original, m.replacement, m.occurrence, "  copy: %d\n" % m.copy if m.copy > 1 else "")
 
 
 # ---- the mirror and its build -----------------------------------------------------------------
@@ -456,8 +463,6 @@ def main():
     if args.at:
         globs = [a.rsplit(":", 1)[0] for a in args.at]
 
-    os.makedirs(TREE, exist_ok=True)
-    digest = sync_mirror()
     candidates = [p for p in working_files() if any(fnmatch.fnmatch(p, g) for g in globs)]
     if not candidates:
         sys.exit("no file matches %s" % " ".join(globs))
@@ -480,6 +485,8 @@ def main():
                                                    m.text))
         return 0
 
+    os.makedirs(TREE, exist_ok=True)
+    digest = sync_mirror()
     configure()
     all_suites = suites()
     # In the order of the draw: the first n judged are the draw of `n --seed S`, whose verdicts a
