@@ -3,7 +3,10 @@
 `N passed, N failed`, counting Catch2 test cases (each suite writes Catch2's XML report), pytest's
 cases (a test whose environment names FHR_JUNIT_XML, pytest's JUnit report) and any other test as
 one case judged by its exit code. Two suites run at a time (2 cores).
-Usage: run_suites.py BUILD_DIR"""
+Usage: run_suites.py BUILD_DIR [--timeout-multiplier F] [--except PREFIX...]
+  --timeout-multiplier F: F times each test's time limit (./run coverage: its instrumented build
+  is slower); --except: leave out the tests whose names start with a PREFIX (./run coverage leaves
+  out library-*, which builds copies of fhr elsewhere)"""
 import concurrent.futures
 import json
 import os
@@ -13,8 +16,14 @@ import time
 import xml.etree.ElementTree as ET
 
 build = os.path.abspath(sys.argv[1])
-tests = json.loads(subprocess.run(["meson", "introspect", build, "--tests"], check=True,
-                                  capture_output=True, text=True).stdout)
+options = sys.argv[2:]
+multiplier = 1.0
+if options[:1] == ["--timeout-multiplier"]:
+    multiplier, options = float(options[1]), options[2:]
+left_out = tuple(options[1:]) if options[:1] == ["--except"] else ()
+tests = [t for t in json.loads(subprocess.run(["meson", "introspect", build, "--tests"], check=True,
+                                              capture_output=True, text=True).stdout)
+         if not (left_out and t["name"].startswith(left_out))]
 results_dir = os.path.join(build, "test-results")
 os.makedirs(results_dir, exist_ok=True)
 
@@ -32,7 +41,7 @@ def run(test):
     start = time.monotonic()
     try:
         proc = subprocess.run(cmd, env=env, cwd=test.get("workdir") or build, capture_output=True,
-                              text=True, errors="replace", timeout=test.get("timeout") or 600)
+                              text=True, errors="replace", timeout=multiplier * (test.get("timeout") or 600))
         code, output = proc.returncode, proc.stdout + proc.stderr
     except subprocess.TimeoutExpired:
         code, output = -1, "timed out"

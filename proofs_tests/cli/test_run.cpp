@@ -1,9 +1,11 @@
-// `fhr run` end to end (spec/cli.md CLI-RUN-1..5): all files written, the report's fields, the
-// run certified and accepted by the independent oracle `fhr verify --mesh`, byte-identical
+// `fhr run` end to end (spec/cli.md CLI-RUN-1..5): all files written, the report's fields,
+// textured.obj's atlas of the patches, the run certified and accepted by the independent oracle `fhr verify --mesh`, byte-identical
 // outputs across runs, refused inputs and domains; with --levels and --figures, Figs. 6–9 and the
 // rate–distortion plot of §6's compression (spec/render.md REN-14).
 #include <catch2/catch.hpp>
 
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <regex>
 #include <set>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include <fhr/core/build.hpp>
+#include <fhr/exchange/fhr_param.hpp>
 #include <fhr/io/read.hpp>
 #include "support/test_support.hpp"
 
@@ -82,6 +85,80 @@ void check_rate_distortion(const std::string& svg, const std::string& report) {
     for (std::size_t i = 1; i < ys[0].size(); ++i) CHECK(ys[0][i] >= ys[0][i - 1]);
 }
 
+// CLI-RUN-1's textured.obj: T′ with one vt per face corner, the patches laid out as an atlas. Each
+// patch's corners (β = e_c exactly, MAP-5) lie at the lower left, lower right and top of an
+// equilateral triangle with a horizontal base, one size for all; every corner of a face of the
+// patch lies at its β in that triangle; and the n triangles lie in distinct cells of a
+// ⌈√n⌉ × ⌈√n⌉ grid of [0, 1]².
+void check_atlas(const std::string& obj, const fhr::exchange::ParamFile& param) {
+    using UV = std::array<double, 2>;
+    std::vector<UV> vt;
+    std::vector<std::array<std::size_t, 3>> face_vt;
+    std::istringstream in(obj);
+    for (std::string line; std::getline(in, line);) {
+        std::istringstream s(line);
+        std::string tag;
+        s >> tag;
+        if (tag == "vt") {
+            UV uv{};
+            s >> uv[0] >> uv[1];
+            vt.push_back(uv);
+        } else if (tag == "f") {
+            std::array<std::size_t, 3> t{};
+            for (std::size_t& k : t) {
+                std::string corner;
+                s >> corner;
+                k = std::stoul(corner.substr(corner.find('/') + 1)) - 1;
+            }
+            face_vt.push_back(t);
+        }
+    }
+    REQUIRE(face_vt.size() == param.surface_faces.size());
+    const std::size_t n = param.domain_faces.size();
+    std::vector<std::array<UV, 3>> corner(n);
+    std::vector<int> corners_seen(n, 0);
+    for (std::size_t f = 0; f < face_vt.size(); ++f)
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < 3; ++k) {
+                const auto& beta = param.surface_faces[f].beta[c];
+                if (beta[k] == 1 && beta[(k + 1) % 3] == 0 && beta[(k + 2) % 3] == 0) {
+                    corner[param.surface_faces[f].patch][k] = vt.at(face_vt[f][c]);
+                    corners_seen[param.surface_faces[f].patch] |= 1 << k;
+                }
+            }
+    const double side = corner[0][1][0] - corner[0][0][0];
+    const auto G = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(n))));
+    CHECK(side > 0);
+    CHECK(side <= 1.0 / static_cast<double>(G));
+    auto near = [](double a, double b) { return std::abs(a - b) <= 1e-12; };
+    std::set<std::size_t> cells;
+    std::size_t bad_triangles = 0, bad_corners = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto& q = corner[i];
+        bad_triangles += corners_seen[i] != 7 || !near(q[1][0] - q[0][0], side) || !near(q[1][1], q[0][1]) ||
+                         !near(q[2][0], q[0][0] + side / 2) || !near(q[2][1], q[0][1] + side * std::sqrt(3.0) / 2);
+        std::set<std::size_t> in;
+        for (const UV& p : q) {
+            bad_triangles += !(p[0] >= 0 && p[0] <= 1 && p[1] >= 0 && p[1] <= 1);
+            in.insert(std::min(G - 1, static_cast<std::size_t>(p[1] * G)) * G + std::min(G - 1, static_cast<std::size_t>(p[0] * G)));
+        }
+        bad_triangles += in.size() != 1;
+        cells.insert(*in.begin());
+    }
+    for (std::size_t f = 0; f < face_vt.size(); ++f) {
+        const auto& q = corner[param.surface_faces[f].patch];
+        for (int c = 0; c < 3; ++c) {
+            const auto& beta = param.surface_faces[f].beta[c];
+            const UV& uv = vt.at(face_vt[f][c]);
+            for (int k = 0; k < 2; ++k)
+                bad_corners += !near(uv[k], q[0][k] + beta[1] * (q[1][k] - q[0][k]) + beta[2] * (q[2][k] - q[0][k]));
+        }
+    }
+    CHECK(bad_triangles == 0);
+    CHECK(bad_corners == 0);
+    CHECK(cells.size() == n);
+}
+
 }  // namespace
 
 TEST_CASE("CLI-RUN-1..4: fhr run on the fandisk writes every file, certified, verified, byte-identical", "[cli][run]") {
@@ -110,6 +187,7 @@ TEST_CASE("CLI-RUN-1..4: fhr run on the fandisk writes every file, certified, ve
     const auto v = run_fhr({"verify", dir + "/param.fhrp", "--mesh", mesh});
     INFO(v.out << v.err);
     CHECK(v.exit_code == 0);
+    check_atlas(read_file(dir + "/textured.obj"), fhr::exchange::read_param(dir + "/param.fhrp"));
     // CLI-RUN-4: a second run gives the same bytes (timings aside).
     REQUIRE(run_fhr({"run", mesh, "--faces", "114", "--out", again}).exit_code == 0);
     for (const char* f : outputs)

@@ -2,7 +2,8 @@
 // artificial boundary) has the length of the unrestricted exact shortest path (GEO-E1), on random
 // meshes of genus 0–3 and on the 171 domain edges of the paper's fandisk domain (§6); GEO-E3: the
 // certificate rejects a restricted path that is not a shortest path of T (a shortcut outside
-// the ellipse), and every certificate kind agrees with the unrestricted search.
+// the ellipse), and every certificate kind agrees with the unrestricted search; GEO-E7: a path
+// pressed against T_jk's artificial boundary is never returned, K grows instead.
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
@@ -101,6 +102,70 @@ TEST_CASE("GEO-E1: any K_0, every certificate agrees with the unrestricted lengt
         RC_ASSERT(e.certificate_windows == 0 || e.certificate == Certificate::search ||
                   e.certificate == Certificate::replaced);
     });
+}
+
+// The paper's acceptance test (touches_boundary in ellipse.cpp) is what makes K grow: with a thin
+// first ellipse the restricted path often runs through a vertex or along an edge of T_jk's
+// artificial boundary, and then it is not returned, even when a certificate could prove it
+// shortest (GEO-E7). So a returned path certified by the border or by the search touches no face
+// left out of its final T_jk (rebuilt here by the paper's rule at the returned K); only
+// "replaced" (the whole-mesh search's own path) and "whole_mesh" (no artificial boundary) are
+// exempt. A mutant that broke the paper's test would accept pressed paths at K_0.
+TEST_CASE("GEO-E7: a path certified inside T_jk touches none of its artificial boundary; K grows when it would",
+          "[property][geodesic]") {
+    std::size_t grown = 0, checked = 0;
+    rc::prop("thin first ellipses (K_0 in {1.0001, 1.01})", [&] {
+        const TriMesh m = *fhr::testing::gen_closed_mesh(0, 3, 1200);
+        const auto n = static_cast<std::uint32_t>(m.n_vertices());
+        const VertexId a(*rc::gen::inRange<std::uint32_t>(0, n)), b(*rc::gen::inRange<std::uint32_t>(0, n));
+        RC_PRE(a != b);
+        const double K0 = *rc::gen::element(1.0001, 1.01);
+        const auto e = ellipse_shortest_path(m, a, b, {K0});
+        RC_TAG(static_cast<int>(e.certificate));
+        grown += e.attempts > 1;
+        if (e.certificate != Certificate::border && e.certificate != Certificate::search) return;
+        const FaceData<std::uint8_t> T_jk = paper_ellipse(m, a, b, e.K);
+        for (const SurfacePoint& q : e.path.points)
+            for (FaceId f : test::faces_at(m, q)) RC_ASSERT(T_jk[f] != 0);
+        ++checked;
+    });
+    CAPTURE(grown, checked);
+    CHECK(grown > 0);
+    CHECK(checked > 0);
+}
+
+// The rule itself, on many pairs of a few generated meshes with thin first ellipses: whenever the
+// restricted path at K_0 (rebuilt here: the paper's T_jk, the exact search inside it) touches T_jk's
+// artificial boundary, the search does not stop at K_0, though a certificate might well accept that
+// path (the lengths alone could not tell). Paths that touch it at a vertex only, the common case,
+// must occur.
+TEST_CASE("GEO-E7: a restricted path at K_0 that touches T_jk's artificial boundary makes K grow", "[unit][geodesic]") {
+    std::size_t touching = 0, at_vertices_only = 0;
+    for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+        const TriMesh m = generate::random_closed_mesh({static_cast<int>(seed % 3), 400, seed, seed % 2 ? 0.0 : 0.1});
+        const auto n = static_cast<std::uint32_t>(m.n_vertices());
+        for (std::uint32_t i = 0; i < 30; ++i) {
+            const VertexId a((i * 7919u + 3) % n), b((i * 104729u + 11) % n);
+            if (a == b) continue;
+            for (const double K0 : {1.0001, 1.01}) {
+                const FaceData<std::uint8_t> T_jk = paper_ellipse(m, a, b, K0);
+                ExactGeodesic inside(m, a, {&T_jk});
+                inside.propagate(std::span(&b, 1));
+                if (!std::isfinite(inside.distance(b))) continue;  // T_jk does not join a and b: K grows anyway
+                bool touches = false, at_an_edge = false;
+                for (const SurfacePoint& q : inside.path_to(b).points)
+                    for (FaceId f : test::faces_at(m, q))
+                        if (!T_jk[f]) touches = true, at_an_edge = at_an_edge || q.kind == SurfacePoint::Kind::edge;
+                if (!touches) continue;
+                ++touching;
+                at_vertices_only += !at_an_edge;
+                CAPTURE(seed, a.idx(), b.idx(), K0);
+                CHECK(ellipse_shortest_path(m, a, b, {K0}).attempts > 1);
+            }
+        }
+    }
+    CAPTURE(touching);
+    CHECK(at_vertices_only > 0);
 }
 
 // A restricted path that the paper's test accepts (it touches no vertex or edge of T_jk's

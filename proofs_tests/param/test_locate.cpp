@@ -192,6 +192,19 @@ TEST_CASE("MAP-11: corners, a large patch, and refused coordinates", "[unit][par
     // lands on the nearest triangle.
     const Vec3 near_side = phi.phi({-1e-17, 0.5, 0.5 + 1e-17});
     CHECK((near_side - phi.phi({0, 0.5, 0.5})).norm() < 1e-12);
+    // All three components positive, but (β1, β2) a few ulps beyond the side β0 = 0: no closed
+    // image triangle holds it (the side's vertices lie exactly on β1 + β2 = 1, MAP-8), and the
+    // point location falls back on the triangle whose coordinates are least negative. φ must
+    // give the side's point within rounding, whatever triangle the grid cell lists first.
+    std::mt19937_64 pick(11);
+    std::uniform_real_distribution<double> along(0.001, 0.999);
+    for (int q = 0; q < 200; ++q) {
+        const double t = along(pick), rest = std::nextafter(std::nextafter(1 - t, 2.0), 2.0);
+        REQUIRE(orient2d(Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1), Eigen::Vector2d(t, rest)) < 0);  // exactly beyond
+        const Vec3 on_side = phi.phi({0, t, 1 - t}), beyond = phi.phi({1e-17, t, rest});
+        CAPTURE(t, (beyond - on_side).norm());
+        CHECK((beyond - on_side).norm() < 1e-12);
+    }
     // Every grid cell is exercised: 10^5 points on a lattice of the triangle, each located in a
     // triangle whose image holds it exactly.
     std::size_t held = 0, total = 0;

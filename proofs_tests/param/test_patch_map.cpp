@@ -99,6 +99,14 @@ TEST_CASE("solver names parse and print", "[unit][param]") {
     CHECK(param::parse_solver("bicgstab") == Solver::bicgstab);
     CHECK(param::name(Solver::sparse_lu) == "sparse-lu");
     CHECK_THROWS_WITH(param::parse_solver("cg"), Catch::Contains("expected sparse-lu or bicgstab"));
+    // A bad option value comes from no file and no line: the message is the problem alone.
+    try {
+        param::parse_solver("cg");
+    } catch (const InvalidInput& e) {
+        CHECK(e.file().empty());
+        CHECK(e.line() == 0);
+        CHECK(std::string(e.what()) == e.problem());
+    }
 }
 
 TEST_CASE("MAP-1: invalid disks are refused with the broken rule", "[unit][param]") {

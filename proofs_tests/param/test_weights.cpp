@@ -93,6 +93,14 @@ TEST_CASE("weight names parse and print", "[unit][param]") {
     CHECK(param::name(Weights::uniform) == "uniform");
     CHECK_THROWS_AS(param::parse_weights("harmonic"), InvalidInput);
     CHECK_THROWS_WITH(param::parse_weights("Shape-Preserving"), Catch::Contains("expected shape-preserving, mean-value or uniform"));
+    // A bad option value comes from no file and no line: the message is the problem alone.
+    try {
+        param::parse_weights("harmonic");
+    } catch (const InvalidInput& e) {
+        CHECK(e.file().empty());
+        CHECK(e.line() == 0);
+        CHECK(std::string(e.what()) == e.problem());
+    }
 }
 
 TEST_CASE("MAP-2, MAP-3: planar 1-rings of valence 3..12: positive, partition of unity, linear reproduction", "[property][param]") {
@@ -182,4 +190,10 @@ TEST_CASE("MAP-2: degenerate 1-rings are refused, naming the vertex", "[unit][pa
     const std::vector<Vec3> coincident{Vec3(1, 0, 0), Vec3(0, 0, 0), Vec3(-1, -1, 0)};
     for (Weights kind : {Weights::shape_preserving, Weights::mean_value})
         CHECK_THROWS_AS(one_ring_weights(kind, p, coincident, 2), NumericalFailure);
+    // A weight of exactly 0, finite among positive ones: q_1 lies between q_0 and q_2 on one ray
+    // from p, so both of its angles at p are 0 and its mean-value weight (tan 0 + tan 0) / r_1 is
+    // 0. MAP-2 asks for strictly positive weights: refused, not passed on as a zero.
+    const std::vector<Vec3> needle{Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(3, 0, 0), Vec3(-1, 1, 0), Vec3(-1, -1, 0)};
+    CHECK_THROWS_WITH(one_ring_weights(Weights::mean_value, p, needle, 23),
+                      Catch::Contains("MAP-2") && Catch::Contains("vertex 23") && Catch::Contains(" 0 "));
 }

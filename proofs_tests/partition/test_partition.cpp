@@ -169,6 +169,24 @@ TEST_CASE("PART-4: a path through another corner breaks (1) and is reported", "[
     CHECK(has_kind(e, Conflict::Kind::shared_node));
     const auto described = e.conflicts.front().describe();
     CHECK(described.find("domain edge") != std::string::npos);
+    // The place (Conflict::near, what recovery keeps in D): the vertices of T nearest to the
+    // curve's nodes just before and after x_m.
+    const partition::Network& net = e.network;
+    auto nearest = [&](VertexId v) {
+        const partition::Origin& o = net.origin[v];
+        return o.vertex.valid() ? o.vertex : o.t < 0.5 ? T.from(TriMesh::halfedge(o.edge, 0)) : T.to(TriMesh::halfedge(o.edge, 0));
+    };
+    const std::vector<VertexId>& path = net.path[EdgeId(0)];
+    std::size_t at = 0;
+    for (std::size_t i = 1; i + 1 < path.size(); ++i)
+        if (net.corner[path[i]].valid()) at = i;
+    REQUIRE(at > 0);
+    const auto corner = std::find_if(e.conflicts.begin(), e.conflicts.end(),
+                                     [](const Conflict& c) { return c.kind == Conflict::Kind::through_corner; });
+    CHECK(corner->d_vertex == net.corner[path[at]]);
+    CHECK(corner->near[0] == nearest(path[at - 1]));
+    CHECK(corner->near[1] == nearest(path[at + 1]));
+    CHECK_FALSE(corner->near[2].valid());
 }
 
 TEST_CASE("PART-5: a domain with its orientation reversed breaks (2) at every corner; without history it cannot be recovered",

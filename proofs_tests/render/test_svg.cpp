@@ -146,6 +146,13 @@ TEST_CASE("REN-12: axis ends for data of any scale, and all-zero errors", "[unit
     // y max 1 → step 0.2, ticks 0..1 (6); x max 100 → step 20 (6 ticks): 2 + 6 + 6 + 2 lines.
     const std::vector<RatePoint> unit{{100, 1, 0.5}};
     CHECK(count(rate_distortion_svg(unit), "<line ") == 16);
+    // max/5 exactly a power of ten: the step is that power (the multiple 1, not 2). x max 50 → step
+    // 10, y max 5 → step 1: 6 ticks each, 2 + 6 + 6 + 2 lines.
+    const std::vector<RatePoint> round{{50, 5, 0.5}};
+    const std::string round_svg = rate_distortion_svg(round);
+    CHECK(count(round_svg, "<line ") == 16);
+    CHECK(count(round_svg, ">10<") == 1);
+    CHECK(count(round_svg, ">1<") == 1);
     // All errors zero: the y axis runs to 1.
     const std::vector<RatePoint> zero{{100, 0, 0}, {50, 0, 0}};
     const std::string svg = rate_distortion_svg(zero);

@@ -52,6 +52,13 @@ TEST_CASE("WAV-10: analyse: counts, round trip, kept counts, errors and Hausdorf
     CHECK(w.kept[2].l2_error <= 1e-12);
     CHECK(w.kept[0].hausdorff.lower() >= w.kept[2].hausdorff.lower() - w.remesh_hausdorff.resolution);
     for (const auto& k : w.kept) CHECK(k.positions.size() == 642);
+    // Hausdorff resolution: 0 (the default) means 1e−4 of T's bounding-box diagonal; a positive
+    // one is used as given.
+    CHECK(w.remesh_hausdorff.resolution == 1e-4 * w.bbox_diagonal);
+    for (const auto& k : w.kept) CHECK(k.hausdorff.resolution == w.remesh_hausdorff.resolution);
+    const wavelet::WaveletResult given = wavelet::analyse(D, phi, 1, std::array<double, 1>{50}, T, {.resolution = 0.002});
+    CHECK(given.remesh_hausdorff.resolution == 0.002);
+    CHECK(given.kept[0].hausdorff.resolution == 0.002);
     CHECK_THROWS_AS(wavelet::analyse(D, phi, 1, std::array<double, 1>{120}, T), InvalidInput);
 }
 

@@ -157,6 +157,36 @@ TEST_CASE("WAV-9, WAV-14: the two-triangle and vertex-fan bounds are upper bound
     });
 }
 
+// The two-triangle bound's premise: τ₁ = (a, b, c) and τ₂ = (b, a, d) share ab, and Q = a d' b c
+// (d' = d flattened into τ₁'s plane) is convex. Each bound may be used only where its premise
+// holds: on a convex Q it is finite and exact up to its rounding slack (a piece lying on Q across
+// the diagonal gets ≤ 2e−12, a piece lifted by 0.01 gets 0.01), and on a reflex ("dart") Q, a
+// folded τ₂ (d' on c's side of ab) or two triangles without a common edge it is +∞.
+TEST_CASE("WAV-9: the two-triangle bound applies exactly where Q is convex, and is tight there", "[unit][wavelet]") {
+    const Vec3 a(0, 0, 0), b(2, 0, 0), c(1, 1, 0);
+    const std::vector<Triangle> t{{0, 1, 2}, {1, 0, 3}};
+    auto bound = [&](const Vec3& d, const Vec3 (&piece)[3]) {
+        const std::vector<Vec3> x{a, b, c, d};
+        return TriangleTree(x, t).pair_bound(piece, 0, 1);
+    };
+    const Vec3 across[3] = {{0.5, 0.4, 0}, {1.5, 0.4, 0}, {1, -0.6, 0}};  // inside the kite below
+    const Vec3 lifted[3] = {{0.5, 0.4, 0.01}, {1.5, 0.4, 0.01}, {1, -0.6, 0.01}};
+    const Vec3 kite(1, -1, 0), dart(4, -1, 0), folded(1, 0.5, 0);
+    CHECK(bound(kite, across) <= 2e-12);
+    CHECK(bound(kite, lifted) >= 0.01);
+    CHECK(bound(kite, lifted) <= 0.01 + 2e-12);
+    CHECK(std::isinf(bound(dart, across)));    // b is a reflex corner of Q: a and b on one side of cd'
+    CHECK(std::isinf(bound(folded, across)));  // d' and c on one side of ab
+    // Both orders of the pair: the bound is taken in the first triangle's plane.
+    const std::vector<Vec3> x{a, b, c, kite};
+    CHECK(TriangleTree(x, t).pair_bound(across, 1, 0) <= 2e-12);
+    // No common edge: triangles that share only the vertex a.
+    const std::vector<Vec3> y{a, b, c, kite, Vec3(-1, 1, 0)};
+    const std::vector<Triangle> u{{0, 1, 2}, {1, 0, 3}, {0, 2, 4}, {0, 4, 3}};
+    CHECK(std::isinf(TriangleTree(y, u).pair_bound(across, 1, 2)));
+    CHECK(std::isinf(TriangleTree(y, u).pair_bound(across, 0, 3)));
+}
+
 TEST_CASE("WAV-9: two triangulations of one flat-faced surface: the bracket closes at δ with few samples", "[unit][wavelet]") {
     // Where A lies on B, the one-triangle bound settles a piece across an edge of B only once the
     // piece is about δ small; the two-triangle and fan bounds settle it at once (WAV-9; the search

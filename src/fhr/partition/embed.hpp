@@ -64,7 +64,11 @@ struct Conflict {
     Kind kind;
     EdgeId d_edge_a, d_edge_b;                 ///< the D edges (equal when only one is involved), a <= b
     VertexId d_vertex;                         ///< through_corner and order: the D vertex v_m / v_j, else invalid
-    std::array<VertexId, 3> near{};            ///< vertices of T at the place (unused ones invalid)
+    /// Vertices of T at the place (unused ones invalid), each the one nearest to a node of T′
+    /// (the node itself, or the nearer end of its edge of T): shared_node: the shared node;
+    /// through_corner: the curve's nodes just before and after x_m; order: the curve's first node
+    /// after x_j; crossing: the face of T where the curves cross.
+    std::array<VertexId, 3> near{};
     std::string describe() const;
 };
 

@@ -145,12 +145,17 @@ double TriangleTree::pair_bound(const Vec3 (&x)[3], std::uint32_t t1, std::uint3
     const Vec3 n = normal / twice_area;
     const double lift = n.dot(d - a);
     const Vec3 d_flat = d - lift * n;
-    // Q = a d' b c is convex when d' and c are on opposite sides of ab and a and b on opposite
-    // sides of cd'; each signed area must clear a margin far above its rounding error.
+    // Q = a d' b c is convex when its diagonals cross: d' and c on opposite sides of ab, and a and
+    // b on opposite sides of cd'. With orient(u, v, w) = n·((v − u) × (w − u)) in τ₁'s plane, where
+    // orient(a, b, c) > 0, the first is side_d < 0, and then the second can only be
+    // side_a < 0 < side_b: if the diagonals meet at
+    // p = a + t(b − a) = c + s(d' − c), t, s ∈ (0, 1), then s·side_a = orient(c, p, a) =
+    // −t·orient(a, b, c) < 0 and s·side_b = orient(c, p, b) = (1 − t)·orient(a, b, c) > 0. Each
+    // signed area must clear a margin far above its rounding error.
     const double margin = 1e-9 * (b - a).squaredNorm() + 1e-9 * (d - c).squaredNorm();
     const double side_d = n.dot((b - a).cross(d_flat - a));
     const double side_a = n.dot((d_flat - c).cross(a - c)), side_b = n.dot((d_flat - c).cross(b - c));
-    if (!(side_d < -margin) || !((side_a > margin && side_b < -margin) || (side_a < -margin && side_b > margin))) return none;
+    if (!(side_d < -margin) || !(side_a < -margin && side_b > margin)) return none;
     // The rounding in d' moves it by a few ulps of |d|: h covers it with the same relative margin.
     const double h = std::abs(lift) + 1e-12 * (d - a).norm();
     double sup = 0;
