@@ -89,6 +89,7 @@ Eigen::MatrixXd solve(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
     }
     Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, Eigen::IncompleteLUT<double>> it;
     it.setTolerance(bicgstab_tolerance);
+    it.setMaxIterations(std::max<Eigen::Index>(2 * A.cols(), bicgstab_min_iterations));
     it.compute(A);
     if (it.info() != Eigen::Success) throw NumericalFailure("patch: BiCGSTAB preconditioner (incomplete LU) failed");
     Eigen::MatrixXd x(rhs.rows(), rhs.cols());

@@ -45,6 +45,12 @@ struct PatchMapOptions {
 /// folded triangles in practice (design.md §3: 236 flips at 1e-6 on an armadillo disk).
 inline constexpr double bicgstab_tolerance = 1e-14;
 
+/// BiCGSTAB may take max(2n, this) iterations on a system of n unknowns. Eigen's default, 2n,
+/// is too few for a small patch on graded input: 16 iterations on 8 unknowns stalled at 5.4e-14
+/// (the pipeline fuzzer's finding, CLI-RUN-1); rounding, not the Krylov space's size, limits
+/// such a solve.
+inline constexpr long bicgstab_min_iterations = 1000;
+
 /// ψ_i at every vertex of a disk.
 struct PatchMap {
     /// #V: β of ψ(v) in the domain triangle, corner c ↦ e_c. Every component is a multiple of
