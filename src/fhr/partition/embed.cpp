@@ -305,7 +305,10 @@ private:
     }
 
     // Smallest angle of triangle (a, b, c) of T′, or −1 when its corners lie on one side of the
-    // face of T (collinear: a triangle of zero area).
+    // face of T (collinear: a triangle of zero area). Properness is decided by the sides alone:
+    // corners on two or three sides of the face are in convex position, so the triangle is proper
+    // in exact arithmetic even when its angle rounds to 0 (two points 2·10⁻¹⁷ apart beside a
+    // 10⁻⁹° corner of the quality family): such an angle counts as the least positive double.
     double quality(const std::vector<VertexId>& poly, const std::vector<SideMask>& mask, std::size_t a, std::size_t b,
                    std::size_t c) const {
         if (mask[a] & mask[b] & mask[c]) return -1;
@@ -314,7 +317,8 @@ private:
             const Vec3 u = x - o, w = y - o;
             return std::atan2(u.cross(w).norm(), u.dot(w));
         };
-        return std::min({angle(pa, pb, pc), angle(pb, pc, pa), angle(pc, pa, pb)});
+        return std::max(std::min({angle(pa, pb, pc), angle(pb, pc, pa), angle(pc, pa, pb)}),
+                        std::numeric_limits<double>::denorm_min());
     }
 
     // The triangulation of a convex piece (indices into poly, in boundary order) that maximizes
