@@ -189,6 +189,26 @@ TEST_CASE("PART-4: a path through another corner breaks (1) and is reported", "[
     CHECK_FALSE(corner->near[2].valid());
 }
 
+TEST_CASE("PART-5: condition (2) at one vertex flags exactly the curves beside a misplaced one", "[partition][unit]") {
+    // D's five halfedges out of v_j in D's cyclic order: a b c d e (ids 10, 12, 14, 16, 18).
+    std::vector<HalfedgeId> d;
+    for (std::uint32_t k = 0; k < 5; ++k) d.push_back(HalfedgeId(10 + 2 * k));
+    const auto at = [&](std::initializer_list<int> order) {
+        std::vector<HalfedgeId> t;
+        for (int k : order) t.push_back(d[static_cast<std::size_t>(k)]);
+        return partition::out_of_order(d, t);
+    };
+    using Flags = std::vector<std::uint8_t>;
+    CHECK(at({0, 1, 2, 3, 4}) == Flags{0, 0, 0, 0, 0});
+    CHECK(at({2, 3, 4, 0, 1}) == Flags{0, 0, 0, 0, 0});  // the same cyclic order from another start
+    // b and c swapped around x_j: a, b and c have other successors (c, d, b); d's and e's are
+    // right. The flags are those edges and their successors: a b c d, not e.
+    CHECK(at({0, 2, 1, 3, 4}) == Flags{1, 1, 1, 1, 0});
+    CHECK(at({4, 3, 2, 1, 0}) == Flags{1, 1, 1, 1, 1});  // reversed (a domain turned over)
+    CHECK(at({0, 1, 2, 3}) == Flags{1, 1, 1, 1, 1});     // a curve missing at x_j
+    CHECK(partition::out_of_order(d, std::vector<HalfedgeId>{d[0], d[1], d[2], d[3], HalfedgeId(99)}) == Flags{1, 1, 1, 1, 1});
+}
+
 TEST_CASE("PART-5: a domain with its orientation reversed breaks (2) at every corner; without history it cannot be recovered",
           "[partition][unit]") {
     const TriMesh T = fandisk();

@@ -53,6 +53,11 @@ PatchLocator::PatchLocator(const Disk& disk, const PatchMap& psi)
     const double g = static_cast<double>(grid_);
     auto cell = [&](double x) { return std::min(grid_ - 1, static_cast<std::size_t>(std::max(0.0, x * g))); };
     std::vector<std::array<std::size_t, 4>> boxes(triangles_.size());  // i0, i1, j0, j1
+    // Each cell of triangle t's box, in the same order for counting and for filling.
+    auto for_each_cell = [&](std::size_t t, auto&& visit) {
+        for (std::size_t i = boxes[t][0]; i <= boxes[t][1]; ++i)
+            for (std::size_t j = boxes[t][2]; j <= boxes[t][3]; ++j) visit(i * grid_ + j);
+    };
     cell_start_.assign(grid_ * grid_ + 1, 0);
     for (std::size_t t = 0; t < triangles_.size(); ++t) {
         const auto& f = triangles_[t];
@@ -63,16 +68,13 @@ PatchLocator::PatchLocator(const Disk& disk, const PatchMap& psi)
                 hi[a] = std::max(hi[a], image_[v][a]);
             }
         boxes[t] = {cell(lo[0]), cell(hi[0]), cell(lo[1]), cell(hi[1])};
-        for (std::size_t i = boxes[t][0]; i <= boxes[t][1]; ++i)
-            for (std::size_t j = boxes[t][2]; j <= boxes[t][3]; ++j) ++cell_start_[i * grid_ + j + 1];
+        for_each_cell(t, [&](std::size_t c) { ++cell_start_[c + 1]; });
     }
     for (std::size_t k = 1; k < cell_start_.size(); ++k) cell_start_[k] += cell_start_[k - 1];
     cell_triangles_.resize(cell_start_.back());
     std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
     for (std::size_t t = 0; t < triangles_.size(); ++t)
-        for (std::size_t i = boxes[t][0]; i <= boxes[t][1]; ++i)
-            for (std::size_t j = boxes[t][2]; j <= boxes[t][3]; ++j)
-                cell_triangles_[fill[i * grid_ + j]++] = static_cast<std::uint32_t>(t);
+        for_each_cell(t, [&](std::size_t c) { cell_triangles_[fill[c]++] = static_cast<std::uint32_t>(t); });
 }
 
 PatchLocator::Location PatchLocator::on_side(unsigned c, double tau) const {

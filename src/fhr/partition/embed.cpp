@@ -383,19 +383,8 @@ private:
             net.mesh.for_each_outgoing(D.t_vertex[vj], [&](HalfedgeId h) {
                 if (net.d_halfedge[h].valid()) in_t.push_back(net.d_halfedge[h]);
             });
-            // The D edges whose successor around x_j is not their successor around v_j (all of
-            // them when the curves at x_j are not exactly D's edges).
-            const std::size_t n = in_d.size();
-            std::vector<std::uint8_t> wrong(n, in_t.size() != n);
-            for (std::size_t k = 0; k < n && in_t.size() == n; ++k) {
-                const auto at = std::find(in_t.begin(), in_t.end(), in_d[k]);
-                if (at == in_t.end()) {
-                    std::fill(wrong.begin(), wrong.end(), 1);
-                    break;
-                }
-                if (in_t[(static_cast<std::size_t>(at - in_t.begin()) + 1) % n] != in_d[(k + 1) % n]) wrong[k] = wrong[(k + 1) % n] = 1;
-            }
-            for (std::size_t k = 0; k < n; ++k) {
+            const std::vector<std::uint8_t> wrong = out_of_order(in_d, in_t);
+            for (std::size_t k = 0; k < in_d.size(); ++k) {
                 if (!wrong[k]) continue;
                 // The curve's first node after x_j: a vertex of D there puts it in its place.
                 const EdgeId e = TriMesh::edge(in_d[k]);
@@ -408,6 +397,20 @@ private:
 };
 
 }  // namespace
+
+std::vector<std::uint8_t> out_of_order(std::span<const HalfedgeId> in_d, std::span<const HalfedgeId> in_t) {
+    const std::size_t n = in_d.size();
+    std::vector<std::uint8_t> wrong(n, in_t.size() != n);
+    for (std::size_t k = 0; k < n && in_t.size() == n; ++k) {
+        const auto at = std::find(in_t.begin(), in_t.end(), in_d[k]);
+        if (at == in_t.end()) {
+            std::fill(wrong.begin(), wrong.end(), 1);
+            break;
+        }
+        if (in_t[(static_cast<std::size_t>(at - in_t.begin()) + 1) % n] != in_d[(k + 1) % n]) wrong[k] = wrong[(k + 1) % n] = 1;
+    }
+    return wrong;
+}
 
 std::string Conflict::describe() const {
     const std::string a = "domain edge " + std::to_string(d_edge_a.idx()), b = "domain edge " + std::to_string(d_edge_b.idx());

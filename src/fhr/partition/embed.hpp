@@ -109,4 +109,11 @@ Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geode
 /// (along it) and 2i + 1, and no condition (2) (there is no D to compare with).
 Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath> curves, std::span<const std::uint8_t> unsnapped = {});
 
+/// Condition (2) at one vertex v_j of D: in_d holds D's halfedges out of v_j in D's cyclic order,
+/// in_t the D halfedges of the curves leaving x_j in T′'s cyclic order. Flag k is 1 when D's edge
+/// in_d[k] or its predecessor around v_j has another successor around x_j than around v_j, so
+/// that exactly the curves on either side of a misplaced pair are reported; every flag is 1 when
+/// the curves at x_j are not exactly D's edges there.
+std::vector<std::uint8_t> out_of_order(std::span<const HalfedgeId> in_d, std::span<const HalfedgeId> in_t);
+
 }  // namespace fhr::partition
