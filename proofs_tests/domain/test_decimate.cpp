@@ -261,6 +261,61 @@ TEST_CASE("DOM-9: a closed component that cannot reach its share is refused besi
     CHECK_NOTHROW(decimate(U, {.target_faces = 1}));
 }
 
+// The request that the refusal names as reached, from its message.
+std::size_t named_request(const std::string& message) {
+    const std::size_t at = message.find("ask for more faces (");
+    return at == std::string::npos ? 0 : std::stoul(message.substr(at + 20));
+}
+
+TEST_CASE("DOM-9: the refusal names a request that is reached, with several components (./run families finding)", "[unit][domain]") {
+    // Quality family, genus 3, three closed components (`./run families 500`, quality 496): asked
+    // for 56 faces §2 stopped at 60; asked for 60 (the shares of 60 are not those of 56) at 62,
+    // then 64: each count reached, asked for again, stopped once more. The refusal now names a
+    // request whose every share is at least where its component stopped; asking it gives exactly
+    // that many faces.
+    generate::RandomMeshOptions o;
+    o.family = generate::Family::quality;
+    o.genus = 3;
+    o.components = 3;
+    o.faces = 2814;
+    o.seed = 6338238982764330425ull;
+    const TriMesh T = generate::random_mesh(o);
+    for (std::size_t asked : {56, 62}) {
+        CAPTURE(asked);
+        std::string message;
+        try {
+            (void)decimate(T, {.target_faces = asked});
+        } catch (const InvalidInput& e) {
+            message = e.what();
+        }
+        REQUIRE_THAT(message, Catch::Contains("decimation stopped at"));
+        const std::size_t named = named_request(message);
+        CHECK(named >= asked);
+        CHECK(decimate(T, {.target_faces = named}).mesh.n_faces() == named);
+    }
+}
+
+TEST_CASE("DOM-9: a refused request names one that is reached (random meshes of 1-3 components)", "[property][domain]") {
+    rc::prop("decimate to a small random request; when refused, the named request gives that many faces", [] {
+        const fhr::testing::GeneratedMesh T =
+            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 900, .min_components = 1, .max_components = 3});
+        const std::size_t asked = 2 * static_cast<std::size_t>(*rc::gen::inRange(1, 20));
+        std::string message;
+        try {
+            (void)decimate(T, {.target_faces = asked});
+            RC_TAG("reached");
+            return;
+        } catch (const InvalidInput& e) {
+            message = e.what();
+        }
+        RC_PRE(message.find("decimation stopped at") != std::string::npos);  // not a refusal of the request itself
+        RC_TAG("refused, the named request reached");
+        const std::size_t named = named_request(message);
+        RC_ASSERT(named >= asked);
+        RC_ASSERT(decimate(T, {.target_faces = named}).mesh.n_faces() == named);
+    });
+}
+
 TEST_CASE("DOM-15: random meshes decimated to their fewest faces stay outward oriented", "[property][domain]") {
     rc::prop("decimate to min_closed_faces(genus), best effort", [] {
         const fhr::testing::GeneratedMesh T = *fhr::testing::gen_closed_mesh(0, 2, 600);

@@ -107,15 +107,18 @@ std::vector<Quadric> vertex_quadrics(const TriMesh& T, std::size_t real_faces) {
     return q;
 }
 
-// Decimates `start`, a decimation of T̂ after the collapses `start.history` (T̂ itself with none),
+std::size_t reachable_request(const TriMesh& T, const std::vector<std::size_t>& reached, std::size_t from);
+
+// Decimates `start`, a decimation of T̂ (T with cones; T itself when closed) after the collapses
+// `start.history` (T̂ itself with none),
 // whose vertex j is T̂'s vertex start.t_vertex[j] with quadric quadrics[j]. Vertices of T̂ from
 // `real_vertices` on are the apexes of its cones; component c (of connected_components(start.mesh))
 // is decimated to targets[c] faces of T (cone faces not counted).
 class Decimator {
 public:
-    Decimator(const Domain& start, const TriMesh& t_hat, std::vector<Quadric> quadrics, const DecimateOptions& o,
+    Decimator(const TriMesh& T, const Domain& start, const TriMesh& t_hat, std::vector<Quadric> quadrics, const DecimateOptions& o,
               std::size_t real_vertices, std::vector<std::size_t> targets)
-        : m_(start.mesh), t_of_(start.t_vertex), history_(start.history), options_(o), quadric_(std::move(quadrics)),
+        : T_(T), m_(start.mesh), t_of_(start.t_vertex), history_(start.history), options_(o), quadric_(std::move(quadrics)),
           stamp_(m_.n_edges(), 0), rejected_(m_.n_halfedges(), false), keep_(m_.n_vertices(), 0), real_(real_vertices),
           target_(std::move(targets)) {
         std::vector<std::uint8_t> kept(std::max_element(t_of_.begin(), t_of_.end())->idx() + 1, 0);
@@ -160,11 +163,13 @@ public:
                 if (options_.best_effort || !closed_above) break;
                 std::size_t faces = 0;
                 for (std::size_t f : faces_) faces += f;
+                const std::size_t reachable = reachable_request(T_, faces_, faces);
                 throw InvalidInput("", 0, "decimation stopped at " + std::to_string(faces) + " faces (target " +
                                               std::to_string(options_.target_faces) +
                                               "): no further half-edge collapse keeps the domain valid under "
                                               "min angle " + fmt(options_.min_angle_deg) + "° and normal deviation " +
-                                              fmt(options_.max_normal_deviation_deg) + "°; ask for more faces");
+                                              fmt(options_.max_normal_deviation_deg) + "°; ask for more faces" +
+                                              (reachable ? " (" + std::to_string(reachable) + " are reached)" : std::string()));
             }
             const Candidate c = queue_.top();
             queue_.pop();
@@ -196,6 +201,7 @@ public:
     }
 
 private:
+    const TriMesh& T_;                // the input, whose components' shares the targets are
     TriMesh m_;
     VertexData<VertexId> t_of_;       // vertex of m_ -> vertex of T̂
     std::vector<Collapse> history_;   // the collapses that made `start` from T̂
@@ -323,9 +329,16 @@ std::size_t min_closed_faces(long genus) {
     return static_cast<std::size_t>(2 * (v - chi));
 }
 
-ComponentTargets component_targets(const TriMesh& T, std::size_t faces) {
-    if (faces == 0 || faces > T.n_faces())
-        throw InvalidInput("", 0, "--faces " + std::to_string(faces) + " must be between 1 and the mesh's " + std::to_string(T.n_faces()));
+namespace {
+
+// What the shares of the faces depend on, per component of T.
+struct ComponentMeasures {
+    std::vector<double> area;
+    std::vector<std::size_t> own;    // T's faces
+    std::vector<long> chi, loops;
+};
+
+ComponentMeasures measure_components(const TriMesh& T) {
     const Components comps = connected_components(T);
     const std::size_t n = comps.count;
     std::vector<double> area(n, 0);
@@ -340,6 +353,12 @@ ComponentTargets component_targets(const TriMesh& T, std::size_t faces) {
     for (VertexId v : T.vertices()) ++chi[comps.vertex_component[v]];
     for (EdgeId e : T.edges()) --chi[comps.vertex_component[T.from(TriMesh::halfedge(e, 0))]];
     for (HalfedgeId h : boundary_loops(T)) ++loops[comps.vertex_component[T.from(h)]];
+    return {std::move(area), std::move(own), std::move(chi), std::move(loops)};
+}
+
+ComponentTargets shares_of(const ComponentMeasures& m, std::size_t faces) {
+    const auto& [area, own, chi, loops] = m;
+    const std::size_t n = area.size();
     ComponentTargets out;
     out.faces.assign(n, 0);
     if (n == 1) {
@@ -383,6 +402,14 @@ ComponentTargets component_targets(const TriMesh& T, std::size_t faces) {
     return out;
 }
 
+}  // namespace
+
+ComponentTargets component_targets(const TriMesh& T, std::size_t faces) {
+    if (faces == 0 || faces > T.n_faces())
+        throw InvalidInput("", 0, "--faces " + std::to_string(faces) + " must be between 1 and the mesh's " + std::to_string(T.n_faces()));
+    return shares_of(measure_components(T), faces);
+}
+
 namespace {
 
 // The targets per component, after the range checks of decimate.
@@ -400,6 +427,30 @@ std::vector<std::size_t> targets_of(const TriMesh& T, std::size_t target) {
         return {target};
     }
     return component_targets(T, target).faces;
+}
+
+// The least request from `from` faces on whose shares (targets_of) every component reaches, 0 when
+// none is: each share at least the faces `reached` the component has where decimation stopped.
+// Theorem: a component's collapses are chosen and checked within it alone (its costs, its
+// validity rules, its volume), so decimating it to any count between its own faces and where it
+// stopped passes that count (closed: in steps of 2; with boundary the share may be missed by
+// one face, as always). The shares of the request itself differ from those of the first one
+// with several components, so the count reached, asked for again, may stop once more.
+std::size_t reachable_request(const TriMesh& T, const std::vector<std::size_t>& reached, std::size_t from) {
+    if (reached.size() == 1) return from;  // one component: its share is the request
+    const ComponentMeasures measures = measure_components(T);
+    for (std::size_t faces = from; faces <= T.n_faces(); ++faces) {
+        std::vector<std::size_t> shares;
+        try {
+            shares = shares_of(measures, faces).faces;
+        } catch (const InvalidInput&) {
+            continue;  // an odd count of closed surfaces
+        }
+        bool all = true;
+        for (std::size_t c = 0; all && c < shares.size(); ++c) all = shares[c] >= reached[c];
+        if (all) return faces;
+    }
+    return 0;
 }
 
 // The corners of T's boundary: vertices where it turns by more than `degrees`, in T's numbering.
@@ -433,10 +484,10 @@ DecimateOptions with_corners(const TriMesh& T, const DecimateOptions& options) {
 
 Domain decimate(const TriMesh& T, const DecimateOptions& options) {
     std::vector<std::size_t> targets = targets_of(T, options.target_faces);
-    if (T.is_closed()) return Decimator(identity(T), T, vertex_quadrics(T, T.n_faces()), options, T.n_vertices(), std::move(targets)).run();
+    if (T.is_closed()) return Decimator(T, identity(T), T, vertex_quadrics(T, T.n_faces()), options, T.n_vertices(), std::move(targets)).run();
     const Coned C = add_cones(T);
     const DecimateOptions o = with_corners(T, options);
-    Domain closed = Decimator(identity(C.mesh), C.mesh, vertex_quadrics(C.mesh, C.real_faces), o, C.real_vertices, std::move(targets)).run();
+    Domain closed = Decimator(T, identity(C.mesh), C.mesh, vertex_quadrics(C.mesh, C.real_faces), o, C.real_vertices, std::move(targets)).run();
     return open_domain(std::move(closed), C.real_vertices);
 }
 
@@ -461,7 +512,7 @@ Domain decimate_again(const TriMesh& T, const Domain& previous, const DecimateOp
     for (std::size_t i = 0; i < reuse; ++i) merged[prev.history[i].kept.idx()] += merged[prev.history[i].removed.idx()];
     std::vector<Quadric> quadrics;
     for (VertexId x : start.t_vertex) quadrics.push_back(merged[x.idx()]);
-    Domain d = Decimator(start, C.mesh, std::move(quadrics), o, C.real_vertices, std::move(targets)).run();
+    Domain d = Decimator(T, start, C.mesh, std::move(quadrics), o, C.real_vertices, std::move(targets)).run();
     // Number D's vertices in T's order, as decimate does (DOM-4): the undone prefix appended its
     // vertices at the end.
     std::vector<std::uint32_t> order(d.t_vertex.size()), rank(d.t_vertex.size());

@@ -3,12 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <fhr/core/errors.hpp>
+#include <fhr/partition/embed.hpp>
 
 namespace fhr::partition {
 namespace {
@@ -79,8 +81,7 @@ public:
         if (!std::isfinite(out.shortest))
             throw PartitionFailure("restricted path: vertex " + std::to_string(region_.in_t(to).idx()) + " cannot be reached from vertex " +
                                    std::to_string(region_.in_t(from).idx()) + " inside the region the other curves leave free");
-        const geodesic::GeodesicPath star = search.path_to(to);
-        const auto& pts = star.points;
+        const std::vector<SurfacePoint> pts = snapped(search.path_to(to).points, out.separation_bound);
         std::vector<SurfacePoint>& nodes = out.path.points;
         auto push = [&](const SurfacePoint& p) {
             if (nodes.empty() || !same_location(T_, nodes.back(), p)) nodes.push_back(p);
@@ -124,6 +125,26 @@ public:
     }
 
 private:
+    // Γ*'s nodes within snap_fraction of an end of their edge of T′_S moved to that end, as embed
+    // snaps every geodesic (a path through a vertex reaches it as an edge point a rounding error
+    // away: 1e-12 of an edge beside a saddle of the block family, which then left the next curve no
+    // room to separate); repeats dropped. Each move of at most snap_fraction·|edge| lengthens the
+    // curve by at most twice that, added to `bound`.
+    std::vector<SurfacePoint> snapped(const std::vector<SurfacePoint>& star, double& bound) const {
+        const TriMesh& m = net_.mesh;
+        std::vector<SurfacePoint> pts;
+        for (std::size_t i = 0; i < star.size(); ++i) {
+            SurfacePoint p = star[i];
+            if (i > 0 && i + 1 < star.size() && p.kind == SurfacePoint::Kind::edge && (p.t <= snap_fraction || p.t >= 1 - snap_fraction)) {
+                const VertexId a = m.from(p.halfedge), b = m.to(p.halfedge);
+                bound += 2 * std::min(p.t, 1 - p.t) * (m.position(b) - m.position(a)).norm();
+                p = SurfacePoint::at_vertex(p.t <= snap_fraction ? a : b);
+            }
+            if (pts.empty() || !same_location(m, pts.back(), p)) pts.push_back(p);
+        }
+        return pts;
+    }
+
     const Region& region_;
     const TriMesh& T_;
     const Network& net_;
@@ -189,9 +210,12 @@ private:
             // A third of the gap: a curve on the other side of the gap, separated towards u, stays apart.
             const double delta = std::min(separation_fraction, gap / 3);
             const double s = su + (*param_on(*E, w) > su ? delta : -delta);
-            if (!(s > 0 && s < 1) || s == su || delta < min_separation)
-                throw PartitionFailure("restricted path: no room to separate the curve from the curve near vertex " +
-                                       std::to_string(near_in_t(u).idx()) + " (gap " + std::to_string(gap) + " of an edge)");
+            if (!(s > 0 && s < 1) || s == su || delta < min_separation) {
+                char what[200];  // %g: the gap is below 3e-12 here, which std::to_string prints as 0.000000
+                std::snprintf(what, sizeof what, "restricted path: no room to separate the curve from the curve near vertex %u (gap %g of an edge)",
+                              static_cast<unsigned>(near_in_t(u).idx()), gap);
+                throw PartitionFailure(what);
+            }
             points.push_back(SurfacePoint::on_edge(TriMesh::halfedge(*E, 0), s));
             const HalfedgeId eh = TriMesh::halfedge(*E, 0);
             r = std::max(r, delta * (T_.position(T_.to(eh)) - T_.position(T_.from(eh))).norm());

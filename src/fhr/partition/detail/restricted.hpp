@@ -14,6 +14,8 @@
 // Pseudocode:
 //   mask <- the faces of T′_S on the region's side of one of its boundary curves
 //   Γ* <- exact shortest path from x_a to x_b on T′_S masked to the region;  L* <- its length
+//   each node of Γ* within snap_fraction of an end of its edge of T′_S moves to that end (a path
+//       through a vertex arrives a rounding error beside it; no curve lies between)
 //   for each node u of Γ* (on T′_S, finally mapped to T):
 //       an end: x_a or x_b
 //       a point inside an edge of T′: on an edge of T → that point of T; across a chord of a
@@ -23,7 +25,8 @@
 //           segment that comes in to the one that goes out; for every edge of T′ crossed on the
 //           way that runs along an edge E of T, a point on E at δ·|E| from u (δ ≤ separation_fraction,
 //           and at most a third of the way to the next vertex of T′ on E)
-//   length bound: every touched node u with k points at most r from u adds at most 2·k·r
+//   length bound: every touched node u with k points at most r from u adds at most 2·k·r, every
+//       snapped node twice its move
 // Decisions and their reasons: paper_notes/partition.md, "Keeping the domain".
 #pragma once
 
