@@ -14,7 +14,7 @@ Domain size rule, N = the --faces given to `fhr run`:
   F faces` line (report.json: domain.faces_requested is §2's D); the table shows `N -> F (§2: M)`
   and that run is fine. §3 must keep §2's D: domain.faces = domain.faces_requested.
 When §2 cannot reach N under its validity rules it says `decimation stopped at K faces` and names
-a request that is reached, `ask for more faces (K' are reached)` (DOM-9); the run is then repeated
+a request that succeeds, `ask for more faces (--faces K' succeeds)` (DOM-9); the run is then repeated
 with --faces K' (noted in the row), up to `attempts` runs in all. Before session 9 it named none,
 and the harness asked for K, whose shares with several components differ from N's, so §2 could
 stop again (3 of 600 family meshes, then quality 496 of the 500-per-family sweep four times).
@@ -72,7 +72,7 @@ def certify(fhr, path, out, faces, genus, loops, components, timeout):
         if code == 2 and stopped and attempt + 1 < attempts:
             # The request the message names as reached (DOM-9); with several components the count
             # where §2 stopped, asked for again, may stop once more (its shares differ).
-            named = re.search(r"ask for more faces \((\d+) are reached\)", stderr)
+            named = re.search(r"ask for more faces \(--faces (\d+) succeeds\)", stderr)
             row["note"] = (row["note"] + "; " if row["note"] else "") + "§2 stopped at %s, not %d" % (stopped.group(1), target)
             target = int(named.group(1) if named else stopped.group(1))
             row["requested"] = target

@@ -169,7 +169,7 @@ public:
                                               "): no further half-edge collapse keeps the domain valid under "
                                               "min angle " + fmt(options_.min_angle_deg) + "° and normal deviation " +
                                               fmt(options_.max_normal_deviation_deg) + "°; ask for more faces" +
-                                              (reachable ? " (" + std::to_string(reachable) + " are reached)" : std::string()));
+                                              (reachable ? " (--faces " + std::to_string(reachable) + " succeeds)" : std::string()));
             }
             const Candidate c = queue_.top();
             queue_.pop();
