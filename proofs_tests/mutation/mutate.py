@@ -323,9 +323,15 @@ def sync_mirror():
 
 
 def configure():
+    """Configures the mirror's build, or reconfigures it when a meson.build changed, so that its
+    introspection (the suites and their programs) is the tree's before anything is built."""
     if not os.path.exists(os.path.join(BUILD, "build.ninja")):
         print("configuring %s (release)" % BUILD, flush=True)
         subprocess.run(["meson", "setup", BUILD, TREE, "--buildtype=release"], check=True, stdout=subprocess.DEVNULL)
+    else:
+        code, out = run_limited(["ninja", "-C", BUILD, "build.ninja"], BUILD_LIMIT)
+        if code != 0:
+            sys.exit("the mirror's build does not configure:\n" + out[-3000:])
 
 
 def introspect(what):
@@ -357,7 +363,9 @@ def suites():
         cmd = list(t["cmd"])
         kind = "catch2" if os.path.basename(cmd[0]).startswith("test_") else \
             "pytest" if "pytest" in cmd else "exit"
-        level = name if kind == "catch2" else "python" if kind == "pytest" else "cli"
+        # pytest: the Python package's suite, or the campaign suite, which runs the fhr command and
+        # bench/'s scripts (a cli-level suite).
+        level = name if kind == "catch2" else "python" if name == "python" else "cli"
         needed = [os.path.relpath(f, BUILD) for d in t.get("depends") or [] for f in targets[d]["filename"]]
         if kind == "catch2":
             needed.append(os.path.relpath(cmd[0], BUILD))

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 #include <fhr/core/errors.hpp>
@@ -110,7 +111,7 @@ PatchLocator::Location PatchLocator::in_interior(double x, double y) const {
     };
     auto normalized = [](std::uint32_t t, std::array<double, 3> d) {
         for (double& v : d) v = std::max(0.0, v);
-        const double sum = d[0] + d[1] + d[2];
+        const double sum = std::accumulate(d.begin(), d.end(), 0.0);
         return Location{t, {d[0] / sum, d[1] / sum, d[2] / sum}};
     };
     for (std::uint32_t k = cell_start_[i * grid_ + j]; k < cell_start_[i * grid_ + j + 1]; ++k) {
@@ -127,8 +128,8 @@ PatchLocator::Location PatchLocator::in_interior(double x, double y) const {
     double best_score = -std::numeric_limits<double>::infinity();
     for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
         const auto d = weights(t);
-        const double sum = d[0] + d[1] + d[2];
-        const double score = std::min({d[0], d[1], d[2]}) / sum;
+        const double sum = std::accumulate(d.begin(), d.end(), 0.0);
+        const double score = *std::min_element(d.begin(), d.end()) / sum;
         if (sum > 0 && score > best_score) {
             best_score = score;
             best = t;
