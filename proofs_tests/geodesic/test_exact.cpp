@@ -20,13 +20,16 @@
 #include <optional>
 #include <queue>
 #include <random>
+#include <span>
 #include <string>
 #include <tuple>
 
 #include <fhr/core/build.hpp>
 #include <fhr/core/geometry.hpp>
 #include <fhr/core/predicates.hpp>
+#include <fhr/core/topology.hpp>
 #include <fhr/domain/decimate.hpp>
+#include <fhr/generate/random_mesh.hpp>
 #include <fhr/geodesic/exact.hpp>
 #include <fhr/io/read.hpp>
 #include <fhr/testing/rapidcheck.hpp>
@@ -503,5 +506,52 @@ TEST_CASE("GEO-E4: a cap with an angle of π at its apex does not hide the face 
         CAPTURE(v.idx(), geo.distance(v), oracle[v.idx()]);
         CHECK(geo.distance(v) <= oracle[v.idx()] * (1 + 1e-9));
         CHECK(path_violation(m, geo.path_to(v), s, v, nullptr, needle_ratio(m)) == "");
+    }
+}
+
+// The quality family at its extreme knobs (10⁻⁹° needles, 180° caps): paths along a crease of
+// the generator's block, past vertices with needles around them. A child window's frame was
+// placed from the apex's coordinates in its parent's frame, rounded by ε times the parent's
+// size: on a needle's short edge (10⁻⁹..10⁻⁸ long) that turned the frame by ~10⁻⁸ rad and moved
+// the windows beyond it by a whole edge length, and the cover test, ε-scaled by the short edge
+// alone, missed a vertex that a ray grazes (notes, "Needles"). Genus 0: d(0, 6) was ∞ (every
+// ellipse, all 200 faces), while d(6, 0) = 1; genus 2, two components: d(0, 271) was ∞, and the
+// ellipse search grew K forever on the component's 820 faces. Both are straight segments on a
+// facet of the block (along the crease, resp. 10⁻⁹ beside it): the distance is Euclidean.
+TEST_CASE("GEO-E8: on 10⁻⁹° needles a path along a crease is found from both ends, straight", "[unit][geodesic]") {
+    struct Case {
+        int genus, components;
+        std::size_t faces;
+        std::uint64_t seed;
+        std::uint32_t a, b;
+    };
+    for (const Case c : {Case{0, 1, 200, 6, 0, 6}, Case{2, 2, 1558, 478695528567056040ull, 0, 271}}) {
+        generate::RandomMeshOptions o;
+        o.genus = c.genus;
+        o.components = c.components;
+        o.faces = c.faces;
+        o.seed = c.seed;
+        o.family = generate::Family::quality;
+        o.knobs.smallest_angle_deg = 1e-9;
+        o.knobs.bad_fraction = 0.5;
+        const TriMesh m = generate::random_mesh(o);
+        CAPTURE(generate::generate_command(o));
+        for (const auto& [s, t] : {std::pair{VertexId(c.a), VertexId(c.b)}, std::pair{VertexId(c.b), VertexId(c.a)}}) {
+            CAPTURE(s.idx(), t.idx());
+            ExactGeodesic geo(m, s);
+            geo.propagate(std::span(&t, 1));
+            CHECK(geo.distance(t) == Approx((m.position(t) - m.position(s)).norm()).epsilon(1e-15));
+            const GeodesicPath p = geo.path_to(t);
+            CHECK(path_violation(m, p, s, t) == "");
+            // The whole propagation reaches every vertex of the source's component.
+            ExactGeodesic full(m, s);
+            full.propagate();
+            const Components comp = connected_components(m);
+            for (VertexId v : m.vertices())
+                if (comp.vertex_component[v] == comp.vertex_component[s]) {
+                    CAPTURE(v.idx());
+                    CHECK(full.distance(v) < INFINITY);
+                }
+        }
     }
 }

@@ -38,6 +38,19 @@ bool touches_boundary(const TriMesh& mesh, const FaceData<std::uint8_t>& mask, c
     return false;
 }
 
+// Some face of T_jk has a neighbour of T outside it (a hole of T is no neighbour): T_jk has an
+// artificial border, and a larger K can still add faces.
+bool has_border(const TriMesh& mesh, const FaceData<std::uint8_t>& mask, const std::vector<FaceId>& in) {
+    for (FaceId f : in) {
+        const HalfedgeId h0 = mesh.halfedge(f);
+        for (HalfedgeId h = h0;;) {
+            if (outside(mesh, mask, TriMesh::twin(h))) return true;
+            if ((h = mesh.next(h)) == h0) break;
+        }
+    }
+    return false;
+}
+
 // The face mask of T_jk, borrowed clean (all zero) from a per-thread pool (scratch.hpp): an
 // array of #F entries per path would cost more than the ellipse on a large mesh. `in` lists the
 // faces set to 1. The ellipse only grows with K (the fields are fixed, the bound grows), so the
@@ -99,7 +112,13 @@ EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, c
             result.certificate = EllipsePath::Certificate::whole_mesh;
             return result;
         }
-        if (!std::isfinite(L) || touches_boundary(mesh, mask, path)) continue;  // the paper's rule: grow K
+        // No path inside T_jk: grow K, unless T_jk is already a's whole component (on a mesh of
+        // several). Then b, connected to a by fast marching, was lost by the exact search itself
+        // (rounding: paper_notes/exact_geodesics.md, "Needles"); growing K could only repeat it,
+        // forever. The empty path falls through to the border certificate, which holds with
+        // B = ∞ (nothing is left queued, no border): the caller sees length ∞ and no points.
+        if (!std::isfinite(L) && has_border(mesh, mask, scratch->in)) continue;
+        if (touches_boundary(mesh, mask, path)) continue;  // the paper's rule: grow K
         // Certificate 1 (paper_notes/ellipse.md): every path that leaves T_jk is at least
         // min(border_key, stop_key) long.
         if (std::min(restricted.stats().border_key, restricted.stats().stop_key) >= L) {

@@ -21,6 +21,8 @@
 //           S <- exact search from x_j on all of T, early stop at x_k, pruned above L
 //           if S finds no path shorter than L: return Γ          (certificate 2: the search)
 //           return S's path (Γ was not the shortest path of T: the ellipse missed it)
+//       if Γ does not exist and T_jk has no artificial border (it is a's whole component):
+//           return no path (the exact search lost x_k to rounding; growing K would repeat it)
 //       K <- 1 + 2(K − 1)                                        (the paper's rule)
 // Why this is safe (a theorem and its proof): paper_notes/ellipse.md.
 #pragma once
@@ -66,6 +68,11 @@ struct EllipsePath {
 /// \post path.length is the exact polyhedral distance on the whole mesh (up to the rounding of
 ///       the exact algorithm, paper_notes/exact_geodesics.md): the sub-mesh's path is returned
 ///       only when certified, and a certificate that fails yields the whole-mesh search's path.
+///       Exception: when the exact search exhausts a's component (all of T, or T_jk once it has
+///       no artificial border) without reaching b, the path has no points and length INFINITY.
+///       a and b are connected, so this is the exact algorithm losing b to rounding (possible on
+///       needles far beyond its tolerances' reach: paper_notes/exact_geodesics.md, "Needles");
+///       callers must check it (the partition reports it as a PartitionFailure).
 /// \throws InvalidInput for vertex indices out of range, a == b, K <= 1, or a and b not connected.
 EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, const EllipseOptions& options = {});
 

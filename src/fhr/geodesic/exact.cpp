@@ -25,6 +25,11 @@ constexpr double filter_tolerance = 1e-11;
 /// window is a single ray, and a single ray only matters where it hits a vertex, which the
 /// neighbouring windows reach within cover_tolerance.
 constexpr double width_tolerance = 1e-12;
+/// Unfolded coordinates carry an absolute rounding error of about k·2⁻⁵² times their magnitude
+/// after k unfoldings; this bounds it for k ≤ 4·10³. On the meshes the tolerances below were
+/// first derived for (|I| ≤ 10³·|edge|) it is covered by them; a needle's short edge, 10⁻¹¹ of the
+/// distances around it, needs it explicitly (notes, "Needles").
+constexpr double unfolding_rounding = 1e-12;
 /// An interior vertex is a saddle when its angle sum exceeds 2π by more than this. Each corner
 /// angle is accurate to a few ulps of π (atan2 form), so a flat vertex (sum 2π) comes out within
 /// ~valence·10⁻¹⁵ of 2π and is not a saddle: the windows on its two sides meet along the straight
@@ -47,20 +52,54 @@ struct ExactGeodesic::Frame {
     double len, cx, cy;
 };
 
-ExactGeodesic::Frame ExactGeodesic::frame(const TriMesh& m, HalfedgeId h) {
-    const Vec3 a = m.position(m.from(h));
-    const Vec3 e = m.position(m.to(h)) - a;
-    const Vec3 c = m.position(m.to(m.next(h))) - a;
+namespace {
+
+/// p turned about the line of h into h's frame, on the side y >= 0: its projection onto the line
+/// (from(h) at 0) and its distance from the line. A difference of two positions is rounded
+/// relative to itself, so the result is accurate to a few ulps of |p − from(h)| however short h
+/// is (notes, "Needles").
+P2 turned(const TriMesh& m, HalfedgeId h, const Vec3& p) {
+    const Vec3& a = m.position(m.from(h));
+    const Vec3 e = edge_vector(m, h), r = p - a;
     const double len = e.norm();
-    return {len, e.dot(c) / len, e.cross(c).norm() / len};
+    return {e.dot(r) / len, e.cross(r).norm() / len};
+}
+
+}  // namespace
+
+ExactGeodesic::Frame ExactGeodesic::frame(const TriMesh& m, HalfedgeId h) {
+    const P2 c = turned(m, h, m.position(m.to(m.next(h))));
+    return {edge_vector(m, h).norm(), c.x, c.y};
 }
 
 namespace {
 
-/// p in the frame with origin o and unit x-axis u (y to the left of u).
-P2 to_frame(P2 p, P2 o, P2 u) {
-    const double dx = p.x - o.x, dy = p.y - o.y;
-    return {dx * u.x + dy * u.y, u.x * dy - u.y * dx};
+/// The rigid motion from the frame of a window's edge h to the frame of a child edge g (the twin
+/// of one of the two other edges of face(h)), and g's length. h and g share one vertex s; the
+/// motion is fixed by s's place in g's frame (exact: g's start or end) and by the direction of h
+/// there, taken from the 3-D vectors out of s, so it is accurate to a few ulps of the angle at s
+/// (turned() is accurate relative to |h|) whatever the triangle's shape. A direction taken as the
+/// difference of two points rounded by ε times the triangle's size (g's axis as to(h) − apex in
+/// h's frame, or h's as the difference of its ends in g's frame) turns by ε·(size)/(short edge)
+/// rad when that edge is a needle's short one: 10⁻⁸ rad at 10⁻⁹°, every window beyond it off by
+/// that times |I| (notes, "Needles").
+struct Motion {
+    P2 o, a;  ///< where from(h) goes, and the unit vector h's x-axis becomes
+    double len;
+    P2 operator()(P2 p) const { return {o.x + p.x * a.x - p.y * a.y, o.y + p.x * a.y + p.y * a.x}; }
+};
+
+Motion motion(const TriMesh& m, HalfedgeId h, HalfedgeId g) {
+    const double len = edge_vector(m, g).norm();
+    if (m.from(g) == m.from(h)) {  // s = from(h) is g's start; to(h) lies below g
+        const P2 u = turned(m, g, m.position(m.to(h)));
+        const double n = std::hypot(u.x, u.y);
+        return {{0, 0}, {u.x / n, -u.y / n}, len};
+    }
+    // s = to(h) is g's end; from(h), seen from s along g reversed, lies below g.
+    const P2 u = turned(m, TriMesh::twin(g), m.position(m.from(h)));
+    const double n = std::hypot(u.x, u.y);
+    return {{len - u.x, -u.y}, {u.x / n, u.y / n}, len};
 }
 
 /// Where the line through i and q crosses y = 0. \pre q.y > i.y.
@@ -137,7 +176,7 @@ bool ExactGeodesic::masked_out(FaceId f) const {
 // leaves the mask through it.
 void ExactGeodesic::note_border(const Window& candidate) {
     Window w = candidate;
-    const double len = (mesh_.position(mesh_.to(w.h)) - mesh_.position(mesh_.from(w.h))).norm();
+    const double len = edge_vector(mesh_, w.h).norm();
     const double lo = std::min(w.b0, w.b1), hi = std::max(w.b0, w.b1);
     w.b0 = std::clamp(lo, 0.0, len);
     w.b1 = std::clamp(hi, 0.0, len);
@@ -174,14 +213,10 @@ double ExactGeodesic::window_key(const Window& w) const {
     const P2 s{w.sx, w.sy};
     const auto through = [&](double x, double tx, double ty) { return w.sigma + std::hypot(x - w.sx, w.sy) + std::hypot(x - tx, ty); };
     if (goals_.empty()) return w.sigma + std::hypot(std::clamp(w.sx, w.b0, w.b1) - w.sx, w.sy);
-    const Vec3& a = mesh_.position(mesh_.from(w.h));
-    const Vec3 e = mesh_.position(mesh_.to(w.h)) - a;
-    const double len = e.norm();
     double best = INFINITY;
     for (const Vec3& t : goals_) {
-        const Vec3 r = t - a;
-        const P2 turned{e.dot(r) / len, e.cross(r).norm() / len};
-        best = std::min(best, through(std::clamp(intercept(s, turned), w.b0, w.b1), turned.x, turned.y));
+        const P2 tt = turned(mesh_, w.h, t);
+        best = std::min(best, through(std::clamp(intercept(s, tt), w.b0, w.b1), tt.x, tt.y));
     }
     return best;
 }
@@ -281,15 +316,13 @@ void ExactGeodesic::expand_vertex(VertexId v) {
             // The edge opposite v in face(g), seen from the face beyond it: b -> a.
             const HalfedgeId beyond = TriMesh::twin(mesh_.next(g));
             if (face_exists(mesh_.face(beyond)) || masked_out(mesh_.face(beyond))) {
-                const Vec3& pb = mesh_.position(mesh_.from(beyond));
-                const Vec3 e = mesh_.position(mesh_.to(beyond)) - pb, r = pv - pb;
-                const double len = e.norm();
+                const P2 image = turned(mesh_, beyond, pv);
                 // v's image lies strictly below the edge: the face is not exactly degenerate
                 // (INV-IN-5). When v lies on the edge's line within rounding (a cap with an angle of
                 // π at v), |e × r| can round to 0; a zero height would read as "rays along the edge
                 // only" and drop the window, hiding the face beyond from v (GEO-E4).
-                const double below = std::min(-e.cross(r).norm() / len, -std::numeric_limits<double>::min());
-                const Window w{beyond, v, no_parent, 0, len, e.dot(r) / len, below, delta};
+                const double below = std::min(-image.y, -std::numeric_limits<double>::min());
+                const Window w{beyond, v, no_parent, 0, edge_vector(mesh_, beyond).norm(), image.x, below, delta};
                 if (face_exists(mesh_.face(beyond)))
                     push_window(w);
                 else
@@ -310,7 +343,11 @@ void ExactGeodesic::propagate_window(std::uint32_t index) {
     const P2 s{w.sx, w.sy}, c{f.cx, f.cy};
     // Where the ray from the source image to the apex v3 crosses the window's edge.
     const double xc = intercept(s, c);
-    const double tol = cover_tolerance * f.len;
+    // Rounding moves xc and the interval by up to unfolding_rounding times the coordinates
+    // involved (the edge, the source image, the apex), which on a needle's short edge is far more
+    // than cover_tolerance·|edge| (notes, "Needles").
+    const double scale = std::max({f.len, std::hypot(w.sx, w.sy), std::hypot(f.cx, f.cy)});
+    const double tol = cover_tolerance * f.len + unfolding_rounding * scale;
     const double via_w = w.sigma + std::hypot(f.cx - w.sx, f.cy - w.sy);
     if (xc >= w.b0 - tol && xc <= w.b1 + tol) relax(v3, via_w, {Via::Kind::window, index});
     // Rays left of xc cross edge v1 -> v3, rays right of it edge v3 -> v2. When v3 is reached
@@ -330,11 +367,10 @@ void ExactGeodesic::propagate_window(std::uint32_t index) {
     if (left_end > w.b0) {
         const HalfedgeId child = TriMesh::twin(hp);
         if (face_exists(mesh_.face(child)) || masked_out(mesh_.face(child))) {
-            const double len = std::hypot(f.cx, f.cy);
-            const P2 o{0, 0}, u{f.cx / len, f.cy / len};
-            const P2 si = to_frame(s, o, u);
-            const double b1 = left_end == xc ? len : intercept(si, to_frame({left_end, 0}, o, u));
-            const Window c{child, w.pseudo, index, intercept(si, to_frame({w.b0, 0}, o, u)), b1, si.x, si.y, w.sigma};
+            const Motion to_child = motion(mesh_, w.h, child);
+            const P2 si = to_child(s);
+            const double b1 = left_end == xc ? to_child.len : intercept(si, to_child({left_end, 0}));
+            const Window c{child, w.pseudo, index, intercept(si, to_child({w.b0, 0})), b1, si.x, si.y, w.sigma};
             if (face_exists(mesh_.face(child)))
                 push_window(c);
             else
@@ -344,11 +380,10 @@ void ExactGeodesic::propagate_window(std::uint32_t index) {
     if (right_start < w.b1) {
         const HalfedgeId child = TriMesh::twin(hn);
         if (face_exists(mesh_.face(child)) || masked_out(mesh_.face(child))) {
-            const double len = std::hypot(f.len - f.cx, f.cy);
-            const P2 u{(f.len - f.cx) / len, -f.cy / len};
-            const P2 si = to_frame(s, c, u);
-            const double b0 = right_start == xc ? 0 : intercept(si, to_frame({right_start, 0}, c, u));
-            const Window r{child, w.pseudo, index, b0, intercept(si, to_frame({w.b1, 0}, c, u)), si.x, si.y, w.sigma};
+            const Motion to_child = motion(mesh_, w.h, child);
+            const P2 si = to_child(s);
+            const double b0 = right_start == xc ? 0 : intercept(si, to_child({right_start, 0}));
+            const Window r{child, w.pseudo, index, b0, intercept(si, to_child({w.b1, 0})), si.x, si.y, w.sigma};
             if (face_exists(mesh_.face(child)))
                 push_window(r);
             else

@@ -76,7 +76,8 @@ struct ExactOptions {
 /// The relative tolerances of the algorithm; their derivations are in
 /// paper_notes/exact_geodesics.md, "Tolerances".
 /// A vertex within cover_tolerance · |edge| of a window's interval (measured where its ray
-/// crosses the window's edge) is reached through the window.
+/// crosses the window's edge), plus the rounding of the unfolded coordinates (exact.cpp's
+/// unfolding_rounding, which matters only on needles), is reached through the window.
 inline constexpr double cover_tolerance = 1e-9;
 /// A path passing within snap_tolerance · (its longest edge) of a vertex passes through it.
 inline constexpr double snap_tolerance = 1e-9;

@@ -45,6 +45,13 @@ public:
                 continue;
             }
             geodesic::EllipsePath p = cache_.at(key_of(a, b));
+            // The ellipse search ends without a path only when the exact search exhausted a's
+            // component without reaching b (ellipse.hpp): a loss to rounding, not a property of D.
+            if (p.path.points.empty())
+                throw PartitionFailure("no shortest path found for domain edge " + std::to_string(e.idx()) + " between vertices " +
+                                       std::to_string(a.idx()) + " and " + std::to_string(b.idx()) +
+                                       " of T: the exact geodesic search exhausted the component of " + std::to_string(a.idx()) +
+                                       " without reaching " + std::to_string(b.idx()) + " (a loss to rounding, possible on needle triangles)");
             if (a.idx() > b.idx()) std::reverse(p.path.points.begin(), p.path.points.end());
             paths.push_back(std::move(p));
         }
