@@ -238,6 +238,19 @@ TEST_CASE("CLI-RUN-1, PART-4: needles of 1e-9 degrees end certified or 'not cert
     if (r.exit_code == 4) CHECK_THAT(r.err, Catch::Contains("not certified"));
 }
 
+TEST_CASE("CLI-RUN-1, GEO-E8: a quality mesh at default knobs certifies (./run families 500, quality 483)", "[cli][run]") {
+    // Needles of 1e-4 degrees: the exact search lost the windows beyond a needle's short edge, one
+    // domain edge got no path, and embed stopped with an internal error (exit 70). Fixed with the
+    // frames of GEO-E8 (paper_notes/exact_geodesics.md, "Needles").
+    const std::string mesh = temp_path("quality-483.off");
+    REQUIRE(run_fhr({"generate", "--family", "quality", "--genus", "3", "--holes", "2", "--faces", "12638", "--seed",
+                     "7167934239707463497", "--out", mesh})
+                .exit_code == 0);
+    const auto r = run_fhr({"run", mesh, "--faces", "126", "--out", temp_path("quality-483-run")});
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("certified one-to-one"));
+}
+
 TEST_CASE("CLI-RUN-5: bad input and bad options exit 2 and write nothing", "[cli][run]") {
     const std::string dir = temp_path("run-bad");
     const std::string bad = fhr::test::write_temp("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
