@@ -128,8 +128,11 @@ private:
     // Γ*'s nodes within snap_fraction of an end of their edge of T′_S moved to that end, as embed
     // snaps every geodesic (a path through a vertex reaches it as an edge point a rounding error
     // away: 1e-12 of an edge beside a saddle of the block family, which then left the next curve no
-    // room to separate); repeats dropped. Each move of at most snap_fraction·|edge| lengthens the
-    // curve by at most twice that, added to `bound`.
+    // room to separate). Each move of at most snap_fraction·|edge| lengthens the curve by at most
+    // twice that, added to `bound`. A vertex reached twice (near a vertex whose edges differ in
+    // length by more than 1/snap_fraction, the crossings of the long ones snap and those of a short
+    // one between them do not: the quality family's needles) closes a loop, which is cut out: the
+    // curve only gets shorter.
     std::vector<SurfacePoint> snapped(const std::vector<SurfacePoint>& star, double& bound) const {
         const TriMesh& m = net_.mesh;
         std::vector<SurfacePoint> pts;
@@ -139,6 +142,15 @@ private:
                 const VertexId a = m.from(p.halfedge), b = m.to(p.halfedge);
                 bound += 2 * std::min(p.t, 1 - p.t) * (m.position(b) - m.position(a)).norm();
                 p = SurfacePoint::at_vertex(p.t <= snap_fraction ? a : b);
+            }
+            if (p.kind == SurfacePoint::Kind::vertex) {
+                const auto again = std::find_if(pts.begin(), pts.end(), [&](const SurfacePoint& q) {
+                    return q.kind == SurfacePoint::Kind::vertex && q.vertex == p.vertex;
+                });
+                if (again != pts.end()) {
+                    pts.erase(again + 1, pts.end());
+                    continue;
+                }
             }
             if (pts.empty() || !same_location(m, pts.back(), p)) pts.push_back(p);
         }
