@@ -105,13 +105,19 @@ def tables(tmp_path_factory):
     ("cut short", ["a1", "cut"], "fhr: error: %(d)s/cut.tsv:"),
     ("a row missing", ["a1", "lacking"], "fhr: error: %(d)s/lacking.tsv: shard 2/2 lacks mesh 3"),
     ("a row out of its shard", ["a1", "moved"], "fhr: error: %(d)s/moved.tsv:13: mesh 2 where shard 2/2 has mesh 3"),
-])
+] + [("a valid row with field %d set" % k, ["a1", "valid%d" % k],
+      "fhr: error: %%(d)s/valid%d.tsv:13: a malformed row (empty field, a bad escape, or '-' missing after 'valid')" % k)
+     for k in (4, 5, 6)])
 def test_oracle_fuzz_merge_errors(tables, case, files, message):
     a2 = (tables / "a2.tsv").read_text()
     (tables / "cut.tsv").write_text(a2[:len(a2) - 20])
     lines = a2.splitlines(keepends=True)
     (tables / "lacking.tsv").write_text("".join(lines[:-1]))
     (tables / "moved.tsv").write_text("".join(lines[:-1]) + lines[-1].replace("3\t", "2\t", 1))
+    for k in (4, 5, 6):  # 'valid' needs '-' in the check, reason and smaller fields (4, 5, 6)
+        fields = lines[-1].rstrip("\n").split("\t")[:3] + ["valid", "-", "-", "-"]
+        fields[k] = "x"
+        (tables / ("valid%d.tsv" % k)).write_text("".join(lines[:-1]) + "\t".join(fields) + "\n")
     out = tables / ("merged-%s.tsv" % case.replace(" ", "-"))
     proc = run([FHR, "oracle-fuzz", "--merge", *[tables / (f + ".tsv") for f in files], "--table", out])
     assert one_error_line(proc, message % {"d": tables}) is not None
