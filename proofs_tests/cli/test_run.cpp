@@ -205,20 +205,34 @@ TEST_CASE("CLI-RUN-1: --weights and --solver are honoured and still certified", 
     CHECK(json_true(report, "certified"));
 }
 
-TEST_CASE("CLI-RUN-1, MAP-7: BiCGSTAB converges on a small patch of a graded mesh (fuzz_pipeline finding, session 8)", "[cli][run]") {
-    // Uniform weights on the density family's graded mesh: a patch of 8 unknowns stalled at a
-    // relative residual of 5.4e-14 after Eigen's default 2n = 16 iterations (exit 4). With at least
-    // bicgstab_min_iterations it reaches 1e-14 and the result is certified, like SparseLU's.
-    const std::string mesh = temp_path("bicgstab.off");
-    REQUIRE(run_fhr({"generate", "--family", "density", "--genus", "0", "--components", "2", "--faces", "564", "--seed",
-                     "2420457183278695252", "--out", mesh})
-                .exit_code == 0);
-    for (const char* solver : {"bicgstab", "sparse-lu"}) {
-        CAPTURE(solver);
-        const auto r = run_fhr({"run", mesh, "--faces", "86", "--weights", "uniform", "--solver", solver, "--out",
-                                temp_path(std::string("bicgstab-run-") + solver)});
-        CHECK(r.exit_code == 0);
-        CHECK_THAT(r.out, Catch::Contains("certified one-to-one"));
+TEST_CASE("CLI-RUN-1, MAP-7: BiCGSTAB converges on small patches of graded meshes (fuzz_pipeline findings, sessions 8 and 9)", "[cli][run]") {
+    // Uniform weights on the density family's graded meshes. The first: a patch of 8 unknowns
+    // stalled at a relative residual of 5.4e-14 after Eigen's default 2n = 16 iterations (exit 4);
+    // now at least bicgstab_min_iterations. The second: started from 0 on a patch where the
+    // incomplete LU is exact, BiCGSTAB's half step reached a residual of exactly 0 and the next
+    // divided 0 by 0 (NaN after 2 iterations); now it starts from the preconditioner's solution.
+    // Both certify, like SparseLU's.
+    struct Case {
+        std::vector<std::string> recipe;
+        std::string faces;
+    };
+    const std::vector<Case> cases{
+        {{"--family", "density", "--genus", "0", "--components", "2", "--faces", "564", "--seed", "2420457183278695252"}, "86"},
+        {{"--family", "density", "--genus", "2", "--holes", "2", "--components", "3", "--faces", "970", "--seed", "6679101986355545382"},
+         "439"}};
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+        const std::string mesh = temp_path("bicgstab-" + std::to_string(k) + ".off");
+        std::vector<std::string> generate{"generate"};
+        generate.insert(generate.end(), cases[k].recipe.begin(), cases[k].recipe.end());
+        generate.insert(generate.end(), {"--out", mesh});
+        REQUIRE(run_fhr(generate).exit_code == 0);
+        for (const char* solver : {"bicgstab", "sparse-lu"}) {
+            CAPTURE(k, solver);
+            const auto r = run_fhr({"run", mesh, "--faces", cases[k].faces, "--weights", "uniform", "--solver", solver, "--out",
+                                    temp_path("bicgstab-run-" + std::to_string(k) + solver)});
+            CHECK(r.exit_code == 0);
+            CHECK_THAT(r.out, Catch::Contains("certified one-to-one"));
+        }
     }
 }
 
