@@ -17,6 +17,18 @@
 
 namespace fhr::test {
 
+generate::RandomMeshOptions needle_recipe(int genus, int components, std::size_t faces, std::uint64_t seed) {
+    generate::RandomMeshOptions o;
+    o.genus = genus;
+    o.components = components;
+    o.faces = faces;
+    o.seed = seed;
+    o.family = generate::Family::quality;
+    o.knobs.smallest_angle_deg = 1e-9;
+    o.knobs.bad_fraction = 0.5;
+    return o;
+}
+
 using geodesic::GeodesicPath;
 
 double rel_dev(double a, double b) {

@@ -11,9 +11,14 @@
 
 #include <fhr/core/surface_point.hpp>
 #include <fhr/core/trimesh.hpp>
+#include <fhr/generate/random_mesh.hpp>
 #include <fhr/geodesic/exact.hpp>
 
 namespace fhr::test {
+
+/// The quality family at its extreme knobs (needles of 10⁻⁹°, half the faces bad): the meshes of
+/// GEO-E8 and GEO-E9, where the exact search lost windows.
+generate::RandomMeshOptions needle_recipe(int genus, int components, std::size_t faces, std::uint64_t seed);
 
 /// |a − b| relative to the larger; 0 when equal (also both infinite), infinite when one is.
 double rel_dev(double a, double b);

@@ -345,14 +345,7 @@ TEST_CASE("GEO-E9: a target the exact search loses on its whole component gives 
         std::uint32_t a, b;
     };
     for (const Case c : {Case{0, 1, 200, 2, 9, 87}, Case{2, 2, 1558, 478695528567056040ull, 20, 252}}) {
-        generate::RandomMeshOptions o;
-        o.genus = c.genus;
-        o.components = c.components;
-        o.faces = c.faces;
-        o.seed = c.seed;
-        o.family = generate::Family::quality;
-        o.knobs.smallest_angle_deg = 1e-9;
-        o.knobs.bad_fraction = 0.5;
+        const generate::RandomMeshOptions o = test::needle_recipe(c.genus, c.components, c.faces, c.seed);
         const TriMesh m = generate::random_mesh(o);
         CAPTURE(generate::generate_command(o));
         const VertexId a(c.a), b(c.b);

@@ -526,14 +526,7 @@ TEST_CASE("GEO-E8: on 10⁻⁹° needles a path along a crease is found from bot
         std::uint32_t a, b;
     };
     for (const Case c : {Case{0, 1, 200, 6, 0, 6}, Case{2, 2, 1558, 478695528567056040ull, 0, 271}}) {
-        generate::RandomMeshOptions o;
-        o.genus = c.genus;
-        o.components = c.components;
-        o.faces = c.faces;
-        o.seed = c.seed;
-        o.family = generate::Family::quality;
-        o.knobs.smallest_angle_deg = 1e-9;
-        o.knobs.bad_fraction = 0.5;
+        const generate::RandomMeshOptions o = test::needle_recipe(c.genus, c.components, c.faces, c.seed);
         const TriMesh m = generate::random_mesh(o);
         CAPTURE(generate::generate_command(o));
         for (const auto& [s, t] : {std::pair{VertexId(c.a), VertexId(c.b)}, std::pair{VertexId(c.b), VertexId(c.a)}}) {
