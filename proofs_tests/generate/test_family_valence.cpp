@@ -21,6 +21,7 @@
 #include <fhr/core/build.hpp>
 #include <fhr/core/errors.hpp>
 #include <fhr/core/topology.hpp>
+#include <fhr/generate/detail/family.hpp>
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/io/read.hpp>
 #include "generate/generated_checks.hpp"
@@ -157,6 +158,23 @@ TEST_CASE("valence family: the same with random knobs (GEN-8, GEN-11)", "[proper
         });
         RC_LOG() << fhr::generate::generate_command(o) << "\n";
         const TriMesh m = random_mesh(o);
+        check_family_mesh(o, m);
+        check_valence(o, m);
+        check_axis_aligned(m);
+    });
+}
+
+// The insertion of valence-3 vertices tries 32 random faces, then scans every face from a random
+// one (valence.cpp, insert_valence3). No recipe tried reaches the scan, so it is run here alone
+// (no random draws): it must still keep every promise, the exact face count first.
+TEST_CASE("valence family: the scan alone, without random draws, keeps every promise (GEN-8, GEN-11)", "[property]") {
+    rc::prop("random knobs, scan only", [] {
+        const RandomMeshOptions o = *gen_family(Family::valence, 1000, [](fhr::generate::FamilyKnobs& k) {
+            k.high_valence = *rc::gen::inRange(7, 101);
+            k.low_fraction = *rc::gen::inRange(0, 21) / 100.0;
+        });
+        RC_LOG() << fhr::generate::generate_command(o) << " (scan only)\n";
+        const TriMesh m = fhr::generate::detail::valence_mesh(o, 0);
         check_family_mesh(o, m);
         check_valence(o, m);
         check_axis_aligned(m);

@@ -108,8 +108,8 @@ bool corner_ok(const Vec3& x, const Vec3& y, const Vec3& z) {
 
 class ValenceBuilder {
 public:
-    ValenceBuilder(const RandomMeshOptions& o, TriMesh base)
-        : o_(o), ed_(std::move(base)), rng_(family_seed(o.seed, Family::valence)) {}
+    ValenceBuilder(const RandomMeshOptions& o, TriMesh base, int random_draws)
+        : o_(o), ed_(std::move(base)), rng_(family_seed(o.seed, Family::valence)), draws_(random_draws) {}
 
     TriMesh build(std::size_t valence3) {
         const TriMesh& m = ed_.mesh();
@@ -131,6 +131,7 @@ private:
     const RandomMeshOptions& o_;
     GuardedEditor ed_;
     Random rng_;
+    int draws_;  // random faces tried per valence-3 vertex before the scan
 
     std::size_t target() const { return static_cast<std::size_t>(o_.knobs.high_valence); }
 
@@ -319,10 +320,9 @@ private:
         // Every insertion makes 3 faces ineligible and adds 2: with F0 >= the insertions, an
         // eligible face always remains, if need be in a hub's fan. A few random draws, then a
         // scan from a random face, then the same scan with the fans.
-        constexpr int draws = 32;
         for (std::size_t i = 0; i < count; ++i) {
             bool done = false;
-            for (int t = 0; t < draws && !done; ++t) {
+            for (int t = 0; t < draws_ && !done; ++t) {
                 const FaceId f(static_cast<FaceId::Index>(rng_.below(m.n_faces())));
                 done = eligible(f, false) && insert(f);
             }
@@ -371,7 +371,7 @@ std::size_t valence_min_faces(const RandomMeshOptions& o) {
     }
 }
 
-TriMesh valence_mesh(const RandomMeshOptions& o) {
+TriMesh valence_mesh(const RandomMeshOptions& o, int random_draws) {
     const std::size_t reserve = hub_reserve(o);
     std::size_t n3 = valence3_count(o, 0);
     TriMesh base = base_block(o, o.faces - 2 * (reserve + n3));
@@ -383,7 +383,7 @@ TriMesh valence_mesh(const RandomMeshOptions& o) {
             base = base_block(o, o.faces - 2 * (reserve + n3));
         }
     }
-    return ValenceBuilder(o, std::move(base)).build(n3);
+    return ValenceBuilder(o, std::move(base), random_draws).build(n3);
 }
 
 }  // namespace fhr::generate::detail
