@@ -66,6 +66,23 @@ TEST_CASE("PARAM-1: write -> read -> write is byte-identical and gives back ever
     });
 }
 
+TEST_CASE("PARAM-1: file equality, which the round trips rely on, sees a change in any one field", "[exchange]") {
+    const ParamFile file = small_file();
+    CHECK(file == small_file());
+    std::vector<ParamFile> changed(7, file);
+    changed[0].domain_vertices[1].y() += 1e-9;
+    changed[1].domain_faces[2][1] = changed[1].domain_faces[2][0];
+    changed[2].surface_vertices.pop_back();
+    changed[3].surface_faces[4].v[2] += 1;
+    changed[4].surface_faces[4].patch += 1;
+    changed[5].surface_faces[4].beta[1][2] += 0.25;
+    changed[6].surface_faces.pop_back();
+    for (std::size_t i = 0; i < changed.size(); ++i) {
+        INFO("change " << i);
+        CHECK_FALSE(changed[i] == file);
+    }
+}
+
 TEST_CASE("PARAM-1: write_param is atomic and its file reads back", "[exchange]") {
     const ParamFile file = small_file();
     const std::string path = fhr::test::temp_path("small.fhrp");
@@ -80,10 +97,10 @@ TEST_CASE("PARAM-1: write_param is atomic and its file reads back", "[exchange]"
 TEST_CASE("PARAM-1: tokens may be separated by any whitespace, and comments are ignored", "[exchange]") {
     const std::string text = "# a parameterization\nfhr-param 1 domain_vertices 4 0 0 0  1 0 0\t0 1 0 0 0 1\r\n"
                              "domain_faces 4 0 2 1 0 1 3 0 3 2 1 2 3 # the tetrahedron\n"
-                             "surface_vertices 4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                             "surface_vertices 4\n0 0 0\v1 0 0\f0 1 0\n0 0 1\n"
                              "surface_faces 4\n"
                              "0 2 1 0  1 0 0  0 1 0  0 0 1\n0 1 3 1  1 0 0  0 1 0  0 0 1\n"
-                             "0 3 2 2  1 0 0  0 1 0  0 0 1\n1 2 3 3  1 0 0  0 1 0  0 0 1";  // no final newline
+                             "0 3 2 2  1 0 0  0 1 0  0 0 1\n1 2 3 3  1 0 0  0 1 0  0 0 1 # the end";  // no final newline
     const ParamFile file = parse_param(text, "tet.fhrp");
     REQUIRE(file.domain_faces.size() == 4);
     CHECK(file.surface_faces[3].v == fhr::Triangle{1, 2, 3});
@@ -110,6 +127,7 @@ TEST_CASE("PARAM-1: malformed files are refused with one line naming the file, t
         {"huge count", "fhr-param 1\ndomain_vertices 4000000000\n0 0 0\n", "truncated"},
         {"count beyond 32 bits", "fhr-param 1\ndomain_vertices 99999999999\n", "not in [0, 2^32)"},
         {"negative count", "fhr-param 1\ndomain_vertices -4\n", "not in [0, 2^32)"},
+        {"count beyond 64 bits", "fhr-param 1\ndomain_vertices 99999999999999999999\n", "a count '99999999999999999999' is not in [0, 2^32)"},
         {"word for a number", "fhr-param 1\ndomain_vertices 1\n0 zero 0\n", "t.fhrp:3: domain vertex 0: expected a number, found 'zero'"},
         {"number out of range", "fhr-param 1\ndomain_vertices 1\n0 1e999 0\n", "out of double range"},
         {"negative index", "fhr-param 1\ndomain_vertices 3\n0 0 0\n1 0 0\n0 1 0\ndomain_faces 1\n0 -1 2\n",

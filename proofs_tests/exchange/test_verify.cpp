@@ -115,6 +115,14 @@ std::uint32_t side_vertex(const ParamFile& f, const std::vector<std::vector<Inci
     throw std::logic_error("no side vertex (k >= 2 needed)");
 }
 
+/// The vertex whose image is `p` (its first incidence's), of a side of `patches` patches.
+std::uint32_t vertex_at(const ParamFile& f, const std::vector<std::vector<Incidence>>& inc, const Point& p,
+                        std::size_t patches = 2) {
+    for (std::uint32_t v = 0; v < inc.size(); ++v)
+        if (patches_of(f, inc[v]).size() == patches && point(f, inc[v][0]) == p) return v;
+    throw std::logic_error("no vertex at that point");
+}
+
 /// Slides a side vertex by 0.05 along its side, in one of its patches only or in every patch; a
 /// vertex of a side of `patches` patches. Returns it.
 std::uint32_t slide_side_vertex(ParamFile& f, bool one_patch_only, std::size_t patches = 2) {
@@ -236,6 +244,54 @@ const std::vector<Corruption>& corruptions() {
              f.surface_faces[3].beta[2][1] = std::numeric_limits<double>::quiet_NaN();
              return Expect{"PARAM-2", "", -1, 3};
          }},
+        {"a NaN domain vertex",
+         [](ParamFile& f, TriMesh&) {
+             f.domain_vertices[3].x() = std::numeric_limits<double>::quiet_NaN();
+             return Expect{"PARAM-2", "", -1, -1, "domain vertex 3 (nan, "};
+         }},
+        {"a finite domain vertex beyond 1e150 (INV-IN-1: its squares would overflow)",
+         [](ParamFile& f, TriMesh&) {
+             f.domain_vertices[2].z() = -1e151;
+             return Expect{"PARAM-2", "", -1, -1, "-1e+151) is not finite or exceeds 1e150 in magnitude"};
+         }},
+        {"a domain vertex in no face (INV-IN-12)",
+         [](ParamFile& f, TriMesh&) {
+             f.domain_vertices.push_back(fhr::Vec3(0, 0, 0));
+             return Expect{"PARAM-3", "", -1, -1, "domain D has vertices in no face: "};
+         }},
+        {"a side vertex given beta off its side in one face of its patch, not the face the boundary walk reads",
+         [](ParamFile& f, TriMesh&) {
+             const auto inc = incidences(f);
+             const std::uint32_t v = side_vertex(f, inc);
+             for (const Incidence& i : inc[v]) {
+                 auto& face = f.surface_faces[i.face];
+                 Beta& b = face.beta[i.corner];
+                 const int zero = static_cast<int>(std::find(b.begin(), b.end(), 0.0) - b.begin());
+                 // The middle face of v's three in the patch: neither other corner on v's side.
+                 if (face.beta[(i.corner + 1) % 3][zero] == 0 || face.beta[(i.corner + 2) % 3][zero] == 0) continue;
+                 *std::max_element(b.begin(), b.end()) -= 1e-13;
+                 b[zero] = 1e-13;
+                 // PARAM-7 sees a face of D in one face and an edge in the others; PARAM-9 checks
+                 // every face of the patch against the side the walk put v on.
+                 return Expect{"PARAM-7", "PARAM-9", v, i.face, "not the same vertex, edge or face of D",
+                               "boundary vertex " + std::to_string(v) + " lies on the side ("};
+             }
+             throw std::logic_error("k must be >= 3");
+         }},
+        {"two neighbouring side vertices swap their images, in both patches (ψ continuous, the side out of order)",
+         [](ParamFile& f, TriMesh&) {
+             const auto inc = incidences(f);
+             const std::uint32_t v = side_vertex(f, inc);
+             const Point p = point(f, inc[v][0]);
+             Point q = p;  // the next lattice point along the side, towards its middle
+             const double step = p.begin()->second > 0.5 ? -0.25 : 0.25;
+             q.begin()->second += step;
+             q.rbegin()->second -= step;
+             const std::uint32_t w = vertex_at(f, inc, q);
+             move_image(f, inc[v], q);
+             move_image(f, inc[w], p);
+             return Expect{"PARAM-8", "PARAM-9", -1, -1, "", "is not monotone: its parameter "};
+         }},
         {"an infinite coordinate",
          [](ParamFile& f, TriMesh&) {
              f.surface_vertices[5].y() = -std::numeric_limits<double>::infinity();
@@ -317,6 +373,13 @@ const std::vector<Corruption>& corruptions() {
              auto& x = input.position(fhr::VertexId(0)).x();
              x = std::nextafter(x, 1e300);
              return Expect{"PARAM-11", "", 0, -1, "vertex 0 of T"};
+         }},
+        {"--mesh: a vertex of T' far off T, outside T's bounding box",
+         [](ParamFile& f, TriMesh&) {
+             const auto inc = incidences(f);
+             const std::uint32_t v = interior_vertex(f, inc);
+             f.surface_vertices[v] += fhr::Vec3(0, 0, 1e3);
+             return Expect{"PARAM-11", "", v, -1, "is not on T (distance > "};
          }},
         {"--mesh: a vertex of T' off T",
          [](ParamFile& f, TriMesh&) {
@@ -411,6 +474,20 @@ TEST_CASE("PARAM-2..11: the corruptions are caught on random domains of genus 0-
     rc::prop("every corruption of the 4-to-16 subdivision of a random domain", [] {
         rc_expect_caught(corruptions(), *fhr::testing::gen_closed_mesh(0, 3, 200));
     });
+}
+
+TEST_CASE("PARAM-2: when it fails every later check is skipped; without T, PARAM-11 is not listed", "[exchange]") {
+    ParamFile file = fhr::test::subdivided_param(random_domain(0, 40, 3), 2);
+    file.surface_faces[0].beta[0][0] = std::numeric_limits<double>::infinity();
+    const VerifyReport r = verify(file, nullptr);
+    REQUIRE(r.checks.size() == 9u);
+    CHECK(r.checks.front().status == CheckStatus::fail);
+    for (std::size_t i = 1; i < r.checks.size(); ++i) {
+        INFO(r.checks[i].id);
+        CHECK(r.checks[i].status == CheckStatus::skipped);
+        CHECK(r.checks[i].first_failure == "not checked: needs PARAM-2 (indices and numbers)");
+    }
+    CHECK(r.checks.back().id == "PARAM-10");
 }
 
 TEST_CASE("PARAM-9, PARAM-10: a failed check makes the checks that rely on it skipped, with the reason", "[exchange]") {
@@ -612,6 +689,20 @@ const std::vector<Corruption>& boundary_corruptions() {
              f.surface_faces[0].patch = static_cast<std::uint32_t>(other - component.begin());
              return Expect{"PARAM-4", "PARAM-6", -1, -1, "has faces in two components of D"};
          }},
+        {"a component of T' moved into the patches of another component of D, which then holds none",
+         [](ParamFile& f, TriMesh&) {
+             const std::vector<std::uint32_t> component = face_components(f);
+             const std::uint32_t last = component.back();  // the sphere (mixed_domain)
+             std::uint32_t lowest = UINT32_MAX;  // the vertex that names the moved component
+             for (auto& face : f.surface_faces)
+                 if (component[face.patch] == last) {
+                     lowest = std::min({lowest, face.v[0], face.v[1], face.v[2]});
+                     face.patch = 0;
+                 }
+             return Expect{"PARAM-4", "PARAM-6", -1, -1,
+                           "the component of T' at surface vertex 0 and the component of T' at surface vertex " +
+                               std::to_string(lowest) + " both lie in patches of the component of D at domain vertex 0"};
+         }},
         {"an extra component of D that holds no face of T'",
          [](ParamFile& f, TriMesh&) {
              const auto n = static_cast<std::uint32_t>(f.domain_vertices.size());
@@ -804,6 +895,40 @@ TEST_CASE("PARAM-4: each component of T' has the chi and the boundary loops of i
         CHECK(first_failure(r) == "PARAM-4");
         CHECK(check(r, "PARAM-4").first_failure == "T' has 2 boundary loops but D has 0 boundary loops");
     }
+}
+
+TEST_CASE("PARAM-4: one boundary loop is named in the singular", "[exchange][boundary]") {
+    // A torus with one hole against a sphere with three: chi = -1 both, 199 faces both.
+    ParamFile file = fhr::test::subdivided_param(with_holes(random_domain(1, 200, 1), 1, 0), 2);
+    const TriMesh sphere = with_holes(random_domain(0, 202, 3), 3, 0);
+    file.domain_vertices = sphere.positions();
+    file.domain_faces = sphere.triangles();
+    const VerifyReport r = verify(file, nullptr);
+    INFO(describe(r));
+    CHECK(first_failure(r) == "PARAM-4");
+    CHECK(check(r, "PARAM-4").first_failure == "T' has 1 boundary loop but D has 3 boundary loops");
+}
+
+TEST_CASE("PARAM-11: T' with T's vertices, triangulated otherwise, covers another area", "[exchange][boundary]") {
+    // The hexagon with its centre raised into a tent; T has the spoke (0, 1) flipped into (6, 2).
+    // Every vertex of either mesh is a vertex of the other, boundaries and topology agree: only
+    // the area tells the surfaces apart.
+    std::vector<fhr::Vec3> p = hexagon_disk().positions();
+    p[0].z() = 0.5;
+    std::vector<fhr::Triangle> t = hexagon_disk().triangles();
+    const TriMesh tent = TriMesh::from_triangles(p, t);
+    REQUIRE(t.front() == (fhr::Triangle{0, 1, 2}));
+    REQUIRE(t.back() == (fhr::Triangle{0, 6, 1}));
+    t.front() = {6, 1, 2};
+    t.back() = {6, 2, 0};
+    const TriMesh flipped = TriMesh::from_triangles(p, t);
+    const VerifyReport r = verify(fhr::test::subdivided_param(tent, 1), &flipped);
+    INFO(describe(r));
+    CHECK(first_failure(r) == "PARAM-11");
+    CHECK(check(r, "PARAM-11").failures == 1);
+    CHECK_THAT(check(r, "PARAM-11").first_failure,
+               Catch::StartsWith("the area of T' is ") && Catch::EndsWith(", more than 1e-9)") &&
+                   Catch::Contains(" but T's is ") && Catch::Contains(" (relative difference "));
 }
 
 TEST_CASE("PARAM-3: a flat closed component is refused (INV-IN-13 for each closed component)", "[exchange][boundary]") {

@@ -8,6 +8,7 @@
 #include <rapidcheck/catch.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <set>
@@ -41,6 +42,29 @@ Disk ear_disk() {
     d.triangles = {{0, 1, 2}, {0, 2, 3}};
     d.boundary = {0, 1, 2, 3};
     d.corners = {0, 2, 3};
+    return d;
+}
+
+// The 3 × 3 grid on the torus (vertex 3i + j at angles (i, j) · 2π/3, each square cut along its
+// diagonal: 9 vertices, 27 edges, 18 triangles) without its last triangle: a connected surface
+// with one boundary loop, the hole's three vertices, and χ = 9 − 27 + 17 = −1.
+Disk holed_torus() {
+    Disk d;
+    auto id = [](int i, int j) { return static_cast<std::uint32_t>(3 * (i % 3) + j % 3); };
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const double a = 2 * std::numbers::pi * i / 3, b = 2 * std::numbers::pi * j / 3;
+            d.positions.emplace_back((2 + std::cos(b)) * std::cos(a), (2 + std::cos(b)) * std::sin(a), std::sin(b));
+        }
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            d.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+            d.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        }
+    const auto hole = d.triangles.back();  // (a, b, c): the loop runs a → c → b
+    d.triangles.pop_back();
+    d.boundary = {hole[0], hole[2], hole[1]};
+    d.corners = {0, 1, 2};
     return d;
 }
 
@@ -137,13 +161,55 @@ TEST_CASE("MAP-1: invalid disks are refused with the broken rule", "[unit][param
     d = good;
     d.triangles[0] = {0, 1, 4};
     refused(d, "names vertex 4", Element::face, 0);
-    // Two triangles meeting at a vertex only: not manifold there.
+    for (const std::array<std::uint32_t, 3> repeating : {std::array<std::uint32_t, 3>{0, 0, 2}, {0, 2, 2}, {2, 1, 2}}) {
+        d = good;
+        d.triangles[1] = repeating;
+        refused(d, "triangle 1 repeats a vertex", Element::face, 1);
+    }
+    d = good;
+    d.triangles.clear();
+    refused(d, "no triangles", Element::whole, -1);
+    d = good;
+    d.boundary = {0, 1};
+    refused(d, "boundary loop has 2 vertices (needs 3 corners)", Element::boundary_position, -1);
+    // Each of 0 == c0 < c1 < c2 < #boundary broken alone (the swap above breaks c1 < c2).
+    for (const std::array<std::size_t, 3> corners : {std::array<std::size_t, 3>{1, 2, 3}, {0, 0, 2}, {0, 2, 4}}) {
+        d = good;
+        d.corners = corners;
+        refused(d, "are not 0 < c1 < c2 < 4", Element::corners, -1);
+    }
+    // Two triangles meeting at a vertex only: not manifold there (vertex 0 starts two boundary edges).
     Disk bowtie;
     bowtie.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(-1, 0, 0), Vec3(0, -1, 0)};
     bowtie.triangles = {{0, 1, 2}, {0, 3, 4}};
     bowtie.boundary = {0, 1, 2};
     bowtie.corners = {0, 1, 2};
-    CHECK(param::disk_violation(bowtie));
+    refused(bowtie, "vertex 0 starts two boundary edges", Element::vertex, 0);
+    // Two closed fans (cones without their bases) sharing their apex 0: no boundary edge starts
+    // at 0, but the walk around it from vertex 1 closes after 3 of its 6 triangles.
+    Disk cones;
+    cones.positions = {Vec3(0, 0, 0), Vec3(1, 0, 1), Vec3(0, 1, 1), Vec3(-1, -1, 1), Vec3(1, 0, -1), Vec3(0, 1, -1), Vec3(-1, -1, -1)};
+    cones.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {0, 5, 4}, {0, 6, 5}, {0, 4, 6}};
+    cones.boundary = {1, 2, 3};
+    cones.corners = {0, 1, 2};
+    refused(cones, "vertex 0 is not manifold (its triangles form more than one fan)", Element::vertex, 0);
+    // The ear disk beside a closed tetrahedron: every rule but connectivity holds.
+    d = good;
+    for (const Vec3& p : {Vec3(5, 0, 0), Vec3(6, 0, 0), Vec3(5, 1, 0), Vec3(5, 0, 1)}) d.positions.push_back(p);
+    for (const std::array<std::uint32_t, 3> f : {std::array<std::uint32_t, 3>{4, 5, 6}, {4, 6, 7}, {4, 7, 5}, {5, 7, 6}})
+        d.triangles.push_back(f);
+    refused(d, "not connected (vertex 4)", Element::vertex, 4);
+    // A torus with a hole: connected, manifold, one boundary loop, but χ = −1.
+    refused(holed_torus(), "Euler characteristic -1 (a disk has 1)", Element::whole, -1);
+    // map_patch also needs each side's chord length positive and finite (MAP-1); the topology is fine.
+    d = good;
+    d.positions[3] = d.positions[0];  // C on A: side 2 (C → A) has length 0
+    CHECK_FALSE(param::disk_violation(d));
+    CHECK_THROWS_WITH(param::map_patch(d), Catch::Contains("patch: MAP-1: side 2 has chord length 0.000000"));
+    d = good;
+    d.positions[0] = Vec3(-1e154, 0, 0);  // A and C 2e154 apart: |C − A|² overflows, the other sides' do not
+    d.positions[3] = Vec3(1e154, 0, 0);
+    CHECK_THROWS_WITH(param::map_patch(d), Catch::Contains("patch: MAP-1: side 2 has chord length inf"));
     // An annulus (two boundary loops).
     Disk annulus;
     for (int k = 0; k < 3; ++k) {
@@ -416,8 +482,26 @@ TEST_CASE("MAP-9: the certificate rejects corrupted maps", "[unit][param]") {
         CHECK(cert.first_failure->element == fhr::Element::vertex);
         CHECK(cert.first_failure->index == 0);
         bad = psi;
+        bad.beta[5][1] = std::numeric_limits<double>::quiet_NaN();
+        const param::Certificate nan = param::certify(d, bad);
+        REQUIRE(nan.first_failure);
+        CHECK(nan.first_failure->invariant == "MAP-6");
+        CHECK(nan.first_failure->index == 5);
+        CHECK_THAT(nan.first_failure->what, Catch::Contains("vertex 5 has β (") && Catch::Contains("nan"));
+        bad = psi;
         bad.beta.pop_back();
         CHECK_FALSE(param::certify(d, bad).passed);
+    }
+    SECTION("a map of a disk that breaks MAP-1: the disk's violation, nothing certified") {
+        Disk broken = d;
+        broken.corners = {0, broken.corners[2], broken.corners[1]};
+        const param::Certificate cert = param::certify(broken, psi);
+        CHECK_FALSE(cert.passed);
+        REQUIRE(cert.first_failure);
+        CHECK(cert.first_failure->invariant == "MAP-1");
+        CHECK(cert.first_failure->element == fhr::Element::corners);
+        CHECK(cert.triangles == 0);  // no orientation, boundary or area check ran
+        CHECK(cert.boundary_violations == 0);
     }
 }
 
