@@ -1,8 +1,8 @@
 // FHR tests — TriMesh (src/fhr/core/trimesh.hpp), the halfedge triangulation T of the paper (§1):
 // construction, navigation, boundary, the edits the decimation of §2 is built from (flip,
 // split, half-edge collapse with the link condition), compaction, and the invariant checker
-// (spec/mesh.md INV-MESH-0..8). Property tests run random edit sequences on random meshes of
-// genus 0..4 (support/gen_mesh.hpp).
+// (spec/mesh.md INV-MESH-0..8), fed broken structures through TriMesh::from_arrays. Property
+// tests run random edit sequences on random meshes of genus 0..4 (support/gen_mesh.hpp).
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
@@ -442,7 +442,7 @@ TEST_CASE("is_collapse_ok refuses link-condition violations", "[unit]") {
     }
 }
 
-// --- refused construction (the only way to build a broken structure from outside) -----------
+// --- refused construction: from_triangles (from_arrays below) -----------------------------
 
 TEST_CASE("from_triangles refuses input that would break the invariants", "[unit]") {
     const std::vector<Vec3> p{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(1, 1, 0)};
@@ -546,6 +546,7 @@ TEST_CASE("from_arrays(m.arrays()) is m, with every id, also after edits", "[uni
     CHECK(TriMesh::from_arrays(m.arrays()).arrays() == m.arrays());
     m.flip(TriMesh::edge(m.find_halfedge(VertexId(0), VertexId(2))));
     const VertexId c = m.split_face(FaceId(3), Vec3(0.3, -0.3, 0.4));
+    CHECK_FALSE(m.arrays() == octahedron().arrays());  // the comparison sees the edits
     const TriMesh copy = TriMesh::from_arrays(m.arrays());
     CHECK(copy.arrays() == m.arrays());
     CHECK(copy.triangles() == m.triangles());
