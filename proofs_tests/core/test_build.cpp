@@ -105,6 +105,17 @@ TEST_CASE("INV-IN-4: duplicate faces are refused, whatever their orientation", "
     CHECK(e.line() == 3 + 4 + 4);
 }
 
+TEST_CASE("INV-IN-4: two faces on the same three edges are duplicates too; the message uses the file's numbers", "[unit][build]") {
+    // The pillow (1, 2, 3), (1, 3, 2): each edge in exactly two faces, consistently oriented, so
+    // only the vertex sets tell. Points 0 and 4 are isolated and dropped first (INV-IN-12), so
+    // the mesh numbers the vertices 0, 1, 2; the message still names the file's 1, 3, 2.
+    std::vector<Vec3> pts{{9, 9, 9}};
+    for (const auto& p : tet_points) pts.push_back(p);
+    const auto e = refused(soup(pts, {{1, 2, 3}, {1, 3, 2}}));
+    CHECK(e.problem() == "faces 0 and 1 are duplicates (vertices 1, 3, 2)");
+    CHECK(e.line() == 3 + 5 + 1);
+}
+
 TEST_CASE("INV-IN-5: exactly degenerate triangles are refused", "[unit][build]") {
     // A flat double-covered "tetrahedron" whose apex lies on the segment (0,0,0)-(2,0,0).
     auto pts = tet_points;
@@ -193,6 +204,29 @@ TEST_CASE("INV-IN-10: boundary is accepted, and refused when a closed surface is
     o.require_closed = true;
     const auto e = refused(soup(tet_points, open), o);
     CHECK_THAT(e.problem(), Catch::Contains("boundary (1 boundary loop") && Catch::Contains("closed surface"));
+}
+
+TEST_CASE("INV-IN-10: two boundary loops, counted in the plural", "[unit][build]") {
+    // Two separate triangles: each its own loop; the first loop runs against face 0.
+    std::vector<Vec3> pts = tet_points;
+    pts.push_back({5, 0, 0});
+    pts.push_back({6, 0, 0});
+    pts.push_back({5, 1, 0});
+    BuildOptions o;
+    o.require_closed = true;
+    const auto e = refused(soup(pts, {{0, 1, 2}, {4, 5, 6}}), o);
+    CHECK(e.problem() == "the mesh has boundary (2 boundary loops, the first through edge (1, 0)): the method needs a closed surface");
+    CHECK(e.line() == 0);
+}
+
+TEST_CASE("INV-IN-10, INV-IN-11: a closed connected surface passes when both are required", "[unit][build]") {
+    BuildOptions o;
+    o.require_closed = true;
+    o.require_connected = true;
+    const TriMesh m = build(soup(tet_points, tet_faces), o);
+    CHECK_NOTHROW(m.validate());
+    CHECK(m.is_closed());
+    CHECK(connected_components(m).count == 1);
 }
 
 TEST_CASE("INV-IN-11: several components are accepted, and refused when a connected surface is required", "[unit][build]") {

@@ -109,3 +109,18 @@ TEST_CASE("predicates are exact for subnormal and huge coordinates", "[unit][pre
     CHECK(collinear({0, 0, 0}, {tiny, tiny, tiny}, {huge, huge, huge}));
     CHECK_FALSE(collinear({0, 0, 0}, {1, 1, 1}, {1, 1, std::nextafter(1.0, 2.0)}));
 }
+
+TEST_CASE("orient2d: the rational fallback for coordinates outside the expansion's range 2^±450", "[unit][predicates]") {
+    // Products of 1e-300 underflow, so the filter sees a zero permanent and the determinant ±1e-600
+    // is beyond double; a tiny first point (x, then y) sends the exact sign to rationals.
+    const double t = 1e-300;
+    CHECK(orient2d({t, 0}, {0, t}, {0, 0}) == 1);
+    CHECK(orient2d({0, t}, {0, 0}, {t, 0}) == 1);
+    CHECK(orient2d({0, t}, {t, 0}, {0, 0}) == -1);
+    CHECK(orient2d({t, t}, {2 * t, 2 * t}, {3 * t, 3 * t}) == 0);
+    // Products of 1e200 overflow: an infinite permanent decides nothing, the rationals do.
+    const double h = 1e200;
+    CHECK(orient2d({h, 0}, {0, h}, {0, 0}) == 1);
+    CHECK(orient2d({h, 0}, {0, 0}, {0, h}) == -1);
+    CHECK(orient2d({h, h}, {-h, -h}, {0, 0}) == 0);
+}

@@ -54,3 +54,13 @@ TEST_CASE("SurfacePoint canonical form names each location once", "[unit][surfac
         CHECK(same_location(m, SurfacePoint::in_face(f, {0, 1, 0}), SurfacePoint::at_vertex(v[1])));
     }
 }
+
+TEST_CASE("SurfacePoint: face points inside a face are the same location only with the same weights", "[unit][surface_point]") {
+    const TriMesh m = tetrahedron();
+    const SurfacePoint p = SurfacePoint::in_face(FaceId(3), {0.5, 0.25, 0.25});
+    CHECK(same_location(m, p, SurfacePoint::in_face(FaceId(3), {0.5, 0.25, 0.25})));
+    CHECK_FALSE(same_location(m, p, SurfacePoint::in_face(FaceId(3), {0.25, 0.5, 0.25})));
+    CHECK_FALSE(same_location(m, p, SurfacePoint::in_face(FaceId(2), {0.5, 0.25, 0.25})));
+    // Inside a face is never on an edge or at a vertex.
+    CHECK_FALSE(same_location(m, p, SurfacePoint::at_vertex(VertexId(1))));
+}

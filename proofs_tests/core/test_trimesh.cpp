@@ -1,12 +1,13 @@
 // FHR tests — TriMesh (src/fhr/core/trimesh.hpp), the halfedge triangulation T of the paper (§1):
 // construction, navigation, boundary, the edits the decimation of §2 is built from (flip,
 // split, half-edge collapse with the link condition), compaction, and the invariant checker
-// (spec/mesh.md INV-MESH-0..8). Property tests run random edit sequences on random meshes of
-// genus 0..4 (support/gen_mesh.hpp).
+// (spec/mesh.md INV-MESH-0..8), fed broken structures through TriMesh::from_arrays. Property
+// tests run random edit sequences on random meshes of genus 0..4 (support/gen_mesh.hpp).
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
 #include <algorithm>
+#include <array>
 #include <iterator>
 #include <set>
 #include <stdexcept>
@@ -339,6 +340,11 @@ TEST_CASE("broken preconditions of the mesh edits throw std::logic_error in test
     CHECK_THROWS_AS(tetra2.collapse(h), std::logic_error);
     CHECK_THROWS_WITH(tetra2.collapse(h), Contains("precondition violated: is_collapse_ok(h)"));
     CHECK_NOTHROW(tetra2.validate());  // refused before anything changed
+    // fill_hole needs a boundary halfedge: an invalid id, one past the end, an interior one.
+    for (const HalfedgeId g : {HalfedgeId(), HalfedgeId(12), HalfedgeId(0)})
+        CHECK_THROWS_WITH(tetra2.fill_hole(g, Vec3(0, 0, 0)),
+                          Contains("precondition violated: h.valid() && h.idx() < n_halfedges() && is_boundary(h)"));
+    check_counts(tetra2, 4, 6, 4);  // no apex was added
 }
 
 TEST_CASE("split_edge on the tetrahedron", "[unit]") {
@@ -381,6 +387,28 @@ TEST_CASE("collapse on the octahedron, then compact", "[unit]") {
           canonical({{2, 1, 0}, {1, 3, 0}, {2, 0, 4}, {1, 2, 4}, {3, 1, 4}, {0, 3, 4}}));
 }
 
+TEST_CASE("before compact(), triangles() and is_closed() skip the collapse's garbage", "[unit]") {
+    TriMesh m = octahedron();
+    m.collapse(m.find_halfedge(VertexId(4), VertexId(0)));  // faces (0, 2, 4) and (3, 0, 4) go
+    const std::vector<Triangle> live = m.triangles();
+    CHECK(live.size() == 6);
+    CHECK(m.is_closed());  // the removed halfedges have no face, but they are no boundary
+    m.compact();
+    CHECK(canonical(live) == canonical({{2, 1, 0}, {1, 3, 0}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}}));
+    CHECK(m.is_closed());
+}
+
+TEST_CASE("the two-triangle pillow: no flip, no collapse (the opposite vertices coincide)", "[unit]") {
+    // (0, 1, 2) and (0, 2, 1): a closed surface, valid for TriMesh (build_trimesh refuses it as
+    // INV-IN-4 duplicates). Both faces at every edge have the same third vertex.
+    const std::vector<Triangle> t{{0, 1, 2}, {0, 2, 1}};
+    const TriMesh m = TriMesh::from_triangles({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, t);
+    REQUIRE_NOTHROW(m.validate());
+    REQUIRE(m.is_closed());
+    for (EdgeId e : m.edges()) CHECK_FALSE(m.is_flip_ok(e));
+    for (HalfedgeId h : m.halfedges()) CHECK_FALSE(m.is_collapse_ok(h));
+}
+
 TEST_CASE("compact without garbage changes nothing", "[unit]") {
     TriMesh m = cube();
     const auto before = m.triangles();
@@ -414,7 +442,7 @@ TEST_CASE("is_collapse_ok refuses link-condition violations", "[unit]") {
     }
 }
 
-// --- refused construction (the only way to build a broken structure from outside) -----------
+// --- refused construction: from_triangles (from_arrays below) -----------------------------
 
 TEST_CASE("from_triangles refuses input that would break the invariants", "[unit]") {
     const std::vector<Vec3> p{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(1, 1, 0)};
@@ -428,10 +456,257 @@ TEST_CASE("from_triangles refuses input that would break the invariants", "[unit
     };
     refused({{0, 1, 5}}, "face 0 has index out of range");                       // INV-MESH-1
     refused({{0, 1, 2}, {2, 1, 1}}, "face 1 repeats a vertex");                  // INV-MESH-2
+    refused({{3, 3, 1}}, "face 0 repeats a vertex");                             // INV-MESH-2
+    refused({{0, 1, 2}, {1, 0, 3}, {4, 2, 4}}, "face 2 repeats a vertex");       // INV-MESH-2
     refused({{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}, "edge in more than two faces");   // INV-MESH-4
     refused({{0, 1, 2}, {0, 1, 3}}, "faces 0 and 1 are inconsistently oriented"); // INV-MESH-4
     refused({{0, 1, 2}, {0, 3, 4}}, "vertex 0 has more than one fan");           // INV-MESH-7 (bow-tie)
     refused({{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}}, "vertex 4 is in no face");  // INV-MESH-6
+}
+
+// --- arrays in and out: from_arrays and the invariant checker --------------------------------
+//
+// from_arrays is the one way to hand TriMesh a structure it did not build itself, so every check
+// of validate() (spec/mesh.md INV-MESH-1..8) can be met from outside. Each broken structure below
+// breaks one invariant of an otherwise valid one, and the message must name that invariant and
+// the element where it breaks, no earlier one.
+
+namespace {
+
+/// Halfedge arrays made by hand, for the checker: edge e joins edges[e] = {a, b} (halfedge 2e
+/// runs a -> b, 2e + 1 back), and each listed loop of halfedges is linked by `next`: the loops of
+/// `faces` are faces 0, 1, ..., those of `holes` boundary loops. Parallel edges, loops of any
+/// length and halfedges on no loop are all allowed: nothing here checks what validate() checks.
+/// out(v) is v's first boundary halfedge, else its first halfedge; positions are arbitrary.
+TriMesh::Arrays hand_made(std::uint32_t n_vertices, const std::vector<std::array<std::uint32_t, 2>>& edges,
+                          const std::vector<std::vector<std::uint32_t>>& faces,
+                          const std::vector<std::vector<std::uint32_t>>& holes) {
+    TriMesh::Arrays a;
+    for (const auto& [from, to] : edges) {
+        a.to.push_back(VertexId(to));
+        a.to.push_back(VertexId(from));
+    }
+    a.next.resize(a.to.size());
+    a.face.resize(a.to.size());
+    auto link = [&](const std::vector<std::uint32_t>& loop, FaceId f) {
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+            a.next[loop[i]] = HalfedgeId(loop[(i + 1) % loop.size()]);
+            a.face[loop[i]] = f;
+        }
+    };
+    for (std::uint32_t f = 0; f < faces.size(); ++f) {
+        link(faces[f], FaceId(f));
+        a.face_halfedge.push_back(HalfedgeId(faces[f][0]));
+    }
+    for (const auto& loop : holes) link(loop, FaceId());
+    a.out.resize(n_vertices);
+    for (std::uint32_t h = 0; h < a.to.size(); ++h) {
+        HalfedgeId& out = a.out[a.to[h ^ 1u].idx()];
+        if (!out.valid() || (a.face[out.idx()].valid() && !a.face[h].valid())) out = HalfedgeId(h);
+    }
+    for (std::uint32_t v = 0; v < n_vertices; ++v) a.positions.emplace_back(v, v * v, 1);
+    return a;
+}
+
+/// One n-gon as a single face: halfedge 2i runs i -> i+1 inside face 0, 2i + 1 back along the
+/// boundary loop ..., 5, 3, 1 (0 -> n−1 -> ... -> 1 -> 0). For n = 3 the triangle (0, 1, 2):
+/// out(0) = 5, out(1) = 1, out(2) = 3.
+TriMesh::Arrays polygon_arrays(std::uint32_t n) {
+    std::vector<std::array<std::uint32_t, 2>> edges;
+    std::vector<std::uint32_t> inside, outside;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        edges.push_back({i, (i + 1) % n});
+        inside.push_back(2 * i);
+        outside.push_back(2 * (n - 1 - i) + 1);
+    }
+    return hand_made(n, edges, {inside}, {outside});
+}
+
+/// Two triangles (0, 1, 2) and (0, 3, 4) sharing only vertex 0: halfedges 0, 2, 4 and 6, 8, 10
+/// inside, the boundary loops 5 -> 3 -> 1 (0 -> 2 -> 1 -> 0) and 11 -> 9 -> 7 (0 -> 4 -> 3 -> 0).
+/// Vertex 0 has degree 4: halfedges 0 and 6 inside, 5 and 11 on the boundary; out(0) = 5.
+TriMesh::Arrays bow_tie_arrays() {
+    return hand_made(5, {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {3, 4}, {4, 0}}, {{0, 2, 4}, {6, 8, 10}}, {{5, 3, 1}, {11, 9, 7}});
+}
+
+/// The message from_arrays throws, or "" when it accepts the arrays.
+std::string refusal(TriMesh::Arrays a) {
+    try {
+        TriMesh::from_arrays(std::move(a));
+    } catch (const std::logic_error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("from_arrays(m.arrays()) is m, with every id, also after edits", "[unit]") {
+    TriMesh m = octahedron();
+    CHECK(TriMesh::from_arrays(m.arrays()).arrays() == m.arrays());
+    m.flip(TriMesh::edge(m.find_halfedge(VertexId(0), VertexId(2))));
+    const VertexId c = m.split_face(FaceId(3), Vec3(0.3, -0.3, 0.4));
+    CHECK_FALSE(m.arrays() == octahedron().arrays());  // the comparison sees the edits
+    const TriMesh copy = TriMesh::from_arrays(m.arrays());
+    CHECK(copy.arrays() == m.arrays());
+    CHECK(copy.triangles() == m.triangles());
+    CHECK(copy.out(c) == m.out(c));
+    // The hand-made triangle of the tests below is a valid mesh: the triangle (0, 1, 2).
+    const TriMesh tri = TriMesh::from_arrays(polygon_arrays(3));
+    CHECK(tri.triangles() == std::vector<Triangle>{{0, 1, 2}});
+    CHECK(fhr::boundary_loops(tri).size() == 1);
+}
+
+TEST_CASE("from_arrays refuses garbage: a collapsed mesh's arrays before compact() (INV-MESH-1)", "[unit]") {
+    TriMesh m = octahedron();
+    m.collapse(m.find_halfedge(VertexId(4), VertexId(0)));
+    HalfedgeId first_gone;  // the lowest halfedge the collapse removed
+    for (HalfedgeId h : m.halfedges())
+        if (!first_gone.valid() && m.is_deleted(TriMesh::edge(h))) first_gone = h;
+    REQUIRE(first_gone.valid());
+    CHECK(refusal(m.arrays()) == "INV-MESH-1: halfedge " + std::to_string(first_gone.idx()) + " has an out-of-range reference");
+    m.compact();
+    CHECK(refusal(m.arrays()).empty());
+}
+
+TEST_CASE("INV-MESH-1: array sizes and out-of-range references", "[unit]") {
+    CHECK(refusal(polygon_arrays(3)).empty());
+    const std::string sizes = "INV-MESH-1: array sizes disagree";
+    SECTION("a position too many") {
+        TriMesh::Arrays a = polygon_arrays(3);
+        a.positions.emplace_back(0, 0, 0);
+        CHECK(refusal(a) == sizes);
+    }
+    SECTION("a next too many") {
+        TriMesh::Arrays a = polygon_arrays(3);
+        a.next.push_back(HalfedgeId(0));
+        CHECK(refusal(a) == sizes);
+    }
+    SECTION("a face too many") {
+        TriMesh::Arrays a = polygon_arrays(3);
+        a.face.push_back(FaceId());
+        CHECK(refusal(a) == sizes);
+    }
+    SECTION("an odd number of halfedges") {
+        TriMesh::Arrays a = polygon_arrays(3);
+        a.to.push_back(VertexId(0));
+        a.next.push_back(HalfedgeId(0));
+        a.face.push_back(FaceId());
+        CHECK(refusal(a) == sizes);
+    }
+    const std::string reference = "INV-MESH-1: halfedge 0 has an out-of-range reference";
+    SECTION("to(0) invalid or past the last vertex") {
+        TriMesh::Arrays a = polygon_arrays(3);
+        a.to[0] = VertexId();
+        CHECK(refusal(a) == reference);
+        a.to[0] = VertexId(3);
+        CHECK(refusal(a) == reference);
+    }
+    SECTION("next(0) invalid or past the last halfedge") {
+        TriMesh::Arrays a = polygon_arrays(3);
+        a.next[0] = HalfedgeId();
+        CHECK(refusal(a) == reference);
+        a.next[0] = HalfedgeId(6);
+        CHECK(refusal(a) == reference);
+    }
+    SECTION("face(0) past the last face") {
+        TriMesh::Arrays a = polygon_arrays(3);
+        a.face[0] = FaceId(1);
+        CHECK(refusal(a) == "INV-MESH-1: halfedge 0 has an out-of-range face");
+    }
+}
+
+TEST_CASE("INV-MESH-2..5: loops, next, faces, edges without a face", "[unit]") {
+    TriMesh::Arrays a = polygon_arrays(3);
+    SECTION("INV-MESH-2: halfedge 0 turned into a loop at its tail") {
+        a.to[0] = VertexId(0);
+        CHECK(refusal(a) == "INV-MESH-2: halfedge 0 is a loop at vertex 0");
+    }
+    SECTION("INV-MESH-3: next(0) = 0 starts at vertex 0, not at to(0) = 1") {
+        a.next[0] = HalfedgeId(0);
+        CHECK(refusal(a) == "INV-MESH-3: next of halfedge 0 does not start where it ends");
+    }
+    SECTION("INV-MESH-4: next(0) = 1 leaves vertex 1, but on the boundary, not in face 0") {
+        a.next[0] = HalfedgeId(1);
+        CHECK(refusal(a) == "INV-MESH-4: next of halfedge 0 lies in another face");
+    }
+    SECTION("INV-MESH-4: face 0's halfedge invalid, past the end, or on the boundary") {
+        for (const HalfedgeId h : {HalfedgeId(), HalfedgeId(6), HalfedgeId(1)}) {
+            a.face_halfedge[0] = h;
+            CHECK(refusal(a) == "INV-MESH-4: face 0 does not own its halfedge");
+        }
+    }
+    SECTION("INV-MESH-4: a quadrilateral face") {
+        CHECK(refusal(polygon_arrays(4)) == "INV-MESH-4: face 0 is not a triangle");
+    }
+    SECTION("INV-MESH-5: the triangle without its face: both loops are boundary") {
+        a.face.assign(a.face.size(), FaceId());
+        a.face_halfedge.clear();
+        CHECK(refusal(a) == "INV-MESH-5: edge 0 has no face on either side");
+    }
+}
+
+TEST_CASE("INV-MESH-6..8: out(), fans, parallel edges", "[unit]") {
+    SECTION("INV-MESH-6: out(0) invalid, past the end, or leaving vertex 1") {
+        TriMesh::Arrays a = polygon_arrays(3);
+        for (const HalfedgeId h : {HalfedgeId(), HalfedgeId(6), HalfedgeId(1)}) {
+            a.out[0] = h;
+            CHECK(refusal(a) == "INV-MESH-6: out of vertex 0 does not leave it");
+        }
+    }
+    const std::string boundary_fans =
+        "INV-MESH-7: vertex 0 has several boundary fans, or out() is not its boundary halfedge";
+    SECTION("INV-MESH-7: out(0) is the interior halfedge 0 of a boundary vertex") {
+        TriMesh::Arrays a = polygon_arrays(3);
+        a.out[0] = HalfedgeId(0);
+        CHECK(refusal(a) == boundary_fans);
+    }
+    SECTION("INV-MESH-7: a bow-tie: the fan from out(0) has 2 of vertex 0's 4 halfedges") {
+        CHECK(refusal(bow_tie_arrays()) == "INV-MESH-7: vertex 0 is not a single fan (non-manifold vertex)");
+    }
+    SECTION("INV-MESH-7: a next that is no permutation: the walk 11, 6, 5, 0, 5, ... never returns to out(0)") {
+        TriMesh::Arrays a = bow_tie_arrays();
+        a.next[7] = HalfedgeId(5);  // 3 -> 0 now goes on to 0 -> 2, as 1 -> 0 does
+        a.out[0] = HalfedgeId(11);
+        CHECK(refusal(a) == "INV-MESH-7: vertex 0 is not a single fan (non-manifold vertex)");
+    }
+    SECTION("INV-MESH-7: the bow-tie's two boundary loops joined at vertex 0 into a figure eight") {
+        TriMesh::Arrays a = bow_tie_arrays();
+        a.next[1] = HalfedgeId(11);  // 1 -> 0 -> 4
+        a.next[7] = HalfedgeId(5);   // 3 -> 0 -> 2: one fan 5, 0, 11, 6 with two boundary halfedges
+        CHECK(refusal(a) == boundary_fans);
+    }
+    SECTION("INV-MESH-8: a closed surface with two edges between vertices 0 and 1") {
+        // Edges 0 and 1 both join 0 and 1; vertex 2 lies between them on one side, 3 on the other.
+        // Every vertex is a single closed fan, so only INV-MESH-8 can see it.
+        const TriMesh::Arrays a = hand_made(4, {{0, 1}, {1, 0}, {0, 2}, {1, 2}, {0, 3}, {1, 3}},
+                                            {{0, 6, 5}, {2, 4, 7}, {1, 8, 11}, {3, 10, 9}}, {});
+        CHECK(refusal(a) == "INV-MESH-8: two edges join vertex 0 and vertex 1");
+    }
+}
+
+TEST_CASE("split_edge on a boundary edge whose halfedge 0 is the boundary side", "[unit]") {
+    // from_triangles and the edits always put a face on halfedge 0 of a boundary edge; arrays
+    // from outside need not. The triangle (0, 1, 2) with every edge the other way round: edge 0
+    // is 1 -> 0 (halfedge 0, on the boundary loop 4 -> 2 -> 0: 0 -> 2 -> 1 -> 0) and 0 -> 1
+    // (halfedge 1, in the face 1 -> 3 -> 5).
+    TriMesh m = TriMesh::from_arrays(hand_made(3, {{1, 0}, {2, 1}, {0, 2}}, {{1, 3, 5}}, {{4, 2, 0}}));
+    REQUIRE(m.is_boundary(HalfedgeId(0)));
+    const VertexId c = m.split_edge(EdgeId(0), Vec3(0.5, 0.5, 1));
+    CHECK(c == VertexId(3));
+    CHECK_NOTHROW(m.validate());
+    check_counts(m, 4, 5, 2);
+    // Halfedge 0 keeps its tail and now ends at the new vertex, still on the boundary, followed
+    // by the new edge's halfedge 6 (3 -> 0); on the boundary out(3) is that boundary halfedge.
+    CHECK(m.from(HalfedgeId(0)) == VertexId(1));
+    CHECK(m.to(HalfedgeId(0)) == c);
+    CHECK(m.next(HalfedgeId(0)) == HalfedgeId(6));
+    CHECK(m.out(c) == HalfedgeId(6));
+    CHECK(m.is_boundary(HalfedgeId(6)));
+    CHECK(m.triangles() == std::vector<Triangle>{{0, 3, 2}, {3, 1, 2}});
+    std::vector<std::uint32_t> loop;
+    for (HalfedgeId g = m.out(VertexId(0)); loop.empty() || g != m.out(VertexId(0)); g = m.next(g)) loop.push_back(m.from(g).idx());
+    CHECK(loop == std::vector<std::uint32_t>{0, 2, 1, 3});
 }
 
 // --- properties on random meshes -----------------------------------------------------------
@@ -634,4 +909,22 @@ TEST_CASE("CONE-2: boundary_arc walks T's boundary with T's faces on its left", 
         CHECK(!T.is_boundary(h));
         CHECK(T.is_boundary(TriMesh::twin(h)));
     }
+}
+
+TEST_CASE("CONE-2: boundary_arc refuses a, b that are not two vertices of one loop (LIB-2)", "[unit][trimesh][boundary]") {
+    // The hexagonal disk: boundary loop 1..6 around the interior vertex 0; the apex is vertex 7.
+    const TriMesh T = hexagon();
+    const Coned C = add_cones(T);
+    REQUIRE(C.real_vertices == 7);
+    const std::string range = "precondition violated: a != b && a.idx() < real_vertices && b.idx() < real_vertices";
+    CHECK_THROWS_WITH(boundary_arc(C.mesh, C.real_vertices, VertexId(1), VertexId(1)), Contains(range));
+    CHECK_THROWS_WITH(boundary_arc(C.mesh, C.real_vertices, VertexId(7), VertexId(1)), Contains(range));
+    CHECK_THROWS_WITH(boundary_arc(C.mesh, C.real_vertices, VertexId(1), VertexId(7)), Contains(range));
+    const std::string step = "precondition violated: step.valid() && arc.size() <= real_vertices";
+    // From the interior vertex no edge has T's face on one side and a cone face on the other.
+    CHECK_THROWS_WITH(boundary_arc(C.mesh, C.real_vertices, VertexId(0), VertexId(1)), Contains(step));
+    // To the interior vertex the walk goes round the loop without end: it stops after #V(T) steps.
+    CHECK_THROWS_WITH(boundary_arc(C.mesh, C.real_vertices, VertexId(1), VertexId(0)), Contains(step));
+    // The valid arcs around the loop: 1 -> 2 -> 3 (the disk lies to the left).
+    CHECK((boundary_arc(C.mesh, C.real_vertices, VertexId(1), VertexId(3)) == std::vector<VertexId>{VertexId(1), VertexId(2), VertexId(3)}));
 }

@@ -113,11 +113,23 @@ Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
     return a + t * ab;
 }
 
+/// A degenerate (zero-area) triangle is the union of its edges: the nearest of their closest points.
+Vec3 closest_on_edges(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 q[3] = {closest_on_segment(p, a, b), closest_on_segment(p, b, c), closest_on_segment(p, c, a)};
+    const Vec3* best = &q[0];
+    for (const Vec3& x : q)
+        if ((x - p).squaredNorm() < (*best - p).squaredNorm()) best = &x;
+    return *best;
+}
+
 }  // namespace
 
-/// (degenerate triangles included: a zero-length edge is its end point.)
+/// Degenerate triangles included: Ericson's Voronoi regions hold for a proper triangle only (with
+/// two equal corners the region of the zero-length edge between them would take in every p that
+/// projects into the triangle, and return that corner), so a zero-area triangle is settled first.
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
     const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    if (!(ab.cross(ac).squaredNorm() > 0)) return closest_on_edges(p, a, b, c);
     const double d1 = ab.dot(ap), d2 = ac.dot(ap);
     if (d1 <= 0 && d2 <= 0) return a;
     const Vec3 bp = p - b;
@@ -132,15 +144,8 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
     if (vb <= 0 && d2 >= 0 && d6 <= 0) return closest_on_segment(p, a, c);
     const double va = d3 * d6 - d5 * d4;
     if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return closest_on_segment(p, b, c);
-    const double sum = va + vb + vc;
-    if (!(sum > 0)) {
-        // Degenerate (zero-area) triangle: the nearest of its three edges.
-        const Vec3 q[3] = {closest_on_segment(p, a, b), closest_on_segment(p, b, c), closest_on_segment(p, c, a)};
-        const Vec3* best = &q[0];
-        for (const Vec3& x : q)
-            if ((x - p).squaredNorm() < (*best - p).squaredNorm()) best = &x;
-        return *best;
-    }
+    const double sum = va + vb + vc;  // = |ab × ac|² > 0 in exact arithmetic
+    if (!(sum > 0)) return closest_on_edges(p, a, b, c);  // a needle whose sum rounding has eaten
     return a + (vb / sum) * ab + (vc / sum) * ac;
 }
 

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <fhr/core/detail/edge_table.hpp>
 
@@ -83,6 +84,20 @@ TriMesh TriMesh::from_triangles(std::vector<Vec3> positions, std::span<const Tri
     }
     for (VertexId v : m.vertices())
         if (!m.out_[v.idx()].valid()) broken("from_triangles: " + vname(v) + " is in no face");
+    return m;
+}
+
+TriMesh::Arrays TriMesh::arrays() const { return {to_, next_, face_, out_, fh_, pos_}; }
+
+TriMesh TriMesh::from_arrays(Arrays arrays) {
+    TriMesh m;
+    m.to_ = std::move(arrays.to);
+    m.next_ = std::move(arrays.next);
+    m.face_ = std::move(arrays.face);
+    m.out_ = std::move(arrays.out);
+    m.fh_ = std::move(arrays.face_halfedge);
+    m.pos_ = std::move(arrays.positions);
+    m.validate();
     return m;
 }
 

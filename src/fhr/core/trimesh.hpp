@@ -46,6 +46,27 @@ public:
     static TriMesh from_triangles(std::vector<Vec3> positions, std::span<const Triangle> triangles,
                                   const detail::EdgeTable& table);
 
+    /// The halfedge arrays themselves, slot for slot in the layout above: per halfedge `to`,
+    /// `next` and `face` (invalid on the boundary), per vertex `out`, per face `face_halfedge`,
+    /// and the positions. They name every element by its id, so they carry a mesh, edited or
+    /// not, with all its ids (from_triangles numbers edges its own way).
+    struct Arrays {
+        std::vector<VertexId> to;
+        std::vector<HalfedgeId> next;
+        std::vector<FaceId> face;
+        std::vector<HalfedgeId> out;
+        std::vector<HalfedgeId> face_halfedge;
+        std::vector<Vec3> positions;
+        bool operator==(const Arrays&) const = default;
+    };
+    /// A copy of this mesh's arrays (garbage slots included: compact() first to pass them on).
+    Arrays arrays() const;
+    /// The mesh with exactly these arrays, so `from_arrays(m.arrays())` has every id of m.
+    /// Arrays from outside are checked like input: INV-MESH-1..8 hold or nothing is built, and the
+    /// checks themselves read no reference before knowing it is in range.
+    /// \throws std::logic_error "INV-MESH-k: ..." as validate() does, naming the first broken invariant.
+    static TriMesh from_arrays(Arrays arrays);
+
     // --- sizes (including garbage slots, see has_garbage) ---------------------------------
     std::size_t n_vertices() const { return out_.size(); }
     std::size_t n_halfedges() const { return to_.size(); }
