@@ -224,6 +224,24 @@ std::string patches_of(const std::function<void(partition::Network&)>& change) {
     return refusal<PartitionFailure>([&] { (void)partition::extract_patches(f.D, net); });
 }
 
+// The torus of revolution (radii 3 and 1) as n × n squares, each cut into two triangles along
+// the diagonal from (i, j) to (i + 1, j + 1); vertex (i, j) (indices mod n) is torus_vertex(n, i, j).
+VertexId torus_vertex(int n, int i, int j) { return VertexId(static_cast<VertexId::Index>(((i % n + n) % n) * n + (j % n + n) % n)); }
+
+TriMesh torus(int n) {
+    std::vector<Vec3> positions;
+    std::vector<Triangle> triangles;
+    auto id = [&](int i, int j) { return torus_vertex(n, i, j).idx(); };
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const double u = 2 * std::numbers::pi * i / n, w = 2 * std::numbers::pi * j / n;
+            positions.push_back({(3 + std::cos(w)) * std::cos(u), (3 + std::cos(w)) * std::sin(u), std::sin(w)});
+            triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+            triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        }
+    return TriMesh::from_triangles(std::move(positions), triangles);
+}
+
 // The D halfedges of face df of the fixture's D.
 std::array<HalfedgeId, 3> sides(FaceId df) {
     const TriMesh& m = tetrahedron().D.mesh;
@@ -321,21 +339,11 @@ TEST_CASE("PART-8: extract_patches refuses a patch with a handle (one boundary l
     // (three vertices, faces (0, 1, 2) and (0, 2, 1)). Its curves ring one face F of the torus:
     // face 0's patch is F, a disk; face 1's is the rest, a torus with a hole (χ = −1).
     const int n = 8;
-    std::vector<Vec3> positions;
-    std::vector<Triangle> triangles;
-    auto id = [&](int i, int j) { return static_cast<std::uint32_t>(((i + n) % n) * n + (j + n) % n); };
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-            const double u = 2 * std::numbers::pi * i / n, w = 2 * std::numbers::pi * j / n;
-            positions.push_back({(3 + std::cos(w)) * std::cos(u), (3 + std::cos(w)) * std::sin(u), std::sin(w)});
-            triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-            triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-        }
     domain::Domain D;
     D.mesh = TriMesh::from_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, std::vector<Triangle>{{0, 1, 2}, {0, 2, 1}});
     partition::Network net;
-    net.mesh = TriMesh::from_triangles(positions, triangles);
-    const std::array<VertexId, 3> ring{VertexId(id(0, 0)), VertexId(id(1, 0)), VertexId(id(1, 1))};  // face 0 of T′
+    net.mesh = torus(n);
+    const std::array<VertexId, 3> ring{torus_vertex(n, 0, 0), torus_vertex(n, 1, 0), torus_vertex(n, 1, 1)};  // face 0 of T′
     net.d_halfedge.assign(net.mesh.n_halfedges(), HalfedgeId());
     net.path.resize(D.mesh.n_edges());
     for (EdgeId e : D.mesh.edges()) {
@@ -519,4 +527,26 @@ TEST_CASE("PART-10: the curve kinds have the names the report and geodesics.obj 
     CHECK(std::string(partition::name(partition::CurveKind::geodesic)) == "geodesic");
     CHECK(std::string(partition::name(partition::CurveKind::restricted)) == "restricted");
     CHECK(std::string(partition::name(partition::CurveKind::boundary)) == "boundary");
+}
+
+TEST_CASE("PART-11: a given domain of another genus than T is refused, saying that §2 cannot reach it", "[partition][contract][given]") {
+    // A tetrahedron (genus 0) over four vertices of a torus, in convex position around a spot so
+    // that its diagonals' geodesics conflict: §2 cannot decimate a torus to 4 faces.
+    const int n = 24;
+    const TriMesh T = torus(n);
+    domain::Domain D;
+    std::vector<Vec3> corners;
+    for (const auto& [i, j] : {std::pair{0, 0}, std::pair{7, 2}, std::pair{8, 7}, std::pair{2, 6}}) {
+        D.t_vertex.push_back(torus_vertex(n, i, j));
+        corners.push_back(T.position(D.t_vertex.back()));
+    }
+    D.mesh = TriMesh::from_triangles(corners, test::tetrahedron_faces);
+    REQUIRE_FALSE(partition::embed(T, D, test::exact_paths(T, D)).conflicts.empty());
+    const std::string what = refusal<PartitionFailure>([&] { (void)partition::partition(T, D); });
+    const std::string head = "conditions (1)/(2) of §3 fail for the given domain: ";
+    const std::string tail = "; and the domain cannot be kept: §2 cannot decimate T to the domain's vertices: "
+                             "--faces 4 is fewer than a closed surface of genus 1 needs (at least 14)";
+    CHECK(what.substr(0, head.size()) == head);
+    REQUIRE(what.size() > tail.size());
+    CHECK(what.substr(what.size() - tail.size()) == tail);
 }
