@@ -13,6 +13,13 @@
 #include <fhr/geodesic/ellipse.hpp>
 
 namespace fhr::test {
+
+std::vector<geodesic::GeodesicPath> exact_paths(const TriMesh& T, const domain::Domain& D) {
+    std::vector<geodesic::GeodesicPath> paths;
+    for (const auto& [a, b] : domain::edge_endpoints(D)) paths.push_back(geodesic::ellipse_shortest_path(T, a, b).path);
+    return paths;
+}
+
 namespace {
 
 // Distance from p to the segment [a, b].

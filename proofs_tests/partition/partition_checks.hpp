@@ -3,11 +3,17 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <fhr/core/trimesh.hpp>
+#include <fhr/geodesic/exact.hpp>
 #include <fhr/partition/partition.hpp>
 
 namespace fhr::test {
+
+/// The exact shortest geodesic Γ(x_j, x_k) of every edge of D (the ellipse search), along D's
+/// halfedge (e, 0): the paths embed() takes.
+std::vector<geodesic::GeodesicPath> exact_paths(const TriMesh& T, const domain::Domain& D);
 
 /// The first broken invariant of spec/partition.md for partition P of T ("" when all hold).
 std::string partition_violation(const TriMesh& T, const partition::Partition& P);

@@ -35,12 +35,6 @@ TriMesh cgal_mesh(const char* name) {
 
 TriMesh fandisk() { return cgal_mesh("fandisk.off"); }
 
-std::vector<geodesic::GeodesicPath> exact_paths(const TriMesh& T, const domain::Domain& D) {
-    std::vector<geodesic::GeodesicPath> paths;
-    for (const auto& [a, b] : domain::edge_endpoints(D)) paths.push_back(geodesic::ellipse_shortest_path(T, a, b).path);
-    return paths;
-}
-
 bool has_kind(const partition::Embedding& e, Conflict::Kind kind) {
     return std::any_of(e.conflicts.begin(), e.conflicts.end(), [&](const Conflict& c) { return c.kind == kind; });
 }
@@ -151,7 +145,7 @@ TEST_CASE("PART-1..8: the fandisk's 114-face domain gives 171 paths and 114 disk
 TEST_CASE("PART-4: a path through another corner breaks (1) and is reported", "[partition][unit]") {
     const TriMesh T = fandisk();
     const domain::Domain D = domain::decimate(T, {.target_faces = 114});
-    const std::vector<geodesic::GeodesicPath> paths = exact_paths(T, D);
+    const std::vector<geodesic::GeodesicPath> paths = test::exact_paths(T, D);
     // Route D edge d = (v_j, v_k) through the third corner v_m of its face: Γ(x_j, x_m) + Γ(x_m, x_k).
     auto detoured = [&](EdgeId d) {
         const HalfedgeId h = TriMesh::halfedge(d, 0);
@@ -228,7 +222,7 @@ TEST_CASE("PART-5: a domain with its orientation reversed breaks (2) at every co
           "[partition][unit]") {
     const TriMesh T = fandisk();
     const domain::Domain D = mirrored(domain::decimate(T, {.target_faces = 114}));
-    const partition::Embedding e = partition::embed(T, D, exact_paths(T, D));
+    const partition::Embedding e = partition::embed(T, D, test::exact_paths(T, D));
     std::vector<std::uint8_t> at(D.mesh.n_vertices(), 0);
     for (const Conflict& c : e.conflicts)
         if (c.kind == Conflict::Kind::order) at[c.d_vertex.idx()] = 1;
@@ -251,7 +245,7 @@ TEST_CASE("PART-9: a domain made wrong by an edge flip is detected and recovered
         if (!D0.mesh.is_flip_ok(e)) continue;
         domain::Domain D = D0;
         D.mesh.flip(e);
-        const partition::Embedding emb = partition::embed(T, D, exact_paths(T, D));
+        const partition::Embedding emb = partition::embed(T, D, test::exact_paths(T, D));
         if (emb.conflicts.empty()) continue;
         found = true;
         const partition::Partition P = partition::partition(T, D);
@@ -307,7 +301,7 @@ TEST_CASE("PART-10: the elephant at 114 faces keeps its domain, conflicting edge
     // The run that the paper-only mode ends at 1,184 faces (PART-9 above): kept at 114.
     const TriMesh T = cgal_mesh("elephant.off");
     const domain::Domain D0 = domain::decimate(T, {.target_faces = 114});
-    REQUIRE_FALSE(partition::embed(T, D0, exact_paths(T, D0)).conflicts.empty());
+    REQUIRE_FALSE(partition::embed(T, D0, test::exact_paths(T, D0)).conflicts.empty());
     const partition::Partition P = partition::partition(T, D0);
     const auto restricted = std::count_if(P.curves.begin(), P.curves.end(),
                                           [](const partition::CurveInfo& c) { return c.kind == partition::CurveKind::restricted; });
