@@ -188,10 +188,17 @@ TEST_CASE("CLI-RUN-1..4: fhr run on the fandisk writes every file, certified, ve
     INFO(v.out << v.err);
     CHECK(v.exit_code == 0);
     check_atlas(read_file(dir + "/textured.obj"), fhr::exchange::read_param(dir + "/param.fhrp"));
-    // CLI-RUN-4: a second run gives the same bytes (timings aside).
+    // CLI-RUN-4: a second run gives the same bytes (timings aside), and so do runs on one thread
+    // and on three (the first run used every hardware thread).
     REQUIRE(run_fhr({"run", mesh, "--faces", "114", "--out", again}).exit_code == 0);
     for (const char* f : outputs)
         if (std::string(f) != "timings.json") CHECK(read_file(dir + "/" + f) == read_file(again + "/" + f));
+    for (const char* threads : {"1", "3"}) {
+        const std::string other = again + "-threads" + threads;
+        REQUIRE(run_fhr({"run", mesh, "--faces", "114", "--out", other, "--threads", threads}).exit_code == 0);
+        for (const char* f : outputs)
+            if (std::string(f) != "timings.json") CHECK(read_file(dir + "/" + f) == read_file(other + "/" + f));
+    }
 }
 
 TEST_CASE("CLI-RUN-1: --weights and --solver are honoured and still certified", "[cli][run]") {

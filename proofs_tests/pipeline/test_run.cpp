@@ -30,7 +30,7 @@ struct Recorder final : pipeline::StageObserver {
     }
 };
 
-/// Runs every task through a ThreadsPerCall of `threads` threads, counting the calls and tasks.
+/// Runs every task through a ThreadPool of `threads` threads, counting the calls and tasks.
 struct Counting final : Executor {
     explicit Counting(unsigned threads) : inner(threads) {}
     void for_each(std::size_t n, std::size_t grain, const std::function<void(std::size_t)>& task) override {
@@ -40,7 +40,7 @@ struct Counting final : Executor {
             task(i);
         });
     }
-    ThreadsPerCall inner;
+    ThreadPool inner;
     std::atomic<std::size_t> calls{0}, tasks{0};
 };
 

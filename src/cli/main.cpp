@@ -43,7 +43,7 @@ usage:
   fhr run MESH (--faces N | --domain D.off --correspondence FILE) --out DIR
           [--weights shape-preserving|mean-value|uniform] [--solver sparse-lu|bicgstab]
           [--paths keep|geodesic] [--levels J [--keep P,Q,...]] [--figures [--up x|y|z]]
-          [--corner-angle DEG]
+          [--corner-angle DEG] [--threads N]
       §2–§4 end to end (--paths keep, the default: D is kept, edges whose geodesics conflict
       get restricted shortest paths; geodesic: the paper's geodesics only, D changed where they conflict): writes DIR/domain.off, geodesics.obj, refined.ply, param.fhrp,
       textured.obj, report.json, timings.json; with --levels also §5's remesh_LJ.off and

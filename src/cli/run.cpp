@@ -6,6 +6,7 @@
 #include <optional>
 
 #include <fhr/core/errors.hpp>
+#include <fhr/core/executor.hpp>
 #include <fhr/core/topology.hpp>
 #include <fhr/domain/user_domain.hpp>
 #include <fhr/io/correspondence.hpp>
@@ -25,7 +26,7 @@ double since(std::chrono::steady_clock::time_point start) {
 
 int run_run(const std::vector<std::string>& argv) {
     // Parse.
-    const Args args(argv, {"figures"}, {"faces", "domain", "correspondence", "out", "weights", "solver", "up", "levels", "keep", "paths", "corner-angle"});
+    const Args args(argv, {"figures"}, {"faces", "domain", "correspondence", "out", "weights", "solver", "up", "levels", "keep", "paths", "corner-angle", "threads"});
     const std::string& mesh_path = args.single_positional("MESH");
     const std::string out = args.require("out");
     const bool by_faces = args.get("faces").has_value(), by_domain = args.get("domain").has_value();
@@ -55,6 +56,10 @@ int run_run(const std::vector<std::string>& argv) {
     }
     const std::string up = args.get("up").value_or("y");
     if (up != "x" && up != "y" && up != "z") usage_error("--up must be x, y or z, not '" + up + "'");
+    // --threads N: the pool that runs the independent tasks (0: as many as the hardware has); the
+    // outputs are the same bytes on any count (CLI-RUN-4).
+    std::optional<ThreadPool> pool;
+    if (args.get("threads")) method.executor = &pool.emplace(static_cast<unsigned>(args.integer("threads", 0, 0, 1024)));
     method.progress = [](const std::string& line) { std::fprintf(stderr, "fhr run: %s\n", line.c_str()); };
     pipeline::Timings timings;
     method.observer = &timings;
