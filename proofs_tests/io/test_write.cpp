@@ -197,3 +197,29 @@ TEST_CASE("FMT-WRITE-1: a failed write throws InvalidInput and leaves nothing be
     CHECK(listing(dir) == expected);
     CHECK(listing(dir / "occupied.obj").empty());
 }
+
+TEST_CASE("FMT-WRITE-1, FMT-WRITE-2: files of many chunks are written whole, and one failing after its first chunks leaves nothing", "[unit][io]") {
+    // io::AtomicFile writes a chunk (1 MiB) at a time as the writers format: 200,000 points and
+    // triangles make several MiB in every format.
+    const fs::path dir = fhr::test::temp_path("atomic-chunks");
+    fs::create_directories(dir);
+    std::vector<Vec3> points;
+    std::vector<Triangle> triangles;
+    for (std::uint32_t i = 0; i < 200000; ++i) {
+        points.emplace_back(i / 7.0, -(i / 3.0), 1.0 / (i + 1));
+        triangles.push_back({i, (i + 1) % 200000, (i + 2) % 200000});
+    }
+    for (const char* name : {"big.off", "big.obj", "big.ply"}) {
+        const std::string path = (dir / name).string();
+        fhr::io::write_mesh(path, points, triangles);
+        CHECK(fs::file_size(path) > (std::size_t{3} << 20));
+        const fhr::PolygonSoup soup = fhr::io::read_soup(path);
+        CHECK(soup.points == points);
+        CHECK(soup.polygon_count() == triangles.size());
+        CHECK(std::equal(soup.polygon(199999), soup.polygon(199999) + 3, triangles.back().begin()));
+    }
+    // The last polyline indexes past the points: refused after several MiB went to the temporary.
+    const std::vector<std::vector<std::uint32_t>> lines = {std::vector<std::uint32_t>(300000, 1), {0, 200000}};
+    CHECK_THROWS_AS(fhr::io::write_obj_polylines((dir / "lines.obj").string(), points, lines, {}), std::invalid_argument);
+    CHECK(listing(dir) == std::vector<std::string>{"big.obj", "big.off", "big.ply"});
+}

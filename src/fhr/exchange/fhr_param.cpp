@@ -14,7 +14,7 @@
 // (finite, in range) is checked by the oracle, PARAM-2.
 //
 // Writer: shortest round-trip decimals (std::to_chars), so read(write(p)) is bit-identical, and
-// one fixed layout, so equal files give equal bytes; written atomically (FMT-WRITE-1).
+// one fixed layout, so equal files give equal bytes; written atomically (FMT-WRITE-1), a chunk at a time (io::AtomicFile).
 #include <fhr/exchange/fhr_param.hpp>
 
 #include <limits>
@@ -181,10 +181,12 @@ ParamFile parse_param(std::string_view bytes, const std::string& name) {
 
 ParamFile read_param(const std::string& path) { return parse_param(io::read_bytes(path), path); }
 
-std::string format_param(const ParamFile& file) {
-    std::string out = "fhr-param 1\n";
-    out.reserve(64 * (file.domain_vertices.size() + file.surface_vertices.size()) + 32 * file.domain_faces.size() +
-                256 * file.surface_faces.size());
+namespace {
+
+/// The text of `file` appended to `out`; step() after each line (AtomicFile::step when writing).
+template <class Step>
+void put_param(const ParamFile& file, std::string& out, Step step) {
+    out += "fhr-param 1\n";
     append_section(out, "domain_vertices", file.domain_vertices.size());
     for (const Vec3& p : file.domain_vertices) io::append_point(out, p);
     append_section(out, "domain_faces", file.domain_faces.size());
@@ -194,8 +196,12 @@ std::string format_param(const ParamFile& file) {
             out += c < 2 ? ' ' : '\n';
         }
     }
+    step();
     append_section(out, "surface_vertices", file.surface_vertices.size());
-    for (const Vec3& p : file.surface_vertices) io::append_point(out, p);
+    for (const Vec3& p : file.surface_vertices) {
+        io::append_point(out, p);
+        step();
+    }
     append_section(out, "surface_faces", file.surface_faces.size());
     for (const ParamFace& face : file.surface_faces) {
         for (const std::uint32_t v : face.v) {
@@ -209,12 +215,24 @@ std::string format_param(const ParamFile& file) {
                 io::append_number(out, x);
             }
         out += '\n';
+        step();
     }
+}
+
+}  // namespace
+
+std::string format_param(const ParamFile& file) {
+    std::string out;
+    out.reserve(64 * (file.domain_vertices.size() + file.surface_vertices.size()) + 32 * file.domain_faces.size() +
+                256 * file.surface_faces.size());
+    put_param(file, out, [] {});
     return out;
 }
 
 void write_param(const std::string& path, const ParamFile& file) {
-    io::write_file_atomically(path, format_param(file));
+    io::AtomicFile out(path);
+    put_param(file, out.text, [&] { out.step(); });
+    out.commit();
 }
 
 }  // namespace fhr::exchange

@@ -59,7 +59,7 @@ ParamFile read_param(const std::string& path);
 /// for bit (so it compares equal to p when p holds no NaN).
 std::string format_param(const ParamFile& file);
 
-/// Writes format_param(file) atomically (temporary name, then rename; FMT-WRITE-1).
+/// Writes format_param(file) atomically (temporary name, then rename; FMT-WRITE-1), formatted a chunk at a time.
 /// \throws InvalidInput(path, 0, "cannot write: ...").
 void write_param(const std::string& path, const ParamFile& file);
 

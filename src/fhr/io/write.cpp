@@ -2,7 +2,7 @@
 // texture coordinates: the parameterization of the paper's §4 as a texture) and binary
 // little-endian PLY. Text numbers are the shortest decimal form that reads back to the same
 // double (std::to_chars), so write → read is bit-identical (FMT-WRITE-2). Every file is written
-// atomically (FMT-WRITE-1).
+// atomically (FMT-WRITE-1), a chunk at a time as it is formatted (io::AtomicFile).
 #include <fhr/io/write.hpp>
 
 #include <bit>
@@ -33,12 +33,17 @@ void append_little_endian(std::string& out, std::uint64_t bits, int size) {
 
 void write_off(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles) {
     check_indices(points.size(), triangles);
-    std::string out = "OFF\n";
+    AtomicFile file(path);
+    std::string& out = file.text;
+    out += "OFF\n";
     append_number(out, points.size());
     out += ' ';
     append_number(out, triangles.size());
     out += " 0\n";
-    for (const Vec3& p : points) append_point(out, p);
+    for (const Vec3& p : points) {
+        append_point(out, p);
+        file.step();
+    }
     for (const Triangle& t : triangles) {
         out += '3';
         for (std::uint32_t v : t) {
@@ -46,8 +51,9 @@ void write_off(const std::string& path, std::span<const Vec3> points, std::span<
             append_number(out, std::uint64_t{v});
         }
         out += '\n';
+        file.step();
     }
-    write_file_atomically(path, out);
+    file.commit();
 }
 
 void write_obj(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles,
@@ -55,10 +61,12 @@ void write_obj(const std::string& path, std::span<const Vec3> points, std::span<
     check_indices(points.size(), triangles);
     if (!corner_uv.empty() && corner_uv.size() != 3 * triangles.size())
         throw std::invalid_argument("fhr::io::write_obj: corner_uv must hold 3 entries per triangle");
-    std::string out;
+    AtomicFile file(path);
+    std::string& out = file.text;
     for (const Vec3& p : points) {
         out += "v ";
         append_point(out, p);
+        file.step();
     }
     for (const Vec2& uv : corner_uv) {
         out += "vt ";
@@ -66,6 +74,7 @@ void write_obj(const std::string& path, std::span<const Vec3> points, std::span<
         out += ' ';
         append_number(out, uv.y());
         out += '\n';
+        file.step();
     }
     for (std::size_t f = 0; f < triangles.size(); ++f) {
         out += 'f';
@@ -78,17 +87,20 @@ void write_obj(const std::string& path, std::span<const Vec3> points, std::span<
             }
         }
         out += '\n';
+        file.step();
     }
-    write_file_atomically(path, out);
+    file.commit();
 }
 
 void write_obj_polylines(const std::string& path, std::span<const Vec3> points,
                          std::span<const std::vector<std::uint32_t>> polylines, std::span<const std::string> groups) {
     if (!groups.empty() && groups.size() != polylines.size()) throw std::invalid_argument("fhr::io::write_obj_polylines: one group per polyline");
-    std::string out;
+    AtomicFile file(path);
+    std::string& out = file.text;
     for (const Vec3& p : points) {
         out += "v ";
         append_point(out, p);
+        file.step();
     }
     for (std::size_t i = 0; i < polylines.size(); ++i) {
         const auto& line = polylines[i];
@@ -98,10 +110,11 @@ void write_obj_polylines(const std::string& path, std::span<const Vec3> points,
             if (v >= points.size()) throw std::invalid_argument("fhr::io::write_obj_polylines: index out of range");
             out += ' ';
             append_number(out, std::uint64_t{v} + 1);
+            file.step();
         }
         out += '\n';
     }
-    write_file_atomically(path, out);
+    file.commit();
 }
 
 void write_ply(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles,
@@ -109,22 +122,26 @@ void write_ply(const std::string& path, std::span<const Vec3> points, std::span<
     check_indices(points.size(), triangles);
     if (!face_patch.empty() && face_patch.size() != triangles.size())
         throw std::logic_error("write_ply: one patch id per face is needed");
-    std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by fhr\nelement vertex ";
+    AtomicFile file(path);
+    std::string& out = file.text;
+    out += "ply\nformat binary_little_endian 1.0\ncomment written by fhr\nelement vertex ";
     append_number(out, points.size());
     out += "\nproperty double x\nproperty double y\nproperty double z\nelement face ";
     append_number(out, triangles.size());
     out += "\nproperty list uchar uint vertex_indices\n";
     if (!face_patch.empty()) out += "property uint patch\n";
     out += "end_header\n";
-    out.reserve(out.size() + 24 * points.size() + 13 * triangles.size());
-    for (const Vec3& p : points)
+    for (const Vec3& p : points) {
         for (int c = 0; c < 3; ++c) append_little_endian(out, std::bit_cast<std::uint64_t>(p[c]), 8);
+        file.step();
+    }
     for (std::size_t f = 0; f < triangles.size(); ++f) {
         out += '\3';
         for (std::uint32_t v : triangles[f]) append_little_endian(out, v, 4);
         if (!face_patch.empty()) append_little_endian(out, face_patch[f], 4);
+        file.step();
     }
-    write_file_atomically(path, out);
+    file.commit();
 }
 
 void write_mesh(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles) {
