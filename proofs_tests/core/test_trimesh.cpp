@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <iterator>
 #include <set>
 #include <stdexcept>
@@ -439,6 +440,31 @@ TEST_CASE("is_collapse_ok refuses link-condition violations", "[unit]") {
         m.compact();
         CHECK_NOTHROW(m.validate());
         CHECK(canonical(m.triangles()) == canonical(octahedron_triangles));
+    }
+    SECTION("an end of valence above is_collapse_ok's stack buffer (64 neighbours) is decided alike") {
+        // A bipyramid over 70 equator vertices 2..71 (poles 0 and 1, valence 70), its edge from the
+        // south pole to vertex 2 flipped: 3 and 71 become neighbours, both also neighbours of 0.
+        const std::size_t n = 70;
+        std::vector<Vec3> p{Vec3(0, 0, 1), Vec3(0, 0, -1)};
+        std::vector<Triangle> t;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double a = 2 * 3.141592653589793 * static_cast<double>(i) / static_cast<double>(n);
+            p.emplace_back(std::cos(a), std::sin(a), 0);
+            const auto e = static_cast<std::uint32_t>(2 + i), f = static_cast<std::uint32_t>(2 + (i + 1) % n);
+            t.push_back({0, e, f});
+            t.push_back({1, f, e});
+        }
+        TriMesh m = TriMesh::from_triangles(p, t);
+        const EdgeId south = TriMesh::edge(m.find_halfedge(VertexId(1), VertexId(2)));
+        REQUIRE(m.is_flip_ok(south));
+        m.flip(south);
+        REQUIRE(m.valence(VertexId(0)) == n);
+        // 3 -> 0 and 0 -> 3: 71 is a third common neighbour (the lookup in 0's ring of 70, then in
+        // 3's ring of 5); 7 -> 0 and 0 -> 7 have only the two neighbours of their faces in common.
+        CHECK_FALSE(m.is_collapse_ok(m.find_halfedge(VertexId(3), VertexId(0))));
+        CHECK_FALSE(m.is_collapse_ok(m.find_halfedge(VertexId(0), VertexId(3))));
+        CHECK(m.is_collapse_ok(m.find_halfedge(VertexId(7), VertexId(0))));
+        CHECK(m.is_collapse_ok(m.find_halfedge(VertexId(0), VertexId(7))));
     }
 }
 

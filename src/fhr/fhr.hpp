@@ -26,6 +26,7 @@
 #include <fhr/geodesic/ellipse.hpp>
 #include <fhr/geodesic/exact.hpp>
 #include <fhr/geodesic/fast_marching.hpp>
+#include <fhr/geodesic/workspace.hpp>
 #include <fhr/io/atomic_file.hpp>
 #include <fhr/io/correspondence.hpp>
 #include <fhr/io/read.hpp>

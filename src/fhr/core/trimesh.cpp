@@ -11,6 +11,8 @@
 #include <fhr/core/trimesh.hpp>
 
 #include <algorithm>
+#include <array>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -246,15 +248,24 @@ bool TriMesh::is_collapse_ok(HalfedgeId h) const {
     if (va == vb) return false;
     if (n_vertices() - deleted_vertices_ <= 4) return false;
     // Link condition: the common neighbours of v0 and v1 are exactly va and vb. v1's neighbours
-    // are gathered once into a small contiguous buffer (valences are small), then each neighbour
-    // of v0 is looked up there.
-    thread_local std::vector<VertexId> ring;
-    ring.clear();
-    for_each_outgoing(v1, [&](HalfedgeId g) { ring.push_back(to(g)); });
+    // are gathered once into a small contiguous buffer on the stack, then each neighbour of v0 is
+    // looked up there. Valences are small; past the buffer's size (a vertex of valence > 64) each
+    // lookup walks v1's ring instead. No scratch outside the call (issue 18), so several readers
+    // of one mesh stay safe (spec/library.md, "Thread safety").
+    std::array<VertexId, 64> ring;
+    std::size_t valence = 0;
+    for_each_outgoing(v1, [&](HalfedgeId g) {
+        if (valence < ring.size()) ring[valence] = to(g);
+        ++valence;
+    });
+    const std::span<const VertexId> gathered(ring.data(), std::min(valence, ring.size()));
+    const auto adjacent_to_v1 = [&](VertexId w) {
+        return valence <= ring.size() ? std::find(gathered.begin(), gathered.end(), w) != gathered.end() : find_halfedge(v1, w).valid();
+    };
     bool ok = true;
     for_each_outgoing(v0, [&](HalfedgeId g) {
         const VertexId w = to(g);
-        if (w != v1 && w != va && w != vb && std::find(ring.begin(), ring.end(), w) != ring.end()) ok = false;
+        if (w != v1 && w != va && w != vb && adjacent_to_v1(w)) ok = false;
     });
     return ok;
 }

@@ -51,15 +51,15 @@ bool has_border(const TriMesh& mesh, const FaceData<std::uint8_t>& mask, const s
     return false;
 }
 
-// The face mask of T_jk, borrowed clean (all zero) from a per-thread pool (scratch.hpp): an
-// array of #F entries per path would cost more than the ellipse on a large mesh. `in` lists the
-// faces set to 1. The ellipse only grows with K (the fields are fixed, the bound grows), so the
-// mask is only ever added to.
-struct MaskScratch {
+// The face mask of T_jk, borrowed clean (all zero) from the workspace (workspace.hpp): an array
+// of #F entries per path would cost more than the ellipse on a large mesh. `in` lists the faces
+// set to 1. The ellipse only grows with K (the fields are fixed, the bound grows), so the mask is
+// only ever added to.
+struct MaskScratch final : detail::ScratchBase {
     FaceData<std::uint8_t> mask;
     std::vector<FaceId> in;
     void fit(std::size_t n) { mask.resize(n, 0); }  // clean, so shrinking or growing keeps it clean
-    void reset() {
+    void reset() noexcept {
         for (FaceId f : in) mask[f] = 0;
         detail::clear_buffer(in);
     }
@@ -74,12 +74,16 @@ EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, c
                                       std::to_string(nv) + " vertices)");
     if (a == b) throw InvalidInput("", 0, "the two vertices are the same (" + std::to_string(a.idx()) + ")");
     if (!(options.K > 1)) throw InvalidInput("", 0, "K must be greater than 1");
+    // Every search below borrows from one workspace: the caller's, or this call's own (declared
+    // first, so that it outlives the searches).
+    Workspace own;
+    Workspace* const workspace = options.workspace ? options.workspace : &own;
     // d_a(a, b): the run from a, stopped once b is final, then continued for the ellipse.
-    FastMarching from_a(mesh, std::span(&a, 1));
+    FastMarching from_a(mesh, std::span(&a, 1), true, workspace);
     const double d_ab = from_a.advance_to(b);
     if (!std::isfinite(d_ab)) throw InvalidInput("", 0, "the two vertices are not connected");
-    FastMarching from_b(mesh, std::span(&b, 1));
-    const detail::Borrowed<MaskScratch> scratch = detail::borrow<MaskScratch>(mesh.n_faces());
+    FastMarching from_b(mesh, std::span(&b, 1), true, workspace);
+    const detail::Borrowed<MaskScratch> scratch = detail::borrow<MaskScratch>(workspace, mesh.n_faces());
     FaceData<std::uint8_t>& mask = scratch->mask;
     EllipsePath result;
     for (double K = options.K;; K = 1 + 2 * (K - 1)) {
@@ -99,7 +103,7 @@ EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, c
         }
         const std::size_t faces = scratch->in.size();
         const bool everything = faces == mesh.n_faces();
-        ExactGeodesic restricted(mesh, a, {everything ? nullptr : &mask});
+        ExactGeodesic restricted(mesh, a, {.face_mask = everything ? nullptr : &mask, .workspace = workspace});
         restricted.propagate(std::span(&b, 1));
         GeodesicPath path = restricted.path_to(b);
         const double L = path.length;
@@ -130,6 +134,7 @@ EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, c
         // {p : d(a, p) + |p − b| <= L(1 + margin)}; what it finds shorter than L is the distance on T.
         ExactOptions whole;
         whole.prune_above = L * (1 + certificate_margin);
+        whole.workspace = workspace;
         ExactGeodesic search(mesh, a, whole);
         search.propagate(std::span(&b, 1));
         result.certificate_windows = search.stats().windows_created;

@@ -36,6 +36,10 @@ namespace fhr::geodesic {
 
 struct EllipseOptions {
     double K = 1.06;  ///< the paper's constant; must be > 1
+    /// Optional: the reusable arrays of its searches (geodesic/workspace.hpp); without one the
+    /// call uses a workspace of its own, freed when it returns. partition() ignores it: it runs
+    /// its paths in parallel, each on a workspace of its own pool.
+    Workspace* workspace = nullptr;
 };
 
 struct EllipsePath {

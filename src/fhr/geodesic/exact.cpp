@@ -113,26 +113,34 @@ double longest_edge_at(const TriMesh& m, VertexId v) {
 
 }  // namespace
 
-void ExactGeodesic::Scratch::fit(std::size_t n) {
-    if (dist.size() >= n) return;
-    dist.resize(n, INFINITY);
-    via.resize(n, Via{});
-    kind.resize(n, unknown);
-}
+struct ExactGeodesic::Scratch final : detail::ScratchBase {
+    std::vector<double> dist;
+    std::vector<Via> via;
+    std::vector<std::uint8_t> kind;
+    std::vector<std::uint32_t> touched;  ///< vertices whose dist, via or kind changed
+    std::vector<Window> windows;
+    std::vector<Event> heap;
 
-void ExactGeodesic::Scratch::reset() {
-    for (std::uint32_t v : touched) {
-        dist[v] = INFINITY;
-        via[v] = Via{};
-        kind[v] = unknown;
+    void fit(std::size_t n) {
+        if (dist.size() >= n) return;
+        dist.resize(n, INFINITY);
+        via.resize(n, Via{});
+        kind.resize(n, unknown);
     }
-    detail::clear_buffer(touched);
-    detail::clear_buffer(windows);
-    detail::clear_buffer(heap);
-}
+    void reset() noexcept {
+        for (std::uint32_t v : touched) {
+            dist[v] = INFINITY;
+            via[v] = Via{};
+            kind[v] = unknown;
+        }
+        detail::clear_buffer(touched);
+        detail::clear_buffer(windows);
+        detail::clear_buffer(heap);
+    }
+};
 
-void ExactGeodesic::ScratchDeleter::operator()(Scratch* s) const {
-    detail::ScratchPool<Scratch>::release(std::unique_ptr<Scratch>(s));
+void ExactGeodesic::ScratchDeleter::operator()(Scratch* s) const noexcept {
+    detail::WorkspaceAccess::release(workspace, std::unique_ptr<Scratch>(s));
 }
 
 namespace {
@@ -149,7 +157,8 @@ void check_source(const TriMesh& mesh, VertexId source, const ExactOptions& opti
 ExactGeodesic::ExactGeodesic(const TriMesh& mesh, VertexId source, ExactOptions options)
     : mesh_((check_source(mesh, source, options), mesh)),
       options_(options),
-      scratch_(detail::ScratchPool<Scratch>::acquire(mesh.n_vertices()).release()),
+      scratch_(detail::WorkspaceAccess::acquire<Scratch>(options.workspace, mesh.n_vertices()).release(),
+               ScratchDeleter{options.workspace}),
       dist_(scratch_->dist),
       via_(scratch_->via),
       kind_(scratch_->kind),

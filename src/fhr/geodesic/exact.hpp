@@ -33,6 +33,7 @@
 
 #include <fhr/core/surface_point.hpp>
 #include <fhr/core/trimesh.hpp>
+#include <fhr/geodesic/workspace.hpp>
 
 namespace fhr::geodesic {
 
@@ -71,6 +72,9 @@ struct ExactOptions {
     /// INFINITY). A distance below it is exact as without the bound (the events of a path keep
     /// keys at most its length). The ellipse certificate uses it (paper_notes/ellipse.md).
     double prune_above = INFINITY;
+    /// Optional: the reusable arrays (geodesic/workspace.hpp), held while the ExactGeodesic lives;
+    /// without one the search allocates its own.
+    Workspace* workspace = nullptr;
 };
 
 /// The relative tolerances of the algorithm; their derivations are in
@@ -86,7 +90,8 @@ inline constexpr double snap_tolerance = 1e-9;
 class ExactGeodesic {
 public:
     /// \pre mesh is valid without garbage, source is a vertex of it; a face_mask, when given,
-    ///      has one entry per face and outlives this object; the mesh must outlive this object.
+    ///      has one entry per face and outlives this object; the mesh and the workspace (when
+    ///      given) must outlive this object.
     /// \throws std::invalid_argument when the source is out of range or the mask has the wrong size.
     ExactGeodesic(const TriMesh& mesh, VertexId source, ExactOptions options = {});
     ~ExactGeodesic();
@@ -140,20 +145,13 @@ private:
 
     /// Vertex kinds, computed when first needed; saddles and boundary vertices are pseudo-sources.
     static constexpr std::uint8_t unknown = 0, plain = 1, saddle = 2, boundary_vertex = 3;
-    /// The per-vertex arrays and the reusable buffers, borrowed clean from a per-thread pool
-    /// (geodesic/scratch.hpp) so that a search costs what it touches, not O(#V).
-    struct Scratch {
-        std::vector<double> dist;
-        std::vector<Via> via;
-        std::vector<std::uint8_t> kind;
-        std::vector<std::uint32_t> touched;  ///< vertices whose dist, via or kind changed
-        std::vector<Window> windows;
-        std::vector<Event> heap;
-        void fit(std::size_t n);
-        void reset();
-    };
+    /// The per-vertex arrays and the reusable buffers (exact.cpp), borrowed clean from the
+    /// options' workspace (geodesic/workspace.hpp) so that a search costs what it touches, not
+    /// O(#V), and handed back to it by the deleter.
+    struct Scratch;
     struct ScratchDeleter {
-        void operator()(Scratch* s) const;
+        Workspace* workspace;
+        void operator()(Scratch* s) const noexcept;
     };
 
     const TriMesh& mesh_;

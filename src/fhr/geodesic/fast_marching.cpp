@@ -59,10 +59,10 @@ struct VirtualVertex {
     Vec3 p2;  // z = 0
 };
 
-// The per-vertex arrays of a run, borrowed clean from the per-thread pool (scratch.hpp) and
-// handed back clean: `touched` lists the vertices whose dist (and final flag) changed, `linked`
-// those whose link_head did.
-struct MarchScratch {
+// The per-vertex arrays of a run, borrowed clean from the caller's workspace (workspace.hpp,
+// detail/scratch.hpp) and handed back clean: `touched` lists the vertices whose dist (and final
+// flag) changed, `linked` those whose link_head did.
+struct MarchScratch final : detail::ScratchBase {
     std::vector<double> dist;
     std::vector<std::uint8_t> final;
     std::vector<std::uint32_t> link_head;
@@ -81,7 +81,7 @@ struct MarchScratch {
         final.resize(n, 0);
         link_head.resize(n, no_link);
     }
-    void reset() {
+    void reset() noexcept {
         for (std::uint32_t v : touched) {
             dist[v] = INFINITY;
             final[v] = 0;
@@ -99,10 +99,10 @@ struct MarchScratch {
 
 struct FastMarching::State {
 public:
-    State(const TriMesh& m, bool unfold)
+    State(const TriMesh& m, bool unfold, Workspace* workspace)
         : m_(m),
           unfold_(unfold),
-          s_(detail::borrow<MarchScratch>(m.n_vertices())),
+          s_(detail::borrow<MarchScratch>(workspace, m.n_vertices())),
           dist_(s_->dist),
           final_(s_->final),
           link_head_(s_->link_head),
@@ -288,9 +288,9 @@ void check_sources(const TriMesh& mesh, std::span<const VertexId> sources) {
 
 }  // namespace
 
-FastMarching::FastMarching(const TriMesh& mesh, std::span<const VertexId> sources, bool unfold) {
+FastMarching::FastMarching(const TriMesh& mesh, std::span<const VertexId> sources, bool unfold, Workspace* workspace) {
     check_sources(mesh, sources);
-    state_ = std::make_unique<State>(mesh, unfold);
+    state_ = std::make_unique<State>(mesh, unfold, workspace);
     state_->start(sources);
 }
 
@@ -314,7 +314,7 @@ std::span<const VertexId> FastMarching::finalized() const { return state_->final
 DistanceField fast_marching(const TriMesh& mesh, std::span<const VertexId> sources,
                             const FastMarchingOptions& options) {
     if (std::isnan(options.max_distance)) throw InvalidInput("", 0, "fast marching: max_distance is NaN");
-    FastMarching run(mesh, sources, options.unfold);
+    FastMarching run(mesh, sources, options.unfold, options.workspace);
     run.advance(options.max_distance);
     DistanceField field{VertexData<double>(mesh.n_vertices(), INFINITY), {}};
     const std::span<const VertexId> done = run.finalized();

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include <fhr/core/trimesh.hpp>
+#include <fhr/geodesic/workspace.hpp>
 
 namespace fhr::geodesic {
 
@@ -43,6 +44,8 @@ struct FastMarchingOptions {
     /// Kimmel–Sethian §4: split obtuse angles by unfolding. Off: obtuse corners get the edge
     /// updates only (Dijkstra-like there); kept as an option to measure what unfolding buys.
     bool unfold = true;
+    /// Optional: the reusable arrays (geodesic/workspace.hpp); without one the run allocates its own.
+    Workspace* workspace = nullptr;
 };
 
 /// Unfolding gives up after this many triangles (the triangle at the corner not counted). The
@@ -74,7 +77,7 @@ struct DistanceField {
 ///       with several, not always: adjacent sources act like the segment between them.
 ///       The result depends only on the mesh, the sources (as a set) and the options.
 ///       Cost: O(#V) for the returned distance array, plus O(k log k) for the k vertices within
-///       the final front (the run's own arrays are pooled, see FastMarching).
+///       the final front (the run's own arrays come from options.workspace, see FastMarching).
 /// \throws InvalidInput when a source is not a vertex of the mesh, or max_distance is NaN.
 DistanceField fast_marching(const TriMesh& mesh, std::span<const VertexId> sources,
                             const FastMarchingOptions& options = {});
@@ -85,13 +88,16 @@ DistanceField fast_marching(const TriMesh& mesh, std::span<const VertexId> sourc
 /// accepts, in the same order and with bitwise the same values; advance_to(t) stops right after
 /// t is accepted. Either may be called again to continue: every call performs the next steps of
 /// the one full run, so any sequence of calls yields a prefix of it.
-/// Its per-vertex arrays come from a per-thread pool (geodesic/scratch.hpp): constructing a run
-/// costs O(1) after the first, not O(#V), and its work is proportional to the vertices reached.
+/// Its per-vertex arrays come from the caller's `workspace` (geodesic/workspace.hpp), held until
+/// the run is destroyed: constructing a run costs O(1) once the workspace has served a mesh as
+/// large, not O(#V), and its work is proportional to the vertices reached. Without a workspace
+/// the run allocates and fills its own arrays, O(#V).
 class FastMarching {
 public:
-    /// \pre mesh valid without garbage, sources are vertices of it; the mesh outlives the run.
+    /// \pre mesh valid without garbage, sources are vertices of it; the mesh and the workspace
+    ///      (when given) outlive the run.
     /// \throws InvalidInput when a source is not a vertex of the mesh.
-    FastMarching(const TriMesh& mesh, std::span<const VertexId> sources, bool unfold = true);
+    FastMarching(const TriMesh& mesh, std::span<const VertexId> sources, bool unfold = true, Workspace* workspace = nullptr);
     ~FastMarching();
     FastMarching(const FastMarching&) = delete;
     FastMarching& operator=(const FastMarching&) = delete;

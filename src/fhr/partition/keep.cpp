@@ -149,12 +149,21 @@ struct Job {
                                                  // the curve from its smaller vertex of T)
 };
 
-void compute(const Network_& n, std::vector<Job>& jobs, Executor& executor) {
-    executor.for_each(jobs.size(), 1, [&](std::size_t i) {
+// What runs the independent restricted searches of one keep_domain call: its executor, and a pool
+// of workspaces (issue 18) from which each job leases one, so that the threads reuse the searches'
+// arrays across jobs and rounds; keep_domain frees them when it returns.
+struct Searches {
+    Executor& executor;
+    geodesic::WorkspacePool workspaces{};
+};
+
+void compute(const Network_& n, std::vector<Job>& jobs, Searches& searches) {
+    searches.executor.for_each(jobs.size(), 1, [&](std::size_t i) {
         Job& j = jobs[i];
         Network_::Quad q = n.quad(j.e);
         Region region(n.T(), q.touched, q.curves);
-        RestrictedPath r = restricted_path(region, 0, q.left, n.x(j.a), n.x(j.b));
+        const geodesic::WorkspacePool::Lease workspace = searches.workspaces.lease();
+        RestrictedPath r = restricted_path(region, 0, q.left, n.x(j.a), n.x(j.b), workspace.get());
         const bool exact = r.touches == 0 && j.geodesic_length >= 0 && r.shortest <= j.geodesic_length * (1 + 1e-12);
         if (!exact && !(r.path.length < j.current * (1 - 1e-9))) return;
         geodesic::GeodesicPath path = n.x(j.a).idx() < n.x(j.b).idx() ? std::move(r.path) : reversed(std::move(r.path));
@@ -185,7 +194,7 @@ void apply(Network_& net, Job& j) {
 
 // Redoes `collapses` (in T's numbering, in their order) on the network.
 void redo(Network_& net, std::span<const domain::Collapse> collapses, const std::function<void(const std::string&)>& say,
-          Executor& executor) {
+          Searches& searches) {
     domain::Domain& D = net.domain();
     // Vertices keep their numbers until the end (removed ones become garbage).
     std::vector<domain::Collapse> left(collapses.begin(), collapses.end());
@@ -231,7 +240,7 @@ void redo(Network_& net, std::span<const domain::Collapse> collapses, const std:
                 jobs.push_back(Job{.e = TriMesh::edge(spoke), .a = w, .b = y});
             }
             if (jobs.empty()) break;
-            compute(net, jobs, executor);
+            compute(net, jobs, searches);
             for (Job& j : jobs) apply(net, j);
         }
         // Each v now has valence 3: the collapse v -> w merges its three faces into (w, a, b)
@@ -309,7 +318,7 @@ std::vector<std::array<VertexId::Index, 3>> canonical_faces(const domain::Domain
 constexpr std::size_t search_budget = 200000;
 
 void flip_to(Network_& net, const domain::Domain& target, const std::function<void(const std::string&)>& say,
-             Executor& executor) {
+             Searches& searches) {
     std::set<Pair> want;
     for (const auto& [a, b] : domain::edge_endpoints(target)) want.insert(key_of(a, b));
     domain::Domain& D = net.domain();
@@ -327,7 +336,7 @@ void flip_to(Network_& net, const domain::Domain& target, const std::function<vo
         return want.size() - present;
     };
     auto flip = [&](std::vector<Job> jobs) {
-        compute(net, jobs, executor);
+        compute(net, jobs, searches);
         for (Job& j : jobs) apply(net, j);
         return jobs.size();
     };
@@ -609,7 +618,9 @@ std::optional<Network_> direct(const TriMesh& T, std::size_t real_vertices, cons
     }
     // The removed edges, in the kept order: first those from an inner vertex to the boundary (a
     // slit: the polygon stays whole, the vertex is on its boundary from then on), then diagonals,
-    // whose restricted paths split their polygon and its faces of T in two.
+    // whose restricted paths split their polygon and its faces of T in two. One after another,
+    // on one workspace (issue 18).
+    geodesic::Workspace workspace;
     for (;;) {
         std::optional<Pair> next;
         for (int slit = 1; slit >= 0 && !next; --slit)
@@ -640,7 +651,7 @@ std::optional<Network_> direct(const TriMesh& T, std::size_t real_vertices, cons
             }
         }
         Region cut_out(T, touched[static_cast<std::size_t>(gi)], around);
-        RestrictedPath r = restricted_path(cut_out, 0, left, VertexId(k.first), VertexId(k.second));
+        RestrictedPath r = restricted_path(cut_out, 0, left, VertexId(k.first), VertexId(k.second), &workspace);
         Curve& c = net.curves()[k] = Curve{std::move(r.path), false, r, false};
         cut_out.add(RegionCurve{&c.path, false});
         const std::size_t added = around.size();
@@ -700,6 +711,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
     auto say = [&](const std::string& line) {
         if (progress) progress(line);
     };
+    Searches searches{executor};
     const auto ends = domain::edge_endpoints(D);
     // The kept order: edges whose geodesic is in no conflict first, then shortest geodesic first.
     std::map<Pair, double> geodesic_length;
@@ -787,12 +799,12 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
     }
     // 3. The undone collapses, redone on the network.
     if (undone > 0) {
-        redo(*net, std::span<const domain::Collapse>(H.history).subspan(H.history.size() - undone), say, executor);
+        redo(*net, std::span<const domain::Collapse>(H.history).subspan(H.history.size() - undone), say, searches);
         if (canonical_faces(net->domain()) != canonical_faces(H)) throw std::logic_error("keeping the domain: the collapses redone do not give the decimation");
     }
     // 4. A domain given by the user: from the decimation to its edges by flips.
     if (canonical_faces(net->domain()) != canonical_faces(D)) {
-        flip_to(*net, D, say, executor);
+        flip_to(*net, D, say, searches);
         // With every edge in place, only the orientation can differ: D turned over is not a domain of T.
         if (canonical_faces(net->domain()) != canonical_faces(D))
             throw PartitionFailure("keeping the domain: the given domain has the edges of T's decimation but its faces turned over");
@@ -821,7 +833,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
                 used[f.idx()] = used[g.idx()] = 1;
                 jobs.push_back(Job{.e = TriMesh::edge(h), .a = a, .b = b, .geodesic_length = geodesic_length.at(k), .current = net->curves().at(k).path.length});
             }
-            compute(*net, jobs, executor);
+            compute(*net, jobs, searches);
             for (Job& j : jobs)
                 if (j.curve) {
                     apply(*net, j);

@@ -92,7 +92,8 @@ enum class Start : std::uint8_t {
 ///      that decimation); geodesics[e] is the curve of D's halfedge (e, 0) — for an edge with a cone
 ///      face beside it (domain::on_cone) the fixed curve, which is kept as it is; `conflicts` are
 ///      those of their embedding; `geodesics_of` gives the curves of any domain of T (in its edge
-///      order); the separations of one round run on `executor`.
+///      order); the separations of one round run on `executor`, each restricted search on a
+///      workspace leased from a pool this call owns and frees (geodesic/workspace.hpp).
 /// \throws std::logic_error when a separated curve breaks (1) or (2) (a bug);
 ///         PartitionFailure when a curve has no room to be separated, or when no flips lead from H
 ///         to D.

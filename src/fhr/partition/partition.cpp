@@ -16,7 +16,9 @@ namespace {
 
 // Γ(a, b) for every edge of D̂ (D closed by the cones of T̂, core/cones.hpp), reusing the paths of
 // edges whose ends are unchanged: the exact geodesic on T for an edge of D inside the surface, the
-// arc of T's boundary for a boundary edge of D, the edge itself for a cone edge.
+// arc of T's boundary for a boundary edge of D, the edge itself for a cone edge. The searches run
+// in parallel, each on a workspace leased from the cache's pool (issue 18): the threads reuse
+// their arrays from path to path and round to round, and the partition call frees them.
 class PathCache {
 public:
     PathCache(const TriMesh& T, const TriMesh& T_hat, const geodesic::EllipseOptions& options, Executor& executor)
@@ -33,7 +35,10 @@ public:
         }
         std::vector<geodesic::EllipsePath> found(missing.size());
         executor_.for_each(missing.size(), 8, [&](std::size_t i) {
-            found[i] = geodesic::ellipse_shortest_path(T_, VertexId(missing[i].first), VertexId(missing[i].second), options_);
+            const geodesic::WorkspacePool::Lease workspace = workspaces_.lease();
+            geodesic::EllipseOptions options = options_;
+            options.workspace = workspace.get();
+            found[i] = geodesic::ellipse_shortest_path(T_, VertexId(missing[i].first), VertexId(missing[i].second), options);
         });
         for (std::size_t i = 0; i < missing.size(); ++i) cache_.emplace(missing[i], std::move(found[i]));
         std::vector<geodesic::EllipsePath> paths;
@@ -92,6 +97,7 @@ private:
     const TriMesh& T_hat_;
     geodesic::EllipseOptions options_;
     Executor& executor_;
+    geodesic::WorkspacePool workspaces_;
     std::map<Key, geodesic::EllipsePath> cache_;
 };
 

@@ -53,7 +53,10 @@ struct PartitionOptions {
     /// (partition/keep.hpp); false: the paper's geodesics only, D changed where they conflict.
     bool keep_domain = true;
     std::function<void(const std::string&)> progress;  ///< optional: one line per round
-    Executor* executor = nullptr;  ///< optional: runs the independent geodesic and curve searches; default_executor()
+    /// optional: runs the independent geodesic and curve searches; default_executor(). Their
+    /// reusable arrays are in workspaces the call owns (one leased per running search) and frees
+    /// when it returns (geodesic/workspace.hpp); `ellipse.workspace` is not used.
+    Executor* executor = nullptr;
 };
 
 /// The result of §3: the (possibly refined) domain, its paths, T′ and the patches.

@@ -18,8 +18,8 @@ namespace {
 class Restrictor {
 public:
     // Works on the piece T_S of T around the region and on T′_S (partition/region.hpp).
-    Restrictor(const Region& region, const FaceData<std::uint8_t>& mask)
-        : region_(region), T_(region.sub()), net_(region.cut()), mask_(mask) {}
+    Restrictor(const Region& region, const FaceData<std::uint8_t>& mask, geodesic::Workspace* workspace)
+        : region_(region), T_(region.sub()), net_(region.cut()), mask_(mask), workspace_(workspace) {}
 
     // The parameter of vertex x of T′ on T's edge E (along halfedge(E, 0)), when x lies on E.
     std::optional<double> param_on(EdgeId E, VertexId x) const {
@@ -73,6 +73,7 @@ public:
     RestrictedPath run(VertexId from, VertexId to) {
         geodesic::ExactOptions options;
         options.face_mask = &mask_;
+        options.workspace = workspace_;
         geodesic::ExactGeodesic search(net_.mesh, from, options);
         const VertexId targets[] = {to};
         search.propagate(targets);
@@ -161,6 +162,7 @@ private:
     const TriMesh& T_;
     const Network& net_;
     const FaceData<std::uint8_t>& mask_;
+    geodesic::Workspace* workspace_;
 
     // Where neighbour point p of vertex u lies in u's fan of outgoing halfedges `fan` (clockwise):
     // 2k for the edge of fan[k], 2k − 1 for the face between fan[k − 1] and fan[k] (face(fan[k])).
@@ -240,9 +242,10 @@ private:
 
 }  // namespace
 
-RestrictedPath restricted_path(const Region& region, std::size_t curve, bool left, VertexId from, VertexId to) {
+RestrictedPath restricted_path(const Region& region, std::size_t curve, bool left, VertexId from, VertexId to,
+                               geodesic::Workspace* workspace) {
     const FaceData<std::uint8_t> mask = region.side(curve, left);
-    RestrictedPath r = Restrictor(region, mask).run(region.in_sub(from), region.in_sub(to));
+    RestrictedPath r = Restrictor(region, mask, workspace).run(region.in_sub(from), region.in_sub(to));
     for (SurfacePoint& p : r.path.points) p = region.in_t(p);
     return r;
 }

@@ -1,83 +1,94 @@
-// FHR §3 — reusable per-vertex arrays for the searches of §3 (an implementation detail of
-// fast_marching.cpp, exact.cpp and ellipse.cpp; not part of the paper).
+// FHR §3 (beyond the paper, issue 18) — borrowing clean scratch objects from the caller's
+// Workspace (an implementation detail of fast_marching.cpp, exact.cpp and ellipse.cpp). Why the
+// searches reuse their arrays, and why the caller owns them: geodesic/workspace.hpp.
 //
-// §3 computes one path Γ(x_j, x_k) per edge of D, each with searches (fast marching, exact
-// window propagation) that touch only the few hundred vertices of the "ellipse" T_jk. Their
-// per-vertex arrays must nevertheless be indexable by any vertex of T, and filling fresh arrays
-// of #V entries for every search costs more than the search itself on large meshes (measured on
-// the 44k-vertex refined_elephant: ~0.45 ms to allocate and fill an exact search's three arrays,
-// against ~0.2 ms for the early-stopped search of a domain edge).
-// So the arrays are borrowed from a per-thread pool and handed back *clean*: every entry at its
-// initial value. The borrower records the entries it changes and resets exactly those.
+// Every kind S of scratch derives from ScratchBase and provides `void fit(std::size_t n)` (grow
+// to n entries, new entries clean) and `void reset() noexcept` (make every entry clean again,
+// by resetting exactly the entries its borrower recorded as touched). A borrower records an
+// entry *before* changing it, so an exception at any point leaves a scratch that reset() cleans.
 //
 // Pseudocode:
-//   acquire<S>(n): take a clean S from this thread's pool (or make one); grow it to n entries
-//   release(s):    s.reset() restores the touched entries; keep s in the pool (at most a few)
+//   acquire<S>(ws, n): a kept S of ws (else a new one), fit(n); ws reserves room to keep it back
+//   release(ws, s):    s.reset(); keep s in ws when fewer than max_kept of its kind are kept,
+//                      else free it (never allocates: the room was reserved when it was lent)
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <memory>
 #include <vector>
 
+#include <fhr/geodesic/workspace.hpp>
+
 namespace fhr::geodesic::detail {
 
-/// Per-thread pool of clean scratch objects of type S. S provides `void fit(std::size_t n)`
-/// (grow to n entries, new entries clean) and `void reset()` (make every entry clean again).
-template <class S>
-class ScratchPool {
-public:
-    /// A clean S with at least n entries; hand it back with release().
-    static std::unique_ptr<S> acquire(std::size_t n) {
-        std::vector<std::unique_ptr<S>>& pool = free_list();
+/// The base of every kind of scratch a Workspace keeps; the kind is the dynamic type.
+struct ScratchBase {
+    virtual ~ScratchBase() = default;
+};
+
+/// The Workspace's side of borrowing (its only friend). Without a workspace (nullptr) every
+/// acquire makes a new S and every release frees it.
+struct WorkspaceAccess {
+    /// A clean S with at least n entries; hand it back with release(), to the same workspace.
+    template <class S>
+    static std::unique_ptr<S> acquire(Workspace* ws, std::size_t n) {
         std::unique_ptr<S> s;
-        if (pool.empty()) {
-            s = std::make_unique<S>();
-        } else {
-            s = std::move(pool.back());
-            pool.pop_back();
+        if (ws) {
+            std::vector<std::unique_ptr<ScratchBase>>& kept = ws->kept_;
+            const auto it = std::find_if(kept.begin(), kept.end(), [](const auto& k) { return dynamic_cast<S*>(k.get()) != nullptr; });
+            if (it != kept.end()) {
+                s.reset(static_cast<S*>(it->release()));
+                kept.erase(it);
+            }
         }
+        if (!s) s = std::make_unique<S>();
         s->fit(n);
+        if (ws) {
+            ws->kept_.reserve(ws->kept_.size() + ws->lent_ + 1);
+            ++ws->lent_;
+        }
         return s;
     }
 
-    /// Resets s and keeps it for the next acquire (a few per thread: nested searches).
-    static void release(std::unique_ptr<S> s) {
+    /// Resets s and keeps it in ws for the next acquire (at most Workspace::max_kept per kind).
+    template <class S>
+    static void release(Workspace* ws, std::unique_ptr<S> s) noexcept {
         if (!s) return;
         s->reset();
-        std::vector<std::unique_ptr<S>>& pool = free_list();
-        if (pool.size() < max_kept) pool.push_back(std::move(s));
-    }
-
-private:
-    static constexpr std::size_t max_kept = 4;
-    static std::vector<std::unique_ptr<S>>& free_list() {
-        thread_local std::vector<std::unique_ptr<S>> pool;
-        return pool;
+        if (!ws) return;
+        --ws->lent_;
+        std::vector<std::unique_ptr<ScratchBase>>& kept = ws->kept_;
+        const auto same = std::count_if(kept.begin(), kept.end(), [](const auto& k) { return dynamic_cast<S*>(k.get()) != nullptr; });
+        if (static_cast<std::size_t>(same) < Workspace::max_kept) kept.push_back(std::move(s));
     }
 };
 
 /// Empties a transient buffer for reuse; one that grew past `keep` entries (a whole-mesh search
-/// may queue 10⁶ windows) gives its memory back instead of parking it in the pool.
+/// may queue 10⁶ windows) gives its memory back instead of being kept in the workspace.
 template <class V>
-void clear_buffer(V& v, std::size_t keep = std::size_t{1} << 16) {
+void clear_buffer(V& v, std::size_t keep = std::size_t{1} << 16) noexcept {
     if (v.capacity() > keep)
         V().swap(v);
     else
         v.clear();
 }
 
-/// unique_ptr deleter that hands the object back to its pool.
+/// unique_ptr deleter that hands the object back to the workspace it was borrowed from.
 template <class S>
-struct ReturnToPool {
-    void operator()(S* s) const { ScratchPool<S>::release(std::unique_ptr<S>(s)); }
+struct GiveBack {
+    Workspace* workspace = nullptr;
+    void operator()(S* s) const noexcept { WorkspaceAccess::release(workspace, std::unique_ptr<S>(s)); }
 };
 
 template <class S>
-using Borrowed = std::unique_ptr<S, ReturnToPool<S>>;
+using Borrowed = std::unique_ptr<S, GiveBack<S>>;
 
+/// A clean S with at least n entries, from `workspace` (nullptr: a new one), handed back to it
+/// when the Borrowed is destroyed.
 template <class S>
-Borrowed<S> borrow(std::size_t n) {
-    return Borrowed<S>(ScratchPool<S>::acquire(n).release());
+Borrowed<S> borrow(Workspace* workspace, std::size_t n) {
+    return Borrowed<S>(WorkspaceAccess::acquire<S>(workspace, n).release(), GiveBack<S>{workspace});
 }
 
 }  // namespace fhr::geodesic::detail

@@ -59,8 +59,10 @@ struct RestrictedPath {
 ///      on its boundary; no other curve of the network enters it.
 /// \post path runs from `from` to `to` on T, with consecutive nodes in a common face of T; inside
 ///       the region; touching its boundary only at the ends; path.length ≤ shortest + separation_bound.
+/// The exact search borrows its arrays from `workspace` (geodesic/workspace.hpp; nullptr: its own).
 /// \throws PartitionFailure when `to` cannot be reached inside the region, or when a touched node
 ///         has no room for the separation (less than min_separation of an edge).
-RestrictedPath restricted_path(const Region& region, std::size_t curve, bool left, VertexId from, VertexId to);
+RestrictedPath restricted_path(const Region& region, std::size_t curve, bool left, VertexId from, VertexId to,
+                               geodesic::Workspace* workspace = nullptr);
 
 }  // namespace fhr::partition
