@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -35,6 +36,32 @@ TEST_CASE("ThreadPool calls every task exactly once, on any threads and grain (g
                 CHECK(calls[n] == 0);
             }
     }
+}
+
+TEST_CASE("ThreadPool: n tasks of grain g get min(workers, n / g) helpers", "[unit][executor]") {
+    ThreadPool pool(3);
+    // Grain 1: 3 tasks, 2 helpers: the three run at once (each waits until all three have started).
+    std::mutex lock;
+    std::condition_variable started_one;
+    int started = 0;
+    std::atomic<int> met{0};
+    pool.for_each(3, 1, [&](std::size_t) {
+        std::unique_lock<std::mutex> hold(lock);
+        ++started;
+        started_one.notify_all();
+        if (started_one.wait_for(hold, std::chrono::seconds(5), [&] { return started == 3; })) ++met;
+    });
+    CHECK(met == 3);
+    // Grain 2: 3 tasks, 1 helper: never more than two at once.
+    std::atomic<int> running{0}, most{0};
+    pool.for_each(3, 2, [&](std::size_t) {
+        const int now = ++running;
+        for (int seen = most; now > seen && !most.compare_exchange_weak(seen, now);) {
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        --running;
+    });
+    CHECK(most <= 2);
 }
 
 TEST_CASE("ThreadPool rethrows the exception of the lowest index, after every task has run", "[unit][executor]") {
