@@ -180,6 +180,7 @@ TEST_CASE("CLI-RUN-1..4: fhr run on the fandisk writes every file, certified, ve
     const std::string timings = read_file(dir + "/timings.json");
     for (const char* stage : {"mesh_reduction", "geodesic_paths", "parameterization", "total"})
         CHECK(timings.find(std::string("\"") + stage + "\"") != std::string::npos);
+    CHECK(timings.find("\"writing\"") > timings.find("\"total\""));  // after the total, not in it (CLI-RUN-3)
     // refined.ply is T′ as our own strict reader sees it, with as many faces as the report says.
     const fhr::PolygonSoup soup = fhr::io::read_soup(dir + "/refined.ply");
     CHECK(static_cast<long>(soup.polygon_count()) == json_integer(report, "refined_faces"));

@@ -969,3 +969,23 @@ TEST_CASE("PARAM-11: a vertex on T's boundary must be on T''s boundary", "[excha
                Catch::StartsWith("vertex 0 of T (0, 0, 0) is on T's boundary, but surface vertex 0 at the same point is "
                                  "not on the boundary of T'"));
 }
+
+TEST_CASE("PARAM-11: the distances of T' to T, computed in parallel blocks, give the same check on 1 and 3 threads",
+          "[exchange]") {
+    // T′ with about 10,800 vertices: three blocks of the parallel loop. Every 7th vertex from 5,000 on
+    // is moved off T, so failures come from every block after the first; the first is vertex 5,000.
+    const TriMesh domain = random_domain(1, 600, 11);
+    ParamFile file = fhr::test::subdivided_param(domain, 6);
+    REQUIRE(file.surface_vertices.size() > 2 * 4096);
+    std::uint64_t moved = 0;
+    for (std::size_t v = 5000; v < file.surface_vertices.size(); v += 7, ++moved) file.surface_vertices[v] += fhr::Vec3(0, 0, 1);
+    fhr::ThreadPool one(1), three(3);
+    const CheckResult a = check(verify(file, &domain, &one), "PARAM-11"), b = check(verify(file, &domain, &three), "PARAM-11");
+    CHECK(a.status == CheckStatus::fail);
+    CHECK(a.failures >= moved);  // T's own vertices there are missing from T′ too
+    CHECK(a.vertex == b.vertex);
+    CHECK(a.failures == b.failures);
+    CHECK(a.checked == b.checked);
+    CHECK(a.first_failure == b.first_failure);
+    CHECK_THAT(b.first_failure, Catch::Contains("surface vertex 5000 "));
+}

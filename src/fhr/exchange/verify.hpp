@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include <fhr/core/executor.hpp>
 #include <fhr/core/trimesh.hpp>
 #include <fhr/exchange/fhr_param.hpp>
 
@@ -70,6 +71,8 @@ CheckResult grammar_check(const ParamFile& file);
 ///      several components).
 /// \post never throws InvalidInput for any file: a broken file gives failed checks. Runs in time
 ///       O(size of the file · log), plus O(|T| log |T|) with an input mesh.
-VerifyReport verify(const ParamFile& file, const TriMesh* input_mesh);
+/// PARAM-11's distances of T′'s vertices to T are computed in parallel on `executor`
+/// (default_executor() when null); the report is the same on any number of threads.
+VerifyReport verify(const ParamFile& file, const TriMesh* input_mesh, Executor* executor = nullptr);
 
 }  // namespace fhr::exchange

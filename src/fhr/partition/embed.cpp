@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <unordered_map>
 
 namespace fhr::partition {
 namespace {
@@ -64,6 +63,7 @@ public:
         n.origin.resize(T.n_vertices());
         for (VertexId v : T.vertices()) n.origin[v].vertex = v;
         positions_.assign(T.positions().begin(), T.positions().end());
+        slot_.assign(T.n_edges(), none);
     }
 
     Embedding run() {
@@ -89,8 +89,12 @@ private:
     std::span<const std::uint8_t> unsnapped_;
     Embedding out_;
     std::vector<Vec3> positions_;
-    // Per edge of T: its nodes as (t, vertex of T′), in order of registration.
-    std::unordered_map<std::uint32_t, std::vector<std::pair<double, VertexId>>> on_edge_;
+    // Per edge of T: its nodes as (t, vertex of T′), in order of registration: on_edge_[slot_[e]],
+    // where slot_[e] is `none` for the edges no path crosses or runs along (most of them: a
+    // direct array rather than a hash map, since every face of T asks for its three edges).
+    static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> slot_;
+    std::vector<std::vector<std::pair<double, VertexId>>> on_edge_;
     std::vector<Chord> chords_;
     std::vector<Run> runs_;
 
@@ -131,7 +135,12 @@ private:
     static constexpr double same_point_t = 0x1p-50;
     VertexId vertex_of(const Node& n) {
         if (n.vertex.valid()) return n.vertex;
-        auto& list = on_edge_[n.edge.idx()];
+        std::uint32_t& slot = slot_[n.edge.idx()];
+        if (slot == none) {
+            slot = static_cast<std::uint32_t>(on_edge_.size());
+            on_edge_.emplace_back();
+        }
+        auto& list = on_edge_[slot];
         const HalfedgeId h = TriMesh::halfedge(n.edge, 0);
         const Vec3 at = (1 - n.t) * T_.position(T_.from(h)) + n.t * T_.position(T_.to(h));
         for (const auto& [t, v] : list)
@@ -216,9 +225,8 @@ private:
     void check_runs() {
         const Network& net = out_.network;
         for (const Run& r : runs_) {
-            const auto it = on_edge_.find(r.edge.idx());
-            if (it == on_edge_.end()) continue;
-            for (const auto& [t, v] : it->second) {
+            if (slot_[r.edge.idx()] == none) continue;
+            for (const auto& [t, v] : on_edge_[slot_[r.edge.idx()]]) {
                 if (t > r.t0 && t < r.t1)
                     conflict(Kind::shared_node, r.d_edge, net.on_path[v].d_edge.idx(), {nearest(v), {}, {}});
             }
@@ -227,9 +235,9 @@ private:
 
     // The nodes on T's halfedge h in the direction of h.
     std::vector<VertexId> nodes_along(HalfedgeId h) {
-        const auto it = on_edge_.find(TriMesh::edge(h).idx());
-        if (it == on_edge_.end()) return {};
-        std::vector<std::pair<double, VertexId>> list = it->second;
+        const std::uint32_t slot = slot_[TriMesh::edge(h).idx()];
+        if (slot == none) return {};
+        std::vector<std::pair<double, VertexId>> list = on_edge_[slot];
         std::sort(list.begin(), list.end());
         if (h.idx() & 1u) std::reverse(list.begin(), list.end());
         std::vector<VertexId> r;
@@ -250,6 +258,12 @@ private:
 
     // Face f of T cut along its chords (Fig. 3), triangulated.
     void triangulate_face(FaceId f, std::span<const Chord> chords, std::vector<Triangle>& triangles) {
+        const HalfedgeId h0 = T_.halfedge(f), h1 = T_.next(h0), h2 = T_.next(h1);
+        if (chords.empty() && slot_[TriMesh::edge(h0).idx()] == none && slot_[TriMesh::edge(h1).idx()] == none &&
+            slot_[TriMesh::edge(h2).idx()] == none) {  // untouched by the network: the face itself
+            triangles.push_back({T_.from(h0).idx(), T_.from(h1).idx(), T_.from(h2).idx()});
+            return;
+        }
         std::vector<VertexId> poly;
         std::vector<SideMask> mask;
         HalfedgeId h = T_.halfedge(f);

@@ -2,8 +2,10 @@
 #include <fhr/pipeline/outputs.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <limits>
 
 #include <fhr/core/errors.hpp>
@@ -30,6 +32,10 @@ exchange::ParamFile to_param_file(const Parameterization& p) {
 }
 
 namespace {
+
+double since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 // The patches laid out as an atlas in [0, 1]²: patch i's triangle (equilateral, corners
 // e_0, e_1, e_2 at its lower left, lower right and top) in cell i of a G × G grid, with a margin.
@@ -199,30 +205,42 @@ std::vector<render::RatePoint> rate_curve(const wavelet::Refinement& r, const Tr
 void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
                    const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
                    const wavelet::WaveletResult* wavelets) {
+    const auto start = std::chrono::steady_clock::now();
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) throw InvalidInput(dir, 0, "cannot create the output folder: " + ec.message());
     const std::string base = dir + "/";
     const partition::Partition& P = p.partition;
-    io::write_off(base + "domain.off", P.domain.mesh.positions(), P.domain.mesh.triangles());
-    std::vector<std::vector<std::uint32_t>> lines;
-    for (const auto& path : P.network.path) {
-        auto& line = lines.emplace_back();
-        for (VertexId v : path) line.push_back(v.idx());
-    }
-    std::vector<std::string> kinds;  // each curve's kind (report.json's partition.restricted lists why)
-    for (const partition::CurveInfo& c : P.curves) kinds.push_back(partition::name(c.kind));
-    io::write_obj_polylines(base + "geodesics.obj", P.network.mesh.positions(), lines, kinds);
-    io::write_ply(base + "refined.ply", p.refined_positions, p.refined_faces, p.face_patch);
-    exchange::write_param(base + "param.fhrp", to_param_file(p));
-    io::write_obj(base + "textured.obj", p.refined_positions, p.refined_faces, atlas_uv(p));
+    // The files are independent, each streamed a chunk at a time (io::AtomicFile), so they are
+    // written in parallel (issue 18): the largest first, so that the threads finish together.
+    std::vector<std::function<void()>> files;
+    files.emplace_back([&] { io::write_obj(base + "textured.obj", p.refined_positions, p.refined_faces, atlas_uv(p)); });
+    files.emplace_back([&] { exchange::write_param(base + "param.fhrp", to_param_file(p)); });
+    files.emplace_back([&] { io::write_ply(base + "refined.ply", p.refined_positions, p.refined_faces, p.face_patch); });
+    files.emplace_back([&] {
+        std::vector<std::vector<std::uint32_t>> lines;
+        for (const auto& path : P.network.path) {
+            auto& line = lines.emplace_back();
+            for (VertexId v : path) line.push_back(v.idx());
+        }
+        std::vector<std::string> kinds;  // each curve's kind (report.json's partition.restricted lists why)
+        for (const partition::CurveInfo& c : P.curves) kinds.push_back(partition::name(c.kind));
+        io::write_obj_polylines(base + "geodesics.obj", P.network.mesh.positions(), lines, kinds);
+    });
+    files.emplace_back([&] { io::write_off(base + "domain.off", P.domain.mesh.positions(), P.domain.mesh.triangles()); });
     if (wavelets) {
-        io::write_off(base + "remesh_L" + std::to_string(wavelets->levels) + ".off", wavelets->remesh_positions, wavelets->remesh_faces);
+        files.emplace_back([&] {
+            io::write_off(base + "remesh_L" + std::to_string(wavelets->levels) + ".off", wavelets->remesh_positions, wavelets->remesh_faces);
+        });
         for (const auto& k : wavelets->kept)
-            io::write_off(base + "wavelet_keep" + percent_name(k.percent) + ".off", k.positions, wavelets->remesh_faces);
+            files.emplace_back([&] { io::write_off(base + "wavelet_keep" + percent_name(k.percent) + ".off", k.positions, wavelets->remesh_faces); });
     }
+    executor_or_default(options.executor).for_each(files.size(), 1, [&](std::size_t i) { files[i](); });
     write_report(base + "report.json", input, p, oracle, options, wavelets);
-    write_timings(base + "timings.json", timings);
+    // "writing": every file above and the report; timings.json itself is a few hundred bytes.
+    Timings with_writing = timings;
+    with_writing.stage("writing", since(start), false);
+    write_timings(base + "timings.json", with_writing);
 }
 
 void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis,

@@ -39,7 +39,8 @@ struct InputInfo {
 /// Writes DIR/{domain.off, geodesics.obj, refined.ply, param.fhrp, textured.obj, report.json,
 /// timings.json}; `oracle` is fhr verify's judgement of param.fhrp against T. With §5's result
 /// (`wavelets` not null) also remesh_L{J}.off, wavelet_keep{p}.off and the report's `remesh`
-/// and `wavelet` sections.
+/// and `wavelet` sections. The files are written in parallel on `options.executor`; timings.json
+/// gets one more measurement after the total, "writing": the seconds spent on all the others.
 void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
                    const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
                    const wavelet::WaveletResult* wavelets);

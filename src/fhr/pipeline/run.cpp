@@ -56,7 +56,7 @@ RunResult run(const TriMesh& T, RunOptions options) {
     out.parameterization = parameterize(T, std::move(D), method);
     // The independent oracle (src/fhr/exchange) judges exactly what param.fhrp will hold.
     auto start = std::chrono::steady_clock::now();
-    out.oracle = exchange::verify(to_param_file(out.parameterization), &T);
+    out.oracle = exchange::verify(to_param_file(out.parameterization), &T, method.executor);
     observe("verification", since(start), true);
     // §5: D^J sampled through φ, prewavelet decomposition, compression.
     if (options.levels > 0) {

@@ -62,13 +62,22 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
         k.l2_error = rms_distance(out.remesh_positions, k.positions);
         out.kept.push_back(std::move(k));
     }
-    // The Hausdorff brackets of D^J's f^J and of each reconstruction, independent of each other:
-    // one task each on the executor (core/executor.hpp; each result is the single-threaded one).
+    // The Hausdorff brackets of D^J's f^J and of each reconstruction: two directed distances each,
+    // all independent, one task each on the executor (core/executor.hpp; each result is the
+    // single-threaded one). T's tree is built once for all of them (issue 18).
     start = std::chrono::steady_clock::now();
-    executor_or_default(executor).for_each(1 + out.kept.size(), 1, [&](std::size_t i) {
-        const std::vector<Vec3>& positions = i == 0 ? out.remesh_positions : out.kept[i - 1].positions;
-        (i == 0 ? out.remesh_hausdorff : out.kept[i - 1].hausdorff) = hausdorff(T.positions(), t_faces, positions, out.remesh_faces, ho);
+    const std::size_t n = 1 + out.kept.size();
+    auto result = [&](std::size_t i) -> Hausdorff& { return i == 0 ? out.remesh_hausdorff : out.kept[i - 1].hausdorff; };
+    auto positions = [&](std::size_t i) -> const std::vector<Vec3>& { return i == 0 ? out.remesh_positions : out.kept[i - 1].positions; };
+    const TriangleTree t_tree(T.positions(), t_faces);
+    executor_or_default(executor).for_each(2 * n, 1, [&](std::size_t task) {
+        const std::size_t i = task % n;
+        if (task < n)
+            result(i).a_to_b = directed_hausdorff(T.positions(), t_faces, TriangleTree(positions(i), out.remesh_faces), ho);
+        else
+            result(i).b_to_a = directed_hausdorff(positions(i), out.remesh_faces, t_tree, ho);
     });
+    for (std::size_t i = 0; i < n; ++i) result(i).resolution = ho.resolution;
     out.hausdorff_seconds = seconds_since(start);
     out.hausdorff_relative = out.remesh_hausdorff.lower() / out.bbox_diagonal;
     return out;
