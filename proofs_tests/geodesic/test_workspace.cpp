@@ -180,3 +180,58 @@ TEST_CASE("GEO-16: a search that stops early, is abandoned or ends by an excepti
         check_clean(workspace);
     }
 }
+
+// GEO-17 (issue 18): the fields of both foci, made once for all paths at a vertex (focus_field),
+// give the ellipse search bitwise the result of its own fast-marching runs, whether they reach
+// every ellipse, only the first (K grows past them), or none (too short: the call runs its own).
+TEST_CASE("GEO-17: focus fields give the ellipse search bitwise its own result, also when they fall short",
+          "[property][geodesic]") {
+    rc::prop("random foci, partners, K_0 and field radii", [] {
+        const TriMesh m = *fhr::testing::gen_closed_mesh(0, 3, 1200);
+        const auto n = static_cast<std::uint32_t>(m.n_vertices());
+        auto vertex = [&] { return VertexId(*rc::gen::inRange<std::uint32_t>(0, n)); };
+        const VertexId a = vertex(), b = vertex();
+        RC_PRE(a != b);
+        const double K = *rc::gen::element(1.0001, 1.01, 1.06, 1.3);
+        std::vector<VertexId> partners_a{b}, partners_b{a};
+        for (int i = *rc::gen::inRange(0, 4); i > 0; --i) partners_a.push_back(vertex());
+        for (int i = *rc::gen::inRange(0, 4); i > 0; --i) partners_b.push_back(vertex());
+        Workspace workspace;
+        geodesic::FocusField fa = geodesic::focus_field(m, a, partners_a, K, 1.05, &workspace);
+        geodesic::FocusField fb = geodesic::focus_field(m, b, partners_b, K, 1.0, &workspace);
+        // The field of a is its radius's: every vertex within it, nothing beyond, values of a fresh run.
+        const geodesic::DistanceField full = marching(m, a, INFINITY, nullptr);
+        std::size_t within = 0;
+        for (VertexId v : m.vertices()) within += full.distance[v] <= fa.radius;
+        RC_ASSERT(fa.vertices.size() == within);
+        for (std::size_t i = 0; i < fa.vertices.size(); ++i) RC_ASSERT(fa.distance[i] == full.distance[fa.vertices[i]]);
+        // Sometimes one field cut short: the vertices within a fraction of its radius.
+        if (*rc::gen::element(0, 1)) {
+            geodesic::FocusField& cut = *rc::gen::element(0, 1) ? fa : fb;
+            cut.radius *= *rc::gen::inRange(1, 100) / 100.0;
+            std::size_t keep = 0;
+            while (keep < cut.vertices.size() && cut.distance[keep] <= cut.radius) ++keep;
+            cut.vertices.resize(keep);
+            cut.distance.resize(keep);
+        }
+        const geodesic::EllipsePath own = geodesic::ellipse_shortest_path(m, a, b, {.K = K});
+        RC_ASSERT(same(geodesic::ellipse_shortest_path(m, a, b, {.K = K, .workspace = &workspace, .field_a = &fa, .field_b = &fb}), own));
+        // Fields of other foci are not used.
+        RC_ASSERT(same(geodesic::ellipse_shortest_path(m, b, a, {.K = K, .field_a = &fa, .field_b = &fb}),
+                       geodesic::ellipse_shortest_path(m, b, a, {.K = K})));
+    });
+}
+
+TEST_CASE("GEO-17: advance_to a vertex that is final already accepts nothing more", "[unit][geodesic]") {
+    // focus_field advances to each partner in turn: one accepted on the way to another must not
+    // send the run on to the end of the mesh.
+    const TriMesh m = generate::random_mesh({.genus = 2, .faces = 900, .seed = 3});
+    const VertexId source(0);
+    geodesic::FastMarching run(m, std::span(&source, 1));
+    const VertexId far(static_cast<VertexId::Index>(m.n_vertices() / 2)), near_(run.advance_to(far) < INFINITY ? run.finalized()[1] : far);
+    const std::size_t accepted = run.finalized().size();
+    CHECK(accepted < m.n_vertices());
+    CHECK(run.advance_to(near_) == run.distance(near_));
+    CHECK(run.advance_to(far) == run.distance(far));
+    CHECK(run.finalized().size() == accepted);
+}

@@ -95,7 +95,7 @@ std::string restricted_oracle_violation(const TriMesh& T, const partition::Parti
         // curves; the distance is symmetric, so the other end as the source is the same oracle.
         std::optional<double> cgal;
         std::string cgal_error;
-        for (const auto [source, target] : {std::pair{a, b}, std::pair{b, a}}) {
+        for (const auto& [source, target] : {std::pair{a, b}, std::pair{b, a}}) {
             try {
                 const auto distances = test::cgal_distances(net.mesh, source, &mask);
                 if (!distances) return "CGAL refused the region of domain edge " + std::to_string(e.idx());

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include <fhr/core/errors.hpp>
@@ -65,7 +66,98 @@ struct MaskScratch final : detail::ScratchBase {
     }
 };
 
+// d_a from b at the vertices of a field, borrowed clean (INFINITY) from the workspace; `touched`
+// lists the entries set.
+struct FieldScratch final : detail::ScratchBase {
+    std::vector<double> distance;
+    std::vector<VertexId> touched;
+    void fit(std::size_t n) {
+        if (distance.size() < n) distance.resize(n, INFINITY);
+    }
+    void reset() noexcept {
+        for (VertexId v : touched) distance[v.idx()] = INFINITY;
+        detail::clear_buffer(touched);
+    }
+};
+
+// d_a from both foci, up to the bound of the current ellipse: from the caller's fields while both
+// reach the bound, else from fast-marching runs of this call, started when first needed and
+// continued as K grows. Either way the same values (FastMarching is resumable and deterministic),
+// so the same T_jk.
+class Foci {
+public:
+    Foci(const TriMesh& mesh, VertexId a, VertexId b, const EllipseOptions& options, Workspace* workspace)
+        : mesh_(mesh), a_(a), b_(b), workspace_(workspace),
+          fields_(options.field_a && options.field_b && options.field_a->source == a && options.field_b->source == b),
+          field_a_(options.field_a), field_b_(options.field_b) {}
+
+    // D_a = d_a(a, b), from a's field when it holds b, else from a run from a stopped once b is final.
+    double d_ab() {
+        if (fields_)
+            for (std::size_t i = 0; i < field_a_->vertices.size(); ++i)
+                if (field_a_->vertices[i] == b_) return field_a_->distance[i];
+        fields_ = false;
+        start_runs();
+        return from_a_->advance_to(b_);
+    }
+
+    // Calls f(v) for every vertex v with d_a(v, a) + d_a(v, b) <= bound.
+    template <class F>
+    void within(double bound, F f) {
+        if (fields_ && field_a_->radius >= bound && field_b_->radius >= bound) {
+            const detail::Borrowed<FieldScratch> from_b = detail::borrow<FieldScratch>(workspace_, mesh_.n_vertices());
+            for (std::size_t i = 0; i < field_b_->vertices.size(); ++i) {
+                if (!(field_b_->distance[i] <= bound)) continue;
+                from_b->touched.push_back(field_b_->vertices[i]);
+                from_b->distance[field_b_->vertices[i].idx()] = field_b_->distance[i];
+            }
+            for (std::size_t i = 0; i < field_a_->vertices.size(); ++i) {
+                const VertexId v = field_a_->vertices[i];
+                if (field_a_->distance[i] <= bound && field_a_->distance[i] + from_b->distance[v.idx()] <= bound) f(v);
+            }
+            return;
+        }
+        fields_ = false;
+        start_runs();
+        from_a_->advance(bound);
+        from_b_->advance(bound);
+        // Such a vertex has d_a(v, a) <= bound, so from_a has reached it.
+        for (VertexId v : from_a_->finalized())
+            if (from_a_->distance(v) + from_b_->distance(v) <= bound) f(v);
+    }
+
+private:
+    const TriMesh& mesh_;
+    const VertexId a_, b_;
+    Workspace* const workspace_;
+    bool fields_;
+    const FocusField *field_a_, *field_b_;
+    std::optional<FastMarching> from_a_, from_b_;
+
+    void start_runs() {
+        if (from_a_) return;
+        from_a_.emplace(mesh_, std::span(&a_, 1), true, workspace_);
+        from_b_.emplace(mesh_, std::span(&b_, 1), true, workspace_);
+    }
+};
+
 }  // namespace
+
+FocusField focus_field(const TriMesh& mesh, VertexId source, std::span<const VertexId> partners, double K, double reach,
+                       Workspace* workspace) {
+    FastMarching run(mesh, std::span(&source, 1), true, workspace);
+    double farthest = 0;
+    for (VertexId p : partners)
+        if (const double d = run.advance_to(p); std::isfinite(d)) farthest = std::max(farthest, d);
+    FocusField field;
+    field.source = source;
+    field.radius = reach * K * farthest;
+    run.advance(field.radius);
+    field.vertices.assign(run.finalized().begin(), run.finalized().end());
+    field.distance.reserve(field.vertices.size());
+    for (VertexId v : field.vertices) field.distance.push_back(run.distance(v));
+    return field;
+}
 
 EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, const EllipseOptions& options) {
     const std::size_t nv = mesh.n_vertices();
@@ -78,29 +170,25 @@ EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, c
     // first, so that it outlives the searches).
     Workspace own;
     Workspace* const workspace = options.workspace ? options.workspace : &own;
-    // d_a(a, b): the run from a, stopped once b is final, then continued for the ellipse.
-    FastMarching from_a(mesh, std::span(&a, 1), true, workspace);
-    const double d_ab = from_a.advance_to(b);
+    // d_a(a, b), then d_a from both foci for each ellipse (the caller's fields, or runs of this call).
+    Foci foci(mesh, a, b, options, workspace);
+    const double d_ab = foci.d_ab();
     if (!std::isfinite(d_ab)) throw InvalidInput("", 0, "the two vertices are not connected");
-    FastMarching from_b(mesh, std::span(&b, 1), true, workspace);
     const detail::Borrowed<MaskScratch> scratch = detail::borrow<MaskScratch>(workspace, mesh.n_faces());
     FaceData<std::uint8_t>& mask = scratch->mask;
     EllipsePath result;
     for (double K = options.K;; K = 1 + 2 * (K - 1)) {
         const double bound = K * d_ab;
-        from_a.advance(bound);
-        from_b.advance(bound);
-        // T_jk: the faces around every vertex with d_a(v, a) + d_a(v, b) <= K·D_a. Such a vertex
-        // has d_a(v, a) <= K·D_a, so from_a has reached it. Earlier attempts' faces stay in.
-        for (VertexId v : from_a.finalized()) {
-            if (!(from_a.distance(v) + from_b.distance(v) <= bound)) continue;
+        // T_jk: the faces around every vertex with d_a(v, a) + d_a(v, b) <= K·D_a. Earlier
+        // attempts' faces stay in.
+        foci.within(bound, [&](VertexId v) {
             mesh.for_each_outgoing(v, [&](HalfedgeId h) {
                 if (mesh.is_boundary(h)) return;
                 std::uint8_t& in = mask[mesh.face(h)];
                 if (!in) scratch->in.push_back(mesh.face(h));
                 in = 1;
             });
-        }
+        });
         const std::size_t faces = scratch->in.size();
         const bool everything = faces == mesh.n_faces();
         ExactGeodesic restricted(mesh, a, {.face_mask = everything ? nullptr : &mask, .workspace = workspace});

@@ -29,10 +29,32 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
+#include <vector>
 
 #include <fhr/geodesic/exact.hpp>
 
 namespace fhr::geodesic {
+
+/// The fast-marching field of one focus, kept for all the paths that start or end there (beyond
+/// the paper, issue 18): a domain vertex has about six edges, and each of their ellipses needs d_a
+/// from it; one run to the farthest of them replaces six runs over nearly the same disk.
+struct FocusField {
+    VertexId source;
+    /// Every vertex with d_a(source, v) <= radius is in `vertices` (the run went that far).
+    double radius = 0;
+    std::vector<VertexId> vertices;  ///< the final vertices, in acceptance order
+    std::vector<double> distance;    ///< d_a(source, ·) of each, bitwise a fresh run's (FastMarching)
+};
+
+/// The field of `source` far enough for the first ellipse (K·d_a(x_j, x_k)) of every path
+/// between it and one of `partners`, whichever end d_a(x_j, x_k) is measured from: fast marching
+/// until every partner is final, then on to `reach` times K times the farthest partner's distance
+/// (`reach` > 1 covers d_a's asymmetry: d_a(x_k, x_j) may exceed d_a(x_j, x_k)). Partners in
+/// another component are left out of the farthest.
+/// \pre source and partners are vertices of mesh; K > 1, reach >= 1.
+FocusField focus_field(const TriMesh& mesh, VertexId source, std::span<const VertexId> partners, double K, double reach,
+                       Workspace* workspace = nullptr);
 
 struct EllipseOptions {
     double K = 1.06;  ///< the paper's constant; must be > 1
@@ -40,6 +62,11 @@ struct EllipseOptions {
     /// call uses a workspace of its own, freed when it returns. partition() ignores it: it runs
     /// its paths in parallel, each on a workspace of its own pool.
     Workspace* workspace = nullptr;
+    /// Optional: the fields of a and of b (focus_field). While both reach K·d_a(a, b), the
+    /// ellipse is made from them instead of two fast-marching runs of this call: the same T_jk,
+    /// the same result. Past their radius (K grown, or a field too short) the call runs its own.
+    const FocusField* field_a = nullptr;
+    const FocusField* field_b = nullptr;
 };
 
 struct EllipsePath {

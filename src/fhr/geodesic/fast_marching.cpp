@@ -303,6 +303,7 @@ void FastMarching::advance(double max_distance) {
 
 double FastMarching::advance_to(VertexId target) {
     check_sources(state_->mesh(), std::span(&target, 1));
+    if (const double d = state_->distance(target); d < INFINITY) return d;  // final already: nothing to do
     state_->run(INFINITY, target);
     return state_->distance(target);
 }

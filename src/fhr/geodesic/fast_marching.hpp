@@ -105,7 +105,8 @@ public:
     /// Accepts vertices while the smallest band value is <= max_distance.
     /// \throws InvalidInput when max_distance is NaN.
     void advance(double max_distance);
-    /// Accepts vertices until `target` is final or nothing is left; returns distance(target).
+    /// Accepts vertices until `target` is final or nothing is left (none when it is final
+    /// already); returns distance(target).
     double advance_to(VertexId target);
     /// The distance of a final vertex, INFINITY for every other vertex.
     double distance(VertexId v) const;

@@ -33,11 +33,29 @@ public:
             const Key key = key_of(a, b);
             if (!fixed(D_hat, e) && !cache_.count(key) && std::find(missing.begin(), missing.end(), key) == missing.end()) missing.push_back(key);
         }
+        // One fast-marching field per end (issue 18), shared by its paths, then the paths.
+        std::vector<VertexId::Index> foci;
+        for (const Key& k : missing) foci.insert(foci.end(), {k.first, k.second});
+        std::sort(foci.begin(), foci.end());
+        foci.erase(std::unique(foci.begin(), foci.end()), foci.end());
+        auto focus_index = [&](VertexId::Index v) { return static_cast<std::size_t>(std::lower_bound(foci.begin(), foci.end(), v) - foci.begin()); };
+        std::vector<std::vector<VertexId>> partners(foci.size());
+        for (const Key& k : missing) {
+            partners[focus_index(k.first)].push_back(VertexId(k.second));
+            partners[focus_index(k.second)].push_back(VertexId(k.first));
+        }
+        std::vector<geodesic::FocusField> fields(foci.size());
+        executor_.for_each(foci.size(), 8, [&](std::size_t i) {
+            const geodesic::WorkspacePool::Lease workspace = workspaces_.lease();
+            fields[i] = geodesic::focus_field(T_, VertexId(foci[i]), partners[i], options_.K, field_reach, workspace.get());
+        });
         std::vector<geodesic::EllipsePath> found(missing.size());
         executor_.for_each(missing.size(), 8, [&](std::size_t i) {
             const geodesic::WorkspacePool::Lease workspace = workspaces_.lease();
             geodesic::EllipseOptions options = options_;
             options.workspace = workspace.get();
+            options.field_a = &fields[focus_index(missing[i].first)];
+            options.field_b = &fields[focus_index(missing[i].second)];
             found[i] = geodesic::ellipse_shortest_path(T_, VertexId(missing[i].first), VertexId(missing[i].second), options);
         });
         for (std::size_t i = 0; i < missing.size(); ++i) cache_.emplace(missing[i], std::move(found[i]));
@@ -68,6 +86,9 @@ public:
 
 private:
     using Key = std::pair<VertexId::Index, VertexId::Index>;
+    // How far past K times its farthest partner a field goes: d_a(x_k, x_j) may exceed d_a(x_j,
+    // x_k), which sets the ellipse (a path whose field falls short runs its own fast marching).
+    static constexpr double field_reach = 1.05;
     static Key key_of(VertexId a, VertexId b) { return {std::min(a.idx(), b.idx()), std::max(a.idx(), b.idx())}; }
 
     // The curve of D̂'s halfedge (e, 0), from x_a to x_b: a cone edge, or the boundary arc.
