@@ -915,12 +915,7 @@ public:
                     for (std::int64_t z = lo[2]; z <= hi[2]; ++z) entries.emplace_back(key(x, y, z), f);
         }
         std::sort(entries.begin(), entries.end());
-        keys_.reserve(entries.size());
-        simplex_.reserve(entries.size());
-        for (const auto& [k, f] : entries) {
-            keys_.push_back(k);
-            simplex_.push_back(f);
-        }
+        listing_ = std::move(entries);
     }
 
     /// The distance from p to the nearest simplex listed in p's cell, or +inf when there is none
@@ -930,10 +925,10 @@ public:
             return std::numeric_limits<double>::infinity();
         const auto c = cell(p);
         const std::uint64_t k = key(c[0], c[1], c[2]);
-        const auto [first, last] = std::equal_range(keys_.begin(), keys_.end(), k);
+        auto it = std::lower_bound(listing_.begin(), listing_.end(), std::pair<std::uint64_t, std::uint32_t>(k, 0));
         double best = std::numeric_limits<double>::infinity();
-        for (auto it = first; it != last; ++it) {
-            const Triangle& t = simplices_[simplex_[it - keys_.begin()]];
+        for (; it != listing_.end() && it->first == k; ++it) {
+            const Triangle& t = simplices_[it->second];
             const Vec3 q = t[1] == t[2] ? closest_point_on_segment(p, pos(t[0]), pos(t[1]))
                                         : closest_point_on_triangle(p, pos(t[0]), pos(t[1]), pos(t[2]));
             best = std::min(best, (q - p).norm());
@@ -947,8 +942,7 @@ private:
     std::vector<Triangle> simplices_;
     Vec3 min_, max_;
     double cell_ = 0;
-    std::vector<std::uint64_t> keys_;
-    std::vector<std::uint32_t> simplex_;
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> listing_;  // (cell key, simplex), sorted
 
     const Vec3& pos(std::uint32_t v) const { return mesh_.position(VertexId(v)); }
 
@@ -1033,6 +1027,7 @@ CheckResult Verifier::check_geometry() const {
                                           " at the same point is not on the boundary of T'"; },
                              -1, v.idx());
     }
+    std::vector<std::pair<Bits, std::uint32_t>>().swap(refined_bits);  // freed before the grid below is built
     // ... inserts points only on T: within 1e-9 of the bounding-box diagonal, plus 64u·|x|max for
     // the rounding of a point computed on an edge or face of T (a few u·|x| per coordinate, by
     // the producer and again by closest_point) when T lies far from the origin ...

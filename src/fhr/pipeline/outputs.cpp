@@ -20,15 +20,38 @@
 
 namespace fhr::pipeline {
 
-exchange::ParamFile to_param_file(const Parameterization& p) {
+namespace {
+
+// The file's domain, and its faces of T′ from p's arrays (its vertices are the caller's to set).
+exchange::ParamFile param_file_faces(const Parameterization& p) {
     const domain::Domain& D = p.partition.domain;
     exchange::ParamFile f;
     f.domain_vertices.assign(D.mesh.positions().begin(), D.mesh.positions().end());
     f.domain_faces = D.mesh.triangles();
-    f.surface_vertices = p.refined_positions;
     f.surface_faces.reserve(p.refined_faces.size());
     for (std::size_t i = 0; i < p.refined_faces.size(); ++i) f.surface_faces.push_back({p.refined_faces[i], p.face_patch[i], p.face_beta[i]});
     return f;
+}
+
+}  // namespace
+
+exchange::ParamFile to_param_file(const Parameterization& p) {
+    exchange::ParamFile f = param_file_faces(p);
+    f.surface_vertices = p.refined_positions;
+    return f;
+}
+
+exchange::ParamFile lend_param_file(Parameterization& p) {
+    exchange::ParamFile f = param_file_faces(p);
+    f.surface_vertices = std::move(p.refined_positions);
+    std::vector<std::array<std::array<double, 3>, 3>>().swap(p.face_beta);
+    return f;
+}
+
+void take_back_param_file(Parameterization& p, exchange::ParamFile f) {
+    p.refined_positions = std::move(f.surface_vertices);
+    p.face_beta.reserve(f.surface_faces.size());
+    for (const exchange::ParamFace& face : f.surface_faces) p.face_beta.push_back(face.beta);
 }
 
 namespace {

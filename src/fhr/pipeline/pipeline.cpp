@@ -87,7 +87,11 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     // patch by patch, each with the β of its corners.
     const TriMesh& M = P.network.mesh;
     out.refined_positions.assign(M.positions().begin(), M.positions().end());
-    out.refined_faces.reserve(M.n_faces() + 2 * out.dividing_edges_split);
+    std::size_t faces = 0;  // exactly: at 10⁶ faces, growing by doubling left a third of face_beta unused (issue 18)
+    for (const param::Disk& disk : out.disks) faces += disk.triangles.size();
+    out.refined_faces.reserve(faces);
+    out.face_patch.reserve(faces);
+    out.face_beta.reserve(faces);
     for (FaceId d : out.disks.ids()) {
         const param::Disk& disk = out.disks[d];
         const partition::Patch& patch = P.patches.patch[d];

@@ -56,7 +56,9 @@ RunResult run(const TriMesh& T, RunOptions options) {
     out.parameterization = parameterize(T, std::move(D), method);
     // The independent oracle (src/fhr/exchange) judges exactly what param.fhrp will hold.
     auto start = std::chrono::steady_clock::now();
-    out.oracle = exchange::verify(to_param_file(out.parameterization), &T, method.executor);
+    exchange::ParamFile lent = lend_param_file(out.parameterization);
+    out.oracle = exchange::verify(lent, &T, method.executor);
+    take_back_param_file(out.parameterization, std::move(lent));
     observe("verification", since(start), true);
     // §5: D^J sampled through φ, prewavelet decomposition, compression.
     if (options.levels > 0) {
