@@ -436,3 +436,24 @@ TEST_CASE("PART-4: two paths through one point of an edge, given on the edge's t
         else CHECK(test::recovery_violation(T, D, P) == "");
     }
 }
+
+TEST_CASE("PART-4, PART-5: embed cuts the faces in parallel blocks with the sequential result, conflicts in face order",
+          "[partition][unit]") {
+    // 40,000 faces: three blocks of embed's parallel loop. A coarse domain (24 faces) has long
+    // geodesics that conflict; a finer one (2,000 faces) embeds. Both give the same conflicts, in
+    // the same order, and the same T′ on one thread and on three.
+    const TriMesh T = generate::random_mesh({.genus = 1, .faces = 40000, .seed = 5});
+    for (const std::size_t faces : {24u, 2000u}) {
+        const domain::Domain D = domain::decimate(T, {.target_faces = faces});
+        const std::vector<geodesic::GeodesicPath> paths = test::exact_paths(T, D);
+        ThreadPool one(1), three(3);
+        const partition::Embedding a = partition::embed(T, D, paths, {}, &one), b = partition::embed(T, D, paths, {}, &three);
+        INFO(faces << " faces: " << a.conflicts.size() << " conflicts");
+        REQUIRE(a.conflicts.size() == b.conflicts.size());
+        for (std::size_t i = 0; i < a.conflicts.size(); ++i) CHECK(a.conflicts[i].describe() == b.conflicts[i].describe());
+        CHECK(a.network.mesh.triangles() == b.network.mesh.triangles());
+        CHECK(a.network.t_face.values() == b.network.t_face.values());
+        if (faces == 24) CHECK_FALSE(a.conflicts.empty());
+        if (faces == 2000) CHECK(a.network.mesh.n_faces() > T.n_faces());
+    }
+}

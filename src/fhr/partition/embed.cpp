@@ -42,8 +42,8 @@ public:
     // With D: paths[e] runs between the corners x_j, x_k of D's halfedge (e, 0), and (2) is checked.
     // Without: the corners are the paths' ends (numbered in order of first appearance).
     Embedder(const TriMesh& T, const domain::Domain* D, std::span<const geodesic::GeodesicPath> paths,
-             std::span<const std::uint8_t> unsnapped)
-        : T_(T), D_(D), paths_(paths), unsnapped_(unsnapped) {
+             std::span<const std::uint8_t> unsnapped, Executor& executor)
+        : T_(T), D_(D), paths_(paths), unsnapped_(unsnapped), executor_(executor) {
         Network& n = out_.network;
         n.corner.assign(T.n_vertices(), VertexId());
         if (D) {
@@ -87,6 +87,7 @@ private:
     std::vector<std::pair<VertexId, VertexId>> ends_;  // per path: x_j, x_k
     std::span<const geodesic::GeodesicPath> paths_;
     std::span<const std::uint8_t> unsnapped_;
+    Executor& executor_;
     Embedding out_;
     std::vector<Vec3> positions_;
     // Per edge of T: its nodes as (t, vertex of T′), in order of registration: on_edge_[slot_[e]],
@@ -98,8 +99,11 @@ private:
     std::vector<Chord> chords_;
     std::vector<Run> runs_;
 
+    static Conflict make_conflict(Kind kind, std::uint32_t a, std::uint32_t b, std::array<VertexId, 3> near, VertexId d_vertex = {}) {
+        return Conflict{kind, EdgeId(std::min(a, b)), EdgeId(std::max(a, b)), d_vertex, near};
+    }
     void conflict(Kind kind, std::uint32_t a, std::uint32_t b, std::array<VertexId, 3> near, VertexId d_vertex = {}) {
-        out_.conflicts.push_back(Conflict{kind, EdgeId(std::min(a, b)), EdgeId(std::max(a, b)), d_vertex, near});
+        out_.conflicts.push_back(make_conflict(kind, a, b, near, d_vertex));
     }
 
     // The vertex of T nearest to vertex v of T′: itself, or the nearer end of its edge of T.
@@ -234,7 +238,7 @@ private:
     }
 
     // The nodes on T's halfedge h in the direction of h.
-    std::vector<VertexId> nodes_along(HalfedgeId h) {
+    std::vector<VertexId> nodes_along(HalfedgeId h) const {
         const std::uint32_t slot = slot_[TriMesh::edge(h).idx()];
         if (slot == none) return {};
         std::vector<std::pair<double, VertexId>> list = on_edge_[slot];
@@ -245,19 +249,46 @@ private:
         return r;
     }
 
+    // The faces in blocks, in parallel (issue 18): each block's triangles, their faces of T and
+    // its crossings, joined in face order, so the result is the sequential one. Once (1) fails no
+    // face is triangulated (the caller needs only the conflicts): the earlier conflicts stop every
+    // block, a block's own stop it.
     void triangulate_faces(std::vector<Triangle>& triangles) {
         std::sort(chords_.begin(), chords_.end(), [](const Chord& x, const Chord& y) { return x.face.idx() < y.face.idx(); });
-        auto chord = chords_.begin();
-        for (FaceId f : T_.faces()) {
-            const auto first = chord;
-            while (chord != chords_.end() && chord->face == f) ++chord;
-            triangulate_face(f, std::span<const Chord>(first, chord), triangles);
-            out_.network.t_face.resize(triangles.size(), f);
+        struct Block {
+            std::vector<Triangle> triangles;
+            std::vector<FaceId> t_face;
+            std::vector<Conflict> conflicts;
+        };
+        constexpr std::size_t block = std::size_t{1} << 14;
+        const std::size_t nf = T_.n_faces(), nb = (nf + block - 1) / block;
+        const bool failed = !out_.conflicts.empty();
+        std::vector<Block> blocks(nb);
+        executor_.for_each(nb, 2, [&](std::size_t b) {
+            Block& out = blocks[b];
+            const auto first_face = static_cast<FaceId::Index>(b * block), end = static_cast<FaceId::Index>(std::min(nf, (b + 1) * block));
+            out.triangles.reserve(end - first_face);
+            auto chord = std::lower_bound(chords_.begin(), chords_.end(), first_face,
+                                          [](const Chord& c, FaceId::Index f) { return c.face.idx() < f; });
+            for (FaceId::Index i = first_face; i < end; ++i) {
+                const FaceId f(i);
+                const auto first = chord;
+                while (chord != chords_.end() && chord->face == f) ++chord;
+                triangulate_face(f, std::span<const Chord>(first, chord), out.triangles, out.conflicts, failed);
+                out.t_face.resize(out.triangles.size(), f);
+            }
+        });
+        out_.network.t_face.reserve(nf);
+        for (Block& b : blocks) {
+            triangles.insert(triangles.end(), b.triangles.begin(), b.triangles.end());
+            for (FaceId f : b.t_face) out_.network.t_face.push_back(f);
+            out_.conflicts.insert(out_.conflicts.end(), b.conflicts.begin(), b.conflicts.end());
         }
     }
 
     // Face f of T cut along its chords (Fig. 3), triangulated.
-    void triangulate_face(FaceId f, std::span<const Chord> chords, std::vector<Triangle>& triangles) {
+    void triangulate_face(FaceId f, std::span<const Chord> chords, std::vector<Triangle>& triangles, std::vector<Conflict>& conflicts,
+                          bool failed) const {
         const HalfedgeId h0 = T_.halfedge(f), h1 = T_.next(h0), h2 = T_.next(h1);
         if (chords.empty() && slot_[TriMesh::edge(h0).idx()] == none && slot_[TriMesh::edge(h1).idx()] == none &&
             slot_[TriMesh::edge(h2).idx()] == none) {  // untouched by the network: the face itself
@@ -294,9 +325,9 @@ private:
                 const auto [a, b] = cuts[i];
                 const auto [c, d] = cuts[k];
                 if ((a < c && c < b && b < d) || (c < a && a < d && d < b))
-                    conflict(Kind::crossing, chords[i].d_edge, chords[k].d_edge, T_.face_vertices(f));
+                    conflicts.push_back(make_conflict(Kind::crossing, chords[i].d_edge, chords[k].d_edge, T_.face_vertices(f)));
             }
-        if (!out_.conflicts.empty()) return;
+        if (failed || !conflicts.empty()) return;
         // The chords cut the polygon into convex pieces: split the piece holding each chord.
         std::vector<std::vector<std::size_t>> pieces(1);
         for (std::size_t i = 0; i < poly.size(); ++i) pieces[0].push_back(i);
@@ -443,14 +474,15 @@ std::string Conflict::describe() const {
 }
 
 Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths,
-                std::span<const std::uint8_t> unsnapped) {
+                std::span<const std::uint8_t> unsnapped, Executor* executor) {
     if (!unsnapped.empty() && unsnapped.size() != paths.size()) throw std::logic_error("embed: one unsnapped flag per path");
-    return Embedder(T, &D, paths, unsnapped).run();
+    return Embedder(T, &D, paths, unsnapped, executor_or_default(executor)).run();
 }
 
-Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath> curves, std::span<const std::uint8_t> unsnapped) {
+Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath> curves, std::span<const std::uint8_t> unsnapped,
+                       Executor* executor) {
     if (!unsnapped.empty() && unsnapped.size() != curves.size()) throw std::logic_error("embed: one unsnapped flag per curve");
-    return Embedder(T, nullptr, curves, unsnapped).run();
+    return Embedder(T, nullptr, curves, unsnapped, executor_or_default(executor)).run();
 }
 
 }  // namespace fhr::partition

@@ -29,6 +29,8 @@
 #include <string>
 #include <vector>
 
+#include <fhr/core/executor.hpp>
+
 #include <fhr/core/trimesh.hpp>
 #include <fhr/domain/decimate.hpp>
 #include <fhr/geodesic/exact.hpp>
@@ -100,14 +102,17 @@ struct Embedding {
 /// snapping — a restricted path whose separation points lie closer to a vertex of T than
 /// snap_fraction on purpose (partition/restricted.hpp).
 /// \throws std::logic_error when a path breaks its contract (not a caller's input error).
+/// The faces of T are cut and triangulated in parallel on `executor` (default_executor() when
+/// null): the result is the same on any number of threads.
 Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths,
-                std::span<const std::uint8_t> unsnapped = {});
+                std::span<const std::uint8_t> unsnapped = {}, Executor* executor = nullptr);
 
 /// Embeds curves that are not (yet) a whole domain's network — the few curves around a region of
 /// T′ (partition/region.hpp) — into T, which may have a boundary: as embed(), with the curves'
 /// ends as the corners (numbered in order of first appearance), curve i labelling halfedges 2i
 /// (along it) and 2i + 1, and no condition (2) (there is no D to compare with).
-Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath> curves, std::span<const std::uint8_t> unsnapped = {});
+Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath> curves, std::span<const std::uint8_t> unsnapped = {},
+                       Executor* executor = nullptr);
 
 /// Condition (2) at one vertex v_j of D: in_d holds D's halfedges out of v_j in D's cyclic order,
 /// in_t the D halfedges of the curves leaving x_j in T′'s cyclic order. Flag k is 1 when D's edge

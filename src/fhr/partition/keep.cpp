@@ -422,7 +422,7 @@ std::pair<std::vector<geodesic::GeodesicPath>, std::vector<std::uint8_t>> in_edg
 // region of T each), or when anything on the way fails: the caller then steps back instead.
 std::optional<Network_> direct(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D,
                                std::span<const geodesic::EllipsePath> geodesics, std::span<const Conflict> conflicts,
-                               std::span<const Pair> order) {
+                               std::span<const Pair> order, Executor& executor) {
     const auto ends = domain::edge_endpoints(D);
     std::map<Pair, std::size_t> edge_of;
     for (std::size_t e = 0; e < ends.size(); ++e) edge_of[key_of(ends[e].first, ends[e].second)] = e;
@@ -469,7 +469,7 @@ std::optional<Network_> direct(const TriMesh& T, std::size_t real_vertices, cons
             index[key_of(a, b)] = paths.size();
             paths.push_back(a.idx() < b.idx() ? geodesics[e].path : reversed(geodesics[e].path));
         }
-        cut = embed_curves(T, paths);
+        cut = embed_curves(T, paths, {}, &executor);
         if (round == 64) return std::nullopt;
         if (!cut.conflicts.empty()) {
             // A conflict the first embedding did not report (it names one pair per shared point):
@@ -736,10 +736,10 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
     std::optional<Network_> net;
     if (start == Start::fast) {
         try {
-            if (std::optional<Network_> found = direct(T, real_vertices, D, geodesics, conflicts, order)) {
+            if (std::optional<Network_> found = direct(T, real_vertices, D, geodesics, conflicts, order, executor)) {
                 // Checked as a whole before it is used: (1), (2) and the patches.
                 const auto [paths, unsnapped] = in_edge_order(D, found->curves());
-                const Embedding check = embed(T, D, paths, unsnapped);
+                const Embedding check = embed(T, D, paths, unsnapped, &executor);
                 if (check.conflicts.empty()) {
                     extract_patches(D, check.network);
                     net.emplace(std::move(*found));
@@ -769,7 +769,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
         } else {
             for (const auto& p : geodesics_of(Di)) paths.push_back(p.path);
         }
-        const Embedding embedding = embed(T, Di, paths);
+        const Embedding embedding = embed(T, Di, paths, {}, &executor);
         if (embedding.conflicts.empty()) {
             net.emplace(T, real_vertices, make_domain(T, faces_in_t(Di)));
             const auto di_ends = domain::edge_endpoints(Di);

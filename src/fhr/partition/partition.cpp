@@ -284,7 +284,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         std::vector<geodesic::GeodesicPath> paths;
         paths.reserve(out.paths.size());
         for (const auto& p : out.paths) paths.push_back(p.path);
-        Embedding embedding = embed(T_hat, D_hat, paths);
+        Embedding embedding = embed(T_hat, D_hat, paths, {}, &executor);
         std::optional<KeptNetwork> attempt;
         std::string keep_failure;  // why D could not be kept, for the message of a given domain
         if (!embedding.conflicts.empty() && options.keep_domain && out.retries == 0) {
@@ -321,7 +321,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             out.keep_start_faces = kept.start_faces;
             out.resolved = embedding.conflicts;
             unsnapped = kept.unsnapped.values();
-            embedding = embed(T_hat, D_hat, kept.paths.values(), unsnapped);
+            embedding = embed(T_hat, D_hat, kept.paths.values(), unsnapped, &executor);
             if (!embedding.conflicts.empty())
                 throw std::logic_error("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
         }
@@ -338,7 +338,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
                 if (!unsnapped.empty()) unsnapped.resize(ne);
                 std::vector<geodesic::GeodesicPath> open;
                 for (const auto& p : out.paths) open.push_back(p.path);
-                embedding = embed(T, D, open, unsnapped);
+                embedding = embed(T, D, open, unsnapped, &executor);
                 if (!embedding.conflicts.empty())
                     throw std::logic_error("partition: the network breaks (1)/(2) without the cones: " + embedding.conflicts.front().describe());
             }
