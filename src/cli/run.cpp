@@ -1,10 +1,10 @@
 // FHR cli — `fhr run`: parse the arguments, read T (and a given D), call pipeline::run (§2–§5),
 // write its outputs and report (spec/cli.md CLI-RUN-*), print the summary; progress on stderr.
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
 
+#include <fhr/core/detail/stopwatch.hpp>
 #include <fhr/core/errors.hpp>
 #include <fhr/core/executor.hpp>
 #include <fhr/core/topology.hpp>
@@ -16,13 +16,6 @@
 #include "cli/common.hpp"
 
 namespace fhr::cli {
-namespace {
-
-double since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 int run_run(const std::vector<std::string>& argv) {
     // Parse.
@@ -65,9 +58,9 @@ int run_run(const std::vector<std::string>& argv) {
     method.observer = &timings;
 
     // Read T and, for --domain, the user's D attached to it (§2, points inside faces/edges inserted).
-    auto start = std::chrono::steady_clock::now();
+    auto start = detail::Clock::now();
     TriMesh T = load_mesh(mesh_path, BuildOptions{});
-    timings.stage("reading", since(start), true);
+    timings.stage("reading", detail::seconds_since(start), true);
     pipeline::InputInfo input{.path = mesh_path, .vertices = T.n_vertices(), .faces = T.n_faces(), .genus = genus(T),
                               .boundary_loops = boundary_loops(T).size(), .components = connected_components(T).count};
     method.progress("read " + mesh_path + ": " + std::to_string(T.n_vertices()) + " vertices, " + std::to_string(T.n_faces()) +
@@ -77,13 +70,13 @@ int run_run(const std::vector<std::string>& argv) {
     if (by_faces) {
         options.faces = static_cast<std::size_t>(args.integer("faces", 0, 0, INT32_MAX));
     } else {
-        start = std::chrono::steady_clock::now();
+        start = detail::Clock::now();
         const domain::DomainSources sources{args.require("domain"), args.require("correspondence")};
         TriMesh user = load_mesh(sources.domain_file, BuildOptions{});
         const auto x = io::parse_correspondence(io::read_bytes(sources.correspondence_file), sources.correspondence_file,
                                                 T.n_vertices(), T.n_faces());
         options.domain = domain::attach_domain(T, std::move(user), x, sources);
-        timings.stage("mesh_reduction", since(start), true);
+        timings.stage("mesh_reduction", detail::seconds_since(start), true);
     }
 
     // Run.

@@ -306,10 +306,6 @@ private:
                 mask.push_back(static_cast<SideMask>(1u << s));
             }
         }
-        if (poly.size() == 3 && chords.empty()) {
-            triangles.push_back({poly[0].idx(), poly[1].idx(), poly[2].idx()});
-            return;
-        }
         auto index_of = [&](VertexId v) {
             return static_cast<std::size_t>(std::find(poly.begin(), poly.end(), v) - poly.begin());
         };

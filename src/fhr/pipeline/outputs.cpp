@@ -2,12 +2,12 @@
 #include <fhr/pipeline/outputs.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <functional>
 #include <limits>
 
+#include <fhr/core/detail/stopwatch.hpp>
 #include <fhr/core/errors.hpp>
 #include <fhr/io/atomic_file.hpp>
 #include <fhr/io/detail/json.hpp>
@@ -55,10 +55,6 @@ void take_back_param_file(Parameterization& p, exchange::ParamFile f) {
 }
 
 namespace {
-
-double since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The patches laid out as an atlas in [0, 1]²: patch i's triangle (equilateral, corners
 // e_0, e_1, e_2 at its lower left, lower right and top) in cell i of a G × G grid, with a margin.
@@ -228,7 +224,7 @@ std::vector<render::RatePoint> rate_curve(const wavelet::Refinement& r, const Tr
 void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
                    const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
                    const wavelet::WaveletResult* wavelets) {
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = detail::Clock::now();
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) throw InvalidInput(dir, 0, "cannot create the output folder: " + ec.message());
@@ -262,7 +258,7 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
     write_report(base + "report.json", input, p, oracle, options, wavelets);
     // "writing": every file above and the report; timings.json itself is a few hundred bytes.
     Timings with_writing = timings;
-    with_writing.stage("writing", since(start), false);
+    with_writing.stage("writing", detail::seconds_since(start), false);
     write_timings(base + "timings.json", with_writing);
 }
 

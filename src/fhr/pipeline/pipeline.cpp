@@ -1,10 +1,10 @@
 // FHR §2–§4 — the method end to end (see pipeline.hpp for the pseudocode).
 #include <fhr/core/detail/contract.hpp>
+#include <fhr/core/detail/stopwatch.hpp>
 #include <fhr/core/executor.hpp>
 #include <fhr/pipeline/pipeline.hpp>
 
 #include <algorithm>
-#include <chrono>
 
 #include <fhr/core/errors.hpp>
 #include <fhr/param/dividing_edges.hpp>
@@ -31,19 +31,6 @@ std::pair<FaceId, std::array<double, 3>> GlobalMap::psi(std::size_t f, const std
     return {FaceId(p_.face_patch[f]), beta};
 }
 
-namespace {
-
-class Stopwatch {
-public:
-    Stopwatch() : start_(std::chrono::steady_clock::now()) {}
-    double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
-
-private:
-    std::chrono::steady_clock::time_point start_;
-};
-
-}  // namespace
-
 Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options) {
     auto say = [&](const std::string& line) {
         if (options.progress) options.progress(line);
@@ -52,19 +39,19 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
 
     // §3: one geodesic per edge of D, T′, conditions (1) and (2), the patches.
     say("geodesic paths: " + std::to_string(D.mesh.n_edges()) + " domain edges");
-    Stopwatch paths;
+    const auto paths = detail::Clock::now();
     partition::PartitionOptions po;
     po.progress = options.progress;
     po.keep_domain = options.keep_domain;
     po.executor = options.executor;
     out.partition = partition::partition(T, std::move(D), po);
-    if (options.observer) options.observer->stage("geodesic_paths", paths.seconds(), true);
+    if (options.observer) options.observer->stage("geodesic_paths", detail::seconds_since(paths), true);
     const partition::Partition& P = out.partition;
     say("partition: " + std::to_string(P.network.mesh.n_faces()) + " faces in T′, " +
         std::to_string(P.patches.patch.size()) + " patches, " + std::to_string(P.retries) + " retries");
 
     // §4: each patch onto its triangle, certified.
-    Stopwatch param;
+    const auto param = detail::Clock::now();
     const std::size_t n_patches = P.patches.patch.size();
     out.disks.resize(n_patches);
     out.maps.resize(n_patches);
@@ -110,7 +97,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
             out.face_beta.push_back({out.maps[d].beta[t[0]], out.maps[d].beta[t[1]], out.maps[d].beta[t[2]]});
         }
     }
-    if (options.observer) options.observer->stage("parameterization", param.seconds(), true);
+    if (options.observer) options.observer->stage("parameterization", detail::seconds_since(param), true);
     const std::size_t failed = static_cast<std::size_t>(
         std::count_if(out.certificates.begin(), out.certificates.end(), [](const param::Certificate& c) { return !c.passed; }));
     say("parameterization: " + std::to_string(n_patches) + " patches, " + std::to_string(out.dividing_edges_split) +

@@ -1,21 +1,14 @@
 // FHR §2–§5 — the method end to end (see run.hpp for the pseudocode).
 #include <fhr/pipeline/run.hpp>
 
-#include <chrono>
 #include <stdexcept>
 #include <string>
 
+#include <fhr/core/detail/stopwatch.hpp>
 #include <fhr/core/errors.hpp>
 #include <fhr/pipeline/outputs.hpp>
 
 namespace fhr::pipeline {
-namespace {
-
-double since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 RunResult run(const TriMesh& T, RunOptions options) {
     if ((options.faces > 0) == options.domain.has_value()) throw std::logic_error("run: give exactly one of faces and domain");
@@ -36,9 +29,9 @@ RunResult run(const TriMesh& T, RunOptions options) {
     if (options.domain) {
         D = std::move(*options.domain);
     } else {
-        const auto start = std::chrono::steady_clock::now();
+        const auto start = detail::Clock::now();
         D = domain::decimate(T, {.target_faces = options.faces, .corner_angle_deg = options.corner_angle_deg});
-        observe("mesh_reduction", since(start), true);
+        observe("mesh_reduction", detail::seconds_since(start), true);
     }
     out.domain_faces_asked = options.faces;
     out.domain_faces_requested = D.mesh.n_faces();
@@ -55,16 +48,16 @@ RunResult run(const TriMesh& T, RunOptions options) {
     // §3, §4.
     out.parameterization = parameterize(T, std::move(D), method);
     // The independent oracle (src/fhr/exchange) judges exactly what param.fhrp will hold.
-    auto start = std::chrono::steady_clock::now();
+    auto start = detail::Clock::now();
     exchange::ParamFile lent = lend_param_file(out.parameterization);
     out.oracle = exchange::verify(lent, &T, method.executor);
     take_back_param_file(out.parameterization, std::move(lent));
-    observe("verification", since(start), true);
+    observe("verification", detail::seconds_since(start), true);
     // §5: D^J sampled through φ, prewavelet decomposition, compression.
     if (options.levels > 0) {
-        start = std::chrono::steady_clock::now();
+        start = detail::Clock::now();
         const GlobalMap phi(out.parameterization);  // the point locators: part of evaluating φ, so of "refinement"
-        const double locating = since(start);
+        const double locating = detail::seconds_since(start);
         out.wavelets = wavelet::analyse(out.parameterization.partition.domain.mesh,
                                         [&](FaceId d, const std::array<double, 3>& beta) { return phi.phi(d, beta); }, options.levels,
                                         options.keep, T, {}, options.method.executor);

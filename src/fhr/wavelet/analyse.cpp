@@ -2,21 +2,14 @@
 #include <fhr/wavelet/analyse.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
+#include <fhr/core/detail/stopwatch.hpp>
 #include <fhr/core/geometry.hpp>
 #include <fhr/wavelet/compress.hpp>
 #include <fhr/wavelet/filter_bank.hpp>
 
 namespace fhr::wavelet {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::span<const double> keep_percent,
                       const TriMesh& T, const HausdorffOptions& hausdorff_options, Executor* executor) {
@@ -24,19 +17,19 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     out.levels = levels;
     for (double p : keep_percent) kept_count(0, p);  // refuse a bad percentage before any work
 
-    auto start = std::chrono::steady_clock::now();
+    auto start = detail::Clock::now();
     const Refinement r = refine(D, levels);
     out.remesh_positions = sample(r, phi);
-    out.refinement_seconds = seconds_since(start);
+    out.refinement_seconds = detail::seconds_since(start);
 
-    start = std::chrono::steady_clock::now();
+    start = detail::Clock::now();
     const FilterBank bank(r);
     const Decomposition d = bank.decompose(out.remesh_positions);
-    out.decomposition_seconds = seconds_since(start);
+    out.decomposition_seconds = detail::seconds_since(start);
 
-    start = std::chrono::steady_clock::now();
+    start = detail::Clock::now();
     const std::vector<Vec3> round_trip = bank.reconstruct(d);
-    out.reconstruction_seconds = seconds_since(start);
+    out.reconstruction_seconds = detail::seconds_since(start);
 
     for (std::size_t v = 0; v < round_trip.size(); ++v) {
         out.reconstruction_max_error =
@@ -56,16 +49,16 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
         KeptResult k;
         k.percent = p;
         k.count = kept_count(out.coefficients, p);
-        start = std::chrono::steady_clock::now();
+        start = detail::Clock::now();
         k.positions = bank.reconstruct(keep_largest(bank, d, k.count));
-        out.reconstruction_seconds += seconds_since(start);
+        out.reconstruction_seconds += detail::seconds_since(start);
         k.l2_error = rms_distance(out.remesh_positions, k.positions);
         out.kept.push_back(std::move(k));
     }
     // The Hausdorff brackets of D^J's f^J and of each reconstruction: two directed distances each,
     // all independent, one task each on the executor (core/executor.hpp; each result is the
     // single-threaded one). T's tree is built once for all of them (issue 18).
-    start = std::chrono::steady_clock::now();
+    start = detail::Clock::now();
     const std::size_t n = 1 + out.kept.size();
     auto result = [&](std::size_t i) -> Hausdorff& { return i == 0 ? out.remesh_hausdorff : out.kept[i - 1].hausdorff; };
     auto positions = [&](std::size_t i) -> const std::vector<Vec3>& { return i == 0 ? out.remesh_positions : out.kept[i - 1].positions; };
@@ -78,7 +71,7 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
             result(i).b_to_a = directed_hausdorff(positions(i), out.remesh_faces, t_tree, ho);
     });
     for (std::size_t i = 0; i < n; ++i) result(i).resolution = ho.resolution;
-    out.hausdorff_seconds = seconds_since(start);
+    out.hausdorff_seconds = detail::seconds_since(start);
     out.hausdorff_relative = out.remesh_hausdorff.lower() / out.bbox_diagonal;
     return out;
 }
