@@ -57,7 +57,8 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     }
     // The Hausdorff brackets of D^J's f^J and of each reconstruction: two directed distances each,
     // all independent, one task each on the executor (core/executor.hpp; each result is the
-    // single-threaded one). T's tree is built once for all of them (issue 18).
+    // single-threaded one). T's tree is built once for all of them (issue 18). The distances to T
+    // come first: they take two to four times as long as those from T.
     start = detail::Clock::now();
     const std::size_t n = 1 + out.kept.size();
     auto result = [&](std::size_t i) -> Hausdorff& { return i == 0 ? out.remesh_hausdorff : out.kept[i - 1].hausdorff; };
@@ -66,9 +67,9 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     executor_or_default(executor).for_each(2 * n, 1, [&](std::size_t task) {
         const std::size_t i = task % n;
         if (task < n)
-            result(i).a_to_b = directed_hausdorff(T.positions(), t_faces, TriangleTree(positions(i), out.remesh_faces), ho);
-        else
             result(i).b_to_a = directed_hausdorff(positions(i), out.remesh_faces, t_tree, ho);
+        else
+            result(i).a_to_b = directed_hausdorff(T.positions(), t_faces, TriangleTree(positions(i), out.remesh_faces), ho);
     });
     for (std::size_t i = 0; i < n; ++i) result(i).resolution = ho.resolution;
     out.hausdorff_seconds = detail::seconds_since(start);

@@ -88,6 +88,10 @@ private:
     std::vector<Triangle> triangles_;
     std::vector<std::uint32_t> order_;
     std::vector<Node> nodes_;
+    struct LeafTriangle {
+        Vec3 corner[3], lo, hi;
+    };
+    std::vector<LeafTriangle> leaf_;  ///< triangle order_[i]'s corners and box
     std::vector<std::uint32_t> fan_start_, fan_;  ///< the triangles at vertex v: fan_[fan_start_[v] .. fan_start_[v + 1])
     std::uint32_t build(std::uint32_t first, std::uint32_t count, std::vector<Vec3>& centroid);
 };
