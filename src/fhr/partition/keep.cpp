@@ -734,15 +734,17 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
     // 1. The direct start, when the kept geodesics leave polygons for the others.
     std::size_t undone = 0, faces = H.mesh.n_faces();
     std::optional<Network_> net;
+    std::optional<Embedding> checked;  // the direct start's embedding, while its curves stay as they are
     if (start == Start::fast) {
         try {
             if (std::optional<Network_> found = direct(T, real_vertices, D, geodesics, conflicts, order, executor)) {
                 // Checked as a whole before it is used: (1), (2) and the patches.
                 const auto [paths, unsnapped] = in_edge_order(D, found->curves());
-                const Embedding check = embed(T, D, paths, unsnapped, &executor);
+                Embedding check = embed(T, D, paths, unsnapped, &executor);
                 if (check.conflicts.empty()) {
                     extract_patches(D, check.network);
                     net.emplace(std::move(*found));
+                    checked = std::move(check);
                 }
             }
         } catch (const PartitionFailure&) {  // no room to separate: step back instead
@@ -799,11 +801,13 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
     }
     // 3. The undone collapses, redone on the network.
     if (undone > 0) {
+        checked.reset();
         redo(*net, std::span<const domain::Collapse>(H.history).subspan(H.history.size() - undone), say, searches);
         if (canonical_faces(net->domain()) != canonical_faces(H)) throw std::logic_error("keeping the domain: the collapses redone do not give the decimation");
     }
     // 4. A domain given by the user: from the decimation to its edges by flips.
     if (canonical_faces(net->domain()) != canonical_faces(D)) {
+        checked.reset();
         flip_to(*net, D, say, searches);
         // With every edge in place, only the orientation can differ: D turned over is not a domain of T.
         if (canonical_faces(net->domain()) != canonical_faces(D))
@@ -838,6 +842,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
                 if (j.curve) {
                     apply(*net, j);
                     ++changed;
+                    checked.reset();
                 }
             left = std::move(later);
         }
@@ -848,12 +853,14 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
     // 6. The curves in D's edge order.
     KeptNetwork out;
     out.start_faces = start_faces;
+    auto [paths, unsnapped] = in_edge_order(D, net->curves());
+    out.paths = EdgeData<geodesic::GeodesicPath>(std::move(paths));
+    out.unsnapped = EdgeData<std::uint8_t>(std::move(unsnapped));
+    out.embedding = std::move(checked);
     for (std::size_t e = 0; e < ends.size(); ++e) {
         const auto [a, b] = ends[e];
         const Pair k = key_of(a, b);
         const Curve& c = net->curves().at(k);
-        out.paths.push_back(a.idx() < b.idx() ? c.path : reversed(c.path));
-        out.unsnapped.push_back(!c.snapped);
         CurveInfo info;
         info.geodesic_length = geodesic_length.at(k);
         if (c.fixed) info.kind = CurveKind::boundary;

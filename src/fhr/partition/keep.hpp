@@ -42,6 +42,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -77,6 +78,9 @@ struct KeptNetwork {
     EdgeData<CurveInfo> info;                   ///< #E(D)
     EdgeData<std::uint8_t> unsnapped;           ///< #E(D): 1 when embed() must place it as given
     std::size_t start_faces = 0;                ///< #F(D_i), the start, on T (D̂_i's cone faces not counted)
+    /// embed(T, D, paths, unsnapped) when it was already computed (the direct start's check, its
+    /// curves unchanged since), so that the caller need not embed the same curves again (issue 18).
+    std::optional<Embedding> embedding;
 };
 
 /// How far the valid start steps back (see the pseudocode above).

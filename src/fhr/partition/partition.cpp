@@ -315,13 +315,13 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         }
         std::vector<std::uint8_t> unsnapped;
         if (!embedding.conflicts.empty() && attempt) {
-            const KeptNetwork& kept = *attempt;
+            KeptNetwork& kept = *attempt;
             for (EdgeId e : kept.paths.ids()) out.paths[e].path = kept.paths[e];
             out.curves = kept.info;
             out.keep_start_faces = kept.start_faces;
             out.resolved = embedding.conflicts;
             unsnapped = kept.unsnapped.values();
-            embedding = embed(T_hat, D_hat, kept.paths.values(), unsnapped, &executor);
+            embedding = kept.embedding ? std::move(*kept.embedding) : embed(T_hat, D_hat, kept.paths.values(), unsnapped, &executor);
             if (!embedding.conflicts.empty())
                 throw std::logic_error("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
         }
