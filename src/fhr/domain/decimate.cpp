@@ -80,6 +80,13 @@ class CandidateQueue {
 public:
     explicit CandidateQueue(std::size_t edges) : place_(edges, none) {}
     bool empty() const { return heap_.empty(); }
+    /// The queue of these candidates, one per edge, and nothing else: heapified bottom up, which
+    /// at 10⁶ faces takes a fraction of the time of putting them in one by one.
+    void assign(std::vector<Candidate> candidates) {
+        heap_ = std::move(candidates);
+        for (std::size_t i = heap_.size() / 2; i-- > 0;) down(i);
+        for (std::size_t i = 0; i < heap_.size(); ++i) place_[heap_[i].halfedge / 2] = static_cast<std::uint32_t>(i);
+    }
     const Candidate& top() const { return heap_.front(); }
     /// Puts c in as its edge's candidate, replacing the edge's earlier one.
     void put(const Candidate& c) {
@@ -94,14 +101,10 @@ public:
         heap_[at] = c;
         earlier ? up(at) : down(at);
     }
-    void pop() {
-        place_[heap_.front().halfedge / 2] = none;
-        const Candidate last = heap_.back();
-        heap_.pop_back();
-        if (heap_.empty()) return;
-        heap_.front() = last;
-        place_[last.halfedge / 2] = 0;
-        down(0);
+    void pop() { remove_at(0); }
+    /// Takes edge e's candidate out, if it has one.
+    void remove(std::uint32_t e) {
+        if (place_[e] != none) remove_at(place_[e]);
     }
 
 private:
@@ -109,6 +112,15 @@ private:
     std::vector<Candidate> heap_;
     std::vector<std::uint32_t> place_;  // per edge: its candidate's index in heap_, or none
 
+    void remove_at(std::size_t i) {
+        place_[heap_[i].halfedge / 2] = none;
+        const Candidate last = heap_.back();
+        heap_.pop_back();
+        if (i == heap_.size()) return;
+        const bool earlier = last < heap_[i];
+        move_to(i, last);
+        earlier ? up(i) : down(i);
+    }
     void move_to(std::size_t i, const Candidate& c) {
         heap_[i] = c;
         place_[c.halfedge / 2] = static_cast<std::uint32_t>(i);
@@ -177,10 +189,11 @@ std::size_t reachable_request(const TriMesh& T, const std::vector<std::size_t>& 
 // is decimated to targets[c] faces of T (cone faces not counted).
 class Decimator {
 public:
-    Decimator(const TriMesh& T, const Domain& start, const TriMesh& t_hat, std::vector<Quadric> quadrics, const DecimateOptions& o,
+    Decimator(const TriMesh& T, Domain start, const TriMesh& t_hat, std::vector<Quadric> quadrics, const DecimateOptions& o,
               std::size_t real_vertices, std::vector<std::size_t> targets)
-        : T_(T), m_(start.mesh), t_of_(start.t_vertex), history_(start.history), options_(o), quadric_(std::move(quadrics)),
-          rejected_(m_.n_halfedges(), false), keep_(m_.n_vertices(), 0), real_(real_vertices), target_(std::move(targets)),
+        : T_(T), m_(std::move(start.mesh)), t_of_(std::move(start.t_vertex)), history_(std::move(start.history)), options_(o),
+          quadric_(std::move(quadrics)),
+          rejected_(m_.n_halfedges(), false), suspect_(m_.n_vertices(), false), keep_(m_.n_vertices(), 0), real_(real_vertices), target_(std::move(targets)),
           queue_(m_.n_edges()) {
         std::vector<std::uint8_t> kept(std::max_element(t_of_.begin(), t_of_.end())->idx() + 1, 0);
         for (VertexId v : o.keep)
@@ -201,12 +214,19 @@ public:
         // inside out beside a large one); a component with boundary has no rule: T̂'s cones are no
         // part of the surface.
         volume_ = volume6_per_component(m_, comps);
-        const Components t_comps = connected_components(t_hat);
-        const std::vector<double> t_volume = volume6_per_component(t_hat, t_comps);
         min_volume_.assign(comps.count, -INFINITY);
+        // Before any collapse m_ is T̂ itself (the same components, the same volumes).
+        const bool fresh = history_.empty();
+        const Components t_comps = fresh ? Components{} : connected_components(t_hat);
+        const std::vector<double> t_volume = fresh ? volume_ : volume6_per_component(t_hat, t_comps);
         for (VertexId v : m_.vertices())
-            if (!open_[component_[v]]) min_volume_[component_[v]] = 1e-6 * t_volume[t_comps.vertex_component[t_of_[v]]];
-        for (EdgeId e : m_.edges()) push_edge(e);
+            if (!open_[component_[v]])
+                min_volume_[component_[v]] = 1e-6 * t_volume[fresh ? component_[v] : t_comps.vertex_component[t_of_[v]]];
+        std::vector<Candidate> all;
+        all.reserve(m_.n_edges());
+        for (EdgeId e : m_.edges())
+            if (!m_.is_deleted(e)) all.push_back(edge_candidate(e));
+        queue_.assign(std::move(all));
     }
 
     Domain run() {
@@ -232,11 +252,12 @@ public:
             const Candidate c = queue_.top();
             queue_.pop();
             const HalfedgeId h(c.halfedge);
-            if (m_.is_deleted(TriMesh::edge(h))) continue;
+            FHR_DCHECK(!m_.is_deleted(TriMesh::edge(h)));
             const std::uint32_t comp = component_[m_.from(h)];
             if (faces_[comp] <= target_[comp]) continue;  // this component is done
             if (!valid(h)) {  // try the edge's other direction at its own cost
                 rejected_[h.idx()] = true;
+                suspect_[m_.from(h).idx()] = suspect_[m_.to(h).idx()] = true;
                 if (!rejected_[TriMesh::twin(h).idx()]) queue_.put(candidate(TriMesh::twin(h)));
                 continue;
             }
@@ -244,7 +265,15 @@ public:
             const VertexId va = m_.to(m_.next(h)), vb = m_.to(m_.next(TriMesh::twin(h)));
             d.history.push_back({t_of_[v0], t_of_[v1], t_of_[va], t_of_[vb]});
             const std::size_t removed = apex(va) || apex(vb) ? 1 : 2;  // faces of T
+            // The collapse merges (v0, va) into (v1, va) and (v0, vb) into (v1, vb), and TriMesh
+            // deletes the first of each pair: their candidates leave the queue now. Left in, they
+            // were two thirds of all pops at 10⁶ faces, each a walk down the whole heap to skip it.
+            const EdgeId merged_a = TriMesh::edge(m_.next(m_.next(h))), merged_b = TriMesh::edge(m_.next(TriMesh::twin(h)));
             m_.collapse(h);
+            if (suspect_[v0.idx()]) suspect_[v1.idx()] = true;  // v0's edges are v1's now
+            FHR_DCHECK(m_.is_deleted(merged_a) && m_.is_deleted(merged_b));
+            queue_.remove(merged_a.idx());
+            queue_.remove(merged_b.idx());
             volume_[comp] += change_;
             faces_[comp] -= removed;
             excess_ -= removed;
@@ -266,6 +295,7 @@ private:
     const DecimateOptions& options_;
     std::vector<Quadric> quadric_;
     std::vector<bool> rejected_;        // per halfedge: popped, found invalid, and not queued since
+    std::vector<bool> suspect_;         // per vertex: false when no edge at it has a rejected direction
     std::vector<std::uint8_t> keep_;    // per vertex: never removed (DecimateOptions::keep, apexes)
     std::size_t real_;                  // vertices of T̂ from here on are apexes
     bool cones_ = false;                // T has boundary: m_ is a decimation of T̂
@@ -313,12 +343,18 @@ private:
     // Costs change for the edges at v1 (its quadric grew): they are queued again. Validity can
     // change for every halfedge whose link or faces touch v1's star, so an edge with a direction
     // found invalid earlier near v1 is queued again too.
+    // A neighbour's star is walked only when an edge at it may have a rejected direction
+    // (`suspect_`; queued again, no edge at it has one): the same edges are queued as by walking
+    // the two-ring of every collapse, at 10⁶ faces the most scattered reads of §2 (issue 18).
     void refresh_around(VertexId v1) {
         m_.for_each_outgoing(v1, [&](HalfedgeId g) {
             push_edge(TriMesh::edge(g));
-            m_.for_each_outgoing(m_.to(g), [&](HalfedgeId k) {
+            const VertexId w = m_.to(g);
+            if (!suspect_[w.idx()]) return;
+            m_.for_each_outgoing(w, [&](HalfedgeId k) {
                 if (rejected_[k.idx()] || rejected_[TriMesh::twin(k).idx()]) push_edge(TriMesh::edge(k));
             });
+            suspect_[w.idx()] = false;
         });
     }
 
