@@ -236,10 +236,11 @@ TEST_CASE("PART-5: a domain with its orientation reversed breaks (2) at every co
     }
 }
 
-TEST_CASE("PART-9: a domain made wrong by an edge flip is detected and recovered by decimating again", "[partition][recovery]") {
+TEST_CASE("PART-9, PART-10: a domain made wrong by an edge flip is recovered by decimating again, or kept directly", "[partition][recovery]") {
     const TriMesh T = fandisk();
     const domain::Domain D0 = domain::decimate(T, {.target_faces = 114});
-    // Flip D's edges in turn until the flipped domain's paths break (1) or (2): a hand-made bad domain.
+    // Flip D's edges in turn until the flipped domain's paths break (1) or (2): a hand-made bad
+    // domain, whose history no longer describes it.
     bool found = false;
     for (EdgeId e : D0.mesh.edges()) {
         if (!D0.mesh.is_flip_ok(e)) continue;
@@ -248,12 +249,24 @@ TEST_CASE("PART-9: a domain made wrong by an edge flip is detected and recovered
         const partition::Embedding emb = partition::embed(T, D, test::exact_paths(T, D));
         if (emb.conflicts.empty()) continue;
         found = true;
-        const partition::Partition P = partition::partition(T, D);
         INFO("flipped domain edge " << e.idx());
+        REQUIRE_FALSE(domain::history_describes(D, T));
+        // The paper-only mode recovers by changing D (PART-9).
+        partition::PartitionOptions paper;
+        paper.keep_domain = false;
+        const partition::Partition P = partition::partition(T, D, paper);
         CHECK(P.retries >= 1);
         CHECK(!P.resolved.empty());
         CHECK(test::recovery_violation(T, D, P) == "");
         CHECK(test::partition_violation(T, P) == "");
+        // The default keeps it directly, without its history, when the kept geodesics leave
+        // polygons for the others (PART-10); else it recovers as above.
+        const partition::Partition K = partition::partition(T, D);
+        CHECK(test::partition_violation(T, K) == "");
+        if (K.retries == 0)
+            CHECK(test::keep_violation(T, D, K) == "");
+        else
+            CHECK(test::recovery_violation(T, D, K) == "");
         break;
     }
     CHECK(found);

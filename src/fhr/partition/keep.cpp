@@ -703,7 +703,8 @@ const char* name(CurveKind kind) {
     return "";
 }
 
-KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D, const domain::Domain& H,
+KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D,
+                        const std::function<const domain::Domain&()>& base,
                         std::span<const geodesic::EllipsePath> geodesics,
                         std::span<const Conflict> conflicts,
                         const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,
@@ -732,7 +733,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
         return geodesic_length.at(p) < geodesic_length.at(q);
     });
     // 1. The direct start, when the kept geodesics leave polygons for the others.
-    std::size_t undone = 0, faces = H.mesh.n_faces();
+    std::size_t undone = 0;
     std::optional<Network_> net;
     std::optional<Embedding> checked;  // the direct start's embedding, while its curves stay as they are
     if (start == Start::fast) {
@@ -752,7 +753,10 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
         }
         if (net) say("keeping the domain: the geodesics that conflict with no kept one are kept, the others restricted");
     }
-    // 2. Else a valid start: D_i, until its geodesics satisfy (1) and (2).
+    // 2. Else a valid start: D_i, until its geodesics satisfy (1) and (2). Only now is the
+    //    decimation H needed (and proved or made, which at 10⁶ faces costs seconds).
+    const domain::Domain& H = net ? D : base();
+    std::size_t faces = H.mesh.n_faces();
     while (!net) {
         if (start == Start::gradual) {
             undone = std::min(H.history.size(), undone + std::max<std::size_t>(1, faces / 8));

@@ -91,9 +91,10 @@ enum class Start : std::uint8_t {
 
 /// The network for exactly D.
 /// \pre T is T̂ (core/cones.hpp; T itself when closed), whose vertices from `real_vertices` on are
-///      cone apexes, and D, H are D̂ and Ĥ (domain::close_domain); H is a decimation of T whose
-///      history describes it (domain::history_describes) with D's vertices (H = D when D is itself
-///      that decimation); geodesics[e] is the curve of D's halfedge (e, 0) — for an edge with a cone
+///      cone apexes, and D is D̂ (domain::close_domain); `base()` gives H = Ĥ, a decimation of T
+///      whose history describes it (domain::history_describes) with D's vertices (H = D when D is
+///      itself that decimation), or throws PartitionFailure naming why there is none; it is called
+///      only when the direct start does not serve; geodesics[e] is the curve of D's halfedge (e, 0) — for an edge with a cone
 ///      face beside it (domain::on_cone) the fixed curve, which is kept as it is; `conflicts` are
 ///      those of their embedding; `geodesics_of` gives the curves of any domain of T (in its edge
 ///      order); the separations of one round run on `executor`, each restricted search on a
@@ -101,7 +102,8 @@ enum class Start : std::uint8_t {
 /// \throws std::logic_error when a separated curve breaks (1) or (2) (a bug);
 ///         PartitionFailure when a curve has no room to be separated, or when no flips lead from H
 ///         to D.
-KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D, const domain::Domain& H,
+KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D,
+                        const std::function<const domain::Domain&()>& base,
                         std::span<const geodesic::EllipsePath> geodesics,
                         std::span<const Conflict> conflicts,
                         const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,

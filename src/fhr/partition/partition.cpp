@@ -289,25 +289,33 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         std::string keep_failure;  // why D could not be kept, for the message of a given domain
         if (!embedding.conflicts.empty() && options.keep_domain && out.retries == 0) {
             // Keeping D (partition/keep.hpp): restricted shortest paths where the geodesics conflict,
-            // from D's own decimation, or for a domain given by the user from a decimation of T to
-            // its vertices. Redoing many collapses can crowd curves around one point until there is
-            // no room to separate them: then again from the nearest valid level; failing that, a
-            // decimated D is changed as the paper-only mode does and a given one is refused.
+            // directly on D, else from D's own decimation, or for a domain given by the user from a
+            // decimation of T to its vertices (H, made or proved only when first needed). Redoing
+            // many collapses can crowd curves around one point until there is no room to separate
+            // them: then again from the nearest valid level; failing that, a decimated D is changed
+            // as the paper-only mode does and a given one is refused.
             std::optional<domain::Domain> H;
-            if (decimated && domain::history_describes(D, T)) H = D_hat;
-            if (!decimated)
-                if (const std::optional<domain::Domain> h = decimation_to_vertices(T, D, keep_failure)) H = domain::close_domain(*h, T);
+            std::string no_base;  // why there is no H, once found
+            auto base = [&]() -> const domain::Domain& {
+                if (!H && no_base.empty()) {
+                    if (decimated && domain::history_describes(D, T)) H = D_hat;
+                    else if (decimated) no_base = "D's history does not describe it";
+                    else if (const std::optional<domain::Domain> h = decimation_to_vertices(T, D, no_base)) H = domain::close_domain(*h, T);
+                }
+                if (!H) throw PartitionFailure(no_base);
+                return *H;
+            };
             for (const Start start : {Start::fast, Start::gradual}) {
-                if (!H) break;
+                if (!no_base.empty()) break;
                 try {
-                    attempt = keep_domain(T_hat, T.n_vertices(), D_hat, *H, out.paths.values(), embedding.conflicts,
+                    attempt = keep_domain(T_hat, T.n_vertices(), D_hat, base, out.paths.values(), embedding.conflicts,
                                           [&](const domain::Domain& d) { return cache.all(d); }, options.progress, executor, start);
                     break;
                 } catch (const PartitionFailure& e) {
                     keep_failure = e.what();
                     if (options.progress)
                         options.progress("keeping the domain failed (" + keep_failure +
-                                         (start == Start::fast ? "); again from the nearest valid level"
+                                         (start == Start::fast && no_base.empty() ? "); again from the nearest valid level"
                                           : decimated          ? "); changing D instead"
                                                                : "); the given domain is refused"));
                 }
