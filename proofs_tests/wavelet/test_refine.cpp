@@ -5,10 +5,12 @@
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
+#include <atomic>
 #include <cmath>
 #include <map>
 
 #include <fhr/core/errors.hpp>
+#include <fhr/core/executor.hpp>
 #include <fhr/core/topology.hpp>
 #include <fhr/wavelet/refine.hpp>
 #include "wavelet_support.hpp"
@@ -182,7 +184,7 @@ TEST_CASE("WAV-1: a closed genus-0 domain with 114 faces (the fandisk's D) gives
 TEST_CASE("WAV-2: sample() evaluates φ at each vertex's location; the first #V(D^j) samples are f^j", "[unit][wavelet]") {
     const TriMesh D = test::bipyramid(5);
     const Refinement r = wavelet::refine(D, 2);
-    std::size_t calls = 0;
+    std::atomic<std::size_t> calls = 0;
     const std::vector<Vec3> f = wavelet::sample(r, [&](FaceId face, const std::array<double, 3>& b) {
         ++calls;
         return Vec3(face.idx(), b[1], b[2]);
@@ -191,6 +193,23 @@ TEST_CASE("WAV-2: sample() evaluates φ at each vertex's location; the first #V(
     for (std::size_t v = 0; v < f.size(); ++v) {
         CHECK(f[v] == Vec3(r.location[v].face.idx(), r.location[v].beta[1], r.location[v].beta[2]));
     }
+}
+
+TEST_CASE("WAV-2: sample() on several threads calls φ once per vertex and gives the one-thread samples", "[unit][wavelet]") {
+    const Refinement r = wavelet::refine(test::bipyramid(5), 5);  // 5,122 vertices: two blocks of 4,096 and more
+    REQUIRE(r.finest().n_vertices() > 4096);
+    std::atomic<std::size_t> calls = 0;
+    auto phi = [&](FaceId face, const std::array<double, 3>& b) {
+        ++calls;
+        return Vec3(face.idx() + b[0], b[1] * b[2], b[2] - b[0]);
+    };
+    ThreadPool one(1), three(3);
+    const std::vector<Vec3> a = wavelet::sample(r, phi, &one);
+    REQUIRE(calls == r.finest().n_vertices());
+    const std::vector<Vec3> b = wavelet::sample(r, phi, &three);
+    CHECK(calls == 2 * r.finest().n_vertices());
+    CHECK(a == b);  // a vertex missed on three threads would keep (0, 0, 0)
+    for (std::size_t v = 0; v < a.size(); ++v) REQUIRE(a[v] == phi(r.location[v].face, r.location[v].beta));
 }
 
 TEST_CASE("WAV-1, WAV-11: refusals: empty or garbage domains, negative or too deep levels", "[unit][wavelet]") {

@@ -19,7 +19,7 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
 
     auto start = detail::Clock::now();
     const Refinement r = refine(D, levels);
-    out.remesh_positions = sample(r, phi);
+    out.remesh_positions = sample(r, phi, executor);
     out.refinement_seconds = detail::seconds_since(start);
 
     start = detail::Clock::now();

@@ -51,8 +51,8 @@ struct WaveletResult {
 /// The §5 wavelet stage for a domain D (closed or with boundary, one component or several),
 /// φ: Ω_D → Ω_T and the input surface T. Hausdorff distances use `hausdorff_options`; a
 /// resolution of 0 there means 1e−4 of T's bounding-box diagonal (the bracket [lower, upper] of
-/// each distance is then that narrow). The brackets are independent tasks on `executor`
-/// (default_executor() when null).
+/// each distance is then that narrow). The samples of φ (sample()) and the brackets, independent
+/// tasks, run on `executor` (default_executor() when null).
 /// \pre D passes validate(); phi defined on all of Ω_D (DomainMap); 0 ≤ levels with
 ///      4^levels·#F(D) ≤ max_refined_faces; each keep_percent in [0, 100]; T has a face.
 /// \throws InvalidInput for a bad level or percentage, NumericalFailure when the decomposition's

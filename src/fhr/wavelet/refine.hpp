@@ -25,6 +25,7 @@
 #include <functional>
 #include <vector>
 
+#include <fhr/core/executor.hpp>
 #include <fhr/core/trimesh.hpp>
 
 namespace fhr::wavelet {
@@ -70,7 +71,9 @@ inline constexpr std::size_t max_refined_faces = std::size_t{1} << 26;
 Refinement refine(const TriMesh& D, int J);
 
 /// f^J at every vertex of D^J: samples[v] = phi(location[v].face, location[v].beta). The first
-/// #V(D^j) samples are f^j at the vertices of D^j (paper §5: f^j(v) = φ(v)).
-std::vector<Vec3> sample(const Refinement& r, const DomainMap& phi);
+/// #V(D^j) samples are f^j at the vertices of D^j (paper §5: f^j(v) = φ(v)). phi is called from
+/// the threads of `executor` (default_executor() when null) at once, so it must be safe to call
+/// concurrently; each sample is phi's, on any number of threads.
+std::vector<Vec3> sample(const Refinement& r, const DomainMap& phi, Executor* executor = nullptr);
 
 }  // namespace fhr::wavelet
