@@ -10,6 +10,7 @@
 
 #include <cmath>
 
+#include <fhr/core/executor.hpp>
 #include <fhr/wavelet/filter_bank.hpp>
 #include "wavelet_support.hpp"
 
@@ -252,4 +253,30 @@ TEST_CASE("WAV-4: the fandisk-sized domain (114 faces) at J = 3 decomposes with 
     INFO("round trip error " << err << ", CG steps " << d.solves[0].iterations << ", " << d.solves[1].iterations << ", "
                              << d.solves[2].iterations);
     CHECK(err <= 1e-12 * max_abs(f));
+}
+
+TEST_CASE("WAV-4: reconstruct gives the same coefficients bit for bit on one and on three threads", "[unit][wavelet]") {
+    // 20,482 vertices at J = 6: the finest level's rows make two blocks of 16,384 and more.
+    const Refinement r = wavelet::refine(test::bipyramid(5), 6);
+    REQUIRE(r.finest().n_vertices() > 16384);
+    const FilterBank bank(r);
+    const Decomposition d = bank.decompose(test::random_points(r.finest().n_vertices(), 7, 1.0, Vec3::Zero()));
+    ThreadPool one(1), three(3);
+    const std::vector<Vec3> a = bank.reconstruct(d, &one), b = bank.reconstruct(d, &three);
+    REQUIRE(a.size() == r.finest().n_vertices());
+    CHECK(a == b);
+    // And each level's rows are P c^{j−1} + Q d^{j−1} as one product computes them.
+    std::vector<Vec3> c = d.coarse;
+    for (int j = 1; j <= bank.depth(); ++j) {
+        const wavelet::LevelFilter& L = bank.level(j);
+        const std::vector<Vec3>& detail = d.detail[static_cast<std::size_t>(j - 1)];
+        Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> C(c.size(), 3), Dt(detail.size(), 3);
+        for (std::size_t i = 0; i < c.size(); ++i) C.row(static_cast<Eigen::Index>(i)) = c[i].transpose();
+        for (std::size_t i = 0; i < detail.size(); ++i) Dt.row(static_cast<Eigen::Index>(i)) = detail[i].transpose();
+        const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> whole = L.P * C + L.Q * Dt;
+        const std::vector<Vec3> level = bank.reconstruct_level(j, c, detail, &three);
+        for (std::size_t i = 0; i < level.size(); ++i) REQUIRE(level[i] == whole.row(static_cast<Eigen::Index>(i)).transpose());
+        c = level;
+    }
+    CHECK(c == a);
 }

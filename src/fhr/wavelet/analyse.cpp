@@ -28,7 +28,7 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     out.decomposition_seconds = detail::seconds_since(start);
 
     start = detail::Clock::now();
-    const std::vector<Vec3> round_trip = bank.reconstruct(d);
+    const std::vector<Vec3> round_trip = bank.reconstruct(d, executor);
     out.reconstruction_seconds = detail::seconds_since(start);
 
     for (std::size_t v = 0; v < round_trip.size(); ++v) {
@@ -50,7 +50,7 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
         k.percent = p;
         k.count = kept_count(out.coefficients, p);
         start = detail::Clock::now();
-        k.positions = bank.reconstruct(keep_largest(bank, d, k.count));
+        k.positions = bank.reconstruct(keep_largest(bank, d, k.count), executor);
         out.reconstruction_seconds += detail::seconds_since(start);
         k.l2_error = rms_distance(out.remesh_positions, k.positions);
         out.kept.push_back(std::move(k));

@@ -3,6 +3,7 @@
 #include <fhr/core/detail/contract.hpp>
 #include <fhr/wavelet/filter_bank.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -147,17 +148,27 @@ Decomposition FilterBank::decompose(std::span<const Vec3> f) const {
     return out;
 }
 
-std::vector<Vec3> FilterBank::reconstruct_level(int j, std::span<const Vec3> coarse, std::span<const Vec3> detail) const {
+std::vector<Vec3> FilterBank::reconstruct_level(int j, std::span<const Vec3> coarse, std::span<const Vec3> detail,
+                                                Executor* executor) const {
     const LevelFilter& L = level(j);
     std::vector<Vec3> c(static_cast<std::size_t>(L.P.rows()));
-    view(c) = L.P * view(coarse) + L.Q * view(detail);
+    const ConstView C = view(coarse), Dd = view(detail);
+    View out = view(c);
+    // Row r of the result is row r of P times c^{j−1} plus row r of Q times d^{j−1}, whichever
+    // block it is computed in (P and Q are stored by rows).
+    constexpr Eigen::Index block = 16384;
+    const Eigen::Index n = L.P.rows();
+    executor_or_default(executor).for_each(static_cast<std::size_t>((n + block - 1) / block), 1, [&](std::size_t b) {
+        const Eigen::Index first = static_cast<Eigen::Index>(b) * block, count = std::min(block, n - first);
+        out.middleRows(first, count) = L.P.middleRows(first, count) * C + L.Q.middleRows(first, count) * Dd;
+    });
     return c;
 }
 
-std::vector<Vec3> FilterBank::reconstruct(const Decomposition& d) const {
+std::vector<Vec3> FilterBank::reconstruct(const Decomposition& d, Executor* executor) const {
     FHR_DCHECK(d.detail.size() == static_cast<std::size_t>(depth()));
     std::vector<Vec3> c = d.coarse;
-    for (int j = 1; j <= depth(); ++j) c = reconstruct_level(j, c, d.detail[static_cast<std::size_t>(j - 1)]);
+    for (int j = 1; j <= depth(); ++j) c = reconstruct_level(j, c, d.detail[static_cast<std::size_t>(j - 1)], executor);
     return c;
 }
 

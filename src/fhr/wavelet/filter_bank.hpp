@@ -88,12 +88,14 @@ public:
     LevelSolve decompose_level(int j, std::span<const Vec3> c, std::vector<Vec3>& coarse,
                                std::vector<Vec3>& detail) const;
 
-    /// c^J = P(…P(P c^0 + Q d^0)…) + Q d^{J−1}, explicit.
+    /// c^J = P(…P(P c^0 + Q d^0)…) + Q d^{J−1}, explicit. Each level's rows in blocks on
+    /// `executor` (default_executor() when null): the same result on any number of threads.
     /// \pre d has the sizes decompose gives for this bank.
-    std::vector<Vec3> reconstruct(const Decomposition& d) const;
+    std::vector<Vec3> reconstruct(const Decomposition& d, Executor* executor = nullptr) const;
 
-    /// One level: c^j = P c^{j−1} + Q d^{j−1}.
-    std::vector<Vec3> reconstruct_level(int j, std::span<const Vec3> coarse, std::span<const Vec3> detail) const;
+    /// One level: c^j = P c^{j−1} + Q d^{j−1}, as reconstruct.
+    std::vector<Vec3> reconstruct_level(int j, std::span<const Vec3> coarse, std::span<const Vec3> detail,
+                                        Executor* executor = nullptr) const;
 
 private:
     std::vector<LevelFilter> levels_;
