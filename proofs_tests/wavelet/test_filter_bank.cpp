@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 
 #include <fhr/core/executor.hpp>
@@ -255,13 +256,23 @@ TEST_CASE("WAV-4: the fandisk-sized domain (114 faces) at J = 3 decomposes with 
     CHECK(err <= 1e-12 * max_abs(f));
 }
 
-TEST_CASE("WAV-4: reconstruct gives the same coefficients bit for bit on one and on three threads", "[unit][wavelet]") {
+TEST_CASE("WAV-4: the bank, decompose and reconstruct give the same numbers bit for bit on one and on three threads", "[unit][wavelet]") {
     // 20,482 vertices at J = 6: the finest level's rows make two blocks of 16,384 and more.
     const Refinement r = wavelet::refine(test::bipyramid(5), 6);
     REQUIRE(r.finest().n_vertices() > 16384);
-    const FilterBank bank(r);
-    const Decomposition d = bank.decompose(test::random_points(r.finest().n_vertices(), 7, 1.0, Vec3::Zero()));
     ThreadPool one(1), three(3);
+    const std::vector<Vec3> f = test::random_points(r.finest().n_vertices(), 7, 1.0, Vec3::Zero());
+    const FilterBank bank(r, &three), alone(r, &one);
+    for (int j = 1; j <= bank.depth(); ++j) {
+        CHECK(bank.level(j).norm == alone.level(j).norm);
+        const wavelet::SparseRows &a = bank.level(j).A, &b = alone.level(j).A;
+        REQUIRE(a.nonZeros() == b.nonZeros());
+        CHECK(std::equal(a.valuePtr(), a.valuePtr() + a.nonZeros(), b.valuePtr()));
+        CHECK(std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr()));
+    }
+    const Decomposition d = bank.decompose(f, &three), d1 = alone.decompose(f, &one);
+    CHECK(d.coarse == d1.coarse);
+    CHECK(d.detail == d1.detail);
     const std::vector<Vec3> a = bank.reconstruct(d, &one), b = bank.reconstruct(d, &three);
     REQUIRE(a.size() == r.finest().n_vertices());
     CHECK(a == b);

@@ -23,8 +23,8 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     out.refinement_seconds = detail::seconds_since(start);
 
     start = detail::Clock::now();
-    const FilterBank bank(r);
-    const Decomposition d = bank.decompose(out.remesh_positions);
+    const FilterBank bank(r, executor);
+    const Decomposition d = bank.decompose(out.remesh_positions, executor);
     out.decomposition_seconds = detail::seconds_since(start);
 
     start = detail::Clock::now();

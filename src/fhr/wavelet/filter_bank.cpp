@@ -4,6 +4,7 @@
 #include <fhr/wavelet/filter_bank.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -99,13 +100,13 @@ std::size_t Decomposition::coefficient_count() const {
     return n;
 }
 
-FilterBank::FilterBank(const Refinement& r) {
-    for (int j = 1; j <= r.depth(); ++j)
-        levels_.push_back(build_level(r.levels[static_cast<std::size_t>(j - 1)], r.levels[static_cast<std::size_t>(j)], j));
+FilterBank::FilterBank(const Refinement& r, Executor* executor) {
+    levels_.resize(static_cast<std::size_t>(r.depth()));
+    executor_or_default(executor).for_each(levels_.size(), 1, [&](std::size_t i) { levels_[i] = build_level(r.levels[i], r.levels[i + 1], static_cast<int>(i) + 1); });
 }
 
-LevelSolve FilterBank::decompose_level(int j, std::span<const Vec3> c, std::vector<Vec3>& coarse,
-                                       std::vector<Vec3>& detail) const {
+LevelSolve FilterBank::decompose_level(int j, std::span<const Vec3> c, std::vector<Vec3>& coarse, std::vector<Vec3>& detail,
+                                       Executor* executor) const {
     FHR_DCHECK(1 <= j && j <= depth());
     FHR_DCHECK(c.size() == static_cast<std::size_t>(level(j).P.rows()));
     const LevelFilter& L = level(j);
@@ -118,30 +119,34 @@ LevelSolve FilterBank::decompose_level(int j, std::span<const Vec3> c, std::vect
     s.tolerance = cg_relative_tolerance * (C.size() == 0 ? 0.0 : C.cwiseAbs().maxCoeff());
     detail.assign(static_cast<std::size_t>(m), Vec3::Zero());
     View D = view(detail);
-    Eigen::VectorXd x;
+    // The three coordinates' systems are independent: one task each, checked in coordinate order.
+    std::array<Eigen::VectorXd, 3> x;
+    std::array<double, 3> residual{};
+    std::array<int, 3> steps{};
+    executor_or_default(executor).for_each(3, 1, [&](std::size_t k) {
+        steps[k] = conjugate_gradients(L.A, L.inverse_diagonal, b.col(static_cast<Eigen::Index>(k)), s.tolerance, x[k], residual[k]);
+    });
     for (int k = 0; k < 3; ++k) {
-        double residual = 0;
-        const int it = conjugate_gradients(L.A, L.inverse_diagonal, b.col(k), s.tolerance, x, residual);
-        if (it > max_cg_iterations)
+        if (steps[k] > max_cg_iterations)
             throw NumericalFailure("wavelet decomposition, level " + std::to_string(j) + ": conjugate gradients left the residual " +
-                                   std::to_string(residual) + " above " + std::to_string(s.tolerance) + " after " +
+                                   std::to_string(residual[k]) + " above " + std::to_string(s.tolerance) + " after " +
                                    std::to_string(max_cg_iterations) + " steps");
-        D.col(k) = x;
-        s.iterations = std::max(s.iterations, it);
-        s.residual = std::max(s.residual, residual);
+        D.col(k) = x[k];
+        s.iterations = std::max(s.iterations, steps[k]);
+        s.residual = std::max(s.residual, residual[k]);
     }
     coarse.assign(static_cast<std::size_t>(nc), Vec3::Zero());
     view(coarse) = C.topRows(nc) - L.Q.topRows(nc) * D;
     return s;
 }
 
-Decomposition FilterBank::decompose(std::span<const Vec3> f) const {
+Decomposition FilterBank::decompose(std::span<const Vec3> f, Executor* executor) const {
     Decomposition out;
     out.detail.resize(levels_.size());
     out.solves.resize(levels_.size());
     std::vector<Vec3> c(f.begin(), f.end()), next;
     for (int j = depth(); j >= 1; --j) {
-        out.solves[static_cast<std::size_t>(j - 1)] = decompose_level(j, c, next, out.detail[static_cast<std::size_t>(j - 1)]);
+        out.solves[static_cast<std::size_t>(j - 1)] = decompose_level(j, c, next, out.detail[static_cast<std::size_t>(j - 1)], executor);
         c.swap(next);
     }
     out.coarse = std::move(c);

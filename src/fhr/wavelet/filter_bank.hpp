@@ -71,22 +71,25 @@ inline constexpr double cg_relative_tolerance = 1e-14;
 
 class FilterBank {
 public:
-    /// Builds P, Q, A and the norms for every level of r.
+    /// Builds P, Q, A and the norms for every level of r, the levels as tasks on `executor`
+    /// (default_executor() when null; the same bank on any number of threads).
     /// \pre r = refine(D, J) (D closed or with boundary, one component or several).
-    explicit FilterBank(const Refinement& r);
+    explicit FilterBank(const Refinement& r, Executor* executor = nullptr);
 
     int depth() const { return static_cast<int>(levels_.size()); }  ///< J
     /// \pre 1 ≤ j ≤ depth().
     const LevelFilter& level(int j) const { return levels_[static_cast<std::size_t>(j - 1)]; }
 
-    /// c^J → (c^0, d^0, …, d^{J−1}), level by level down to D.
+    /// c^J → (c^0, d^0, …, d^{J−1}), level by level down to D; each level's three coordinates
+    /// solved as tasks on `executor` (default_executor() when null; the same result on any number
+    /// of threads).
     /// \pre f.size() == #V(D^J), every component finite.
     /// \throws NumericalFailure when CG does not reach τ_j within max_cg_iterations.
-    Decomposition decompose(std::span<const Vec3> f) const;
+    Decomposition decompose(std::span<const Vec3> f, Executor* executor = nullptr) const;
 
     /// One level: c^j → (c^{j−1}, d^{j−1}). \pre 1 ≤ j ≤ depth(), c.size() == #V(D^j).
-    LevelSolve decompose_level(int j, std::span<const Vec3> c, std::vector<Vec3>& coarse,
-                               std::vector<Vec3>& detail) const;
+    LevelSolve decompose_level(int j, std::span<const Vec3> c, std::vector<Vec3>& coarse, std::vector<Vec3>& detail,
+                               Executor* executor = nullptr) const;
 
     /// c^J = P(…P(P c^0 + Q d^0)…) + Q d^{J−1}, explicit. Each level's rows in blocks on
     /// `executor` (default_executor() when null): the same result on any number of threads.
