@@ -129,3 +129,35 @@ TEST_CASE("executor_or_default: the given executor, else the one shared default"
     CHECK(&fhr::executor_or_default(nullptr) == &shared);
     CHECK(&fhr::default_executor() == &shared);
 }
+
+TEST_CASE("ThreadPool: a caller whose tasks are done helps the calls its helpers post while it waits", "[unit][executor]") {
+    // Two threads, two tasks: a task on the calling thread ends soon; a task on the worker posts
+    // a call of two tasks that must run at once (each waits until both have started). Its only
+    // possible helper is the caller, waiting for the outer call: without its help they never meet.
+    ThreadPool pool(2);
+    const std::thread::id caller = std::this_thread::get_id();
+    int nested_rounds = 0;
+    for (int round = 0; round < 20; ++round) {
+        std::atomic<int> met{0}, nested{0};
+        pool.for_each(2, 1, [&](std::size_t) {
+            if (std::this_thread::get_id() == caller) {  // long enough for the worker to take the other task
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
+                return;
+            }
+            ++nested;
+            std::mutex lock;
+            std::condition_variable started_one;
+            int started = 0;
+            pool.for_each(2, 1, [&](std::size_t) {
+                std::unique_lock<std::mutex> hold(lock);
+                ++started;
+                started_one.notify_all();
+                if (started_one.wait_for(hold, std::chrono::seconds(2), [&] { return started == 2; })) ++met;
+            });
+        });
+        INFO("round " << round);
+        CHECK(met == 2 * nested);
+        nested_rounds += nested;
+    }
+    CHECK(nested_rounds > 0);  // the worker took a task in some round (it takes one in nearly every)
+}

@@ -17,7 +17,6 @@ struct ThreadPool::Call {
     std::atomic<std::size_t> next{0};
     std::size_t places;  // helpers that may still join (under lock_)
     std::size_t inside = 0;  // helpers working on it (under lock_)
-    std::condition_variable left;  // the last helper left
     std::mutex error_lock;
     std::exception_ptr error;
     std::size_t error_index = 0;
@@ -58,14 +57,18 @@ void ThreadPool::work() {
     for (;;) {
         wake_.wait(hold, [&] { return stopping_ || !calls_.empty(); });
         if (stopping_) return;
-        Call* call = calls_.front();
-        if (--call->places == 0) calls_.pop_front();
-        ++call->inside;
-        hold.unlock();
-        call->run();
-        hold.lock();
-        if (--call->inside == 0) call->left.notify_all();
+        help(hold);
     }
+}
+
+void ThreadPool::help(std::unique_lock<std::mutex>& hold) {
+    Call* call = calls_.front();
+    if (--call->places == 0) calls_.pop_front();
+    ++call->inside;
+    hold.unlock();
+    call->run();
+    hold.lock();
+    if (--call->inside == 0) wake_.notify_all();  // its caller waits on wake_
 }
 
 void ThreadPool::for_each(std::size_t n, std::size_t grain, const std::function<void(std::size_t)>& task) {
@@ -88,7 +91,14 @@ void ThreadPool::for_each(std::size_t n, std::size_t grain, const std::function<
     if (helpers > 0) {
         std::unique_lock<std::mutex> hold(lock_);
         if (call.places > 0) calls_.erase(std::find(calls_.begin(), calls_.end(), &call));  // places nobody took
-        call.left.wait(hold, [&] { return call.inside == 0; });
+        // While its helpers finish, the caller helps with calls posted meanwhile (those of a task
+        // still running, say) instead of idling: an oracle beside §5 on two threads leaves §5's
+        // own calls a thread when it ends.
+        for (;;) {
+            wake_.wait(hold, [&] { return call.inside == 0 || !calls_.empty(); });
+            if (call.inside == 0) break;
+            help(hold);
+        }
     }
     if (call.error) std::rethrow_exception(call.error);
 }

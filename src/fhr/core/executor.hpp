@@ -33,7 +33,8 @@ public:
 /// `threads` − 1 worker threads, started by the constructor and joined by the destructor; the
 /// thread calling for_each works as the last one. Any number of threads may call for_each at once,
 /// and a task may itself call for_each on the same pool (the caller always works on its own
-/// call's tasks, so every call finishes even when no worker is free).
+/// call's tasks, so every call finishes even when no worker is free). A caller whose indices are
+/// used up helps with other posted calls while it waits for its helpers.
 class ThreadPool final : public Executor {
 public:
     /// threads = 0: std::thread::hardware_concurrency() (at least 1). 1: every task on the caller.
@@ -49,6 +50,9 @@ public:
 private:
     struct Call;
     void work();
+    /// Joins the first posted call as a helper until its indices are used up. \pre lock_ held
+    /// (released while working), calls_ not empty.
+    void help(std::unique_lock<std::mutex>& hold);
 
     std::mutex lock_;
     std::condition_variable wake_;  // a call was posted, or the pool stops

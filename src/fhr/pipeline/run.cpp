@@ -6,6 +6,7 @@
 
 #include <fhr/core/detail/stopwatch.hpp>
 #include <fhr/core/errors.hpp>
+#include <fhr/core/executor.hpp>
 #include <fhr/pipeline/outputs.hpp>
 
 namespace fhr::pipeline {
@@ -47,20 +48,28 @@ RunResult run(const TriMesh& T, RunOptions options) {
     say("domain: " + std::to_string(D.mesh.n_vertices()) + " vertices, " + std::to_string(D.mesh.n_faces()) + " faces" + more);
     // §3, §4.
     out.parameterization = parameterize(T, std::move(D), method);
-    // The independent oracle (src/fhr/exchange) judges exactly what param.fhrp will hold.
-    auto start = detail::Clock::now();
+    // The independent oracle (src/fhr/exchange) judges exactly what param.fhrp will hold; §5 reads
+    // the patches' maps, which the oracle does not touch: the two run side by side on the
+    // executor (issue 18: most of the oracle runs on one thread, §5 fills the other).
     exchange::ParamFile lent = lend_param_file(out.parameterization);
-    out.oracle = exchange::verify(lent, &T, method.executor);
+    double verifying = 0, locating = 0;
+    executor_or_default(method.executor).for_each(2, 1, [&](std::size_t task) {
+        const auto start = detail::Clock::now();
+        if (task == 0) {
+            out.oracle = exchange::verify(lent, &T, method.executor);
+            verifying = detail::seconds_since(start);
+        } else if (options.levels > 0) {
+            // §5: D^J sampled through φ, prewavelet decomposition, compression.
+            const GlobalMap phi(out.parameterization);  // the point locators: part of evaluating φ, so of "refinement"
+            locating = detail::seconds_since(start);
+            out.wavelets = wavelet::analyse(out.parameterization.partition.domain.mesh,
+                                            [&](FaceId d, const std::array<double, 3>& beta) { return phi.phi(d, beta); },
+                                            options.levels, options.keep, T, {}, options.method.executor);
+        }
+    });
     take_back_param_file(out.parameterization, std::move(lent));
-    observe("verification", detail::seconds_since(start), true);
-    // §5: D^J sampled through φ, prewavelet decomposition, compression.
-    if (options.levels > 0) {
-        start = detail::Clock::now();
-        const GlobalMap phi(out.parameterization);  // the point locators: part of evaluating φ, so of "refinement"
-        const double locating = detail::seconds_since(start);
-        out.wavelets = wavelet::analyse(out.parameterization.partition.domain.mesh,
-                                        [&](FaceId d, const std::array<double, 3>& beta) { return phi.phi(d, beta); }, options.levels,
-                                        options.keep, T, {}, options.method.executor);
+    observe("verification", verifying, true);
+    if (out.wavelets) {
         observe("refinement", locating + out.wavelets->refinement_seconds, true);
         observe("decomposition", out.wavelets->decomposition_seconds, true);
         observe("reconstruction", out.wavelets->reconstruction_seconds, true);

@@ -8,7 +8,9 @@
 //   geodesic_paths, parameterization: parameterize(T, D)                  (pipeline.hpp)
 //   verification:     the oracle (src/fhr/exchange) on exactly what param.fhrp would hold
 //   with J = levels > 0: refinement, decomposition, reconstruction: D^J sampled through φ, its
-//                     prewavelet coefficients, the kept percentages reconstructed (src/fhr/wavelet)
+//                     prewavelet coefficients, the kept percentages reconstructed (src/fhr/wavelet),
+//                     beside the oracle (two tasks: they read different parts of the result, and
+//                     each stage's seconds are its own, so the stages' sum may exceed the wall time)
 // Thread safety: run() keeps no state between calls; concurrent calls (on the same T too) are safe.
 // Its progress lines and stage times are reported on the calling thread; its independent tasks run
 // on options.method.executor (core/executor.hpp), with the same result on any executor.
