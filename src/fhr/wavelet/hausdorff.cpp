@@ -334,17 +334,18 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
             if (s != t) b = std::min(b, B.pair_bound(q.x, s, t));
         return b;
     };
-    // The triangles with the farthest corner first: they raise lower soonest.
+    // The 64 triangles with the farthest corner first: they raise lower soonest. Then the others
+    // in A's order, where neighbours follow one another and find the tree's nodes in cache (in
+    // farthest-first order throughout, the horse's brackets took half as long again, with the same
+    // bounds).
     std::vector<std::pair<double, std::uint32_t>> order(a_triangles.size());  // (−farthest corner, triangle)
     for (std::uint32_t i = 0; i < order.size(); ++i) {
         const Triangle& t = a_triangles[i];
         order[i] = {-std::max({at_vertex[t[0]].distance, at_vertex[t[1]].distance, at_vertex[t[2]].distance}), i};
     }
-    {
-        const std::size_t first = std::min<std::size_t>(order.size(), 64);
-        std::partial_sort(order.begin(), order.begin() + first, order.end());
-        std::sort(order.begin() + first, order.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
-    }
+    const std::size_t farthest = std::min<std::size_t>(order.size(), 64);
+    std::partial_sort(order.begin(), order.begin() + farthest, order.end());
+    std::sort(order.begin() + farthest, order.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
     // A side's midpoint is shared by the pieces on both sides of it (and a side of A's triangle by
     // two triangles): its distance is evaluated once (0.5·(u + v) is the same double either way).
     using Point = std::array<double, 3>;
