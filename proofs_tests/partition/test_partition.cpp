@@ -326,6 +326,32 @@ TEST_CASE("PART-10: the elephant at 114 faces keeps its domain, conflicting edge
     CHECK(restricted_oracle_violation(T, P, true) == "");
 }
 
+TEST_CASE("PART-10: a decimated D flipped afterwards, where the direct start does not serve, is changed as PART-9 says why",
+          "[partition][keep][real]") {
+    // The elephant at 114 faces needs a finer start (its dropped edges leave an annulus), and a
+    // finer start needs D's history, which no longer describes D once an edge is flipped.
+    const TriMesh T = cgal_mesh("elephant.off");
+    domain::Domain D = domain::decimate(T, {.target_faces = 114});
+    EdgeId flipped;
+    for (EdgeId e : D.mesh.edges())
+        if (D.mesh.is_flip_ok(e)) {
+            flipped = e;
+            break;
+        }
+    REQUIRE(flipped.valid());
+    D.mesh.flip(flipped);
+    REQUIRE_FALSE(domain::history_describes(D, T));
+    REQUIRE_FALSE(partition::embed(T, D, test::exact_paths(T, D)).conflicts.empty());
+    std::vector<std::string> lines;
+    partition::PartitionOptions options;
+    options.progress = [&](const std::string& line) { lines.push_back(line); };
+    const partition::Partition P = partition::partition(T, D, options);
+    CHECK(std::count(lines.begin(), lines.end(), "keeping the domain failed (D's history does not describe it); changing D instead") == 1);
+    CHECK(P.retries >= 1);
+    CHECK(test::recovery_violation(T, D, P) == "");
+    CHECK(test::partition_violation(T, P) == "");
+}
+
 TEST_CASE("PART-10: random meshes of genus 0–3 keep their decimated domain", "[partition][keep][property]") {
     rc::prop("the partition of a random closed mesh keeps its random decimated domain", [] {
         const fhr::testing::GeneratedMesh g = *fhr::testing::gen_closed_mesh(0, 3, 1500);
