@@ -215,8 +215,10 @@ public:
         // part of the surface.
         volume_ = volume6_per_component(m_, comps);
         min_volume_.assign(comps.count, -INFINITY);
-        // Before any collapse m_ is T̂ itself (the same components, the same volumes).
-        const bool fresh = history_.empty();
+        // A fresh start (decimate's identity(T̂): no history, every vertex its own) is T̂ itself,
+        // face for face: the same components and the same volumes, summed in the same order.
+        bool fresh = history_.empty() && m_.n_faces() == t_hat.n_faces();
+        for (VertexId v : m_.vertices()) fresh = fresh && t_of_[v] == v;
         const Components t_comps = fresh ? Components{} : connected_components(t_hat);
         const std::vector<double> t_volume = fresh ? volume_ : volume6_per_component(t_hat, t_comps);
         for (VertexId v : m_.vertices())
