@@ -10,6 +10,7 @@
 // call cost more than some of those calls' tasks. The pool's workers wait between calls.
 #pragma once
 
+#include <algorithm>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -66,5 +67,12 @@ Executor& default_executor();
 
 /// `executor` when it is given, else default_executor().
 inline Executor& executor_or_default(Executor* executor) { return executor ? *executor : default_executor(); }
+
+/// [0, n) in consecutive blocks of `block` indices (the last may be shorter), one task each on
+/// `executor`: range(first, end) for each block. \pre block > 0.
+inline void for_each_block(Executor& executor, std::size_t n, std::size_t block, std::size_t grain,
+                           const std::function<void(std::size_t, std::size_t)>& range) {
+    executor.for_each((n + block - 1) / block, grain, [&](std::size_t b) { range(b * block, std::min(n, (b + 1) * block)); });
+}
 
 }  // namespace fhr

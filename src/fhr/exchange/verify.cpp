@@ -1044,10 +1044,8 @@ CheckResult Verifier::check_geometry() const {
         const SimplexGrid grid(t, t.triangles(), std::sqrt(area_t / static_cast<double>(t.n_faces())), tolerance);
         // The distances in parallel, in blocks; the failures in vertex order below.
         std::vector<double> distance(refined.n_vertices());
-        constexpr std::size_t block = 4096;
-        executor_.for_each((distance.size() + block - 1) / block, 4, [&](std::size_t b) {
-            for (std::size_t v = b * block; v < std::min(distance.size(), (b + 1) * block); ++v)
-                distance[v] = grid.distance(refined.position(VertexId(static_cast<VertexId::Index>(v))));
+        for_each_block(executor_, distance.size(), 4096, 4, [&](std::size_t first, std::size_t end) {
+            for (std::size_t v = first; v < end; ++v) distance[v] = grid.distance(refined.position(VertexId(static_cast<VertexId::Index>(v))));
         });
         for (VertexId v : refined.vertices()) {
             const double d = distance[v.idx()];

@@ -161,11 +161,9 @@ std::vector<Vec3> FilterBank::reconstruct_level(int j, std::span<const Vec3> coa
     View out = view(c);
     // Row r of the result is row r of P times c^{j−1} plus row r of Q times d^{j−1}, whichever
     // block it is computed in (P and Q are stored by rows).
-    constexpr Eigen::Index block = 16384;
-    const Eigen::Index n = L.P.rows();
-    executor_or_default(executor).for_each(static_cast<std::size_t>((n + block - 1) / block), 1, [&](std::size_t b) {
-        const Eigen::Index first = static_cast<Eigen::Index>(b) * block, count = std::min(block, n - first);
-        out.middleRows(first, count) = L.P.middleRows(first, count) * C + L.Q.middleRows(first, count) * Dd;
+    for_each_block(executor_or_default(executor), static_cast<std::size_t>(L.P.rows()), 16384, 1, [&](std::size_t first, std::size_t end) {
+        const auto row = static_cast<Eigen::Index>(first), count = static_cast<Eigen::Index>(end - first);
+        out.middleRows(row, count) = L.P.middleRows(row, count) * C + L.Q.middleRows(row, count) * Dd;
     });
     return c;
 }

@@ -1,7 +1,6 @@
 // FHR §5 — dyadic refinement (Fig. 5) and the samples f^J(v) = φ(v) (see refine.hpp).
 #include <fhr/wavelet/refine.hpp>
 
-#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -99,8 +98,8 @@ Refinement refine(const TriMesh& D, int J) {
 std::vector<Vec3> sample(const Refinement& r, const DomainMap& phi, Executor* executor) {
     std::vector<Vec3> f(r.location.size());
     constexpr std::size_t block = 4096;  // point locations per task
-    executor_or_default(executor).for_each((f.size() + block - 1) / block, 1, [&](std::size_t b) {
-        for (std::size_t v = b * block; v < std::min(f.size(), (b + 1) * block); ++v) f[v] = phi(r.location[v].face, r.location[v].beta);
+    for_each_block(executor_or_default(executor), f.size(), block, 1, [&](std::size_t first, std::size_t end) {
+        for (std::size_t v = first; v < end; ++v) f[v] = phi(r.location[v].face, r.location[v].beta);
     });
     return f;
 }
