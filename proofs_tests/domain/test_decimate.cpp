@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <fhr/core/build.hpp>
 #include <fhr/core/errors.hpp>
@@ -482,6 +483,70 @@ TEST_CASE("DOM-17..19: decimation of random surfaces with 1-5 boundary loops and
         RC_ASSERT(again.mesh.triangles() == d.mesh.triangles());
         RC_ASSERT(again.t_vertex == d.t_vertex);
     });
+}
+
+namespace {
+
+// DOM-22: the same decimation with and without remembering rejected collapses: every id of D,
+// its correspondence and its history, or the same refusal.
+std::string decimate_both_ways(const TriMesh& T, DecimateOptions o, const Domain* previous = nullptr) {
+    auto run = [&](bool recheck) {
+        o.recheck_rejected = recheck;
+        try {
+            const Domain d = previous ? domain::decimate_again(T, *previous, o) : decimate(T, o);
+            return std::make_pair(std::optional<Domain>(d), std::string());
+        } catch (const InvalidInput& e) {
+            return std::make_pair(std::optional<Domain>(), std::string(e.what()));
+        }
+    };
+    const auto [fast, fast_error] = run(false);
+    const auto [full, full_error] = run(true);
+    if (fast_error != full_error) return "refused differently: '" + fast_error + "' and '" + full_error + "'";
+    if (!fast) return "";
+    if (!(fast->mesh.arrays() == full->mesh.arrays())) return "D's arrays differ";
+    if (fast->t_vertex != full->t_vertex) return "the correspondences differ";
+    if (fast->history != full->history) return "the histories differ";
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("DOM-22: remembering rejected collapses gives the same D as checking each in full (every family, boundary, components, decimating again)", "[property][domain]") {
+    rc::prop("decimate and decimate_again both ways", [] {
+        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 3, .max_faces = 3000, .min_holes = 0, .max_holes = 3,
+                                                                       .min_components = 1, .max_components = 2,
+                                                                       .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+        const TriMesh& T = g;
+        DecimateOptions o;
+        o.target_faces = *rc::gen::inRange<std::size_t>(std::max<std::size_t>(1, T.n_faces() / 20), T.n_faces() / 2 + 2);
+        if (T.is_closed()) o.target_faces += o.target_faces % 2;
+        o.best_effort = *rc::gen::arbitrary<bool>();
+        RC_ASSERT(decimate_both_ways(T, o) == "");
+        Domain d;
+        try {
+            d = decimate(T, o);
+        } catch (const InvalidInput&) {
+            return;  // refused alike, checked above
+        }
+        DecimateOptions again = o;
+        for (int i = 0; i < 3; ++i) again.keep.push_back(VertexId(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(T.n_vertices()))));
+        again.target_faces = std::min(T.n_faces(), d.mesh.n_faces() + 6);
+        RC_ASSERT(decimate_both_ways(T, again, &d) == "");
+    });
+}
+
+TEST_CASE("DOM-22: on the fandisk's flat CAD regions, where every collapse costs 0, remembering rejections changes no decimation", "[real][domain]") {
+    const auto path = test::cgal_mesh("fandisk.off");
+    if (!path) {
+        WARN("fandisk.off is not present (./run extracts libcgal-demo's meshes into out/); skipped");
+        return;
+    }
+    const TriMesh T = test::load_mesh(*path);
+    for (std::size_t faces : {114, 1000, 4000}) {
+        DecimateOptions o;
+        o.target_faces = faces;
+        CHECK(decimate_both_ways(T, o) == "");
+    }
 }
 
 TEST_CASE("DOM-17: a disk keeps its boundary corners and decimates to a single triangle when asked", "[unit][domain][boundary]") {

@@ -69,50 +69,104 @@ struct Candidate {
     }
 };
 
-// The queue: at most one candidate per edge of D (one of its two directions), a binary min-heap
-// over (cost, halfedge) with each edge's place in it, so that a new candidate for an edge replaces
-// the old one where it stands (issue 18). A queue that left superseded candidates in place to be
-// skipped when popped made the same collapses (it pops the same least current candidate), but at
-// 10⁶ faces it held 2.2 million candidates and popped 5 million for 495,000 collapses (the
-// subdivided fandisk: 16 million for 410,000), each pop a walk down a heap far larger than the
-// caches: half of §2's time.
+// The queue: at most one candidate per edge of D (one of its two directions), each edge's place
+// known, so that a new candidate for an edge replaces the old one where it stands (issue 18: a
+// queue that left superseded candidates in place to be skipped made the same collapses, but at 10⁶
+// faces popped 5 million for 495,000 collapses).
+// Two tiers (issue 18): a binary min-heap holds only the candidates at or below `bound_`, the others
+// wait unsorted in `rest_`. A heap of every candidate (1.5 million at 10⁶ faces, 24 MB) made each
+// pop a walk of twenty levels, the lower ones cache misses, and was a third of §2's loop; most
+// candidates are replaced or removed long before they are the least. When the heap runs out, the
+// least sixteenth or so of the rest (bounded by a quantile of an evenly spaced sample) moves into it.
+// The order of pops is that of a single heap: every candidate in the heap is below every one in
+// the rest, and (cost, halfedge) orders all candidates totally.
 class CandidateQueue {
 public:
     explicit CandidateQueue(std::size_t edges) : place_(edges, none) {}
-    bool empty() const { return heap_.empty(); }
-    /// The queue of these candidates, one per edge, and nothing else: heapified bottom up, which
-    /// at 10⁶ faces takes a fraction of the time of putting them in one by one.
-    void assign(std::vector<Candidate> candidates) {
-        heap_ = std::move(candidates);
-        for (std::size_t i = heap_.size() / 2; i-- > 0;) down(i);
-        for (std::size_t i = 0; i < heap_.size(); ++i) place_[heap_[i].halfedge / 2] = static_cast<std::uint32_t>(i);
+    /// No candidate left. Refills the heap from the rest when it ran out.
+    bool empty() {
+        if (heap_.empty() && !rest_.empty()) refill();
+        return heap_.empty();
     }
+    /// The queue of these candidates, one per edge, and nothing else.
+    void assign(std::vector<Candidate> candidates) {
+        heap_.clear();
+        rest_ = std::move(candidates);
+        for (std::size_t i = 0; i < rest_.size(); ++i) place_[rest_[i].halfedge / 2] = in_rest | static_cast<std::uint32_t>(i);
+        bound_ = Candidate{-INFINITY, 0};
+    }
+    /// The least candidate. \pre !empty()
     const Candidate& top() const { return heap_.front(); }
     /// Puts c in as its edge's candidate, replacing the edge's earlier one.
     void put(const Candidate& c) {
-        std::uint32_t& at = place_[c.halfedge / 2];
-        if (at == none) {
-            at = static_cast<std::uint32_t>(heap_.size());
-            heap_.push_back(c);
-            up(at);
+        const std::uint32_t at = place_[c.halfedge / 2];
+        const bool low = !(bound_ < c);
+        if (at != none && !(at & in_rest) && low) {  // from the heap to the heap: in place
+            const bool earlier = c < heap_[at];
+            heap_[at] = c;
+            earlier ? up(at) : down(at);
             return;
         }
-        const bool earlier = c < heap_[at];
-        heap_[at] = c;
-        earlier ? up(at) : down(at);
+        if (at != none && (at & in_rest) && !low) {  // from the rest to the rest: in place
+            rest_[at & ~in_rest] = c;
+            return;
+        }
+        if (at != none) remove_placed(at);
+        low ? push_heap(c) : push_rest(c);
     }
-    void pop() { remove_at(0); }
+    void pop() { remove_from_heap(0); }
     /// Takes edge e's candidate out, if it has one.
     void remove(std::uint32_t e) {
-        if (place_[e] != none) remove_at(place_[e]);
+        if (place_[e] != none) remove_placed(place_[e]);
     }
 
 private:
     static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-    std::vector<Candidate> heap_;
-    std::vector<std::uint32_t> place_;  // per edge: its candidate's index in heap_, or none
+    static constexpr std::uint32_t in_rest = 1u << 31;  // place_ of a candidate in rest_
+    std::vector<Candidate> heap_;  // a binary min-heap of the candidates ≤ bound_
+    std::vector<Candidate> rest_;  // the candidates > bound_, in no order
+    Candidate bound_{};
+    std::vector<std::uint32_t> place_;  // per edge: its candidate's index in heap_, or in_rest | index in rest_, or none
 
-    void remove_at(std::size_t i) {
+    // The least part of the rest into the (empty) heap: those at or below the 1/16-quantile of 1,024
+    // evenly spaced samples (all of them when few are left), found in one pass from the back, each
+    // taken out by moving the last into its place.
+    void refill() {
+        const std::size_t n = rest_.size(), samples = 1024;
+        if (n <= 8 * samples) {
+            bound_ = Candidate{INFINITY, UINT32_MAX};  // above every candidate
+        } else {
+            std::vector<Candidate> sample(samples);
+            for (std::size_t i = 0; i < samples; ++i) sample[i] = rest_[i * (n / samples)];
+            std::nth_element(sample.begin(), sample.begin() + samples / 16, sample.end());
+            bound_ = sample[samples / 16];
+        }
+        for (std::size_t i = n; i-- > 0;)
+            if (!(bound_ < rest_[i])) {
+                heap_.push_back(rest_[i]);
+                remove_from_rest(i);
+            }
+        for (std::size_t i = heap_.size() / 2; i-- > 0;) down(i);
+        for (std::size_t i = 0; i < heap_.size(); ++i) place_[heap_[i].halfedge / 2] = static_cast<std::uint32_t>(i);
+    }
+    void push_heap(const Candidate& c) {
+        heap_.push_back(c);
+        up(heap_.size() - 1);
+    }
+    void push_rest(const Candidate& c) {
+        place_[c.halfedge / 2] = in_rest | static_cast<std::uint32_t>(rest_.size());
+        rest_.push_back(c);
+    }
+    void remove_placed(std::uint32_t at) { at & in_rest ? remove_from_rest(at & ~in_rest) : remove_from_heap(at); }
+    void remove_from_rest(std::size_t i) {
+        place_[rest_[i].halfedge / 2] = none;
+        if (i + 1 < rest_.size()) {
+            rest_[i] = rest_.back();
+            place_[rest_[i].halfedge / 2] = in_rest | static_cast<std::uint32_t>(i);
+        }
+        rest_.pop_back();
+    }
+    void remove_from_heap(std::size_t i) {
         place_[heap_[i].halfedge / 2] = none;
         const Candidate last = heap_.back();
         heap_.pop_back();
@@ -193,7 +247,8 @@ public:
               std::size_t real_vertices, std::vector<std::size_t> targets)
         : T_(T), m_(std::move(start.mesh)), t_of_(std::move(start.t_vertex)), history_(std::move(start.history)), options_(o),
           quadric_(std::move(quadrics)),
-          rejected_(m_.n_halfedges(), false), suspect_(m_.n_vertices(), false), keep_(m_.n_vertices(), 0), real_(real_vertices), target_(std::move(targets)),
+          rejected_(m_.n_halfedges(), false), suspect_(m_.n_vertices(), false),
+          invalid_since_(m_.n_halfedges(), 0), changed_(m_.n_vertices(), 0), keep_(m_.n_vertices(), 0), real_(real_vertices), target_(std::move(targets)),
           queue_(m_.n_edges()) {
         std::vector<std::uint8_t> kept(std::max_element(t_of_.begin(), t_of_.end())->idx() + 1, 0);
         for (VertexId v : o.keep)
@@ -260,7 +315,7 @@ public:
             if (!valid(h)) {  // try the edge's other direction at its own cost
                 rejected_[h.idx()] = true;
                 suspect_[m_.from(h).idx()] = suspect_[m_.to(h).idx()] = true;
-                if (!rejected_[TriMesh::twin(h).idx()]) queue_.put(candidate(TriMesh::twin(h)));
+                if (!rejected_[TriMesh::twin(h).idx()]) queue_.put({cost(TriMesh::twin(h)), TriMesh::twin(h).idx()});
                 continue;
             }
             const VertexId v0 = m_.from(h), v1 = m_.to(h);
@@ -271,7 +326,10 @@ public:
             // deletes the first of each pair: their candidates leave the queue now. Left in, they
             // were two thirds of all pops at 10⁶ faces, each a walk down the whole heap to skip it.
             const EdgeId merged_a = TriMesh::edge(m_.next(m_.next(h))), merged_b = TriMesh::edge(m_.next(TriMesh::twin(h)));
+            // The stars the collapse changes: those of v0's neighbours (v1, va and vb among them).
+            m_.for_each_outgoing(v0, [&](HalfedgeId g) { changed_[m_.to(g).idx()] = collapses_ + 1; });
             m_.collapse(h);
+            ++collapses_;
             if (suspect_[v0.idx()]) suspect_[v1.idx()] = true;  // v0's edges are v1's now
             FHR_DCHECK(m_.is_deleted(merged_a) && m_.is_deleted(merged_b));
             queue_.remove(merged_a.idx());
@@ -298,6 +356,10 @@ private:
     std::vector<Quadric> quadric_;
     std::vector<bool> rejected_;        // per halfedge: popped, found invalid, and not queued since
     std::vector<bool> suspect_;         // per vertex: false when no edge at it has a rejected direction
+    // For valid(): per halfedge, 1 + the collapses made when it was last found invalid by the
+    // local rules (0: not so); per vertex, the collapses made when its star last changed.
+    std::vector<std::uint32_t> invalid_since_, changed_;
+    std::uint32_t collapses_ = 0;
     std::vector<std::uint8_t> keep_;    // per vertex: never removed (DecimateOptions::keep, apexes)
     std::size_t real_;                  // vertices of T̂ from here on are apexes
     bool cones_ = false;                // T has boundary: m_ is a decimation of T̂
@@ -311,7 +373,7 @@ private:
     // closed component stays outward oriented like T's: per-face normal rules alone let a coarse
     // domain turn inside out.
     std::vector<double> volume_, min_volume_;
-    mutable double change_ = 0;  // the volume change of the collapse last found valid
+    double change_ = 0;  // the volume change of the collapse last found valid
 
     bool apex(VertexId v) const { return t_of_[v].idx() >= real_; }
     bool cone_face(FaceId f) const {
@@ -333,18 +395,24 @@ private:
     }
     // The queue holds one candidate per edge, for one of its directions; a new one replaces the
     // edge's earlier one.
-    Candidate candidate(HalfedgeId h) const { return {cost(h), h.idx()}; }
-    // The cheaper direction of e, both directions counting as untried again.
+    // The cheaper direction of e, both directions counting as untried again. One sum of the two
+    // quadrics serves both: floating-point addition commutes, so it is cost()'s, bit for bit.
     Candidate edge_candidate(EdgeId e) {
         const HalfedgeId h0 = TriMesh::halfedge(e, 0), h1 = TriMesh::halfedge(e, 1);
         rejected_[h0.idx()] = rejected_[h1.idx()] = false;
-        return candidate(cost(h1) < cost(h0) ? h1 : h0);
+        const VertexId a = m_.from(h0), b = m_.to(h0);
+        const Quadric q = quadric_[a.idx()] + quadric_[b.idx()];
+        const double to_b = q(m_.position(b)), to_a = q(m_.position(a));
+        return to_a < to_b ? Candidate{to_a, h1.idx()} : Candidate{to_b, h0.idx()};
     }
     void push_edge(EdgeId e) { queue_.put(edge_candidate(e)); }
 
     // Costs change for the edges at v1 (its quadric grew): they are queued again. Validity can
     // change for every halfedge whose link or faces touch v1's star, so an edge with a direction
-    // found invalid earlier near v1 is queued again too.
+    // found invalid earlier near v1 is queued again too — unless both its directions were found
+    // invalid by the local rules and neither end's star has changed since (valid()): queued, it
+    // would only be popped and rejected twice more, and should a star change later, that
+    // collapse queues it again.
     // A neighbour's star is walked only when an edge at it may have a rejected direction
     // (`suspect_`; queued again, no edge at it has one): the same edges are queued as by walking
     // the two-ring of every collapse, at 10⁶ faces the most scattered reads of §2 (issue 18).
@@ -353,11 +421,29 @@ private:
             push_edge(TriMesh::edge(g));
             const VertexId w = m_.to(g);
             if (!suspect_[w.idx()]) return;
+            bool left = false;  // an edge at w stays rejected
             m_.for_each_outgoing(w, [&](HalfedgeId k) {
-                if (rejected_[k.idx()] || rejected_[TriMesh::twin(k).idx()]) push_edge(TriMesh::edge(k));
+                if (!rejected_[k.idx()] && !rejected_[TriMesh::twin(k).idx()]) return;
+                if (still_invalid(TriMesh::edge(k)))
+                    left = true;
+                else
+                    push_edge(TriMesh::edge(k));
             });
-            suspect_[w.idx()] = false;
+            suspect_[w.idx()] = left;
         });
+    }
+
+    // Both directions of e were rejected by the local rules, and the stars of its ends are as
+    // they were then.
+    bool still_invalid(EdgeId e) const {
+        const HalfedgeId h0 = TriMesh::halfedge(e, 0), h1 = TriMesh::halfedge(e, 1);
+        if (!rejected_[h0.idx()] || !rejected_[h1.idx()]) return false;
+        return unchanged_since(std::min(invalid_since_[h0.idx()], invalid_since_[h1.idx()]), h0);
+    }
+    // Neither end of h's edge changed its star since `found` (1 + the collapses made then; 0:
+    // never found invalid).
+    bool unchanged_since(std::uint32_t found, HalfedgeId h) const {
+        return !options_.recheck_rejected && found > changed_[m_.from(h).idx()] && found > changed_[m_.to(h).idx()];
     }
 
     // The collapse from(h) -> to(h) is allowed when it keeps D a closed 2-manifold of the same
@@ -366,9 +452,28 @@ private:
     // cone a cone when a boundary vertex moves only along a boundary edge (one of the edge's two
     // faces is a cone face) and each loop keeps three vertices (its apex a valence above 3); the
     // faces of T then stay a surface with the same boundary loops.
-    bool valid(HalfedgeId h) const {
+    // A collapse found invalid by the rules that read only the stars of its two vertices (all but
+    // the volume rule; the count rules only ever forbid more as faces go) stays invalid until one
+    // of those stars changes: it is not checked again before (issue 18). On a flat CAD region,
+    // where every collapse costs 0, each collapse queues the rejected edges around it again and
+    // they come straight back to the top: the subdivided fandisk popped 25 candidates per
+    // collapse, nearly all rejected as before.
+    bool valid(HalfedgeId h) {
+        if (unchanged_since(invalid_since_[h.idx()], h)) return false;
+        double change = 0;
+        if (!locally_valid(h, change)) {
+            invalid_since_[h.idx()] = collapses_ + 1;
+            return false;
+        }
+        const std::uint32_t comp = component_[m_.from(h)];
+        if (volume_[comp] + change <= min_volume_[comp]) return false;
+        change_ = change;
+        return true;
+    }
+    // All rules but the volume rule; `change` becomes six times the collapse's change of volume.
+    bool locally_valid(HalfedgeId h, double& change) const {
         if (keep_[m_.from(h).idx()] || !m_.is_collapse_ok(h)) return false;
-        const VertexId v0 = m_.from(h), v1 = m_.to(h);  // v0 disappears into v1
+        const VertexId v0 = m_.from(h), v1 = m_.to(h);
         const std::uint32_t comp = component_[v0];
         const FaceId gone0 = m_.face(h), gone1 = m_.face(TriMesh::twin(h));
         if (cones_) {
@@ -383,7 +488,6 @@ private:
         }
         const Vec3 &p0 = m_.position(v0), &p1 = m_.position(v1);
         bool ok = true;
-        double change = 0;
         m_.for_each_outgoing(v0, [&](HalfedgeId g) {
             const FaceId f = m_.face(g);
             // Face (v0, a, b) becomes (v1, a, b); the two faces at h go.
@@ -398,9 +502,7 @@ private:
             const Vec3 n_new = (a - p1).cross(b - p1).normalized();
             if (n_new.dot(face_normal(m_, f)) < cos_max_turn_ || !corners_at_least(p1, a, b, tan_min_angle_)) ok = false;
         });
-        if (!ok || volume_[comp] + change <= min_volume_[comp]) return false;
-        change_ = change;
-        return true;
+        return ok;
     }
 };
 

@@ -30,6 +30,7 @@ namespace fhr::domain {
 /// TriMesh::split_vertex(kept, left, right, position of removed).
 struct Collapse {
     VertexId removed, kept, left, right;
+    bool operator==(const Collapse&) const = default;
 };
 
 struct DecimateOptions {
@@ -41,6 +42,10 @@ struct DecimateOptions {
     double corner_angle_deg = 60.0;
     std::vector<VertexId> keep{};            ///< vertices of T that D must keep (§3 recovery)
     bool best_effort = false;                ///< stop above the target instead of throwing when no collapse is valid
+    /// Check every collapse in full each time it is tried, as the plain loop above does, instead
+    /// of remembering which were found invalid by rules whose inputs have not changed since:
+    /// slower, and the same D (DOM-22); for tests.
+    bool recheck_rejected = false;
 };
 
 /// D together with its correspondence to T (paper §2).
