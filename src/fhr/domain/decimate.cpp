@@ -248,7 +248,7 @@ public:
         : T_(T), m_(std::move(start.mesh)), t_of_(std::move(start.t_vertex)), history_(std::move(start.history)), options_(o),
           quadric_(std::move(quadrics)),
           rejected_(m_.n_halfedges(), false), suspect_(m_.n_vertices(), false),
-          invalid_since_(m_.n_halfedges(), 0), changed_(m_.n_vertices(), 0), keep_(m_.n_vertices(), 0), real_(real_vertices), target_(std::move(targets)),
+          rejection_(m_.n_halfedges()), changed_(m_.n_vertices(), 0), keep_(m_.n_vertices(), 0), real_(real_vertices), target_(std::move(targets)),
           queue_(m_.n_edges()) {
         std::vector<std::uint8_t> kept(std::max_element(t_of_.begin(), t_of_.end())->idx() + 1, 0);
         for (VertexId v : o.keep)
@@ -357,8 +357,14 @@ private:
     std::vector<bool> rejected_;        // per halfedge: popped, found invalid, and not queued since
     std::vector<bool> suspect_;         // per vertex: false when no edge at it has a rejected direction
     // For valid(): per halfedge, 1 + the collapses made when it was last found invalid by the
-    // local rules (0: not so); per vertex, the collapses made when its star last changed.
-    std::vector<std::uint32_t> invalid_since_, changed_;
+    // local rules (0: not so) and a halfedge whose face failed its rule then (none_: not so); per
+    // vertex, the collapses made when its star last changed.
+    static constexpr std::uint32_t none_ = std::numeric_limits<std::uint32_t>::max();
+    struct Rejection {
+        std::uint32_t since = 0, witness = none_;
+    };
+    std::vector<Rejection> rejection_;
+    std::vector<std::uint32_t> changed_;
     std::uint32_t collapses_ = 0;
     std::vector<std::uint8_t> keep_;    // per vertex: never removed (DecimateOptions::keep, apexes)
     std::size_t real_;                  // vertices of T̂ from here on are apexes
@@ -438,7 +444,7 @@ private:
     bool still_invalid(EdgeId e) const {
         const HalfedgeId h0 = TriMesh::halfedge(e, 0), h1 = TriMesh::halfedge(e, 1);
         if (!rejected_[h0.idx()] || !rejected_[h1.idx()]) return false;
-        return unchanged_since(std::min(invalid_since_[h0.idx()], invalid_since_[h1.idx()]), h0);
+        return unchanged_since(std::min(rejection_[h0.idx()].since, rejection_[h1.idx()].since), h0);
     }
     // Neither end of h's edge changed its star since `found` (1 + the collapses made then; 0:
     // never found invalid).
@@ -459,10 +465,10 @@ private:
     // they come straight back to the top: the subdivided fandisk popped 25 candidates per
     // collapse, nearly all rejected as before.
     bool valid(HalfedgeId h) {
-        if (unchanged_since(invalid_since_[h.idx()], h)) return false;
+        Rejection& r = rejection_[h.idx()];
         double change = 0;
-        if (!locally_valid(h, change)) {
-            invalid_since_[h.idx()] = collapses_ + 1;
+        if (unchanged_since(r.since, h) || still_witnessed(h, r.witness) || !locally_valid(h, change, r.witness)) {
+            r.since = collapses_ + 1;
             return false;
         }
         const std::uint32_t comp = component_[m_.from(h)];
@@ -471,8 +477,9 @@ private:
         return true;
     }
     // All rules but the volume rule; `change` becomes six times the collapse's change of volume.
-    bool locally_valid(HalfedgeId h, double& change) const {
-        if (keep_[m_.from(h).idx()] || !m_.is_collapse_ok(h)) return false;
+    // A face that fails its rule is kept as the collapse's witness (still_witnessed).
+    bool locally_valid(HalfedgeId h, double& change, std::uint32_t& witness) const {
+        if (keep_[m_.from(h).idx()]) return false;
         const VertexId v0 = m_.from(h), v1 = m_.to(h);
         const std::uint32_t comp = component_[v0];
         const FaceId gone0 = m_.face(h), gone1 = m_.face(TriMesh::twin(h));
@@ -495,14 +502,33 @@ private:
             const Vec3& b = m_.position(m_.to(m_.next(g)));
             change += (f == gone0 || f == gone1 ? 0.0 : volume6(p1, a, b)) - volume6(p0, a, b);
             if (!ok || f == gone0 || f == gone1 || cone_face(f)) return;
-            if (collinear(p1, a, b)) {
+            if (face_rule_fails(g, p1)) {
                 ok = false;
-                return;
+                witness = g.idx();
             }
-            const Vec3 n_new = (a - p1).cross(b - p1).normalized();
-            if (n_new.dot(face_normal(m_, f)) < cos_max_turn_ || !corners_at_least(p1, a, b, tan_min_angle_)) ok = false;
         });
-        return ok;
+        return ok && m_.is_collapse_ok(h);
+    }
+    // Face (v0, a, b) of g = v0 -> a, its corner v0 moved to p1: degenerate, turned by more than
+    // the maximum, or with a corner below the minimum.
+    bool face_rule_fails(HalfedgeId g, const Vec3& p1) const {
+        const Vec3& a = m_.position(m_.to(g));
+        const Vec3& b = m_.position(m_.to(m_.next(g)));
+        if (collinear(p1, a, b)) return true;
+        const Vec3 n_new = (a - p1).cross(b - p1).normalized();
+        return n_new.dot(face_normal(m_, m_.face(g))) < cos_max_turn_ || !corners_at_least(p1, a, b, tan_min_angle_);
+    }
+    // The face that last made h invalid still lies at from(h), is not one of the two faces the
+    // collapse removes, and still fails its rule: h is invalid whatever else changed (all rules
+    // must hold). On a flat region a vertex that took in many collapses keeps most of its faces,
+    // and the edges at it, queued again after each collapse, fail on the same face as before.
+    bool still_witnessed(HalfedgeId h, std::uint32_t witness) const {
+        if (options_.recheck_rejected || witness == none_) return false;
+        const HalfedgeId g(witness);
+        if (m_.is_deleted(TriMesh::edge(g)) || m_.from(g) != m_.from(h) || m_.is_boundary(g)) return false;
+        const FaceId f = m_.face(g);
+        if (f == m_.face(h) || f == m_.face(TriMesh::twin(h)) || cone_face(f)) return false;
+        return face_rule_fails(g, m_.position(m_.to(h)));
     }
 };
 
