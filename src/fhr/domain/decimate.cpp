@@ -82,7 +82,7 @@ struct Candidate {
 // the rest, and (cost, halfedge) orders all candidates totally.
 class CandidateQueue {
 public:
-    explicit CandidateQueue(std::size_t edges) : place_(edges, none) {}
+    explicit CandidateQueue(std::size_t edges) : place_(edges, none) { FHR_DCHECK(edges < in_rest); }
     /// No candidate left. Refills the heap from the rest when it ran out.
     bool empty() {
         if (heap_.empty() && !rest_.empty()) refill();
@@ -315,7 +315,16 @@ public:
             if (!valid(h)) {  // try the edge's other direction at its own cost
                 rejected_[h.idx()] = true;
                 suspect_[m_.from(h).idx()] = suspect_[m_.to(h).idx()] = true;
-                if (!rejected_[TriMesh::twin(h).idx()]) queue_.put({cost(TriMesh::twin(h)), TriMesh::twin(h).idx()});
+                // A twin known to be invalid as things stand is rejected at once: queued, it would
+                // be popped and rejected, or, if a star it reads changed first, that collapse
+                // would queue the edge again.
+                const HalfedgeId t = TriMesh::twin(h);
+                if (!rejected_[t.idx()]) {
+                    if (known_invalid(t))
+                        rejected_[t.idx()] = true;
+                    else
+                        queue_.put({cost(t), t.idx()});
+                }
                 continue;
             }
             const VertexId v0 = m_.from(h), v1 = m_.to(h);
@@ -446,6 +455,14 @@ private:
         if (!rejected_[h0.idx()] || !rejected_[h1.idx()]) return false;
         return unchanged_since(std::min(rejection_[h0.idx()].since, rejection_[h1.idx()].since), h0);
     }
+    // h is invalid by the local rules as things stand, known without checking them all: neither
+    // star changed since it was found so, or its witness still fails. Remembered as found now.
+    bool known_invalid(HalfedgeId h) {
+        Rejection& r = rejection_[h.idx()];
+        if (!unchanged_since(r.since, h) && !still_witnessed(h, r.witness)) return false;
+        r.since = collapses_ + 1;
+        return true;
+    }
     // Neither end of h's edge changed its star since `found` (1 + the collapses made then; 0:
     // never found invalid).
     bool unchanged_since(std::uint32_t found, HalfedgeId h) const {
@@ -460,14 +477,16 @@ private:
     // faces of T then stay a surface with the same boundary loops.
     // A collapse found invalid by the rules that read only the stars of its two vertices (all but
     // the volume rule; the count rules only ever forbid more as faces go) stays invalid until one
-    // of those stars changes: it is not checked again before (issue 18). On a flat CAD region,
-    // where every collapse costs 0, each collapse queues the rejected edges around it again and
-    // they come straight back to the top: the subdivided fandisk popped 25 candidates per
-    // collapse, nearly all rejected as before.
+    // of those stars changes, or while its witness still fails (still_witnessed): it is not
+    // checked again before (issue 18; DOM-22). On a flat CAD region, where every collapse costs
+    // 0, each collapse queues the rejected edges around it again and they come straight back to
+    // the top: the subdivided fandisk popped 25 candidates per collapse, nearly all rejected as
+    // before.
     bool valid(HalfedgeId h) {
+        if (known_invalid(h)) return false;
         Rejection& r = rejection_[h.idx()];
         double change = 0;
-        if (unchanged_since(r.since, h) || still_witnessed(h, r.witness) || !locally_valid(h, change, r.witness)) {
+        if (!locally_valid(h, change, r.witness)) {
             r.since = collapses_ + 1;
             return false;
         }
