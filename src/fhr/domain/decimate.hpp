@@ -43,8 +43,8 @@ struct DecimateOptions {
     std::vector<VertexId> keep{};            ///< vertices of T that D must keep (§3 recovery)
     bool best_effort = false;                ///< stop above the target instead of throwing when no collapse is valid
     /// Check every collapse in full each time it is tried, as the plain loop above does, instead
-    /// of remembering which were found invalid by rules whose inputs have not changed since:
-    /// slower, and the same D (DOM-22); for tests.
+    /// of remembering which were found invalid by rules whose inputs have not changed since, or
+    /// whose failing face still fails: slower, and the same D (DOM-22); for tests.
     bool recheck_rejected = false;
 };
 
