@@ -359,6 +359,9 @@ def test_ctrl_c_raises_keyboard_interrupt_and_leaves_fhr_usable(fandisk):
     import signal
     import threading
     V, F = fandisk
+    # Python raises KeyboardInterrupt only where SIGINT has its default handler: a shell starts a
+    # background job with SIGINT ignored, and the interpreter then keeps it ignored.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.05, lambda: signal.pthread_kill(threading.main_thread().ident, signal.SIGINT))
     timer.start()
     try:
@@ -367,6 +370,7 @@ def test_ctrl_c_raises_keyboard_interrupt_and_leaves_fhr_usable(fandisk):
                 fhr.parameterize(V, F, faces=114, levels=2, keep=[5])
     finally:
         timer.cancel()
+        signal.signal(signal.SIGINT, previous)
     assert fhr.parameterize(V, F, faces=114).certified
 
 
