@@ -46,8 +46,9 @@ Components connected_components(const TriMesh& m) {
     return c;
 }
 
-long genus(const TriMesh& m) {
-    const Components comp = connected_components(m);
+long genus(const TriMesh& m) { return genus(m, connected_components(m)); }
+
+long genus(const TriMesh& m, const Components& comp) {
     std::vector<long> chi(comp.count, 0), loops(comp.count, 0);
     for (VertexId v : m.vertices()) ++chi[comp.vertex_component[v]];
     for (EdgeId e : m.edges()) --chi[comp.vertex_component[m.to(TriMesh::halfedge(e, 0))]];

@@ -23,5 +23,7 @@ Components connected_components(const TriMesh& mesh);
 
 /// Sum over the components of their genus g_c = (2 − b_c − χ_c) / 2.
 long genus(const TriMesh& mesh);
+/// The same, with mesh's components known (`components` is connected_components(mesh)).
+long genus(const TriMesh& mesh, const Components& components);
 
 }  // namespace fhr
