@@ -111,6 +111,32 @@ TEST_CASE("WAV-9: lower ≤ h ≤ upper: lower is at least the vertices' brute-f
     });
 }
 
+TEST_CASE("WAV-9: a directed search told a known lower bound still brackets h, δ-narrow above what is known",
+          "[property][wavelet]") {
+    rc::prop("a sphere against a noisy copy, known anywhere from 0 to twice the distance", [] {
+        const TriMesh A = test::icosphere(*rc::gen::inRange(1, 3));
+        const std::vector<Triangle> t = A.triangles();
+        std::vector<Vec3> bx = A.positions();
+        const std::vector<Vec3> n = test::random_points(bx.size(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30), 0.05);
+        for (std::size_t v = 0; v < bx.size(); ++v) bx[v] += n[v];
+        const double delta = *rc::gen::element(0.02, 0.005);
+        const TriangleTree B(bx, t);
+        const wavelet::DirectedHausdorff full = wavelet::directed_hausdorff(A.positions(), t, B, {.resolution = delta});
+        const double known = full.upper * *rc::gen::inRange(0, 200) / 100.0;
+        const wavelet::DirectedHausdorff told =
+            wavelet::directed_hausdorff(A.positions(), t, B, {.resolution = delta, .known = known});
+        // Both brackets hold the same h.
+        RC_ASSERT(told.lower <= told.upper);
+        RC_ASSERT(told.lower <= full.upper * (1 + 1e-12));
+        RC_ASSERT(full.lower <= told.upper * (1 + 1e-12));
+        // Narrow where it matters: above known.
+        RC_ASSERT(std::max(told.upper, known) - std::max(told.lower, known) <= delta * (1 + 1e-12));
+        // Nothing known: the same search.
+        const wavelet::DirectedHausdorff zero = wavelet::directed_hausdorff(A.positions(), t, B, {.resolution = delta, .known = 0});
+        RC_ASSERT(zero.lower == full.lower && zero.upper == full.upper && zero.samples == full.samples);
+    });
+}
+
 TEST_CASE("WAV-9, WAV-14: the two-triangle and vertex-fan bounds are upper bounds of the distance on a piece, inside and at the boundary",
           "[property][wavelet]") {
     rc::prop("pieces near the vertices and edges of an irregular flat-faced octahedron or its open upper half, slightly off it", [] {

@@ -299,12 +299,16 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
         unsigned depth;
     };
     const double root3 = std::sqrt(3.0);
-    // The piece's bound is the least of the four below. A piece whose bound is ≤ lower is done
-    // whatever its exact value, so each is tried, cheapest first, only while the least so far
-    // exceeds lower (on the horse, the Lipschitz bound alone settles 99.8 % of T's triangles).
+    // A piece whose bound is at most this is done whatever its exact value: either no more than
+    // a sample already found, or no more than what the caller knows it will report.
+    auto settled = [&] { return std::max(h.lower, options.known); };
+    double dropped = 0;  // the largest bound of a piece done for being ≤ known but above lower then
+    // The piece's bound is the least of the four below. Each is tried, cheapest first, only while
+    // the least so far is not settled (on the horse, the Lipschitz bound alone settles 99.8 % of
+    // T's triangles).
     auto bound = [&](const Piece& q, double ell) {
         double b = std::max({q.d[0], q.d[1], q.d[2]}) + ell / root3;  // Lipschitz
-        if (b <= h.lower) return b;
+        if (b <= settled()) return b;
         for (int j = 0; j < 3; ++j) {                                   // convexity
             const std::uint32_t t = q.near[j];
             if ((j > 0 && t == q.near[0]) || (j > 1 && t == q.near[1])) continue;  // tried already
@@ -312,10 +316,10 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
             for (int k = 0; k < 3; ++k) sup = std::max(sup, q.near[k] == t ? q.d[k] : B.distance_to(q.x[k], t));
             b = std::min(b, sup);
         }
-        if (b <= h.lower) return b;
+        if (b <= settled()) return b;
         for (int i = 0; i < 3; ++i)                                     // two triangles
             if (const std::uint32_t s = q.near[i], t = q.near[(i + 1) % 3]; s != t) b = std::min(b, B.pair_bound(q.x, s, t));
-        if (b <= h.lower) return b;
+        if (b <= settled()) return b;
         if (q.near[0] != q.near[1] || q.near[1] != q.near[2])  // a vertex fan: at a vertex common to them all
             for (std::uint32_t v : B.triangle(q.near[0]))
                 if (std::count(B.triangle(q.near[1]).begin(), B.triangle(q.near[1]).end(), v) &&
@@ -373,8 +377,11 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
             const double ell = std::max({(q.x[1] - q.x[0]).norm(), (q.x[2] - q.x[1]).norm(), (q.x[0] - q.x[2]).norm()});
             const double dmax = std::max({q.d[0], q.d[1], q.d[2]});
             double b = bound(q, ell);
-            if (b > h.lower && b - dmax > options.resolution) b = std::min(b, centroid_bound(q));
-            if (b <= h.lower) continue;
+            if (b > settled() && b - dmax > options.resolution) b = std::min(b, centroid_bound(q));
+            if (b <= settled()) {
+                if (b > h.lower) dropped = std::max(dropped, b);
+                continue;
+            }
             if (b - dmax <= options.resolution || q.depth >= options.max_depth) {
                 h.upper = std::max(h.upper, b);
                 continue;
@@ -403,7 +410,7 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
             stack.push_back(mid);
         }
     }
-    h.upper = std::max(h.upper, h.lower);
+    h.upper = std::max({h.upper, h.lower, dropped});
     return h;
 }
 
@@ -422,6 +429,7 @@ Hausdorff hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle>
     h.resolution = o.resolution;
     const TriangleTree A(a_positions, a_triangles), B(b_positions, b_triangles);
     h.a_to_b = directed_hausdorff(a_positions, a_triangles, B, o);
+    o.known = std::max(o.known, h.a_to_b.lower);
     h.b_to_a = directed_hausdorff(b_positions, b_triangles, A, o);
     return h;
 }

@@ -105,9 +105,17 @@ struct HausdorffOptions {
     double resolution = 0;
     /// The most 1-to-4 splits of one triangle of A (pieces of 4^−max_depth its size).
     unsigned max_depth = 16;
+    /// A lower bound of the distance the caller reports, when that is the larger of this one and
+    /// another already bracketed (the two-sided distance: the other direction's lower). A piece
+    /// whose bound is at most `known` is not refined further: the result still brackets h(A, B),
+    /// but only max(upper, known) − max(lower, known) ≤ δ is sought (issue 18: the direction from a
+    /// remesh to T, whose vertices lie on T, was resolved down to δ far below the distance from T
+    /// to the remesh, which is what the two-sided distance reports).
+    double known = 0;
 };
 
-/// h(A, B) = sup_{p ∈ A} d(p, B), bracketed.
+/// h(A, B) = sup_{p ∈ A} d(p, B), bracketed: lower ≤ h(A, B) ≤ upper, and
+/// max(upper, known) − max(lower, known) ≤ δ (HausdorffOptions).
 struct DirectedHausdorff {
     double lower = 0;         ///< max over the samples: h(A, B) ≥ lower
     double upper = 0;         ///< h(A, B) ≤ upper
@@ -127,7 +135,10 @@ struct Hausdorff {
 DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles,
                                      const TriangleTree& B, const HausdorffOptions& options);
 
-/// The two-sided Hausdorff distance between two triangle meshes (any topology, soups too).
+/// The two-sided Hausdorff distance between two triangle meshes (any topology, soups too): A to B
+/// first, then B to A searched only down to the first's lower (HausdorffOptions::known), so that
+/// lower() ≤ h ≤ upper() with upper() − lower() ≤ δ; each direction's bracket holds its own
+/// distance, the second's only as narrow as the first's lower asks.
 /// \pre both have a triangle, every index in range.
 Hausdorff hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles,
                     std::span<const Vec3> b_positions, std::span<const Triangle> b_triangles,
