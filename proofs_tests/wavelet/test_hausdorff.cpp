@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <tuple>
 
 #include <fhr/wavelet/hausdorff.hpp>
 #include "support/analytic_meshes.hpp"
@@ -22,6 +23,17 @@ double brute_distance(const Vec3& p, const std::vector<Vec3>& x, const std::vect
     double best = INFINITY;
     for (const Triangle& f : t) best = std::min(best, (closest_point_on_triangle(p, x[f[0]], x[f[1]], x[f[2]]) - p).norm());
     return best;
+}
+
+// A random icosphere A, its triangles, and the positions of a copy with every vertex moved by up
+// to 0.05 (rapidcheck draws).
+std::tuple<TriMesh, std::vector<Triangle>, std::vector<Vec3>> noisy_sphere() {
+    TriMesh A = test::icosphere(*rc::gen::inRange(1, 3));
+    std::vector<Triangle> t = A.triangles();
+    std::vector<Vec3> bx = A.positions();
+    const std::vector<Vec3> n = test::random_points(bx.size(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30), 0.05);
+    for (std::size_t v = 0; v < bx.size(); ++v) bx[v] += n[v];
+    return {std::move(A), std::move(t), std::move(bx)};
 }
 
 }  // namespace
@@ -90,11 +102,7 @@ TEST_CASE("WAV-9: parallel squares at distance h: h in both directions, bracket 
 TEST_CASE("WAV-9: lower ≤ h ≤ upper: lower is at least the vertices' brute-force distance, upper at least a denser sample's",
           "[property][wavelet]") {
     rc::prop("a sphere against a noisy copy", [] {
-        const TriMesh A = test::icosphere(*rc::gen::inRange(1, 3));
-        const std::vector<Triangle> t = A.triangles();
-        std::vector<Vec3> bx = A.positions();
-        const std::vector<Vec3> n = test::random_points(bx.size(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30), 0.05);
-        for (std::size_t v = 0; v < bx.size(); ++v) bx[v] += n[v];
+        const auto [A, t, bx] = noisy_sphere();
         const double delta = *rc::gen::element(0.05, 0.02);
         const wavelet::Hausdorff H = wavelet::hausdorff(A.positions(), t, bx, t, {.resolution = delta});
         RC_ASSERT(H.lower() <= H.upper());
@@ -114,11 +122,7 @@ TEST_CASE("WAV-9: lower ≤ h ≤ upper: lower is at least the vertices' brute-f
 TEST_CASE("WAV-9: a directed search told a known lower bound still brackets h, δ-narrow above what is known",
           "[property][wavelet]") {
     rc::prop("a sphere against a noisy copy, known anywhere from 0 to twice the distance", [] {
-        const TriMesh A = test::icosphere(*rc::gen::inRange(1, 3));
-        const std::vector<Triangle> t = A.triangles();
-        std::vector<Vec3> bx = A.positions();
-        const std::vector<Vec3> n = test::random_points(bx.size(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30), 0.05);
-        for (std::size_t v = 0; v < bx.size(); ++v) bx[v] += n[v];
+        const auto [A, t, bx] = noisy_sphere();
         const double delta = *rc::gen::element(0.02, 0.005);
         const TriangleTree B(bx, t);
         const wavelet::DirectedHausdorff full = wavelet::directed_hausdorff(A.positions(), t, B, {.resolution = delta});
