@@ -20,62 +20,64 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     auto start = detail::Clock::now();
     const Refinement r = refine(D, levels);
     out.remesh_positions = sample(r, phi, executor);
-    out.refinement_seconds = detail::seconds_since(start);
-
-    start = detail::Clock::now();
-    const FilterBank bank(r, executor);
-    const Decomposition d = bank.decompose(out.remesh_positions, executor);
-    out.decomposition_seconds = detail::seconds_since(start);
-
-    start = detail::Clock::now();
-    const std::vector<Vec3> round_trip = bank.reconstruct(d, executor);
-    out.reconstruction_seconds = detail::seconds_since(start);
-
-    for (std::size_t v = 0; v < round_trip.size(); ++v) {
-        out.reconstruction_max_error =
-            std::max(out.reconstruction_max_error, (round_trip[v] - out.remesh_positions[v]).cwiseAbs().maxCoeff());
-        out.max_abs_coordinate = std::max(out.max_abs_coordinate, out.remesh_positions[v].cwiseAbs().maxCoeff());
-    }
-    for (const LevelSolve& s : d.solves) out.cg_iterations.push_back(s.iterations);
-    out.coefficients = d.coefficient_count();
     for (const TriMesh& level : r.levels) out.remesh_level_faces.push_back(level.triangles());
     out.remesh_faces = out.remesh_level_faces.back();
+    out.refinement_seconds = detail::seconds_since(start);
 
+    // The Hausdorff brackets of D^J's f^J and of each reconstruction, one task per mesh on the
+    // executor (core/executor.hpp; each result is the single-threaded one). T's tree is built
+    // once for all of them (issue 18). As in hausdorff(), the distance from T comes first and the
+    // one to T is searched only down to its lower bound (HausdorffOptions::known): f^J's vertices
+    // lie on T, and resolving its distance to T to δ along the creases of a CAD model was most of
+    // the brackets' time (the fandisk's f^J: 67 ms of 170). f^J's brackets need no wavelets: they
+    // run beside the decomposition and reconstructions (issue 18: on two threads the brackets of
+    // three meshes, started after them, left one thread idle while the last ran).
+    const auto bracketing = detail::Clock::now();
     const std::vector<Triangle> t_faces = T.triangles();
     out.bbox_diagonal = bounding_box(T).diagonal();
     HausdorffOptions ho = hausdorff_options;
     if (ho.resolution <= 0) ho.resolution = 1e-4 * out.bbox_diagonal;
-    for (double p : keep_percent) {
-        KeptResult k;
-        k.percent = p;
-        k.count = kept_count(out.coefficients, p);
-        start = detail::Clock::now();
-        k.positions = bank.reconstruct(keep_largest(bank, d, k.count), executor);
-        out.reconstruction_seconds += detail::seconds_since(start);
-        k.l2_error = rms_distance(out.remesh_positions, k.positions);
-        out.kept.push_back(std::move(k));
-    }
-    // The Hausdorff brackets of D^J's f^J and of each reconstruction: two directed distances each,
-    // one task per mesh on the executor (core/executor.hpp; each result is the single-threaded
-    // one). T's tree is built once for all of them (issue 18). As in hausdorff(), the distance
-    // from T comes first and the one to T is searched only down to its lower bound
-    // (HausdorffOptions::known): f^J's vertices lie on T, and resolving its distance to T to δ
-    // along the creases of a CAD model was most of the brackets' time (the fandisk's f^J: 67 ms
-    // of 170).
-    start = detail::Clock::now();
-    const std::size_t n = 1 + out.kept.size();
-    auto result = [&](std::size_t i) -> Hausdorff& { return i == 0 ? out.remesh_hausdorff : out.kept[i - 1].hausdorff; };
-    auto positions = [&](std::size_t i) -> const std::vector<Vec3>& { return i == 0 ? out.remesh_positions : out.kept[i - 1].positions; };
     const TriangleTree t_tree(T.positions(), t_faces);
-    executor_or_default(executor).for_each(n, 1, [&](std::size_t i) {
-        Hausdorff& h = result(i);
-        h.a_to_b = directed_hausdorff(T.positions(), t_faces, TriangleTree(positions(i), out.remesh_faces), ho);
+    const auto bracket = [&](const std::vector<Vec3>& positions, Hausdorff& h) {
+        h.a_to_b = directed_hausdorff(T.positions(), t_faces, TriangleTree(positions, out.remesh_faces), ho);
         HausdorffOptions second = ho;
         second.known = std::max(ho.known, h.a_to_b.lower);
-        h.b_to_a = directed_hausdorff(positions(i), out.remesh_faces, t_tree, second);
+        h.b_to_a = directed_hausdorff(positions, out.remesh_faces, t_tree, second);
+        h.resolution = ho.resolution;
+    };
+    executor_or_default(executor).for_each(2, 1, [&](std::size_t task) {
+        if (task == 0) return bracket(out.remesh_positions, out.remesh_hausdorff);
+        auto begin = detail::Clock::now();
+        const FilterBank bank(r, executor);
+        const Decomposition d = bank.decompose(out.remesh_positions, executor);
+        out.decomposition_seconds = detail::seconds_since(begin);
+
+        begin = detail::Clock::now();
+        const std::vector<Vec3> round_trip = bank.reconstruct(d, executor);
+        out.reconstruction_seconds = detail::seconds_since(begin);
+
+        for (std::size_t v = 0; v < round_trip.size(); ++v) {
+            out.reconstruction_max_error =
+                std::max(out.reconstruction_max_error, (round_trip[v] - out.remesh_positions[v]).cwiseAbs().maxCoeff());
+            out.max_abs_coordinate = std::max(out.max_abs_coordinate, out.remesh_positions[v].cwiseAbs().maxCoeff());
+        }
+        for (const LevelSolve& s : d.solves) out.cg_iterations.push_back(s.iterations);
+        out.coefficients = d.coefficient_count();
+
+        for (double p : keep_percent) {
+            KeptResult k;
+            k.percent = p;
+            k.count = kept_count(out.coefficients, p);
+            begin = detail::Clock::now();
+            k.positions = bank.reconstruct(keep_largest(bank, d, k.count), executor);
+            out.reconstruction_seconds += detail::seconds_since(begin);
+            k.l2_error = rms_distance(out.remesh_positions, k.positions);
+            out.kept.push_back(std::move(k));
+        }
+        executor_or_default(executor).for_each(out.kept.size(), 1, [&](std::size_t i) { bracket(out.kept[i].positions, out.kept[i].hausdorff); });
     });
-    for (std::size_t i = 0; i < n; ++i) result(i).resolution = ho.resolution;
-    out.hausdorff_seconds = detail::seconds_since(start);
+    // Wall time from T's tree to the last bracket, which overlaps the decomposition and reconstructions.
+    out.hausdorff_seconds = detail::seconds_since(bracketing);
     out.hausdorff_relative = out.remesh_hausdorff.lower() / out.bbox_diagonal;
     return out;
 }
