@@ -45,7 +45,7 @@ struct WaveletResult {
     double refinement_seconds = 0;        ///< refine + sample φ (steady_clock)
     double decomposition_seconds = 0;     ///< build the filter bank + decompose
     double reconstruction_seconds = 0;    ///< the round trip's reconstruction and, per kept percentage, choosing the coefficients and reconstructing
-    double hausdorff_seconds = 0;         ///< all Hausdorff brackets (an error measure, not a stage of the paper)
+    double hausdorff_seconds = 0;         ///< all Hausdorff brackets, from T's tree to the last (an error measure, not a stage of the paper; f^J's runs beside the decomposition and reconstructions, so this includes them)
 };
 
 /// The §5 wavelet stage for a domain D (closed or with boundary, one component or several),
