@@ -17,10 +17,15 @@ static Vec3 face_cross(const TriMesh& m, FaceId f) {
 
 double face_area(const TriMesh& m, FaceId f) { return 0.5 * face_cross(m, f).norm(); }
 
-Vec3 face_normal(const TriMesh& m, FaceId f) {
-    const Vec3 n = face_cross(m, f);
+Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 n = (b - a).cross(c - a);
     const double len = n.norm();
     return len > 0 ? Vec3(n / len) : Vec3::Zero();
+}
+
+Vec3 face_normal(const TriMesh& m, FaceId f) {
+    const auto v = m.face_vertices(f);
+    return triangle_normal(m.position(v[0]), m.position(v[1]), m.position(v[2]));
 }
 
 double corner_angle(const TriMesh& m, HalfedgeId h) {

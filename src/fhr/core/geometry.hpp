@@ -12,6 +12,8 @@ Vec3 edge_vector(const TriMesh& m, HalfedgeId h);  ///< position(to(h)) − posi
 double face_area(const TriMesh& m, FaceId f);
 /// Unit normal of a face, counter-clockwise orientation; zero vector for a degenerate face.
 Vec3 face_normal(const TriMesh& m, FaceId f);
+/// The same for the triangle (a, b, c): face_normal is triangle_normal of face_vertices' positions.
+Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c);
 /// The interior angle of h's face at from(h), in [0, π] (atan2 form, accurate for small angles).
 double corner_angle(const TriMesh& m, HalfedgeId h);
 /// Angle-weighted unit vertex normal.

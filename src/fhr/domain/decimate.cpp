@@ -383,7 +383,7 @@ private:
     std::vector<bool> rejected_;        // per halfedge: popped, found invalid, and not queued since
     // For valid(): per halfedge, 1 + the collapses made when it was last found invalid by the
     // local rules (0: not so) and a halfedge whose face failed its rule then (none_: not so); per
-    // vertex, the collapses made when its star last changed.
+    // vertex (VertexState::changed), the collapses made when its star last changed.
     static constexpr std::uint32_t none_ = std::numeric_limits<std::uint32_t>::max();
     struct Rejection {
         std::uint32_t since = 0, witness = none_;
@@ -410,9 +410,7 @@ private:
     // face_normal(m_, f), from the records' positions.
     Vec3 normal(FaceId f) const {
         const auto v = m_.face_vertices(f);
-        const Vec3 n = (position(v[1]) - position(v[0])).cross(position(v[2]) - position(v[0]));
-        const double length = n.norm();
-        return length > 0 ? Vec3(n / length) : Vec3::Zero();
+        return triangle_normal(position(v[0]), position(v[1]), position(v[2]));
     }
     bool cone_face(FaceId f) const {
         const auto v = m_.face_vertices(f);
