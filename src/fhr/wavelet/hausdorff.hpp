@@ -33,14 +33,16 @@
 //   search    lower <- max over A's vertices of d(v, B); then for each triangle of A (the 64
 //             with the farthest corner first, to raise lower soon; then the others in A's own
 //             order, whose neighbours' queries then find the tree's nodes in cache), branch and
-//             bound: a piece whose bound is ≤ lower is done (the bounds are tried cheapest first,
-//             only while the least so far exceeds lower); a piece whose bound exceeds its largest
+//             bound: a piece whose bound is ≤ max(lower, known) is done (the bounds are tried
+//             cheapest first, only while the least so far exceeds that; `known`, a lower bound of
+//             what the caller reports, is 0 unless given); a piece whose bound exceeds its largest
 //             corner distance by ≤ δ adds its bound to upper; any other piece is split 1-to-4 at
 //             its edge midpoints (new distances, which may raise lower; a midpoint shared with a
 //             neighbouring piece is evaluated once), down to at most max_depth splits
 //   lower     = the largest distance evaluated: a point of A at that distance exists, so h(A, B) ≥ lower
-//   upper     = max(lower, bounds of the pieces kept): h(A, B) ≤ upper, and upper − lower ≤ δ unless
-//             a piece reached max_depth (then upper is still an upper bound)
+//   upper     = max(lower, bounds of the pieces kept, bounds of the pieces done for being ≤ known):
+//             h(A, B) ≤ upper, and max(upper, known) − max(lower, known) ≤ δ unless a piece reached
+//             max_depth (then upper is still an upper bound)
 #pragma once
 
 #include <fhr/core/geometry.hpp>
