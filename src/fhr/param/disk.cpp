@@ -11,12 +11,52 @@
 namespace fhr::param {
 namespace detail {
 
+void DirectedEdges::resize_for(std::size_t edges) {
+    std::size_t slots = 16;
+    while (slots < 2 * edges) slots *= 2;
+    std::vector<std::uint64_t> keys(slots, empty);
+    std::vector<std::uint32_t> triangles(slots);
+    key_.swap(keys);
+    triangle_.swap(triangles);
+    shift_ = 64 - static_cast<unsigned>(std::countr_zero(slots));
+    used_ = 0;
+    for (std::size_t i = 0; i < keys.size(); ++i)
+        if (keys[i] != empty && triangles[i] != none) assign(keys[i], triangles[i]);
+}
+
+bool DirectedEdges::insert(std::uint64_t key, std::uint32_t t) {
+    const std::size_t i = place(key);
+    if (key_[i] == key && triangle_[i] != none) return false;
+    if (key_[i] == empty) {
+        if (2 * (used_ + 1) > key_.size()) {
+            resize_for(2 * used_ + 2);
+            return insert(key, t);
+        }
+        key_[i] = key;
+        ++used_;
+    }
+    triangle_[i] = t;
+    return true;
+}
+
+void DirectedEdges::assign(std::uint64_t key, std::uint32_t t) {
+    const std::size_t i = place(key);
+    if (key_[i] == key)
+        triangle_[i] = t;
+    else
+        insert(key, t);
+}
+
+void DirectedEdges::erase(std::uint64_t key) {
+    const std::size_t i = place(key);
+    if (key_[i] == key) triangle_[i] = none;
+}
+
 DirectedEdges directed_edges(const Disk& disk) {
-    DirectedEdges table;
-    table.reserve(3 * disk.triangles.size());
+    DirectedEdges table(3 * disk.triangles.size());
     for (std::uint32_t t = 0; t < disk.triangles.size(); ++t) {
         const auto& f = disk.triangles[t];
-        for (int k = 0; k < 3; ++k) table.emplace(edge_key(f[k], f[(k + 1) % 3]), t);
+        for (int k = 0; k < 3; ++k) table.insert(edge_key(f[k], f[(k + 1) % 3]), t);
     }
     return table;
 }
@@ -30,43 +70,6 @@ std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t x) {
     return x;
 }
 
-// The directed edges of a disk's triangles, each with the triangle that traverses it, for MAP-1's
-// checks: an open-addressing table (a power of two of at least twice as many slots as edges,
-// linear probing) in two flat arrays. Issue 18: with std::unordered_map (a node allocated per
-// edge, a division per lookup) these checks, made twice per patch, were 5 % of the fandisk run.
-class EdgeSet {
-public:
-    static constexpr std::uint32_t none = std::uint32_t(-1);
-    explicit EdgeSet(std::size_t edges) {
-        std::size_t slots = 16;
-        while (slots < 2 * edges) slots *= 2;
-        key_.assign(slots, empty);
-        triangle_.resize(slots);
-        shift_ = 64 - static_cast<unsigned>(std::countr_zero(slots));
-    }
-    /// Records that triangle t traverses `key`; false when a triangle already does.
-    bool insert(std::uint64_t key, std::uint32_t t) {
-        std::size_t i = slot(key);
-        for (; key_[i] != empty; i = (i + 1) & (key_.size() - 1))
-            if (key_[i] == key) return false;
-        key_[i] = key;
-        triangle_[i] = t;
-        return true;
-    }
-    /// The triangle that traverses `key`, or none.
-    std::uint32_t find(std::uint64_t key) const {
-        for (std::size_t i = slot(key); key_[i] != empty; i = (i + 1) & (key_.size() - 1))
-            if (key_[i] == key) return triangle_[i];
-        return none;
-    }
-
-private:
-    static constexpr std::uint64_t empty = std::uint64_t(-1);  // no edge_key: its vertices are < 2^32 − 1
-    std::vector<std::uint64_t> key_;
-    std::vector<std::uint32_t> triangle_;
-    unsigned shift_ = 0;
-    std::size_t slot(std::uint64_t key) const { return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_); }
-};
 
 }  // namespace
 
@@ -79,7 +82,7 @@ std::optional<Violation> disk_violation(const Disk& disk) {
     if (nt == 0) return broken(Element::whole, -1, "no triangles");
     if (nv >= std::uint32_t(-1)) return broken(Element::whole, -1, "too many vertices");
     std::vector<std::uint32_t> incident(nv, 0);
-    EdgeSet edges(3 * nt);
+    detail::DirectedEdges edges(3 * nt);
     for (std::size_t t = 0; t < nt; ++t) {
         const auto& f = disk.triangles[t];
         for (int k = 0; k < 3; ++k)
@@ -97,7 +100,7 @@ std::optional<Violation> disk_violation(const Disk& disk) {
 
     // Boundary edges: directed edges without their reverse, in triangle order. Each vertex starts
     // at most one.
-    constexpr std::uint32_t none = EdgeSet::none;
+    constexpr std::uint32_t none = detail::DirectedEdges::none;
     std::vector<std::uint32_t> boundary_next(nv, none), boundary_prev(nv, none);
     std::size_t n_boundary_edges = 0, n_edges = 0;
     for (std::size_t e = 0; e < 3 * nt; ++e) {

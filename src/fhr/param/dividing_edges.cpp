@@ -20,12 +20,12 @@ std::size_t split_dividing_edges(Disk& disk) {
     for (const auto& f : disk.triangles)
         for (int k = 0; k < 3; ++k) {
             const std::uint32_t a = f[k], b = f[(k + 1) % 3];
-            if (a < b && (side[a] & side[b]) != 0 && edges.count(detail::edge_key(b, a)) != 0) dividing.emplace_back(a, b);
+            if (a < b && (side[a] & side[b]) != 0 && edges.find(detail::edge_key(b, a)) != detail::DirectedEdges::none) dividing.emplace_back(a, b);
         }
 
     auto set = [&](std::uint32_t t, std::array<std::uint32_t, 3> f) {
         disk.triangles[t] = f;
-        for (int k = 0; k < 3; ++k) edges[detail::edge_key(f[k], f[(k + 1) % 3])] = t;
+        for (int k = 0; k < 3; ++k) edges.assign(detail::edge_key(f[k], f[(k + 1) % 3]), t);
     };
     for (const auto& [a, b] : dividing) {
         // The triangles holding the edge now (earlier splits may have moved it to a new one).
