@@ -40,11 +40,7 @@ bool DirectedEdges::insert(std::uint64_t key, std::uint32_t t) {
 }
 
 void DirectedEdges::assign(std::uint64_t key, std::uint32_t t) {
-    const std::size_t i = place(key);
-    if (key_[i] == key)
-        triangle_[i] = t;
-    else
-        insert(key, t);
+    if (!insert(key, t)) triangle_[place(key)] = t;
 }
 
 void DirectedEdges::erase(std::uint64_t key) {
@@ -69,7 +65,6 @@ std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
 }
-
 
 }  // namespace
 

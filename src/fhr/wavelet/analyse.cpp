@@ -26,8 +26,8 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
 
     // The Hausdorff brackets of D^J's f^J and of each reconstruction, one task per mesh on the
     // executor (core/executor.hpp; each result is the single-threaded one). T's tree is built
-    // once for all of them (issue 18). As in hausdorff(), the distance from T comes first and the
-    // one to T is searched only down to its lower bound (HausdorffOptions::known): f^J's vertices
+    // once for all of them (issue 18). hausdorff() takes the distance from T first and searches the
+    // one to T only down to its lower bound (HausdorffOptions::known): f^J's vertices
     // lie on T, and resolving its distance to T to δ along the creases of a CAD model was most of
     // the brackets' time (the fandisk's f^J: 67 ms of 170). f^J's brackets need no wavelets: they
     // run beside the decomposition and reconstructions (issue 18: on two threads the brackets of
@@ -39,11 +39,7 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     if (ho.resolution <= 0) ho.resolution = 1e-4 * out.bbox_diagonal;
     const TriangleTree t_tree(T.positions(), t_faces);
     const auto bracket = [&](const std::vector<Vec3>& positions, Hausdorff& h) {
-        h.a_to_b = directed_hausdorff(T.positions(), t_faces, TriangleTree(positions, out.remesh_faces), ho);
-        HausdorffOptions second = ho;
-        second.known = std::max(ho.known, h.a_to_b.lower);
-        h.b_to_a = directed_hausdorff(positions, out.remesh_faces, t_tree, second);
-        h.resolution = ho.resolution;
+        h = hausdorff(T.positions(), t_faces, t_tree, positions, out.remesh_faces, TriangleTree(positions, out.remesh_faces), ho);
     };
     executor_or_default(executor).for_each(2, 1, [&](std::size_t task) {
         if (task == 0) return bracket(out.remesh_positions, out.remesh_hausdorff);

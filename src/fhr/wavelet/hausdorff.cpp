@@ -425,12 +425,19 @@ Hausdorff hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle>
         // All points equal: any positive δ will do.
         if (!(o.resolution > 0)) o.resolution = 1;
     }
+    return hausdorff(a_positions, a_triangles, TriangleTree(a_positions, a_triangles), b_positions, b_triangles,
+                     TriangleTree(b_positions, b_triangles), o);
+}
+
+Hausdorff hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles, const TriangleTree& A,
+                    std::span<const Vec3> b_positions, std::span<const Triangle> b_triangles, const TriangleTree& B,
+                    const HausdorffOptions& options) {
     Hausdorff h;
-    h.resolution = o.resolution;
-    const TriangleTree A(a_positions, a_triangles), B(b_positions, b_triangles);
-    h.a_to_b = directed_hausdorff(a_positions, a_triangles, B, o);
-    o.known = std::max(o.known, h.a_to_b.lower);
-    h.b_to_a = directed_hausdorff(b_positions, b_triangles, A, o);
+    h.resolution = options.resolution;
+    h.a_to_b = directed_hausdorff(a_positions, a_triangles, B, options);
+    HausdorffOptions second = options;
+    second.known = std::max(options.known, h.a_to_b.lower);
+    h.b_to_a = directed_hausdorff(b_positions, b_triangles, A, second);
     return h;
 }
 

@@ -145,6 +145,12 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
 Hausdorff hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles,
                     std::span<const Vec3> b_positions, std::span<const Triangle> b_triangles,
                     const HausdorffOptions& options = {});
+/// The same, with A's and B's trees built by the caller (one tree serving several distances).
+/// \pre A and B are the trees of (a_positions, a_triangles) and (b_positions, b_triangles), each
+///      with a triangle; options.resolution > 0.
+Hausdorff hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles, const TriangleTree& A,
+                    std::span<const Vec3> b_positions, std::span<const Triangle> b_triangles, const TriangleTree& B,
+                    const HausdorffOptions& options);
 
 /// (Σ_v |a_v − b_v|² / n)^½: the RMS distance between corresponding vertices.
 /// \pre a.size() == b.size() > 0.
