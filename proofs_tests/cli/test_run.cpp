@@ -214,20 +214,18 @@ TEST_CASE("CLI-RUN-1: --weights and --solver are honoured and still certified", 
 }
 
 TEST_CASE("CLI-RUN-1, MAP-7: BiCGSTAB converges on small patches of graded meshes (fuzz_pipeline findings, sessions 8 and 9)", "[cli][run]") {
-    // Uniform weights on the density family's graded meshes. The first: a patch of 8 unknowns
-    // stalled at a relative residual of 5.4e-14 after Eigen's default 2n = 16 iterations (exit 4);
-    // now at least bicgstab_min_iterations. The second: started from 0 on a patch where the
-    // incomplete LU is exact, BiCGSTAB's half step reached a residual of exactly 0 and the next
-    // divided 0 by 0 (NaN after 2 iterations); now it starts from the preconditioner's solution.
-    // Both certify, like SparseLU's.
+    // Uniform weights on the density family's graded mesh: a patch of 8 unknowns stalled at a
+    // relative residual of 5.4e-14 after Eigen's default 2n = 16 iterations (exit 4); now at least
+    // bicgstab_min_iterations, and started from the preconditioner's solution (the second finding,
+    // a NaN, is MAP-7's unit test in proofs_tests/param: its patch came from a domain §2 no longer
+    // makes). Certified, like SparseLU's. (86 domain faces until session 15, when ties of cost
+    // went to the shorter edge; 24 makes the same stalling patch.)
     struct Case {
         std::vector<std::string> recipe;
         std::string faces;
     };
     const std::vector<Case> cases{
-        {{"--family", "density", "--genus", "0", "--components", "2", "--faces", "564", "--seed", "2420457183278695252"}, "86"},
-        {{"--family", "density", "--genus", "2", "--holes", "2", "--components", "3", "--faces", "970", "--seed", "6679101986355545382"},
-         "439"}};
+        {{"--family", "density", "--genus", "0", "--components", "2", "--faces", "564", "--seed", "2420457183278695252"}, "24"}};
     for (std::size_t k = 0; k < cases.size(); ++k) {
         const std::string mesh = temp_path("bicgstab-" + std::to_string(k) + ".off");
         std::vector<std::string> generate{"generate"};

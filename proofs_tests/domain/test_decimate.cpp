@@ -271,7 +271,8 @@ std::size_t named_request(const std::string& message) {
 TEST_CASE("DOM-9: the refusal names a request that succeeds, with several components (./run families finding)", "[unit][domain]") {
     // Quality family, genus 3, three closed components (`./run families 500`, quality 496): asked
     // for 56 faces §2 stopped at 60; asked for 60 (the shares of 60 are not those of 56) at 62,
-    // then 64: each count reached, asked for again, stopped once more. The refusal now names a
+    // then 64: each count reached, asked for again, stopped once more. (Since ties of cost go to
+    // the shorter edge: asked for 54 it stops at 56, asked for 56 at 58.) The refusal now names a
     // request whose every share is at least where its component stopped; asking it gives the sum
     // of its shares (here, as no share is raised to a component's least, that many faces).
     generate::RandomMeshOptions o;
@@ -281,7 +282,7 @@ TEST_CASE("DOM-9: the refusal names a request that succeeds, with several compon
     o.faces = 2814;
     o.seed = 6338238982764330425ull;
     const TriMesh T = generate::random_mesh(o);
-    for (std::size_t asked : {56, 62}) {
+    for (std::size_t asked : {54, 56}) {
         CAPTURE(asked);
         std::string message;
         try {

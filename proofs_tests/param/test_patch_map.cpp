@@ -386,6 +386,49 @@ TEST_CASE("MAP-7: SparseLU and BiCGSTAB agree to 1e-10 and both certify", "[prop
     });
 }
 
+TEST_CASE("MAP-7: BiCGSTAB on a patch whose incomplete LU is exact (fuzz_pipeline finding, session 9)", "[unit][param]") {
+    // A patch of §4 on the density family's graded mesh (fhr generate --family density --genus 2
+    // --holes 2 --components 3 --faces 970 --seed 6679101986355545382, 439 domain faces, as §2
+    // decimated until session 15), uniform weights: started from 0, BiCGSTAB's half step reached a
+    // residual of exactly 0 and its next step divided 0 by 0 (NaN after 2 iterations, exit 4). It
+    // starts from the preconditioner's solution now, which already meets the tolerance.
+    Disk d;
+    d.positions = {
+        {7, 0, -0.5},
+        {7, -0.5, -0.5},
+        {6.5, 0.5, -0.5},
+        {6.5, -0.5, -0.5},
+        {6.5625, -0.375, -0.5},
+        {6.8125, -0.375, -0.5},
+        {7.5, -0.5, -0.5},
+        {7.4921875, -0.5, -0.5},
+        {7.4846153846153847, -0.48461538461538467, -0.5},
+        {7.166666666666667, -0.16666666666666674, -0.5},
+        {7.25, -0.5, -0.5},
+        {7.2999999999999998, -0.30000000000000004, -0.5},
+        {7.375, -0.5, -0.5},
+        {7.3888888888888893, -0.38888888888888884, -0.5},
+        {7.4375, -0.5, -0.5},
+        {7.4411764705882355, -0.44117647058823528, -0.5},
+        {7.46875, -0.5, -0.5},
+        {7.4696969696969697, -0.46969696969696972, -0.5},
+        {7.484375, -0.5, -0.5},
+        {6.5625, 0.125, -0.5},
+        {6.71875, -0.3125, -0.5},
+        {6.59375, -0.0625, -0.5},
+        {6.59375, -0.3125, -0.5},
+        {6.625, -0.25, -0.5}};
+    d.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}, {9, 1, 0}, {9, 10, 1}, {11, 10, 9}, {11, 12, 10}, {13, 12, 11}, {13, 14, 12}, {15, 14, 13}, {15, 16, 14}, {17, 16, 15}, {17, 18, 16}, {8, 18, 17}, {8, 7, 18}, {2, 19, 3}, {1, 5, 2}, {5, 1, 3}, {5, 20, 19}, {19, 2, 5}, {19, 21, 4}, {4, 3, 19}, {4, 22, 20}, {20, 5, 4}, {23, 21, 20}, {21, 19, 20}, {23, 22, 21}, {22, 4, 21}, {22, 23, 20}};
+    d.boundary = {3, 2, 0, 9, 11, 13, 15, 17, 8, 6, 7, 18, 16, 14, 12, 10, 1};
+    d.corners = {0, 1, 9};
+    param::validate(d);
+    const PatchMap lu = param::map_patch(d, {Weights::uniform, Solver::sparse_lu});
+    const PatchMap it = param::map_patch(d, {Weights::uniform, Solver::bicgstab});
+    for (std::size_t v = 0; v < d.positions.size(); ++v)
+        for (int c = 0; c < 3; ++c) CHECK(std::abs(lu.beta[v][c] - it.beta[v][c]) <= 1e-10);
+    CHECK(param::certify(d, it).passed);
+}
+
 TEST_CASE("MAP-8: Proposition 1 — every split disk maps one-to-one with every weight kind", "[property][param]") {
     rc::prop("disks cut from random meshes of genus 0-3 and bumpy lattices", [] {
         Disk d = *gen_disk();

@@ -373,7 +373,8 @@ TEST_CASE("PART-10: a restricted path through a saddle is snapped to it, leaving
     // holes). A restricted path passed a saddle of T as a point 1e-12 of an edge from it, a
     // rounding error of the exact path through it; the next curve touching it had no room to
     // separate (below min_separation), and the run fell back to changing D (42 -> 80 and 46 -> 86
-    // faces). Γ*'s nodes are now snapped like every geodesic's, and D is kept.
+    // faces). Γ*'s nodes are now snapped like every geodesic's, and D is kept. (The block mesh at
+    // 44 faces since session 15: with ties of cost to the shorter edge, §2 stops there.)
     struct Case {
         generate::RandomMeshOptions recipe;
         std::size_t faces;
@@ -388,7 +389,7 @@ TEST_CASE("PART-10: a restricted path through a saddle is snapped to it, leaving
     density.holes = 2;
     density.faces = 3622;
     density.seed = 1558416979458087181ull;
-    for (const Case& c : {Case{block, 42}, Case{density, 36}}) {
+    for (const Case& c : {Case{block, 44}, Case{density, 36}}) {
         CAPTURE(generate::generate_command(c.recipe));
         const TriMesh T = generate::random_mesh(c.recipe);
         const domain::Domain D0 = domain::decimate(T, {.target_faces = c.faces});

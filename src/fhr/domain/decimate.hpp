@@ -9,7 +9,7 @@
 //   Q_v  <- Σ over the faces f at v of area(f) · (plane quadric of f)          (Garland–Heckbert)
 //   cost(h = v0 -> v1) = (Q_v0 + Q_v1)(p_v1); queue every edge with its cheaper direction
 //   while #faces > target:
-//       pop the cheapest h (ties: lowest halfedge index); skip stale entries
+//       pop the cheapest h (ties: shorter edge, then lower halfedge index)
 //       if the collapse v0 -> v1 is valid (link condition; no face turns by more than
 //          max_normal_deviation; no new corner below min_angle; no exactly degenerate face):
 //           collapse, Q_v1 += Q_v0, record (v0, v1, va, vb), re-queue the edges near v1
