@@ -160,10 +160,16 @@ TEST_CASE("DOM-2: meshes of higher genus keep their genus (elephant g = 3, rocke
 }
 
 TEST_CASE("DOM-16: decimating again from an earlier decimation keeps every rule and a consistent history", "[property][domain]") {
-    rc::prop("random meshes; a decimation, then more kept vertices and more faces", [] {
+    rc::prop("random meshes, with and without the pass over small cells; a decimation, then more kept vertices and more faces", [] {
         const fhr::testing::GeneratedMesh g = *fhr::testing::gen_closed_mesh(0, 3, 1200);
         const TriMesh& T = g;
         DecimateOptions first;
+        const bool cells = *rc::gen::arbitrary<bool>();
+        RC_TAG(cells ? "pass over cells" : "greedy loop only");
+        if (cells) {
+            first.cells_from = 0;
+            first.cell_faces = *rc::gen::inRange<std::size_t>(16, 400);
+        }
         first.target_faces = std::max<std::size_t>(domain::min_closed_faces(g.options.genus) + 8, T.n_faces() / 4) & ~std::size_t{1};
         RC_PRE(first.target_faces < T.n_faces());
         Domain d1, d2;
@@ -183,8 +189,18 @@ TEST_CASE("DOM-16: decimating again from an earlier decimation keeps every rule 
             RC_DISCARD("target unreachable with the new kept vertices");
         }
         for (VertexId x : again.keep) RC_ASSERT(std::find(d2.t_vertex.begin(), d2.t_vertex.end(), x) != d2.t_vertex.end());
+        RC_ASSERT(d1.by_cells == (cells && 4 * first.target_faces <= T.n_faces()));
+        RC_ASSERT(d2.by_cells == d1.by_cells);  // decimate_again keeps to previous's regime
         RC_ASSERT(domain_violation(T, d2, again) == "");
         RC_ASSERT(undo_gives_back(T, d2));  // the reused prefix and the new collapses make one history
+        // d1's collapses up to its first that removes a vertex kept now or goes below the new
+        // target begin d2's history.
+        std::size_t prefix = 0;
+        while (prefix < d1.history.size() && T.n_faces() - 2 * (prefix + 1) >= again.target_faces &&
+               std::find(again.keep.begin(), again.keep.end(), d1.history[prefix].removed) == again.keep.end())
+            ++prefix;
+        RC_ASSERT(d2.history.size() >= prefix);
+        RC_ASSERT(std::equal(d1.history.begin(), d1.history.begin() + static_cast<std::ptrdiff_t>(prefix), d2.history.begin()));
         RC_ASSERT(domain::history_describes(d2, T));
         Domain flipped = d2;  // a domain changed after its decimation is told apart
         EdgeId e(0);
@@ -196,6 +212,19 @@ TEST_CASE("DOM-16: decimating again from an earlier decimation keeps every rule 
         // Nothing new to keep and the same target: the earlier decimation is reused whole.
         if (extra == 0) RC_ASSERT(d2.mesh.triangles() == d1.mesh.triangles() && d2.t_vertex == d1.t_vertex);
     });
+}
+
+TEST_CASE("DOM-23: the pass over the cells runs at its default sizes on a large mesh, and only for a target of a quarter or less", "[unit][domain]") {
+    const TriMesh T = generate::random_mesh({.genus = 1, .faces = 140000, .seed = 3, .noise = 0.1});
+    REQUIRE(T.n_faces() > DecimateOptions{}.cells_from);
+    const DecimateOptions coarse{.target_faces = 1400}, fine{.target_faces = T.n_faces() / 4 + 2};
+    const Domain d = decimate(T, coarse);
+    CHECK(d.by_cells);
+    CHECK(domain_violation(T, d, coarse) == "");
+    CHECK(undo_gives_back(T, d));
+    const Domain e = decimate(T, fine);
+    CHECK(!e.by_cells);
+    CHECK(domain_violation(T, e, fine) == "");
 }
 
 TEST_CASE("DOM-15: a noisy sphere decimated to a tetrahedron stays outward oriented", "[unit][domain]") {
@@ -486,6 +515,43 @@ TEST_CASE("DOM-17..19: decimation of random surfaces with 1-5 boundary loops and
     });
 }
 
+TEST_CASE("DOM-23: the pass over the cells keeps every rule (every family, boundary, components)", "[property][domain][boundary]") {
+    rc::prop("decimate to a quarter of the faces or fewer, with cells of 16-600 faces", [] {
+        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 3, .max_faces = 3000, .min_holes = 0, .max_holes = 3,
+                                                                       .min_components = 1, .max_components = 2,
+                                                                       .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+        const TriMesh& T = g;
+        DecimateOptions o;
+        o.cells_from = 0;
+        o.cell_faces = *rc::gen::inRange<std::size_t>(16, 600);
+        // DOM-5 bounds the corners a collapse makes; T's own needles (the quality family) may
+        // stay in D. Below them, the bound is one for every corner of D, as domain_violation reads it.
+        double smallest = o.min_angle_deg;
+        for (FaceId f : T.faces()) smallest = std::min(smallest, min_angle_deg(T, f));
+        o.min_angle_deg = std::min(o.min_angle_deg, smallest / 2);
+        o.target_faces = *rc::gen::inRange<std::size_t>(std::max<std::size_t>(1, T.n_faces() / 40), T.n_faces() / 4 + 1);
+        if (T.is_closed()) o.target_faces -= o.target_faces % 2;
+        RC_PRE(o.target_faces > 0);
+        Domain d;
+        try {
+            d = decimate(T, o);
+        } catch (const InvalidInput& e) {
+            const std::string what = e.what();
+            RC_ASSERT((what.find("decimation stopped at") != std::string::npos || what.find("is fewer than a closed surface") != std::string::npos));
+            RC_DISCARD("below the least faces, or a closed component cannot reach its share under the validity rules");
+        }
+        RC_ASSERT(d.by_cells);
+        if (T.is_closed() && connected_components(T).count == 1)
+            RC_ASSERT(domain_violation(T, d, o) == "");
+        else
+            RC_ASSERT(open_violation(T, d, o) == "");
+        RC_ASSERT(undo_gives_back(T, d));
+        RC_ASSERT(domain::history_describes(d, T));
+        const Domain again = decimate(T, o);  // DOM-7
+        RC_ASSERT(again.mesh.arrays() == d.mesh.arrays() && again.history == d.history);
+    });
+}
+
 namespace {
 
 // DOM-22: the same decimation with and without remembering rejected collapses: every id of D,
@@ -522,6 +588,10 @@ TEST_CASE("DOM-22: remembering rejected collapses gives the same D as checking e
         o.target_faces = *rc::gen::inRange<std::size_t>(std::max<std::size_t>(1, T.n_faces() / 20), T.n_faces() / 2 + 2);
         if (T.is_closed()) o.target_faces += o.target_faces % 2;
         o.best_effort = *rc::gen::arbitrary<bool>();
+        if (*rc::gen::arbitrary<bool>()) {  // the pass over small cells first (where the target allows it)
+            o.cells_from = 0;
+            o.cell_faces = *rc::gen::inRange<std::size_t>(16, 600);
+        }
         RC_ASSERT(decimate_both_ways(T, o) == "");
         Domain d;
         try {

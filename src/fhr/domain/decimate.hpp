@@ -15,6 +15,14 @@
 //           collapse, Q_v1 += Q_v0, record (v0, v1, va, vb), re-queue the edges near v1
 //       else queue the edge's other direction, unless it was found invalid too
 //   if the queue runs dry first: the target cannot be met under these rules (error)
+//
+// Beyond the paper (issue 18): when T has more than 2^17 faces and the target is at most a
+// quarter of them, the loop above is preceded by a pass over the cells — each vertex in the cell
+// of its first face, cells being blocks of 2^14 consecutive faces of T̂ — which runs the same
+// loop, cell after cell, over the edges whose ends both lie in the cell, until a quarter of the
+// cell's vertices are left (or no such collapse is valid). A cell's data stays in cache; the
+// greedy loop over all edges then makes the last quarter of the collapses. The collapses then
+// depend on T's face order (that of most meshes is spatially coherent: a cell is a compact region).
 #pragma once
 
 #include <cstddef>
@@ -46,6 +54,11 @@ struct DecimateOptions {
     /// of remembering which were found invalid by rules whose inputs have not changed since, or
     /// whose failing face still fails: slower, and the same D (DOM-22); for tests.
     bool recheck_rejected = false;
+    /// The pass over the cells (see the top of this file) runs for T of more than cells_from
+    /// faces, with cells of cell_faces faces. The defaults are measured (paper_notes/domain.md);
+    /// tests take small ones to exercise the pass on small meshes.
+    std::size_t cells_from = std::size_t{1} << 17;
+    std::size_t cell_faces = std::size_t{1} << 14;
 };
 
 /// D together with its correspondence to T (paper §2).
@@ -56,6 +69,8 @@ struct Domain {
     /// surface with boundary, `left` or `right` of a collapse along the boundary is the apex of
     /// its loop's cone, vertex #V(T) + (the loop's place in boundary_loops(T)).
     std::vector<Collapse> history;
+    /// The collapses began with the pass over the cells (see above); decimate_again keeps to it.
+    bool by_cells = false;
 };
 
 /// For each edge [v_j, v_k] of D (in edge order), the vertices x_j, x_k of T it stands for: the
