@@ -22,26 +22,27 @@ std::vector<HalfedgeId> boundary_loops(const TriMesh& m) {
     return loops;
 }
 
+// Union-find over the edges in index order, then the roots numbered by their lowest vertex. A
+// search from each seed reads the halfedges at random places; this reads them in order, and the
+// parents (4 bytes per vertex) stay in cache (issue 18: 35 → 10 ms at 10⁶ faces).
 Components connected_components(const TriMesh& m) {
+    FHR_DCHECK(!m.has_garbage());
+    std::vector<std::uint32_t> parent(m.n_vertices());
+    for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
+    auto root = [&](std::uint32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];  // path halving
+        return v;
+    };
+    for (EdgeId e : m.edges()) {
+        const std::uint32_t a = root(m.to(TriMesh::halfedge(e, 0)).idx()), b = root(m.to(TriMesh::halfedge(e, 1)).idx());
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the lower root stays
+    }
     Components c;
     c.vertex_component.assign(m.n_vertices(), UINT32_MAX);
-    std::vector<VertexId> stack;
-    for (VertexId seed : m.vertices()) {
-        if (c.vertex_component[seed] != UINT32_MAX) continue;
-        const auto id = static_cast<std::uint32_t>(c.count++);
-        c.vertex_component[seed] = id;
-        stack.push_back(seed);
-        while (!stack.empty()) {
-            const VertexId v = stack.back();
-            stack.pop_back();
-            m.for_each_outgoing(v, [&](HalfedgeId h) {
-                const VertexId w = m.to(h);
-                if (c.vertex_component[w] == UINT32_MAX) {
-                    c.vertex_component[w] = id;
-                    stack.push_back(w);
-                }
-            });
-        }
+    for (VertexId v : m.vertices()) {
+        const std::uint32_t r = root(v.idx());  // r ≤ v: a root is the lowest vertex of its set
+        if (r == v.idx()) c.vertex_component[v] = static_cast<std::uint32_t>(c.count++);
+        c.vertex_component[v] = c.vertex_component[VertexId(r)];
     }
     return c;
 }
@@ -49,6 +50,8 @@ Components connected_components(const TriMesh& m) {
 long genus(const TriMesh& m) { return genus(m, connected_components(m)); }
 
 long genus(const TriMesh& m, const Components& comp) {
+    if (comp.count == 1)  // χ from the counts, no pass over the elements
+        return (2 - static_cast<long>(boundary_loops(m).size()) - euler_characteristic(m)) / 2;
     std::vector<long> chi(comp.count, 0), loops(comp.count, 0);
     for (VertexId v : m.vertices()) ++chi[comp.vertex_component[v]];
     for (EdgeId e : m.edges()) --chi[comp.vertex_component[m.to(TriMesh::halfedge(e, 0))]];

@@ -253,6 +253,9 @@ std::vector<Quadric> vertex_quadrics(const TriMesh& T, std::size_t real_faces) {
 
 std::size_t reachable_request(const TriMesh& T, const std::vector<std::size_t>& reached, std::size_t from);
 
+// decimate's regime for a request of `faces` faces: the pass over the cells first, or not.
+bool cells_first(const TriMesh& T, std::size_t faces, const DecimateOptions& o) { return T.n_faces() > o.cells_from && 4 * faces <= T.n_faces(); }
+
 // Decimates `start`, a decimation of T̂ (T with cones; T itself when closed) after the collapses
 // `start.history` (T̂ itself with none),
 // whose vertex j is T̂'s vertex start.t_vertex[j] with quadric quadrics[j]. Vertices of T̂ from
@@ -262,7 +265,7 @@ class Decimator {
 public:
     Decimator(const TriMesh& T, Domain start, const Components& comps, const TriMesh& t_hat, std::vector<Quadric> quadrics,
               const DecimateOptions& o, std::size_t real_vertices, std::vector<std::size_t> targets)
-        : T_(T), m_(std::move(start.mesh)), history_(std::move(start.history)), options_(o), vertex_(m_.n_vertices()),
+        : T_(T), m_(std::move(start.mesh)), history_(std::move(start.history)), options_(o),
           rejected_(m_.n_halfedges(), false), rejection_(m_.n_halfedges()), real_(real_vertices), target_(std::move(targets)),
           queue_(m_.n_edges()) {
         // One pass over the vertices and one over the faces fill the records and the counts
@@ -276,8 +279,10 @@ public:
         // A fresh start (decimate's identity(T̂): no history, every vertex its own) is T̂ itself,
         // face for face: the same components and the same volumes, summed in the same order.
         bool fresh = history_.empty() && m_.n_faces() == t_hat.n_faces();
+        FHR_DCHECK(!m_.has_garbage());
+        vertex_.reserve(m_.n_vertices());
         for (VertexId v : m_.vertices()) {
-            VertexState& s = vertex_[v.idx()];
+            VertexState& s = vertex_.emplace_back();
             s.position = m_.position(v);
             s.quadric = quadrics[v.idx()];
             s.t = start.t_vertex[v];
@@ -336,7 +341,9 @@ public:
                 if (options_.best_effort || !closed_above) break;
                 std::size_t faces = 0;
                 for (std::size_t f : faces_) faces += f;
-                const std::size_t reachable = reachable_request(T_, faces_, faces);
+                // The theorem behind the named request holds within one regime (reachable_request).
+                std::size_t reachable = reachable_request(T_, faces_, faces);
+                if (cells_first(T_, reachable, options_) != d.by_cells) reachable = 0;
                 throw InvalidInput("", 0, "decimation stopped at " + std::to_string(faces) + " faces (target " +
                                               std::to_string(options_.target_faces) +
                                               "): no further half-edge collapse keeps the domain valid under "
@@ -361,7 +368,8 @@ private:
         const HalfedgeId h(c.halfedge);
         FHR_DCHECK(!m_.is_deleted(TriMesh::edge(h)));
         const std::uint32_t comp = component(m_.from(h));
-        if (faces_[comp] <= target_[comp]) return false;  // this component is done
+        if (faces_[comp] <= target_[comp]) return false;                  // this component is done
+        if (cell_ != no_cell && quota_[comp] == 0) return false;         // or done with this cell
         if (!valid(h)) {  // try the edge's other direction at its own cost
             rejected_[h.idx()] = true;
             vertex_[m_.from(h).idx()].suspect = vertex_[m_.to(h).idx()].suspect = true;
@@ -398,6 +406,7 @@ private:
         excess_ -= removed;
         vertex_[v1.idx()].quadric += vertex_[v0.idx()].quadric;
         refresh_around(v1);
+        if (cell_ != no_cell) --quota_[comp];
         return true;
     }
 
@@ -443,8 +452,12 @@ private:
                     if (m_.to(g).idx() > m_.from(g).idx() && in_cell(TriMesh::edge(g))) inside.push_back(edge_candidate(TriMesh::edge(g)));
                 });
             queue_.assign(std::move(inside));
-            const std::size_t size = first[c + 1] - first[c];
-            for (std::size_t quota = size - size / 4; quota > 0 && excess_ > 0 && !queue_.empty();) quota -= step(history);
+            // Per component, so that a component's collapses depend on it alone (reachable_request).
+            quota_.assign(faces_.size(), 0);
+            for (std::size_t i = first[c]; i < first[c + 1]; ++i) ++quota_[component(by_cell[i])];
+            std::size_t quota = 0;
+            for (std::size_t& q : quota_) quota += q -= q / 4;
+            while (quota > 0 && excess_ > 0 && !queue_.empty()) quota -= step(history);
             queue_.clear();
         }
         cell_ = no_cell;
@@ -492,9 +505,11 @@ private:
     // domain turn inside out.
     std::vector<double> volume_, min_volume_;
     double change_ = 0;  // the volume change of the collapse last found valid
-    // The cell being reduced (reduce_cells), or no_cell.
+    // The cell being reduced (reduce_cells), or no_cell, and per component the collapses still
+    // to make in it.
     static constexpr std::uint32_t no_cell = std::numeric_limits<std::uint32_t>::max();
     std::uint32_t cell_ = no_cell;
+    std::vector<std::size_t> quota_;
 
     VertexId t_of(VertexId v) const { return vertex_[v.idx()].t; }
     std::uint32_t component(VertexId v) const { return vertex_[v.idx()].component; }
@@ -803,7 +818,9 @@ std::vector<std::size_t> targets_of(const TriMesh& T, const Components& comps, s
 // validity rules, its volume), so decimating it to any count between its own faces and where it
 // stopped passes that count (closed: in steps of 2; with boundary the share may be missed by
 // one face, as always). The shares of the request itself differ from those of the first one
-// with several components, so the count reached, asked for again, may stop once more.
+// with several components, so the count reached, asked for again, may stop once more. Within
+// one regime of decimate only (with or without the pass over the cells, whose quotas are per
+// component too); the caller names no request of the other.
 std::size_t reachable_request(const TriMesh& T, const std::vector<std::size_t>& reached, std::size_t from) {
     if (reached.size() == 1) return from;  // one component: its share is the request
     const ComponentMeasures measures = measure_components(T);
@@ -867,7 +884,7 @@ Domain decimate_from_t(const TriMesh& T, const DecimateOptions& options, bool by
 }  // namespace
 
 Domain decimate(const TriMesh& T, const DecimateOptions& options) {
-    return decimate_from_t(T, options, T.n_faces() > options.cells_from && 4 * options.target_faces <= T.n_faces());
+    return decimate_from_t(T, options, cells_first(T, options.target_faces, options));
 }
 
 Domain decimate_again(const TriMesh& T, const Domain& previous, const DecimateOptions& options) {
