@@ -141,6 +141,44 @@ TEST_CASE("WAV-9: a directed search told a known lower bound still brackets h, �
     });
 }
 
+TEST_CASE("WAV-9: triangle_upper bounds the distance on each triangle; priors from it plus a displacement give the same h, δ-narrow",
+          "[property][wavelet]") {
+    rc::prop("a noisy sphere B, its copy B′ moved again, and A, the sphere", [] {
+        const auto [A, t, bx] = noisy_sphere();
+        const double delta = *rc::gen::element(0.02, 0.005);
+        const TriangleTree a_tree(A.positions(), t);
+        const wavelet::DirectedHausdorff f = wavelet::directed_hausdorff(bx, t, a_tree, {.resolution = delta});
+        RC_ASSERT(f.triangle_upper.size() == t.size());
+        // Every point of a triangle of B is within its triangle_upper of A (brute force at a sample).
+        std::mt19937_64 rng(*rc::gen::inRange<std::uint64_t>(0, 1u << 30));
+        std::uniform_real_distribution<double> u(0, 1);
+        for (std::size_t i = 0; i < t.size(); ++i)
+            for (int k = 0; k < 4; ++k) {
+                double w0 = u(rng), w1 = u(rng);
+                if (w0 + w1 > 1) w0 = 1 - w0, w1 = 1 - w1;
+                const Vec3 p = w0 * bx[t[i][0]] + w1 * bx[t[i][1]] + (1 - w0 - w1) * bx[t[i][2]];
+                RC_ASSERT(brute_distance(p, A.positions(), t) <= f.triangle_upper[i] * (1 + 1e-12));
+            }
+        // B′: B moved by up to 0.01 more; its prior per triangle is f's bound plus its corners' move.
+        std::vector<Vec3> moved = bx;
+        const std::vector<Vec3> n = test::random_points(bx.size(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30), 0.01);
+        std::vector<double> shift(bx.size());
+        for (std::size_t v = 0; v < bx.size(); ++v) moved[v] += n[v], shift[v] = n[v].norm();
+        std::vector<double> prior(t.size());
+        for (std::size_t i = 0; i < t.size(); ++i)
+            prior[i] = (f.triangle_upper[i] + std::max({shift[t[i][0]], shift[t[i][1]], shift[t[i][2]]})) * (1 + 1e-12);
+        const double known = *rc::gen::element(0.0, f.lower);
+        const wavelet::DirectedHausdorff plain = wavelet::directed_hausdorff(moved, t, a_tree, {.resolution = delta, .known = known});
+        const wavelet::DirectedHausdorff told =
+            wavelet::directed_hausdorff(moved, t, a_tree, {.resolution = delta, .known = known, .prior = prior});
+        RC_ASSERT(told.lower <= told.upper);
+        RC_ASSERT(told.lower <= plain.upper * (1 + 1e-12));
+        RC_ASSERT(plain.lower <= told.upper * (1 + 1e-12));
+        RC_ASSERT(std::max(told.upper, known) - std::max(told.lower, known) <= delta * (1 + 1e-12));
+        RC_ASSERT(told.samples <= plain.samples + moved.size());
+    });
+}
+
 TEST_CASE("WAV-9, WAV-14: the two-triangle and vertex-fan bounds are upper bounds of the distance on a piece, inside and at the boundary",
           "[property][wavelet]") {
     rc::prop("pieces near the vertices and edges of an irregular flat-faced octahedron or its open upper half, slightly off it", [] {

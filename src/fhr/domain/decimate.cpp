@@ -411,7 +411,7 @@ private:
     }
 
     // m_ without the removed elements, for the greedy loop after the pass over the cells: its data
-    // a quarter of T̂'s (at 10⁶ faces 5 → 2.5 µs per collapse). compact() keeps the survivors'
+    // a quarter of T̂'s (at 10⁶ faces a collapse of that loop then takes about half the time). compact() keeps the survivors'
     // order, so the halfedges' order, which breaks ties, is the same. What was remembered of
     // rejections is forgotten (DOM-22: it only spares checks).
     void drop_garbage() {
@@ -427,8 +427,8 @@ private:
     }
 
     // The pass over the cells (decimate.hpp): cell after cell, in order, the greedy loop over the
-    // edges whose ends both lie in the cell, until a quarter of the cell's vertices are left (or
-    // no such collapse is valid). A collapse there reads and writes the stars of the cell's
+    // edges whose ends both lie in the cell, until a quarter of each component's vertices in the
+    // cell are left (or no such collapse is valid). A collapse there reads and writes the stars of the cell's
     // vertices and of their neighbours: its data stays in cache. Only the cell's vertices are
     // removed, so at its turn a cell has all its vertices. Why (issue 18): past some 10⁵ faces
     // the data of T (some 300 bytes per face) outgrows the last-level cache, and the greedy loop

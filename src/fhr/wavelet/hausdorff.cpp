@@ -12,6 +12,28 @@
 namespace fhr::wavelet {
 namespace {
 
+// max over the points p of triangle x of min_k |p − x_k|: how far a point can be from every corner
+// (the Lipschitz bound's radius). Not obtuse: the circumradius abc / (4·area), the circumcentre
+// lying in the triangle. Obtuse at the corner opposite side c: the farthest points lie on c, where
+// the perpendicular bisectors of the two other sides meet it, at b²c / (b² + c² − a²) from c's end
+// on side b's corner and a²c / (a² + c² − b²) from the other. At most ℓ/√3 (ℓ the longest side,
+// the equilateral's value), much less for a long flat piece. Raised by 10⁻¹² relative against
+// rounding.
+double farthest_from_corners(const Vec3 (&x)[3]) {
+    double s2[3];  // squared side opposite corner k
+    for (int k = 0; k < 3; ++k) s2[k] = (x[(k + 1) % 3] - x[(k + 2) % 3]).squaredNorm();
+    const int c = static_cast<int>(std::max_element(s2, s2 + 3) - s2), a = (c + 1) % 3, b = (c + 2) % 3;
+    double r;
+    if (s2[a] + s2[b] >= s2[c]) {
+        const double area2 = (x[1] - x[0]).cross(x[2] - x[0]).norm();  // twice the area
+        r = area2 > 0 ? std::sqrt(s2[0] * s2[1] * s2[2]) / (2 * area2) : std::sqrt(s2[c]) / 2;
+    } else {
+        const double side = std::sqrt(s2[c]);
+        r = std::max(s2[b] * side / (s2[b] + s2[c] - s2[a]), s2[a] * side / (s2[a] + s2[c] - s2[b]));
+    }
+    return std::min(r, std::sqrt(s2[c] / 3)) * (1 + 1e-12);
+}
+
 // Squared distance from p to the box [lo, hi] (0 inside). Without branches: which side p is on
 // is as good as random, and mispredicted branches were most of a query's time (issue 18).
 double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
@@ -298,7 +320,6 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
         std::uint32_t near[3];  // the triangle of B closest to x_k
         unsigned depth;
     };
-    const double root3 = std::sqrt(3.0);
     // A piece whose bound is at most this is done whatever its exact value: either no more than
     // a sample already found, or no more than what the caller knows it will report.
     auto settled = [&] { return std::max(h.lower, options.known); };
@@ -306,8 +327,8 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
     // The piece's bound is the least of the four below. Each is tried, cheapest first, only while
     // the least so far is not settled (on the horse, the Lipschitz bound alone settles 99.8 % of
     // T's triangles).
-    auto bound = [&](const Piece& q, double ell) {
-        double b = std::max({q.d[0], q.d[1], q.d[2]}) + ell / root3;  // Lipschitz
+    auto bound = [&](const Piece& q) {
+        double b = std::max({q.d[0], q.d[1], q.d[2]}) + farthest_from_corners(q.x);  // Lipschitz
         if (b <= settled()) return b;
         for (int j = 0; j < 3; ++j) {                                   // convexity
             const std::uint32_t t = q.near[j];
@@ -362,7 +383,14 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
     };
     std::unordered_map<Point, std::pair<double, std::uint32_t>, PointHash> midpoints;
     std::vector<Piece> stack;
+    h.triangle_upper.assign(a_triangles.size(), 0);
     for (const auto& [_, i] : order) {
+        double& root_upper = h.triangle_upper[i];  // the largest bound of a piece of triangle i where the search ended
+        if (!options.prior.empty() && options.prior[i] <= settled()) {
+            root_upper = options.prior[i];
+            if (root_upper > h.lower) dropped = std::max(dropped, root_upper);
+            continue;
+        }
         const Triangle& t = a_triangles[i];
         Piece root{};
         for (int k = 0; k < 3; ++k) {
@@ -374,16 +402,18 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
         while (!stack.empty()) {
             const Piece q = stack.back();
             stack.pop_back();
-            const double ell = std::max({(q.x[1] - q.x[0]).norm(), (q.x[2] - q.x[1]).norm(), (q.x[0] - q.x[2]).norm()});
             const double dmax = std::max({q.d[0], q.d[1], q.d[2]});
-            double b = bound(q, ell);
+            double b = bound(q);
+            if (q.depth == 0 && !options.prior.empty()) b = std::min(b, options.prior[i]);
             if (b > settled() && b - dmax > options.resolution) b = std::min(b, centroid_bound(q));
             if (b <= settled()) {
                 if (b > h.lower) dropped = std::max(dropped, b);
+                root_upper = std::max(root_upper, b);
                 continue;
             }
             if (b - dmax <= options.resolution || q.depth >= options.max_depth) {
                 h.upper = std::max(h.upper, b);
+                root_upper = std::max(root_upper, b);
                 continue;
             }
             // 1-to-4 split; m_k is the midpoint of the side opposite corner k.
@@ -437,6 +467,8 @@ Hausdorff hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle>
     h.a_to_b = directed_hausdorff(a_positions, a_triangles, B, options);
     HausdorffOptions second = options;
     second.known = std::max(options.known, h.a_to_b.lower);
+    second.prior = options.prior_back;
+    second.prior_back = {};
     h.b_to_a = directed_hausdorff(b_positions, b_triangles, A, second);
     return h;
 }

@@ -8,9 +8,11 @@
 //             face; Ericson 2005, "Real-Time Collision Detection", §5.1.5), candidates from a
 //             bounding-volume tree (axis-aligned boxes, median splits) searched best-first
 //   bounds    on a triangle (piece) with corners x_k, corner distances d_k and longest edge ℓ:
-//             (Lipschitz) every point is within ℓ/√3 of a corner (at a point p inside, one of the
-//             three angles the sides subtend at p is ≥ 120°, so ℓ² ≥ 3 min|p − x_k|²) and d(·, B)
-//             is 1-Lipschitz: sup ≤ max_k d_k + ℓ/√3;
+//             (Lipschitz) every point is within r of a corner, r = max_p min_k |p − x_k|: the
+//             circumradius when no angle is obtuse, else where the perpendicular bisectors of the
+//             two shorter sides meet the longest; r ≤ ℓ/√3 (at a point p inside, one of the
+//             three angles the sides subtend at p is ≥ 120°, so ℓ² ≥ 3 min|p − x_k|²). d(·, B)
+//             is 1-Lipschitz: sup ≤ max_k d_k + r;
 //             (convexity) for any one triangle τ of B, d(·, τ) is convex, so on the piece it is
 //             largest at a corner: sup ≤ max_k d(x_k, τ), tried for the corners' closest triangles.
 //             (two triangles) when the corners' closest triangles τ₁ = (a, b, c) and τ₂ = (b, a, d)
@@ -40,6 +42,8 @@
 //             its edge midpoints (new distances, which may raise lower; a midpoint shared with a
 //             neighbouring piece is evaluated once), down to at most max_depth splits
 //   lower     = the largest distance evaluated: a point of A at that distance exists, so h(A, B) ≥ lower
+//   priors    a triangle of A with a prior (an upper bound given by the caller) that is ≤ max(lower,
+//             known) is done like a piece; otherwise the prior is one more bound of its root piece
 //   upper     = max(lower, bounds of the pieces kept, bounds of the pieces done for being ≤ known):
 //             h(A, B) ≤ upper, and max(upper, known) − max(lower, known) ≤ δ unless a piece reached
 //             max_depth (then upper is still an upper bound)
@@ -114,6 +118,15 @@ struct HausdorffOptions {
     /// remesh to T, whose vertices lie on T, was resolved down to δ far below the distance from T
     /// to the remesh, which is what the two-sided distance reports).
     double known = 0;
+    /// Per triangle of A, an upper bound of sup d(·, B) on it, or empty: a triangle whose prior is
+    /// settled (≤ max(lower, known)) is done without a search, and the prior bounds its piece.
+    /// Issue 18: a reconstruction f′ of the same triangles as f^J, whose directed search found
+    /// per triangle an upper bound U of d(·, T) (DirectedHausdorff::triangle_upper), has on each
+    /// triangle d(·, T) ≤ U + its corners' largest displacement |f′ − f^J| (1-Lipschitz, and the
+    /// displacement is linear on the triangle).
+    std::span<const double> prior{};
+    /// For the two-sided hausdorff(): the same per triangle of B, for B → A.
+    std::span<const double> prior_back{};
 };
 
 /// h(A, B) = sup_{p ∈ A} d(p, B), bracketed: lower ≤ h(A, B) ≤ upper, and
@@ -123,6 +136,9 @@ struct DirectedHausdorff {
     double upper = 0;         ///< h(A, B) ≤ upper
     std::size_t samples = 0;  ///< distances d(p, B) evaluated
     Vec3 farthest = Vec3::Zero();  ///< a point of A at distance `lower`
+    /// Per triangle of A: an upper bound of sup d(·, B) on it (the largest bound of its pieces
+    /// where the search ended, or its prior).
+    std::vector<double> triangle_upper;
 };
 
 struct Hausdorff {
