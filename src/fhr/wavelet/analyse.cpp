@@ -24,14 +24,14 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     out.remesh_faces = out.remesh_level_faces.back();
     out.refinement_seconds = detail::seconds_since(start);
 
-    // The Hausdorff brackets of D^J's f^J and of each reconstruction, one task per mesh on the
-    // executor (core/executor.hpp; each result is the single-threaded one). T's tree is built
-    // once for all of them (issue 18). hausdorff() takes the distance from T first and searches the
-    // one to T only down to its lower bound (HausdorffOptions::known): f^J's vertices
-    // lie on T, and resolving its distance to T to δ along the creases of a CAD model was most of
-    // the brackets' time (the fandisk's f^J: 67 ms of 170). f^J's brackets need no wavelets: they
-    // run beside the decomposition and reconstructions (issue 18: on two threads the brackets of
-    // three meshes, started after them, left one thread idle while the last ran).
+    // The Hausdorff brackets of D^J's f^J and of each reconstruction; each directed search runs in
+    // fixed blocks on the executor (core/executor.hpp; the same result on any number of threads).
+    // T's tree is built once for all of them (issue 18). hausdorff() takes the distance from T
+    // first and searches the one to T only down to its lower bound (HausdorffOptions::known):
+    // f^J's vertices lie on T, and resolving its distance to T to δ along the creases of a CAD
+    // model was most of the brackets' time (the fandisk's f^J: 67 ms of 170). f^J's brackets need
+    // no wavelets: they run beside the decomposition and reconstructions; the reconstructions'
+    // run after them, from f^J's per-triangle bounds (kept_bracket).
     const auto bracketing = detail::Clock::now();
     const std::vector<Triangle> t_faces = T.triangles();
     out.bbox_diagonal = bounding_box(T).diagonal();
@@ -39,7 +39,7 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     if (ho.resolution <= 0) ho.resolution = 1e-4 * out.bbox_diagonal;
     const TriangleTree t_tree(T.positions(), t_faces);
     const auto bracket = [&](const std::vector<Vec3>& positions, Hausdorff& h, const HausdorffOptions& o) {
-        h = hausdorff(T.positions(), t_faces, t_tree, positions, out.remesh_faces, TriangleTree(positions, out.remesh_faces), o);
+        h = hausdorff(T.positions(), t_faces, t_tree, positions, out.remesh_faces, TriangleTree(positions, out.remesh_faces), o, executor);
     };
     // A reconstruction's brackets from f^J's (HausdorffOptions::prior): on a triangle of D^J its
     // distance to T is at most f^J's bound there plus the triangle's largest corner displacement,

@@ -295,82 +295,59 @@ double TriangleTree::fan_bound(const Vec3 (&x)[3], std::uint32_t v) const {
     return sup + lift + eps + slack;
 }
 
-DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles,
-                                     const TriangleTree& B, const HausdorffOptions& options) {
-    DirectedHausdorff h;
-    std::uint32_t hint = 0;
-    auto query = [&](const Vec3& p) {
-        const TriangleTree::Hit hit = B.closest(p, hint);
-        hint = hit.triangle;
+namespace {
+
+// The search of the file header over a block of A's triangles, with its own lower bound, samples
+// and midpoints: blocks are searched independently (in parallel on the executor) and merged, so
+// that the result is the same on any number of threads.
+class BlockSearch {
+public:
+    BlockSearch(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles, const TriangleTree& B,
+                const HausdorffOptions& options, std::span<const TriangleTree::Hit> at_vertex)
+        : a_positions_(a_positions), a_triangles_(a_triangles), B_(B), options_(options), at_vertex_(at_vertex) {}
+
+    DirectedHausdorff h;  // lower, samples, farthest of this block (upper once finished)
+
+    TriangleTree::Hit query(const Vec3& p) {
+        const TriangleTree::Hit hit = B_.closest(p, hint_);
+        hint_ = hit.triangle;
         ++h.samples;
         if (hit.distance > h.lower) h.lower = hit.distance, h.farthest = p;
         return hit;
-    };
-    // The vertices first: they give the search a good lower bound to prune with.
-    std::vector<TriangleTree::Hit> at_vertex(a_positions.size(), TriangleTree::Hit{0, 0, Vec3::Zero()});
-    std::vector<char> used(a_positions.size(), 0);
-    for (const Triangle& t : a_triangles)
-        for (std::uint32_t v : t) used[v] = 1;
-    for (std::size_t v = 0; v < a_positions.size(); ++v)
-        if (used[v]) at_vertex[v] = query(a_positions[v]);
+    }
 
+    // Triangles [first, last) of A: the 64 with the farthest corner first, which raise lower
+    // soonest; then the others in A's order, where neighbours follow one another and find the
+    // tree's nodes in cache (in farthest-first order throughout, the horse's brackets took half as
+    // long again, with the same bounds). Writes triangle_upper[i] for each.
+    void run(std::uint32_t first, std::uint32_t last, std::span<double> triangle_upper) {
+        std::vector<std::pair<double, std::uint32_t>> order;  // (−farthest corner, triangle)
+        order.reserve(last - first);
+        for (std::uint32_t i = first; i < last; ++i) {
+            const Triangle& t = a_triangles_[i];
+            order.emplace_back(-std::max({at_vertex_[t[0]].distance, at_vertex_[t[1]].distance, at_vertex_[t[2]].distance}), i);
+        }
+        const std::size_t farthest = std::min<std::size_t>(order.size(), 64);
+        std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(farthest), order.end());
+        std::sort(order.begin() + static_cast<std::ptrdiff_t>(farthest), order.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
+        for (const auto& [_, i] : order) triangle_upper[i] = root(i);
+        h.upper = std::max({h.upper, h.lower, dropped_});
+    }
+
+private:
     struct Piece {
         Vec3 x[3];
         double d[3];            // d(x_k, B)
         std::uint32_t near[3];  // the triangle of B closest to x_k
         unsigned depth;
     };
-    // A piece whose bound is at most this is done whatever its exact value: either no more than
-    // a sample already found, or no more than what the caller knows it will report.
-    auto settled = [&] { return std::max(h.lower, options.known); };
-    double dropped = 0;  // the largest bound of a piece done for being ≤ known but above lower then
-    // The piece's bound is the least of the four below. Each is tried, cheapest first, only while
-    // the least so far is not settled (on the horse, the Lipschitz bound alone settles 99.8 % of
-    // T's triangles).
-    auto bound = [&](const Piece& q) {
-        double b = std::max({q.d[0], q.d[1], q.d[2]}) + farthest_from_corners(q.x);  // Lipschitz
-        if (b <= settled()) return b;
-        for (int j = 0; j < 3; ++j) {                                   // convexity
-            const std::uint32_t t = q.near[j];
-            if ((j > 0 && t == q.near[0]) || (j > 1 && t == q.near[1])) continue;  // tried already
-            double sup = 0;  // d(x_k, near_k) is d_k: the same computation
-            for (int k = 0; k < 3; ++k) sup = std::max(sup, q.near[k] == t ? q.d[k] : B.distance_to(q.x[k], t));
-            b = std::min(b, sup);
-        }
-        if (b <= settled()) return b;
-        for (int i = 0; i < 3; ++i)                                     // two triangles
-            if (const std::uint32_t s = q.near[i], t = q.near[(i + 1) % 3]; s != t) b = std::min(b, B.pair_bound(q.x, s, t));
-        if (b <= settled()) return b;
-        if (q.near[0] != q.near[1] || q.near[1] != q.near[2])  // a vertex fan: at a vertex common to them all
-            for (std::uint32_t v : B.triangle(q.near[0]))
-                if (std::count(B.triangle(q.near[1]).begin(), B.triangle(q.near[1]).end(), v) &&
-                    std::count(B.triangle(q.near[2]).begin(), B.triangle(q.near[2]).end(), v))
-                    b = std::min(b, B.fan_bound(q.x, v));
-        return b;
-    };
-    // Not settled by the corners' triangles: the triangle closest to the centroid too, alone and
-    // with each corner's (where A lies on B across a crease, the corners' closest triangles can
-    // be on the other side of it; the centroid's is the one under the piece).
-    auto centroid_bound = [&](const Piece& q) {
-        const Vec3 c = (q.x[0] + q.x[1] + q.x[2]) / 3.0;
-        const std::uint32_t t = query(c).triangle;
-        double b = std::max({B.distance_to(q.x[0], t), B.distance_to(q.x[1], t), B.distance_to(q.x[2], t)});
-        for (std::uint32_t s : q.near)
-            if (s != t) b = std::min(b, B.pair_bound(q.x, s, t));
-        return b;
-    };
-    // The 64 triangles with the farthest corner first: they raise lower soonest. Then the others
-    // in A's order, where neighbours follow one another and find the tree's nodes in cache (in
-    // farthest-first order throughout, the horse's brackets took half as long again, with the same
-    // bounds).
-    std::vector<std::pair<double, std::uint32_t>> order(a_triangles.size());  // (−farthest corner, triangle)
-    for (std::uint32_t i = 0; i < order.size(); ++i) {
-        const Triangle& t = a_triangles[i];
-        order[i] = {-std::max({at_vertex[t[0]].distance, at_vertex[t[1]].distance, at_vertex[t[2]].distance}), i};
-    }
-    const std::size_t farthest = std::min<std::size_t>(order.size(), 64);
-    std::partial_sort(order.begin(), order.begin() + farthest, order.end());
-    std::sort(order.begin() + farthest, order.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
+    std::span<const Vec3> a_positions_;
+    std::span<const Triangle> a_triangles_;
+    const TriangleTree& B_;
+    const HausdorffOptions& options_;
+    std::span<const TriangleTree::Hit> at_vertex_;
+    std::uint32_t hint_ = 0;
+    double dropped_ = 0;  // the largest bound of a piece done for being ≤ known but above lower then
     // A side's midpoint is shared by the pieces on both sides of it (and a side of A's triangle by
     // two triangles): its distance is evaluated once (0.5·(u + v) is the same double either way).
     using Point = std::array<double, 3>;
@@ -381,46 +358,86 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
             return h ^ (h >> 29);
         }
     };
-    std::unordered_map<Point, std::pair<double, std::uint32_t>, PointHash> midpoints;
-    std::vector<Piece> stack;
-    h.triangle_upper.assign(a_triangles.size(), 0);
-    for (const auto& [_, i] : order) {
-        double& root_upper = h.triangle_upper[i];  // the largest bound of a piece of triangle i where the search ended
-        if (!options.prior.empty() && options.prior[i] <= settled()) {
-            root_upper = options.prior[i];
-            if (root_upper > h.lower) dropped = std::max(dropped, root_upper);
-            continue;
+    std::unordered_map<Point, std::pair<double, std::uint32_t>, PointHash> midpoints_;
+    std::vector<Piece> stack_;
+
+    // A piece whose bound is at most this is done whatever its exact value: either no more than
+    // a sample already found, or no more than what the caller knows it will report.
+    double settled() const { return std::max(h.lower, options_.known); }
+
+    // The piece's bound is the least of the four below. Each is tried, cheapest first, only while
+    // the least so far is not settled (on the horse, the Lipschitz bound alone settles 99.8 % of
+    // T's triangles).
+    double bound(const Piece& q) const {
+        double b = std::max({q.d[0], q.d[1], q.d[2]}) + farthest_from_corners(q.x);  // Lipschitz
+        if (b <= settled()) return b;
+        for (int j = 0; j < 3; ++j) {                                                  // convexity
+            const std::uint32_t t = q.near[j];
+            if ((j > 0 && t == q.near[0]) || (j > 1 && t == q.near[1])) continue;  // tried already
+            double sup = 0;  // d(x_k, near_k) is d_k: the same computation
+            for (int k = 0; k < 3; ++k) sup = std::max(sup, q.near[k] == t ? q.d[k] : B_.distance_to(q.x[k], t));
+            b = std::min(b, sup);
         }
-        const Triangle& t = a_triangles[i];
-        Piece root{};
+        if (b <= settled()) return b;
+        for (int i = 0; i < 3; ++i)                                                    // two triangles
+            if (const std::uint32_t s = q.near[i], t = q.near[(i + 1) % 3]; s != t) b = std::min(b, B_.pair_bound(q.x, s, t));
+        if (b <= settled()) return b;
+        if (q.near[0] != q.near[1] || q.near[1] != q.near[2])  // a vertex fan: at a vertex common to them all
+            for (std::uint32_t v : B_.triangle(q.near[0]))
+                if (std::count(B_.triangle(q.near[1]).begin(), B_.triangle(q.near[1]).end(), v) &&
+                    std::count(B_.triangle(q.near[2]).begin(), B_.triangle(q.near[2]).end(), v))
+                    b = std::min(b, B_.fan_bound(q.x, v));
+        return b;
+    }
+    // Not settled by the corners' triangles: the triangle closest to the centroid too, alone and
+    // with each corner's (where A lies on B across a crease, the corners' closest triangles can
+    // be on the other side of it; the centroid's is the one under the piece).
+    double centroid_bound(const Piece& q) {
+        const Vec3 c = (q.x[0] + q.x[1] + q.x[2]) / 3.0;
+        const std::uint32_t t = query(c).triangle;
+        double b = std::max({B_.distance_to(q.x[0], t), B_.distance_to(q.x[1], t), B_.distance_to(q.x[2], t)});
+        for (std::uint32_t s : q.near)
+            if (s != t) b = std::min(b, B_.pair_bound(q.x, s, t));
+        return b;
+    }
+
+    // Triangle i of A searched; the largest bound of its pieces where the search ended.
+    double root(std::uint32_t i) {
+        if (!options_.prior.empty() && options_.prior[i] <= settled()) {
+            if (options_.prior[i] > h.lower) dropped_ = std::max(dropped_, options_.prior[i]);
+            return options_.prior[i];
+        }
+        double upper = 0;
+        const Triangle& t = a_triangles_[i];
+        Piece first{};
         for (int k = 0; k < 3; ++k) {
-            root.x[k] = a_positions[t[k]];
-            root.d[k] = at_vertex[t[k]].distance;
-            root.near[k] = at_vertex[t[k]].triangle;
+            first.x[k] = a_positions_[t[k]];
+            first.d[k] = at_vertex_[t[k]].distance;
+            first.near[k] = at_vertex_[t[k]].triangle;
         }
-        stack.push_back(root);
-        while (!stack.empty()) {
-            const Piece q = stack.back();
-            stack.pop_back();
+        stack_.push_back(first);
+        while (!stack_.empty()) {
+            const Piece q = stack_.back();
+            stack_.pop_back();
             const double dmax = std::max({q.d[0], q.d[1], q.d[2]});
             double b = bound(q);
-            if (q.depth == 0 && !options.prior.empty()) b = std::min(b, options.prior[i]);
-            if (b > settled() && b - dmax > options.resolution) b = std::min(b, centroid_bound(q));
+            if (q.depth == 0 && !options_.prior.empty()) b = std::min(b, options_.prior[i]);
+            if (b > settled() && b - dmax > options_.resolution) b = std::min(b, centroid_bound(q));
             if (b <= settled()) {
-                if (b > h.lower) dropped = std::max(dropped, b);
-                root_upper = std::max(root_upper, b);
+                if (b > h.lower) dropped_ = std::max(dropped_, b);
+                upper = std::max(upper, b);
                 continue;
             }
-            if (b - dmax <= options.resolution || q.depth >= options.max_depth) {
+            if (b - dmax <= options_.resolution || q.depth >= options_.max_depth) {
                 h.upper = std::max(h.upper, b);
-                root_upper = std::max(root_upper, b);
+                upper = std::max(upper, b);
                 continue;
             }
             // 1-to-4 split; m_k is the midpoint of the side opposite corner k.
             Piece mid{};
             for (int k = 0; k < 3; ++k) {
                 mid.x[k] = 0.5 * (q.x[(k + 1) % 3] + q.x[(k + 2) % 3]);
-                const auto [at, fresh] = midpoints.try_emplace(Point{mid.x[k][0], mid.x[k][1], mid.x[k][2]});
+                const auto [at, fresh] = midpoints_.try_emplace(Point{mid.x[k][0], mid.x[k][1], mid.x[k][2]});
                 if (fresh) {
                     const TriangleTree::Hit hit = query(mid.x[k]);
                     at->second = {hit.distance, hit.triangle};
@@ -435,17 +452,63 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
                 c.x[0] = q.x[k], c.d[0] = q.d[k], c.near[0] = q.near[k];
                 c.x[1] = mid.x[a], c.d[1] = mid.d[a], c.near[1] = mid.near[a];
                 c.x[2] = mid.x[e], c.d[2] = mid.d[e], c.near[2] = mid.near[e];
-                stack.push_back(c);
+                stack_.push_back(c);
             }
-            stack.push_back(mid);
+            stack_.push_back(mid);
         }
+        return upper;
     }
-    h.upper = std::max({h.upper, h.lower, dropped});
+};
+
+// The blocks of A's triangles searched apart: a fixed count, whatever the threads, so that the
+// bracket is the same on any (issue 18: the fandisk's f^J → T, 37 ms on one thread, was the
+// long pole of §5 on two).
+constexpr std::uint32_t search_blocks = 8;
+
+}  // namespace
+
+DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles,
+                                     const TriangleTree& B, const HausdorffOptions& options, Executor* executor) {
+    // The vertices first: they give the search a good lower bound to prune with. In blocks too;
+    // each vertex's distance is the same whatever the block (the hint only speeds the query).
+    std::vector<TriangleTree::Hit> at_vertex(a_positions.size(), TriangleTree::Hit{0, 0, Vec3::Zero()});
+    std::vector<char> used(a_positions.size(), 0);
+    for (const Triangle& t : a_triangles)
+        for (std::uint32_t v : t) used[v] = 1;
+    std::vector<DirectedHausdorff> parts(search_blocks);
+    const auto nv = static_cast<std::uint64_t>(a_positions.size());
+    executor_or_default(executor).for_each(search_blocks, 1, [&](std::size_t k) {
+        BlockSearch block(a_positions, a_triangles, B, options, at_vertex);
+        for (std::size_t v = nv * k / search_blocks; v < nv * (k + 1) / search_blocks; ++v)
+            if (used[v]) at_vertex[v] = block.query(a_positions[v]);
+        parts[k] = std::move(block.h);
+    });
+    DirectedHausdorff h;
+    for (const DirectedHausdorff& part : parts) {  // in block order: the first farthest vertex
+        if (part.lower > h.lower) h.lower = part.lower, h.farthest = part.farthest;
+        h.samples += part.samples;
+    }
+    h.triangle_upper.assign(a_triangles.size(), 0);
+    const auto n = static_cast<std::uint64_t>(a_triangles.size());
+    executor_or_default(executor).for_each(search_blocks, 1, [&](std::size_t k) {
+        BlockSearch block(a_positions, a_triangles, B, options, at_vertex);
+        block.h.lower = h.lower;
+        block.h.farthest = h.farthest;
+        block.run(static_cast<std::uint32_t>(n * k / search_blocks), static_cast<std::uint32_t>(n * (k + 1) / search_blocks), h.triangle_upper);
+        parts[k] = std::move(block.h);
+    });
+    for (const DirectedHausdorff& part : parts) {  // in block order: the first farthest point found
+        if (part.lower > h.lower) h.lower = part.lower, h.farthest = part.farthest;
+        h.upper = std::max(h.upper, part.upper);
+        h.samples += part.samples;
+    }
+    h.upper = std::max(h.upper, h.lower);
     return h;
 }
 
 Hausdorff hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles,
-                    std::span<const Vec3> b_positions, std::span<const Triangle> b_triangles, const HausdorffOptions& options) {
+                    std::span<const Vec3> b_positions, std::span<const Triangle> b_triangles, const HausdorffOptions& options,
+                    Executor* executor) {
     HausdorffOptions o = options;
     if (o.resolution <= 0) {
         Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
@@ -456,20 +519,20 @@ Hausdorff hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle>
         if (!(o.resolution > 0)) o.resolution = 1;
     }
     return hausdorff(a_positions, a_triangles, TriangleTree(a_positions, a_triangles), b_positions, b_triangles,
-                     TriangleTree(b_positions, b_triangles), o);
+                     TriangleTree(b_positions, b_triangles), o, executor);
 }
 
 Hausdorff hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles, const TriangleTree& A,
                     std::span<const Vec3> b_positions, std::span<const Triangle> b_triangles, const TriangleTree& B,
-                    const HausdorffOptions& options) {
+                    const HausdorffOptions& options, Executor* executor) {
     Hausdorff h;
     h.resolution = options.resolution;
-    h.a_to_b = directed_hausdorff(a_positions, a_triangles, B, options);
+    h.a_to_b = directed_hausdorff(a_positions, a_triangles, B, options, executor);
     HausdorffOptions second = options;
     second.known = std::max(options.known, h.a_to_b.lower);
     second.prior = options.prior_back;
     second.prior_back = {};
-    h.b_to_a = directed_hausdorff(b_positions, b_triangles, A, second);
+    h.b_to_a = directed_hausdorff(b_positions, b_triangles, A, second, executor);
     return h;
 }
 
