@@ -378,7 +378,14 @@ const std::vector<Corruption>& corruptions() {
          [](ParamFile& f, TriMesh&) {
              const auto inc = incidences(f);
              const std::uint32_t v = interior_vertex(f, inc);
-             f.surface_vertices[v] += fhr::Vec3(0, 0, 1e3);
+             // Outward, along its faces' area-weighted normal, so that T' keeps a positive volume
+             // (a spike of 10³ inward turned a small random mesh inside out: PARAM-3 first).
+             fhr::Vec3 n = fhr::Vec3::Zero();
+             for (const Incidence& i : inc[v]) {
+                 const auto& t = f.surface_faces[i.face].v;
+                 n += (f.surface_vertices[t[1]] - f.surface_vertices[t[0]]).cross(f.surface_vertices[t[2]] - f.surface_vertices[t[0]]);
+             }
+             f.surface_vertices[v] += 1e3 * n.normalized();
              return Expect{"PARAM-11", "", v, -1, "is not on T (distance > "};
          }},
         {"--mesh: a vertex of T' off T",
