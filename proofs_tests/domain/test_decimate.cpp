@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 
 #include <fhr/core/build.hpp>
@@ -553,6 +554,25 @@ TEST_CASE("DOM-23: the pass over the cells keeps every rule (every family, bound
             RC_DISCARD("below the least faces, or a closed component cannot reach its share under the validity rules");
         }
         RC_ASSERT(d.by_cells);
+        // The pass: its collapses first, each within one cell (that of the first face of T at a
+        // vertex), cell after cell; closed, at most three quarters of each component's vertices
+        // in a cell.
+        std::vector<std::size_t> cell(T.n_vertices(), SIZE_MAX);
+        for (FaceId f : T.faces())
+            for (VertexId v : T.face_vertices(f)) cell[v.idx()] = std::min(cell[v.idx()], f.idx() / o.cell_faces);
+        const Components comps = connected_components(T);
+        std::map<std::pair<std::size_t, std::uint32_t>, std::size_t> size, made;  // (cell, component)
+        for (VertexId v : T.vertices()) ++size[{cell[v.idx()], comps.vertex_component[v]}];
+        RC_ASSERT(d.cell_collapses <= d.history.size());
+        for (std::size_t i = 0; i < d.cell_collapses; ++i) {
+            const domain::Collapse& c = d.history[i];
+            RC_ASSERT(cell[c.removed.idx()] == cell[c.kept.idx()]);
+            if (i > 0) RC_ASSERT(cell[d.history[i - 1].removed.idx()] <= cell[c.removed.idx()]);
+            ++made[{cell[c.removed.idx()], comps.vertex_component[c.removed]}];
+        }
+        if (T.is_closed())
+            for (const auto& [key, n] : made) RC_ASSERT(n <= size[key] - size[key] / 4);
+        RC_TAG(d.cell_collapses > 0 ? "the pass collapsed" : "the pass found nothing to collapse");
         if (T.is_closed() && connected_components(T).count == 1)
             RC_ASSERT(domain_violation(T, d, o) == "");
         else

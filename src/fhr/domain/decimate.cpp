@@ -322,7 +322,9 @@ public:
         d.history = std::move(history_);
         d.by_cells = by_cells;
         if (by_cells) {
+            FHR_DCHECK(d.history.empty());  // a fresh start (decimate_from_t)
             reduce_cells(d.history);
+            d.cell_collapses = d.history.size();
             drop_garbage();
         }
         std::vector<Candidate> all;
@@ -938,6 +940,7 @@ Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count) {
     if (!T.is_closed()) return open_domain(undo_collapses(close_domain(d, T), add_cones(T).mesh, count), T.n_vertices());
     Domain r;
     r.by_cells = d.by_cells;
+    r.cell_collapses = std::min(d.cell_collapses, d.history.size() - count);
     r.mesh = d.mesh;
     r.t_vertex = d.t_vertex;
     r.history.assign(d.history.begin(), d.history.end() - static_cast<std::ptrdiff_t>(count));
@@ -1038,6 +1041,7 @@ Domain open_domain(const Domain& closed, std::size_t real_vertices) {
     Domain out;
     out.history = closed.history;
     out.by_cells = closed.by_cells;
+    out.cell_collapses = closed.cell_collapses;
     std::vector<std::uint32_t> index(closed.mesh.n_vertices(), UINT32_MAX);
     std::vector<Vec3> positions;
     for (VertexId v : closed.mesh.vertices()) {

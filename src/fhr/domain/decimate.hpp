@@ -71,6 +71,8 @@ struct Domain {
     std::vector<Collapse> history;
     /// The collapses began with the pass over the cells (see above); decimate_again keeps to it.
     bool by_cells = false;
+    /// The first cell_collapses entries of `history` are the pass's, in the cells' order.
+    std::size_t cell_collapses = 0;
 };
 
 /// For each edge [v_j, v_k] of D (in edge order), the vertices x_j, x_k of T it stands for: the
