@@ -242,6 +242,22 @@ TEST_CASE("CLI-RUN-1, MAP-7: BiCGSTAB converges on small patches of graded meshe
     }
 }
 
+TEST_CASE("CLI-RUN-1, MAP-4: a dividing edge's midpoint beside a needle is pulled off its side (./run families finding, session 15)", "[cli][run]") {
+    // Quality family, 56 domain faces: in patch 14 two dividing edges on one side were split, and
+    // their midpoints' other neighbours all lie on that side, 7e-8 apart in space. With weights
+    // from that geometry their images lay far closer to the side than 2^-53, one β rounded onto it
+    // and three image triangles were degenerate (PARAM-8, exit 4). Midpoints now get uniform weights.
+    const std::string mesh = temp_path("midpoint-needle.off");
+    REQUIRE(run_fhr({"generate", "--family", "quality", "--genus", "0", "--holes", "2", "--components", "2", "--faces", "5789", "--seed",
+                     "3891427888069146560", "--out", mesh})
+                .exit_code == 0);
+    const auto r = run_fhr({"run", mesh, "--faces", "56", "--out", temp_path("midpoint-needle-run")});
+    INFO(r.err);
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("certified one-to-one"));
+    CHECK_THAT(r.err, !Catch::Contains(" 0 dividing edges split"));  // the splits this case is about happened
+}
+
 TEST_CASE("CLI-RUN-1, PART-4: needles of 1e-9 degrees end certified or 'not certified', never an internal error", "[cli][run]") {
     // The quality family at extreme knobs: a path crosses a face near its 1e-9-degree corner, and
     // the face's piece has two points 2e-17 apart; every triangle of it had a smallest angle that

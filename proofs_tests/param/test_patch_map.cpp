@@ -358,7 +358,10 @@ TEST_CASE("MAP-6: every interior vertex is the convex combination of its neighbo
                     if (x == ring.back()) { ring.push_back(y); break; }
             std::vector<Vec3> positions;
             for (auto w : ring) positions.push_back(d.positions[w]);
-            const std::vector<double> lambda = param::one_ring_weights(kind, d.positions[v], positions, v);
+            // A dividing edge's midpoint has uniform weights (MAP-4, MAP-6).
+            const std::vector<double> lambda = v + d.midpoints >= d.positions.size()
+                                                   ? std::vector<double>(ring.size(), 1.0 / static_cast<double>(ring.size()))
+                                                   : param::one_ring_weights(kind, d.positions[v], positions, v);
             double r1 = b[1], r2 = b[2];
             for (std::size_t k = 0; k < ring.size(); ++k) {
                 r1 -= lambda[k] * psi.beta[ring[k]][1];

@@ -37,6 +37,7 @@ std::size_t split_dividing_edges(Disk& disk) {
         const std::uint32_t c = third(t1), d = third(t2);
         const auto m = static_cast<std::uint32_t>(disk.positions.size());
         disk.positions.push_back(0.5 * (disk.positions[a] + disk.positions[b]));
+        ++disk.midpoints;
         edges.erase(detail::edge_key(a, b));
         edges.erase(detail::edge_key(b, a));
         // (a, b, c) -> (a, m, c), (m, b, c);  (b, a, d) -> (b, m, d), (m, a, d): m lies on [a, b],

@@ -148,7 +148,14 @@ PatchMap map_patch(const Disk& disk, const PatchMapOptions& options) {
         rings.ring(v, ring);
         ring_positions.clear();
         for (std::uint32_t w : ring) ring_positions.push_back(disk.positions[w]);
-        const std::vector<double> lambda_vw = one_ring_weights(options.weights, disk.positions[v], ring_positions, v);
+        // A dividing edge's midpoint (MAP-4) is ours, not a vertex of T: any positive weights keep
+        // Proposition 1, and uniform ones pull it off the side its edge joined. Weights from its
+        // geometry could leave it far closer to that side than 2⁻⁵³ when the side's vertices are
+        // a needle's (`./run families`, quality 45: its β rounded onto the side, three image
+        // triangles degenerate).
+        const std::vector<double> lambda_vw = v + disk.midpoints >= nv
+                                                  ? std::vector<double>(ring.size(), 1.0 / static_cast<double>(ring.size()))
+                                                  : one_ring_weights(options.weights, disk.positions[v], ring_positions, v);
         entries.emplace_back(i, i, 1.0);
         for (std::size_t k = 0; k < ring.size(); ++k) {
             const std::uint32_t w = ring[k];
