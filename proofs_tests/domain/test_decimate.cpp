@@ -82,6 +82,19 @@ std::string domain_violation(const TriMesh& T, const Domain& d, const DecimateOp
     return "";
 }
 
+// A random mesh of any embedded family: genus 0-3, up to 3 holes, 1-2 components, ≤ 3,000 faces.
+rc::Gen<fhr::testing::GeneratedMesh> any_family_mesh() {
+    return fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 3, .max_faces = 3000, .min_holes = 0, .max_holes = 3,
+                                   .min_components = 1, .max_components = 2,
+                                   .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+}
+
+// The pass over the cells (DOM-23) on a small mesh: from any size, cells of 16 to `largest` faces.
+void pass_over_small_cells(DecimateOptions& o, std::size_t largest) {
+    o.cells_from = 0;
+    o.cell_faces = *rc::gen::inRange<std::size_t>(16, largest);
+}
+
 // DOM-8: replaying all collapses backwards gives exactly T's faces, in T's numbering.
 bool undo_gives_back(const TriMesh& T, const Domain& d) {
     const Domain back = domain::undo_collapses(d, T, d.history.size());
@@ -168,8 +181,7 @@ TEST_CASE("DOM-16: decimating again from an earlier decimation keeps every rule 
         const bool cells = *rc::gen::arbitrary<bool>();
         RC_TAG(cells ? "pass over cells" : "greedy loop only");
         if (cells) {
-            first.cells_from = 0;
-            first.cell_faces = *rc::gen::inRange<std::size_t>(16, 400);
+            pass_over_small_cells(first, 400);
         }
         first.target_faces = std::max<std::size_t>(domain::min_closed_faces(g.options.genus) + 8, T.n_faces() / 4) & ~std::size_t{1};
         RC_PRE(first.target_faces < T.n_faces());
@@ -334,8 +346,7 @@ TEST_CASE("DOM-9: a refused request names one that succeeds (random meshes of 1-
         const std::size_t asked = 2 * static_cast<std::size_t>(*rc::gen::inRange(1, 20));
         DecimateOptions o{.target_faces = asked};
         if (*rc::gen::arbitrary<bool>()) {  // the pass over small cells first (its quotas are per component)
-            o.cells_from = 0;
-            o.cell_faces = *rc::gen::inRange<std::size_t>(16, 300);
+            pass_over_small_cells(o, 300);
         }
         std::string message;
         try {
@@ -530,13 +541,10 @@ TEST_CASE("DOM-17..19: decimation of random surfaces with 1-5 boundary loops and
 
 TEST_CASE("DOM-23: the pass over the cells keeps every rule (every family, boundary, components)", "[property][domain][boundary]") {
     rc::prop("decimate to a quarter of the faces or fewer, with cells of 16-600 faces", [] {
-        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 3, .max_faces = 3000, .min_holes = 0, .max_holes = 3,
-                                                                       .min_components = 1, .max_components = 2,
-                                                                       .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+        const fhr::testing::GeneratedMesh g = *any_family_mesh();
         const TriMesh& T = g;
         DecimateOptions o;
-        o.cells_from = 0;
-        o.cell_faces = *rc::gen::inRange<std::size_t>(16, 600);
+        pass_over_small_cells(o, 600);
         // DOM-5 bounds the corners a collapse makes; T's own needles (the quality family) may
         // stay in D. Below them, the bound is one for every corner of D, as domain_violation reads it.
         double smallest = o.min_angle_deg;
@@ -612,17 +620,14 @@ std::string decimate_both_ways(const TriMesh& T, DecimateOptions o, const Domain
 
 TEST_CASE("DOM-22: remembering rejected collapses gives the same D as checking each in full (every family, boundary, components, decimating again)", "[property][domain]") {
     rc::prop("decimate and decimate_again both ways", [] {
-        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 3, .max_faces = 3000, .min_holes = 0, .max_holes = 3,
-                                                                       .min_components = 1, .max_components = 2,
-                                                                       .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+        const fhr::testing::GeneratedMesh g = *any_family_mesh();
         const TriMesh& T = g;
         DecimateOptions o;
         o.target_faces = *rc::gen::inRange<std::size_t>(std::max<std::size_t>(1, T.n_faces() / 20), T.n_faces() / 2 + 2);
         if (T.is_closed()) o.target_faces += o.target_faces % 2;
         o.best_effort = *rc::gen::arbitrary<bool>();
         if (*rc::gen::arbitrary<bool>()) {  // the pass over small cells first (where the target allows it)
-            o.cells_from = 0;
-            o.cell_faces = *rc::gen::inRange<std::size_t>(16, 600);
+            pass_over_small_cells(o, 600);
         }
         RC_ASSERT(decimate_both_ways(T, o) == "");
         Domain d;
