@@ -258,6 +258,22 @@ TEST_CASE("CLI-RUN-1, MAP-4: a dividing edge's midpoint beside a needle is pulle
     CHECK_THAT(r.err, !Catch::Contains(" 0 dividing edges split"));  // the splits this case is about happened
 }
 
+TEST_CASE("CLI-RUN-1, PARAM-11: a T' vertex on the edge of a needle of T is on T (the whole-pipeline property's draw)", "[cli][run]") {
+    // A path crosses edge 2-196 of T, the long side of two needles (width 2e-6 of their length
+    // 0.17). The oracle's closest point on a triangle (Ericson's Voronoi regions) put the crossing
+    // 1.7e-9 off T, above PARAM-11's 1.73e-9: a correct T' rejected. Now within a few ulp
+    // (core/geometry.cpp; the exact-arithmetic property in test_geometry.cpp).
+    const std::string mesh = temp_path("needle-crossing.off");
+    REQUIRE(run_fhr({"generate", "--family", "quality", "--genus", "0", "--holes", "1", "--faces", "415", "--seed",
+                     "3273395475174043845", "--out", mesh})
+                .exit_code == 0);
+    const auto r = run_fhr({"run", mesh, "--faces", "7", "--paths", "geodesic", "--out", temp_path("needle-crossing-run")});
+    INFO(r.err);
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("certified one-to-one"));
+    CHECK_THAT(r.err, Catch::Contains("1 retries"));  // the domain this case is about (8 faces)
+}
+
 TEST_CASE("CLI-RUN-1, PART-4: needles of 1e-9 degrees end certified or 'not certified', never an internal error", "[cli][run]") {
     // The quality family at extreme knobs: a path crosses a face near its 1e-9-degree corner, and
     // the face's piece has two points 2e-17 apart; every triangle of it had a smallest angle that

@@ -1,6 +1,9 @@
 // Geometry helpers on meshes with known answers: a regular octahedron (all quantities closed
-// form) and a unit cube.
+// form) and a unit cube; the closest point on a triangle against exact rational arithmetic.
 #include <catch2/catch.hpp>
+#include <rapidcheck/catch.h>
+
+#include <gmpxx.h>
 
 #include <array>
 #include <cmath>
@@ -18,6 +21,41 @@ TriMesh octahedron(double r) {
     const std::vector<Triangle> t{{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
                                   {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
     return TriMesh::from_triangles(std::move(p), t);
+}
+
+using Q3 = std::array<mpq_class, 3>;
+
+Q3 exact(const Vec3& x) { return {mpq_class(x[0]), mpq_class(x[1]), mpq_class(x[2])}; }
+Q3 minus(const Q3& x, const Q3& y) { return {x[0] - y[0], x[1] - y[1], x[2] - y[2]}; }
+mpq_class dot(const Q3& x, const Q3& y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; }
+Q3 cross(const Q3& x, const Q3& y) {
+    return {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+}
+
+/// The squared distance from p to the segment [a, b], exactly.
+mpq_class segment_distance2(const Q3& p, const Q3& a, const Q3& b) {
+    const Q3 ab = minus(b, a), ap = minus(p, a);
+    mpq_class t = dot(ap, ab) / dot(ab, ab);
+    if (t < 0) t = 0;
+    if (t > 1) t = 1;
+    const Q3 d = {ap[0] - t * ab[0], ap[1] - t * ab[1], ap[2] - t * ab[2]};
+    return dot(d, d);
+}
+
+/// The squared distance from p to the (non-degenerate) triangle abc, exactly: to its plane when
+/// p's projection is inside (three exact side signs), else to the nearest edge.
+mpq_class triangle_distance2(const Vec3& pd, const Vec3& ad, const Vec3& bd, const Vec3& cd) {
+    const Q3 p = exact(pd), a = exact(ad), b = exact(bd), c = exact(cd);
+    const Q3 n = cross(minus(b, a), minus(c, a));
+    const mpq_class nn = dot(n, n), h = dot(minus(p, a), n);
+    const Q3 q = {p[0] - h / nn * n[0], p[1] - h / nn * n[1], p[2] - h / nn * n[2]};
+    if (sgn(dot(cross(minus(b, a), minus(q, a)), n)) >= 0 && sgn(dot(cross(minus(c, b), minus(q, b)), n)) >= 0 &&
+        sgn(dot(cross(minus(a, c), minus(q, c)), n)) >= 0)
+        return h * h / nn;
+    mpq_class d = segment_distance2(p, a, b);
+    for (const mpq_class& e : {segment_distance2(p, b, c), segment_distance2(p, c, a)})
+        if (e < d) d = e;
+    return d;
 }
 
 }  // namespace
@@ -87,6 +125,54 @@ TEST_CASE("closest_point_on_triangle: degenerate triangles give the nearest poin
             CHECK((closest_point_on_triangle(k.p, corners[i], corners[j], corners[l]) - k.expected).norm() < 1e-15);
         }
     }
+}
+
+TEST_CASE("closest_point_on_triangle is within a few ulp of the exact closest point, on needles too", "[property][geometry]") {
+    // Exact rational distances (GMP) are the oracle. Needles of width 10^-12..1 of their length,
+    // with the small angle at a corner (apex) or a corner almost on the opposite side (flat), at
+    // scales 2^-20..2^20, far from the origin or not, in a random orientation; the query points
+    // lie on an edge (rounded), above or below the interior, beside a corner near the line of a
+    // side, or anywhere nearby. Ericson's
+    // Voronoi-region formulas missed points on a needle's edge by 10^-8 of its length
+    // (PARAM-11 rejected a correct T' for it: test_run.cpp, CLI-RUN-1).
+    rc::prop("|q - p| and q's distance to abc", [] {
+        auto unit = [] { return *rc::gen::inRange(0, 1 << 20) / double(1 << 20); };
+        const double scale = std::ldexp(1.0, *rc::gen::inRange(-20, 21));
+        const Vec3 origin = *rc::gen::element(0.0, 1.0, 1e3) * scale * Vec3(unit(), unit(), unit());
+        const Vec3 u = Vec3(unit() - 0.5, unit() - 0.5, unit() - 0.5 + 1e-3).normalized();
+        const Vec3 v = u.cross(Vec3(unit(), unit(), unit() + 1)).normalized();  // ⟂ u
+        const double width = std::pow(10.0, -12 * unit()), along = *rc::gen::element(0.0, 0.3, 0.5, 1.0, 1.7);
+        const Vec3 a = origin, b = origin + scale * u, c = origin + scale * (along * u + width * v);
+        const Vec3 corners[3] = {a, b, c};
+        Vec3 p;
+        switch (*rc::gen::inRange(0, 4)) {
+        case 0: {  // on an edge
+            const int i = *rc::gen::inRange(0, 3);
+            const double t = unit();
+            p = (1 - t) * corners[i] + t * corners[(i + 1) % 3];
+            break;
+        }
+        case 1: {  // above or below the interior
+            const double s = unit(), t = unit() * (1 - s);
+            p = a + s * (b - a) + t * (c - a) + (unit() - 0.5) * scale * width * u.cross(v);
+            break;
+        }
+        case 2: {  // near the line of an edge, beyond its ends (where the nearest side changes)
+            const int i = *rc::gen::inRange(0, 3);
+            const double t = *rc::gen::element(-1.0, 1.0) * std::pow(10.0, -16 * unit()) + *rc::gen::element(0.0, 1.0);
+            p = (1 - t) * corners[i] + t * corners[(i + 1) % 3] + (unit() - 0.5) * scale * width * u.cross(v);
+            break;
+        }
+        default: p = origin + scale * Vec3(unit() - 0.3, unit() - 0.5, unit() - 0.5) * 2;
+        }
+        const int order = *rc::gen::inRange(0, 3);
+        const Vec3 q = closest_point_on_triangle(p, corners[order], corners[(order + 1) % 3], corners[(order + 2) % 3]);
+        // Rounding of differences and of q itself: a few u of the coordinates and the diameter.
+        const double tolerance = 32 * std::numeric_limits<double>::epsilon() * (p.cwiseAbs().maxCoeff() + origin.cwiseAbs().maxCoeff() + 2 * scale);
+        const double exact = std::sqrt(triangle_distance2(p, a, b, c).get_d());
+        RC_ASSERT(std::fabs((q - p).norm() - exact) <= tolerance);
+        RC_ASSERT(std::sqrt(triangle_distance2(q, a, b, c).get_d()) <= tolerance);
+    });
 }
 
 TEST_CASE("normals of degenerate faces are zero; a flat disk's boundary vertex has the disk's normal", "[unit][geometry]") {

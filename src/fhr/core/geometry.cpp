@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace fhr {
 
@@ -127,31 +128,73 @@ Vec3 closest_on_edges(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c
     return *best;
 }
 
+/// The cross product a × b, each component a difference of two products computed with Kahan's
+/// fma algorithm (within 2 ulp of the exact difference).
+Vec3 cross_accurate(const Vec3& a, const Vec3& b) {
+    auto difference_of_products = [](double w, double x, double y, double z) {  // w·x − y·z
+        const double yz = y * z;
+        return std::fma(w, x, -yz) + std::fma(-y, z, yz);
+    };
+    return Vec3(difference_of_products(a[1], b[2], a[2], b[1]), difference_of_products(a[2], b[0], a[0], b[2]),
+                difference_of_products(a[0], b[1], a[1], b[0]));
+}
+
+/// b − a exactly, as its rounded value plus the rounding error (Knuth's TwoSum per coordinate).
+Vec3 difference_error(const Vec3& b, const Vec3& a, const Vec3& rounded) {
+    Vec3 error;
+    for (int k = 0; k < 3; ++k) {
+        const double from_b = rounded[k] - b[k];
+        error[k] = (b[k] - (rounded[k] - from_b)) - (a[k] + from_b);
+    }
+    return error;
+}
+
+/// The normal (b − a) × (c − a) of triangle abc to a few ulp of its length, from the exact
+/// differences: for a needle of width h and length L, the rounded differences alone (each off by
+/// u·L) would turn its plane by u·L/h about its long axis.
+Vec3 triangle_cross(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& ab, const Vec3& ac) {
+    return cross_accurate(ab, ac) + (ab.cross(difference_error(c, a, ac)) + difference_error(b, a, ab).cross(ac));
+}
+
 }  // namespace
 
-/// Degenerate triangles included: Ericson's Voronoi regions hold for a proper triangle only (with
-/// two equal corners the region of the zero-length edge between them would take in every p that
-/// projects into the triangle, and return that corner), so a zero-area triangle is settled first.
+/// p projected onto the plane of abc when that projection is in the triangle, else the nearest
+/// point of the sides the projection lies beyond (one side, or the two at a corner: the nearest
+/// point of a triangle to a point outside it is on such a side); a zero-area triangle is the
+/// union of its edges. Well conditioned for needles (spec/param.md, PARAM-11): the normal n is
+/// accurate to a few ulp (`triangle_cross`), so the projection errs by about u·|p − a|; each side
+/// test (n × side)·(p − corner) errs only where the projection is within about u·|p − a| of the
+/// side's line, where either answer is as near. Ericson's Voronoi-region formulas (products of dot
+/// products) cancel to a relative error u·(L/h)² on a needle of length L and width h: 1.7·10⁻⁹
+/// off for a point on the edge of a needle of L/h ≈ 10⁵.
+/// The result is clamped to the triangle's bounding box (which holds the exact closest point, so
+/// the clamp only brings it nearer): its rounded distance to p is then never below the box's, and
+/// a search that skips boxes no nearer than its best so far finds the same minimum as brute force.
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
     const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    if (!(ab.cross(ac).squaredNorm() > 0)) return closest_on_edges(p, a, b, c);
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    const Vec3 bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    const Vec3 cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return closest_on_segment(p, a, b);
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return closest_on_segment(p, a, c);
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return closest_on_segment(p, b, c);
-    const double sum = va + vb + vc;  // = |ab × ac|² > 0 in exact arithmetic
-    if (!(sum > 0)) return closest_on_edges(p, a, b, c);  // a needle whose sum rounding has eaten
-    return a + (vb / sum) * ab + (vc / sum) * ac;
+    const Vec3 n = triangle_cross(a, b, c, ab, ac);
+    const double nn = n.squaredNorm();
+    Vec3 q;
+    if (!(nn > 0)) {
+        q = closest_on_edges(p, a, b, c);
+    } else {
+        // |n|·|side|·(signed distance of the projection from the side's line), positive inside.
+        const double s_ab = n.cross(ab).dot(ap), s_bc = n.cross(c - b).dot(p - b), s_ca = -n.cross(ac).dot(ap);
+        if (s_ab >= 0 && s_bc >= 0 && s_ca >= 0) {
+            q = p - (ap.dot(n) / nn) * n;
+        } else {
+            double best = std::numeric_limits<double>::infinity();
+            auto consider = [&](double side, const Vec3& from, const Vec3& to) {
+                if (!(side < 0)) return;
+                const Vec3 x = closest_on_segment(p, from, to);
+                if (const double d = (x - p).squaredNorm(); d < best) best = d, q = x;
+            };
+            consider(s_ab, a, b);
+            consider(s_bc, b, c);
+            consider(s_ca, c, a);
+        }
+    }
+    return q.cwiseMax(a.cwiseMin(b).cwiseMin(c)).cwiseMin(a.cwiseMax(b).cwiseMax(c));
 }
 
 }  // namespace fhr

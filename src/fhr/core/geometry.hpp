@@ -45,9 +45,10 @@ struct ShapeStats {
 };
 ShapeStats shape_stats(const TriMesh& m);
 
-/// The point of triangle abc closest to p (Ericson 2005, "Real-Time Collision Detection", §5.1.5:
-/// the Voronoi regions of the vertices, then of the edges, else the face). Shared by the oracle's
-/// PARAM-11 (src/fhr/exchange) and the Hausdorff distance of §5 (src/fhr/wavelet).
+/// The point of triangle abc closest to p: p's projection onto the plane when it falls inside,
+/// else the nearest point of the edges; within a few u·(diameter) of the exact one also on needles
+/// (geometry.cpp). Shared by the oracle's PARAM-11 (src/fhr/exchange) and the Hausdorff distance
+/// of §5 (src/fhr/wavelet).
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
 }  // namespace fhr
