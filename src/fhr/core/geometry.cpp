@@ -149,49 +149,55 @@ Vec3 difference_error(const Vec3& b, const Vec3& a, const Vec3& rounded) {
     return error;
 }
 
-/// The normal (b − a) × (c − a) of triangle abc to a few ulp of its length, from the exact
-/// differences: for a needle of width h and length L, the rounded differences alone (each off by
-/// u·L) would turn its plane by u·L/h about its long axis.
-Vec3 triangle_cross(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& ab, const Vec3& ac) {
-    return cross_accurate(ab, ac) + (ab.cross(difference_error(c, a, ac)) + difference_error(b, a, ab).cross(ac));
-}
-
 }  // namespace
 
 /// p projected onto the plane of abc when that projection is in the triangle, else the nearest
-/// point of the sides the projection lies beyond (one side, or the two at a corner: the nearest
-/// point of a triangle to a point outside it is on such a side); a zero-area triangle is the
-/// union of its edges. Well conditioned for needles (spec/param.md, PARAM-11): the normal n is
-/// accurate to a few ulp (`triangle_cross`), so the projection errs by about u·|p − a|; each side
-/// test (n × side)·(p − corner) errs only where the projection is within about u·|p − a| of the
-/// side's line, where either answer is as near. Ericson's Voronoi-region formulas (products of dot
-/// products) cancel to a relative error u·(L/h)² on a needle of length L and width h: 1.7·10⁻⁹
-/// off for a point on the edge of a needle of L/h ≈ 10⁵.
+/// point of its sides; a zero-area triangle is the union of its sides. Well conditioned for
+/// needles (spec/param.md, PARAM-11), in two cases:
+/// - every angle's sine is at least 1/4: rounded arithmetic turns the normal n by a few ulp
+///   (u/sin α at corner a: b moved by u·|ab| off the plane turns it by u/sin α about ac, and the
+///   products' rounding is u·|ab|·|ac| against |n| = |ab|·|ac|·sin α), so the projection errs by
+///   about u·|p − a|; a side test (n × side)·(p − corner) errs only where the projection is within
+///   about u·|p − a| of the side's line, and then the nearest point is on the sides the projection
+///   lies beyond (one, or the two at a corner), within that error over the sine at their corner;
+/// - else (a needle, or a cap: two sides almost one line) n from the exact differences (TwoSum)
+///   and fma products — for a needle of width h and length L, the rounded differences alone turn
+///   its plane by u·L/h about its long axis — and all three sides when the projection is outside:
+///   which sides it lies beyond is ill-conditioned at a corner between two almost collinear sides
+///   (a wrong sign there put the answer 50 ulp of the diameter off).
+/// Ericson's Voronoi-region formulas (products of dot products) cancel to a relative error
+/// u·(L/h)² on a needle of length L and width h: 1.7·10⁻⁹ off for a point on the edge of a
+/// needle of L/h ≈ 10⁵.
 /// The result is clamped to the triangle's bounding box (which holds the exact closest point, so
 /// the clamp only brings it nearer): its rounded distance to p is then never below the box's, and
 /// a search that skips boxes no nearer than its best so far finds the same minimum as brute force.
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    const Vec3 n = triangle_cross(a, b, c, ab, ac);
+    const Vec3 ab = b - a, ac = c - a, bc = c - b, ap = p - a;
+    Vec3 n = ab.cross(ac);
+    const double ab2 = ab.squaredNorm(), ac2 = ac.squaredNorm(), bc2 = bc.squaredNorm();
+    const bool shaped = 16 * n.squaredNorm() >= std::max({ab2 * ac2, ab2 * bc2, ac2 * bc2});  // every sine ≥ 1/4
+    if (!shaped) n = cross_accurate(ab, ac) + (ab.cross(difference_error(c, a, ac)) + difference_error(b, a, ab).cross(ac));
     const double nn = n.squaredNorm();
     Vec3 q;
     if (!(nn > 0)) {
         q = closest_on_edges(p, a, b, c);
     } else {
         // |n|·|side|·(signed distance of the projection from the side's line), positive inside.
-        const double s_ab = n.cross(ab).dot(ap), s_bc = n.cross(c - b).dot(p - b), s_ca = -n.cross(ac).dot(ap);
+        const double s_ab = n.cross(ab).dot(ap), s_bc = n.cross(bc).dot(p - b), s_ca = -n.cross(ac).dot(ap);
         if (s_ab >= 0 && s_bc >= 0 && s_ca >= 0) {
             q = p - (ap.dot(n) / nn) * n;
+        } else if (!shaped) {
+            q = closest_on_edges(p, a, b, c);
         } else {
             double best = std::numeric_limits<double>::infinity();
-            auto consider = [&](double side, const Vec3& from, const Vec3& to) {
+            const auto beyond = [&](double side, const Vec3& from, const Vec3& to) {
                 if (!(side < 0)) return;
                 const Vec3 x = closest_on_segment(p, from, to);
                 if (const double d = (x - p).squaredNorm(); d < best) best = d, q = x;
             };
-            consider(s_ab, a, b);
-            consider(s_bc, b, c);
-            consider(s_ca, c, a);
+            beyond(s_ab, a, b);
+            beyond(s_bc, b, c);
+            beyond(s_ca, c, a);
         }
     }
     return q.cwiseMax(a.cwiseMin(b).cwiseMin(c)).cwiseMin(a.cwiseMax(b).cwiseMax(c));

@@ -4,8 +4,8 @@
 //
 // What is computed (directed, A → B; the two-sided distance is the larger of A → B and B → A):
 //   d(p, B)   exact Euclidean distance from p to the union of B's triangles, up to rounding: the
-//             closest point of each candidate triangle by its Voronoi regions (vertex, edge,
-//             face; Ericson 2005, "Real-Time Collision Detection", §5.1.5), candidates from a
+//             closest point of each candidate triangle (core/geometry.hpp: the projection onto
+//             its plane when inside, else the nearest point of its sides), candidates from a
 //             bounding-volume tree (axis-aligned boxes, median splits) searched best-first
 //   bounds    on a triangle (piece) with corners x_k, corner distances d_k and longest edge ℓ:
 //             (Lipschitz) every point is within r of a corner, r = max_p min_k |p − x_k|: the
