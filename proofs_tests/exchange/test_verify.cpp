@@ -981,7 +981,7 @@ TEST_CASE("the oracle on 1 and 3 threads: the same report (PARAM-11's distances 
           "[exchange]") {
     // T′ with about 10,800 vertices: three blocks of PARAM-11's parallel loop. Every 7th vertex
     // from 5,000 on is moved off T, so failures come from every block after the first; the first
-    // is vertex 5,000. Below 2^17 faces of T′ PARAM-3 runs beside PARAM-11's preparation of T and
+    // is vertex 5,000. Below 2^19 faces of T′ PARAM-3 runs beside PARAM-11's preparation of T and
     // PARAM-11 beside PARAM-4..10 (verify.cpp): one corner's β is broken too, so that checks on
     // both sides fail.
     const TriMesh domain = random_domain(1, 600, 11);

@@ -836,7 +836,7 @@ private:
 
     // ---- PARAM-11 --------------------------------------------------------------------------
     struct InputSide;
-    static constexpr std::size_t side_by_side_below = std::size_t{1} << 17;
+    static constexpr std::size_t side_by_side_below = std::size_t{1} << 19;
     /// \param t_side T's part, prepared beforehand or (when empty) here, once T′'s vertices are checked.
     CheckResult check_geometry(std::optional<InputSide>& t_side) const;
 };
@@ -851,10 +851,11 @@ Bits bits(const Vec3& p) {
     return b;
 }
 
-/// The closest point to p on the segment [a, b]. \pre a ≠ b (an edge of a valid mesh).
+/// The closest point to p on the segment [a, b], in its box. \pre a ≠ b (an edge of a valid mesh).
 Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
     const Vec3 ab = b - a;
-    return a + std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) * ab;
+    const Vec3 q = a + std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) * ab;
+    return q.cwiseMax(a.cwiseMin(b)).cwiseMin(a.cwiseMax(b));  // in the segment's box despite rounding
 }
 
 /// A uniform grid over simplices of T — its faces, or its boundary edges — stored sparsely as
@@ -902,14 +903,19 @@ public:
         const auto c = cell(p);
         const std::uint64_t k = key(c[0], c[1], c[2]);
         auto it = std::lower_bound(listing_.begin(), listing_.end(), std::pair<std::uint64_t, std::uint32_t>(k, 0));
+        // Squared distances; a simplex whose box is no nearer than the best so far is skipped (its
+        // closest point lies in its box — closest_point_on_triangle clamps to it — so its rounded
+        // distance is never below the box's: the same minimum).
         double best = std::numeric_limits<double>::infinity();
         for (; it != listing_.end() && it->first == k; ++it) {
             const Triangle& t = simplices_[it->second];
-            const Vec3 q = t[1] == t[2] ? closest_point_on_segment(p, pos(t[0]), pos(t[1]))
-                                        : closest_point_on_triangle(p, pos(t[0]), pos(t[1]), pos(t[2]));
-            best = std::min(best, (q - p).norm());
+            const Vec3 &a = pos(t[0]), &b = pos(t[1]), &c = pos(t[2]);
+            const Vec3 gap = (a.cwiseMin(b).cwiseMin(c) - p).cwiseMax(p - a.cwiseMax(b).cwiseMax(c)).cwiseMax(0.0);
+            if (!(gap.squaredNorm() < best)) continue;
+            const Vec3 q = t[1] == t[2] ? closest_point_on_segment(p, a, b) : closest_point_on_triangle(p, a, b, c);
+            best = std::min(best, (q - p).squaredNorm());
         }
-        return best;
+        return std::sqrt(best);
     }
 
 private:
@@ -1102,8 +1108,9 @@ VerifyReport Verifier::run() {
     // Side by side on the executor (the same report on any number of threads): PARAM-3 builds D
     // and T′ beside PARAM-11's preparation of T alone; then PARAM-11 runs beside PARAM-4..10. The
     // fandisk's oracle 34 → 25 ms, the 10⁶ mesh's 2.8 → 2.0 s, but at 10⁶ its peak 74 MB higher
-    // (the grid of T beside T′'s build): one after the other from 2^17 faces of T′ on, where the
-    // peak is a goal (1 KB per triangle) and the grid is built once the other checks are done.
+    // (the grid of T beside T′'s build). One after the other from 2^19 faces of T′ on (the 10⁶
+    // mesh's T′ has 1.6·10⁶, the horse's 1.7·10⁵), where the peak is a goal (1 KB per triangle):
+    // then T's grid is built once the other checks are done.
     const bool side_by_side = f_.surface_faces.size() < side_by_side_below;
     const auto both = [&](const std::function<void()>& first, const std::function<void()>& second) {
         if (!side_by_side) {
