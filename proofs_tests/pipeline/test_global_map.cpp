@@ -1,12 +1,18 @@
 // §4 the global maps φ: Ω_D → Ω_T and ψ: Ω_T′ → Ω_D of a whole run (pipeline::GlobalMap): corners to
-// corners, a point on an edge of D the same from both faces bit for bit, and φ(ψ(p)) = p.
+// corners, a point on an edge of D the same from both faces bit for bit, and φ(ψ(p)) = p; and the
+// per-face bounds of |f − φ| on D^J that start §5's brackets (wavelet::AffineBounds, WAV-15).
 #include <catch2/catch.hpp>
+#include <rapidcheck/catch.h>
 
+#include <optional>
 #include <random>
 
 #include <fhr/core/geometry.hpp>
 #include <fhr/domain/decimate.hpp>
+#include <fhr/generate/random_mesh.hpp>
 #include <fhr/pipeline/pipeline.hpp>
+#include <fhr/testing/rapidcheck.hpp>
+#include <fhr/wavelet/analyse.hpp>
 #include "support/test_support.hpp"
 
 using namespace fhr;
@@ -64,4 +70,58 @@ TEST_CASE("GlobalMap: φ maps corners to x_j, is continuous across D's edges, an
     // The β of ψ carry ~1e−16 relative error; through a triangle of the map that is ~1e−12 of the
     // model at worst for the thinnest image triangles of a certified run.
     CHECK(worst <= 1e-9);
+}
+
+TEST_CASE("WAV-15: on every face of D^J, |f − φ| is at most AffineBounds' bound (random points; f^J and a moved f)",
+          "[pipeline][property][wavelet]") {
+    // φ from a whole run of §2–§4 on meshes of every embedded family; f = f^J (φ's samples), and f
+    // with every vertex of D^J moved by up to 2 % of T's diagonal (a reconstruction's place).
+    // Random points of every face of D^J: their φ by point location (GlobalMap), f by
+    // interpolation. A bound that missed a corner of the pieces (a crossing of T′'s sides with D^J's,
+    // a vertex of T′ on a side shared by two faces of D^J) falls below |f − φ| near it.
+    rc::prop("per face of D^J", [] {
+        const fhr::testing::GeneratedMesh T = *fhr::testing::gen_mesh(
+            {.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 0, .max_holes = 1,
+             .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+        const int J = *rc::gen::inRange(1, 4);
+        std::optional<pipeline::Parameterization> p;
+        try {
+            p.emplace(pipeline::parameterize(T, domain::decimate(T, {.target_faces = std::max<std::size_t>(8, T.n_faces() / 40)}), {}));
+        } catch (const std::exception& e) {
+            RC_DISCARD(e.what());
+        }
+        RC_PRE(p->certified());
+        const pipeline::GlobalMap map(*p);
+        const wavelet::Refinement r = wavelet::refine(p->partition.domain.mesh, J);
+        const std::vector<Vec3> fj = wavelet::sample(r, [&](FaceId d, const std::array<double, 3>& b) { return map.phi(d, b); });
+        const wavelet::AffinePieces pieces{p->refined_positions, p->refined_faces.size(),
+                                           [&](std::size_t i, Triangle& c, std::uint32_t& d, std::array<std::array<double, 3>, 3>& beta) {
+                                               c = p->refined_faces[i], d = p->face_patch[i], beta = p->face_beta[i];
+                                           }};
+        const wavelet::AffineBounds bounds(r, pieces);
+        const double diagonal = (bounding_box(T).max - bounding_box(T).min).norm();
+        std::mt19937_64 rng(*rc::gen::arbitrary<std::uint64_t>());
+        std::uniform_real_distribution<double> u(0, 1), move(-0.02 * diagonal / std::sqrt(3.0), 0.02 * diagonal / std::sqrt(3.0));
+        std::vector<Vec3> moved = fj;
+        for (Vec3& x : moved) x += Vec3(move(rng), move(rng), move(rng));
+        const TriMesh& finest = r.finest();
+        for (const std::vector<Vec3>* f : {&fj, static_cast<const std::vector<Vec3>*>(&moved)}) {
+            const std::vector<double> bound = bounds(*f, fj, 0);
+            for (FaceId g : finest.faces()) {
+                const auto c = finest.face_vertices(g);
+                const auto& cb = r.corner_beta[g.idx()];
+                const FaceId root(g.idx() >> (2 * J));
+                for (int q = 0; q < 8; ++q) {
+                    double s = u(rng), t = u(rng);
+                    if (s + t > 1) s = 1 - s, t = 1 - t;
+                    const std::array<double, 3> l{1 - s - t, s, t};
+                    std::array<double, 3> beta{};
+                    for (std::size_t i = 0; i < 3; ++i) beta[i] = l[0] * cb[0][i] + l[1] * cb[1][i] + l[2] * cb[2][i];
+                    const Vec3 at = l[0] * (*f)[c[0].idx()] + l[1] * (*f)[c[1].idx()] + l[2] * (*f)[c[2].idx()];
+                    const double d = (at - map.phi(root, beta)).norm();
+                    RC_ASSERT(d <= bound[g.idx()] * (1 + 1e-9) + 1e-12 * diagonal);
+                }
+            }
+        }
+    });
 }

@@ -62,9 +62,16 @@ RunResult run(const TriMesh& T, RunOptions options) {
             // §5: D^J sampled through φ, prewavelet decomposition, compression.
             const GlobalMap phi(out.parameterization);  // the point locators: part of evaluating φ, so of "refinement"
             locating = detail::seconds_since(start);
+            // φ's faces, from the file the oracle reads (read-only on both sides).
+            const wavelet::AffinePieces pieces{
+                lent.surface_vertices, lent.surface_faces.size(),
+                [&](std::size_t f, Triangle& corners, std::uint32_t& patch, std::array<std::array<double, 3>, 3>& beta) {
+                    const exchange::ParamFace& face = lent.surface_faces[f];
+                    corners = face.v, patch = face.patch, beta = face.beta;
+                }};
             out.wavelets = wavelet::analyse(out.parameterization.partition.domain.mesh,
                                             [&](FaceId d, const std::array<double, 3>& beta) { return phi.phi(d, beta); },
-                                            options.levels, options.keep, T, {}, options.method.executor);
+                                            options.levels, options.keep, T, {}, options.method.executor, &pieces);
         }
     });
     take_back_param_file(out.parameterization, std::move(lent));

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include <fhr/core/detail/stopwatch.hpp>
 #include <fhr/core/geometry.hpp>
@@ -10,9 +12,74 @@
 #include <fhr/wavelet/filter_bank.hpp>
 
 namespace fhr::wavelet {
+namespace {
+
+// Every face of D^J under face g of D^{J − levels} that holds the point with coordinates l in g
+// (within 1e−12: a point on a side shared by two faces goes to both), down the one-to-four split
+// of refine.hpp: children 4g … 4g + 3 = (a, m_ab, m_ca), (m_ab, b, m_bc), (m_ca, m_bc, c),
+// (m_ab, m_bc, m_ca).
+void locate(std::uint32_t g, const std::array<double, 3>& l, int levels, const Vec3& phi, std::vector<AffineBounds::Corner>& out) {
+    if (levels == 0) {
+        out.push_back({g, l, phi});
+        return;
+    }
+    const std::array<std::array<double, 3>, 4> child{{{2 * l[0] - 1, 2 * l[1], 2 * l[2]},
+                                                      {2 * l[0], 2 * l[1] - 1, 2 * l[2]},
+                                                      {2 * l[0], 2 * l[1], 2 * l[2] - 1},
+                                                      {1 - 2 * l[2], 1 - 2 * l[0], 1 - 2 * l[1]}}};
+    for (std::uint32_t k = 0; k < 4; ++k)
+        if (std::min({child[k][0], child[k][1], child[k][2]}) >= -1e-12) locate(4 * g + k, child[k], levels - 1, phi, out);
+}
+
+}  // namespace
+
+// The vertices of T′ (once per patch: a face's corner unless a face of the same patch gave it
+// just before) and the crossings of T′'s sides with the lines β_c = m/2^J (each side is met from
+// both its faces: its crossings are found twice); D^J's vertices are the operator's.
+AffineBounds::AffineBounds(const Refinement& r, const AffinePieces& pieces) : faces_(r.finest().triangles()) {
+    const int J = r.depth();
+    corners_.reserve(8 * pieces.faces);
+    std::vector<std::uint32_t> seen_in(pieces.points.size(), std::numeric_limits<std::uint32_t>::max());
+    const double n = std::ldexp(1.0, J);
+    Triangle v;
+    std::uint32_t d = 0;
+    std::array<std::array<double, 3>, 3> beta;
+    for (std::size_t f = 0; f < pieces.faces; ++f) {
+        pieces.face(f, v, d, beta);
+        for (int k = 0; k < 3; ++k) {
+            const int e = (k + 1) % 3;
+            const Vec3 &x = pieces.points[v[k]], &y = pieces.points[v[e]];
+            if (seen_in[v[k]] != d) locate(d, beta[k], J, x, corners_);
+            seen_in[v[k]] = d;
+            for (int c = 0; c < 3; ++c) {
+                const double from = beta[k][c] * n, to = beta[e][c] * n;
+                for (double m = std::floor(std::min(from, to)) + 1; m < std::max(from, to); ++m) {
+                    const double t = (m - from) / (to - from);
+                    std::array<double, 3> b;
+                    for (int i = 0; i < 3; ++i) b[i] = beta[k][i] + t * (beta[e][i] - beta[k][i]);
+                    locate(d, b, J, x + t * (y - x), corners_);
+                }
+            }
+        }
+    }
+}
+
+std::vector<double> AffineBounds::operator()(std::span<const Vec3> f, std::span<const Vec3> f_j, double on_t) const {
+    std::vector<double> bound(faces_.size(), 0);
+    for (std::size_t g = 0; g < faces_.size(); ++g)
+        for (std::uint32_t v : faces_[g]) bound[g] = std::max(bound[g], (f[v] - f_j[v]).norm());
+    for (const Corner& p : corners_) {
+        const Triangle& c = faces_[p.face];
+        const Vec3 at = p.lambda[0] * f[c[0]] + p.lambda[1] * f[c[1]] + p.lambda[2] * f[c[2]];
+        bound[p.face] = std::max(bound[p.face], (at - p.phi).norm());
+    }
+    for (double& b : bound) b = b * (1 + 1e-12) + on_t;
+    return bound;
+}
 
 WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::span<const double> keep_percent,
-                      const TriMesh& T, const HausdorffOptions& hausdorff_options, Executor* executor) {
+                      const TriMesh& T, const HausdorffOptions& hausdorff_options, Executor* executor,
+                      const AffinePieces* pieces) {
     WaveletResult out;
     out.levels = levels;
     for (double p : keep_percent) kept_count(0, p);  // refuse a bad percentage before any work
@@ -38,6 +105,19 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     HausdorffOptions ho = hausdorff_options;
     if (ho.resolution <= 0) ho.resolution = 1e-4 * out.bbox_diagonal;
     const TriangleTree t_tree(T.positions(), t_faces);
+    // WAV-15: with φ's faces, per face of D^J a bound of its distance to T from |f − φ|, for the
+    // directions from f^J and from each reconstruction to T. T′ lies on T within PARAM-11's
+    // tolerance (1e−9 of the diagonal plus 64u·|x|max), the points' rounding within as much again.
+    std::optional<AffineBounds> affine;
+    std::vector<double> from_f;
+    double on_t = 0;
+    if (pieces) {
+        double max_abs = 0;
+        for (const Vec3& x : T.positions()) max_abs = std::max(max_abs, x.cwiseAbs().maxCoeff());
+        on_t = 1e-9 * out.bbox_diagonal + 128 * std::numeric_limits<double>::epsilon() / 2 * max_abs;
+        affine.emplace(r, *pieces);
+        from_f = (*affine)(out.remesh_positions, out.remesh_positions, on_t);
+    }
     const auto bracket = [&](const std::vector<Vec3>& positions, Hausdorff& h, const HausdorffOptions& o) {
         h = hausdorff(T.positions(), t_faces, t_tree, positions, out.remesh_faces, TriangleTree(positions, out.remesh_faces), o, executor);
     };
@@ -59,13 +139,21 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
             const Triangle& t = out.remesh_faces[i];
             to_t[i] = (f.b_to_a.triangle_upper[i] + std::max({moved[t[0]], moved[t[1]], moved[t[2]]})) * up;
         }
+        if (affine) {
+            const std::vector<double> from_k = (*affine)(k.positions, out.remesh_positions, on_t);
+            for (std::size_t i = 0; i < to_t.size(); ++i) to_t[i] = std::min(to_t[i], from_k[i]);
+        }
         HausdorffOptions o = ho;
         o.prior = from_t;
         o.prior_back = to_t;
         bracket(k.positions, k.hausdorff, o);
     };
     executor_or_default(executor).for_each(2, 1, [&](std::size_t task) {
-        if (task == 0) return bracket(out.remesh_positions, out.remesh_hausdorff, ho);
+        if (task == 0) {
+            HausdorffOptions o = ho;
+            o.prior_back = from_f;
+            return bracket(out.remesh_positions, out.remesh_hausdorff, o);
+        }
         auto begin = detail::Clock::now();
         const FilterBank bank(r, executor);
         const Decomposition d = bank.decompose(out.remesh_positions, executor);

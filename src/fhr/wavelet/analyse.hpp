@@ -10,6 +10,9 @@
 // paper's timing table (§6).
 #pragma once
 
+#include <array>
+#include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -48,16 +51,56 @@ struct WaveletResult {
     double hausdorff_seconds = 0;         ///< all Hausdorff brackets, from T's tree to the last (an error measure, not a stage of the paper; f^J's runs beside the decomposition and reconstructions, so this includes them)
 };
 
+/// φ where it is affine: on each face of T′ (T refined by the partition, paper §3) φ maps the
+/// β of the face's corners in the face `patch` of D to the corners' points of T. With it, the
+/// brackets from f^J and from each reconstruction to T start from per-face bounds (AffineBounds,
+/// WAV-15).
+struct AffinePieces {
+    std::span<const Vec3> points;  ///< the vertices of T′
+    std::size_t faces = 0;         ///< #F(T′)
+    /// Face f of T′: its corners (into points), the face of D of its patch, the corners' β there.
+    std::function<void(std::size_t f, Triangle& corners, std::uint32_t& patch, std::array<std::array<double, 3>, 3>& beta)> face;
+};
+
+/// WAV-15: on a face of D^J, d(f(p), T) ≤ |f(p) − φ(p)| + (how far T′ lies from T), f affine on
+/// the faces of D^J and φ on the images of T′'s faces, both in the β of a face of D. So f − φ is
+/// affine on each piece where they overlap, and its norm, convex there, is largest at the pieces'
+/// corners: the vertices of T′, the crossings of T′'s sides with the sides of D^J's faces (lines
+/// β_c = m/2^J), and the vertices of D^J (where φ = f^J).
+class AffineBounds {
+public:
+    /// The corners of the pieces in each face of D^J = r.finest() (a corner on a side shared by two
+    /// faces, within 10⁻¹² in β, counts for both). \pre pieces certified (AffinePieces, analyse).
+    AffineBounds(const Refinement& r, const AffinePieces& pieces);
+    /// Per face of D^J, max |f − φ| over it, raised by 10⁻¹² relative, plus `on_t`: f at the
+    /// vertices of D^J, f_j = f^J there (φ's samples).
+    std::vector<double> operator()(std::span<const Vec3> f, std::span<const Vec3> f_j, double on_t) const;
+
+    struct Corner {
+        std::uint32_t face;            ///< of D^J
+        std::array<double, 3> lambda;  ///< its barycentric coordinates there (face_vertices order)
+        Vec3 phi;                      ///< φ there
+    };
+    std::span<const Corner> corners() const { return corners_; }
+
+private:
+    std::vector<Triangle> faces_;
+    std::vector<Corner> corners_;
+};
+
 /// The §5 wavelet stage for a domain D (closed or with boundary, one component or several),
 /// φ: Ω_D → Ω_T and the input surface T. Hausdorff distances use `hausdorff_options`; a
 /// resolution of 0 there means 1e−4 of T's bounding-box diagonal (the bracket [lower, upper] of
 /// each distance is then that narrow). The samples of φ (sample()) and the brackets, independent
-/// tasks, run on `executor` (default_executor() when null).
+/// tasks, run on `executor` (default_executor() when null). `pieces`, when given, is φ's faces
+/// (AffinePieces; T′ certified: its faces' images tile D, PARAM-6..8, and its points lie on T
+/// within PARAM-11's tolerance, which the bounds add).
 /// \pre D passes validate(); phi defined on all of Ω_D (DomainMap); 0 ≤ levels with
 ///      4^levels·#F(D) ≤ max_refined_faces; each keep_percent in [0, 100]; T has a face.
 /// \throws InvalidInput for a bad level or percentage, NumericalFailure when the decomposition's
 ///         solve fails (filter_bank.hpp), and whatever phi throws.
 WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::span<const double> keep_percent,
-                      const TriMesh& T, const HausdorffOptions& hausdorff_options = {}, Executor* executor = nullptr);
+                      const TriMesh& T, const HausdorffOptions& hausdorff_options = {}, Executor* executor = nullptr,
+                      const AffinePieces* pieces = nullptr);
 
 }  // namespace fhr::wavelet
