@@ -260,12 +260,25 @@ TEST_CASE("MAP-4, MAP-9: a triangle with all three vertices on one side cannot c
     CHECK(param::split_dividing_edges(d) == 0);
 }
 
-TEST_CASE("MAP-4: splitting dividing edges keeps the disk, its boundary, its surface and its old vertices", "[property][param]") {
+TEST_CASE("MAP-4: splitting dividing edges keeps the disk, its boundary, its surface and its old vertices; each triangle lies in its origin", "[property][param]") {
     rc::prop("random disks", [] {
         const Disk original = *gen_disk();
         Disk d = original;
-        const std::size_t split = param::split_dividing_edges(d);
+        std::vector<std::uint32_t> origin;
+        const std::size_t split = param::split_dividing_edges(d, &origin);
         RC_TAG(split == 0 ? "no split" : "split");
+        // Each triangle lies in its origin: its corners are the origin's or midpoints of its sides.
+        RC_ASSERT(origin.size() == d.triangles.size());
+        for (std::size_t t = 0; t < d.triangles.size(); ++t) {
+            RC_ASSERT(origin[t] < original.triangles.size());
+            const auto& o = original.triangles[origin[t]];
+            for (std::uint32_t v : d.triangles[t]) {
+                bool in = std::find(o.begin(), o.end(), v) != o.end();
+                for (int k = 0; k < 3 && !in; ++k)
+                    in = d.positions[v] == 0.5 * (original.positions[o[k]] + original.positions[o[(k + 1) % 3]]);
+                RC_ASSERT(in);
+            }
+        }
         RC_ASSERT(split == count_dividing(original));
         RC_ASSERT(!param::disk_violation(d));
         RC_ASSERT(count_dividing(d) == 0);

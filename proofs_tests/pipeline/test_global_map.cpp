@@ -72,13 +72,16 @@ TEST_CASE("GlobalMap: φ maps corners to x_j, is continuous across D's edges, an
     CHECK(worst <= 1e-9);
 }
 
-TEST_CASE("WAV-15: on every face of D^J, |f − φ| is at most AffineBounds' bound (random points; f^J and a moved f)",
+TEST_CASE("WAV-15: on every face of D^J, |f − φ| is at most AffineBounds' bound, and on every face of T |x − f^J(ψ(x))| "
+          "its bound from T (random points; f^J and a moved f)",
           "[pipeline][property][wavelet]") {
     // φ from a whole run of §2–§4 on meshes of every embedded family; f = f^J (φ's samples), and f
     // with every vertex of D^J moved by up to 2 % of T's diagonal (a reconstruction's place).
     // Random points of every face of D^J: their φ by point location (GlobalMap), f by
-    // interpolation. A bound that missed a corner of the pieces (a crossing of T′'s sides with D^J's,
-    // a vertex of T′ on a side shared by two faces of D^J) falls below |f − φ| near it.
+    // interpolation; random points x of every face of T′: ψ(x) by GlobalMap, f^J there by the
+    // face of D^J that holds it, against the bound of the face of T under it. A bound that missed
+    // a corner of the pieces (a crossing of T′'s sides with D^J's, a vertex of T′ on a side shared
+    // by two faces of D^J or of T) falls below the gap near it.
     rc::prop("per face of D^J", [] {
         const fhr::testing::GeneratedMesh T = *fhr::testing::gen_mesh(
             {.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 0, .max_holes = 1,
@@ -95,8 +98,9 @@ TEST_CASE("WAV-15: on every face of D^J, |f − φ| is at most AffineBounds' bou
         const wavelet::Refinement r = wavelet::refine(p->partition.domain.mesh, J);
         const std::vector<Vec3> fj = wavelet::sample(r, [&](FaceId d, const std::array<double, 3>& b) { return map.phi(d, b); });
         const wavelet::AffinePieces pieces{p->refined_positions, p->refined_faces.size(),
-                                           [&](std::size_t i, Triangle& c, std::uint32_t& d, std::array<std::array<double, 3>, 3>& beta) {
-                                               c = p->refined_faces[i], d = p->face_patch[i], beta = p->face_beta[i];
+                                           [&](std::size_t i, Triangle& c, std::uint32_t& d, std::array<std::array<double, 3>, 3>& beta,
+                                               std::uint32_t& t) {
+                                               c = p->refined_faces[i], d = p->face_patch[i], beta = p->face_beta[i], t = p->face_t[i];
                                            }};
         const wavelet::AffineBounds bounds(r, pieces);
         const double diagonal = (bounding_box(T).max - bounding_box(T).min).norm();
@@ -123,5 +127,32 @@ TEST_CASE("WAV-15: on every face of D^J, |f − φ| is at most AffineBounds' bou
                 }
             }
         }
+        // From T: f^J at ψ(x), in the face of D^J under the root face that holds ψ(x).
+        const std::vector<double> from_t = bounds.from_t(T.n_faces(), fj, 0);
+        const auto fj_at = [&](FaceId d, const std::array<double, 3>& beta) {
+            const auto n = static_cast<std::uint32_t>(1u << (2 * J));
+            for (std::uint32_t g = d.idx() * n; g < (d.idx() + 1) * n; ++g) {
+                const auto& cb = r.corner_beta[g];
+                // β = Σ l_k cb[k]: solve in the first two coordinates (the third follows).
+                const double a = cb[0][0] - cb[2][0], b = cb[1][0] - cb[2][0], c = cb[0][1] - cb[2][1], e = cb[1][1] - cb[2][1];
+                const double x = beta[0] - cb[2][0], y = beta[1] - cb[2][1], det = a * e - b * c;
+                const double l0 = (x * e - b * y) / det, l1 = (a * y - c * x) / det, l2 = 1 - l0 - l1;
+                if (std::min({l0, l1, l2}) < -1e-9) continue;
+                const auto v = finest.face_vertices(FaceId(g));
+                return Vec3(l0 * fj[v[0].idx()] + l1 * fj[v[1].idx()] + l2 * fj[v[2].idx()]);
+            }
+            RC_FAIL("no face of D^J holds the point");
+            return Vec3(Vec3::Zero());
+        };
+        for (std::size_t i = 0; i < p->refined_faces.size(); ++i)
+            for (int q = 0; q < 4; ++q) {
+                double s = u(rng), t = u(rng);
+                if (s + t > 1) s = 1 - s, t = 1 - t;
+                const std::array<double, 3> w{1 - s - t, s, t};
+                Vec3 x = Vec3::Zero();
+                for (std::size_t k = 0; k < 3; ++k) x += w[k] * p->refined_positions[p->refined_faces[i][k]];
+                const auto [d, beta] = map.psi(i, w);
+                RC_ASSERT((x - fj_at(d, beta)).norm() <= from_t[p->face_t[i]] * (1 + 1e-9) + 1e-12 * diagonal);
+            }
     });
 }

@@ -9,7 +9,11 @@
 
 namespace fhr::param {
 
-std::size_t split_dividing_edges(Disk& disk) {
+std::size_t split_dividing_edges(Disk& disk, std::vector<std::uint32_t>* origin) {
+    if (origin) {
+        origin->resize(disk.triangles.size());
+        for (std::uint32_t t = 0; t < origin->size(); ++t) (*origin)[t] = t;
+    }
     const std::vector<unsigned> sides_at = boundary_sides(disk);
     std::vector<unsigned> side(disk.positions.size(), 0);  // 0 for interior vertices
     for (std::size_t p = 0; p < disk.boundary.size(); ++p) side[disk.boundary[p]] = sides_at[p];
@@ -46,6 +50,10 @@ std::size_t split_dividing_edges(Disk& disk) {
         disk.triangles.emplace_back();
         const auto t2_second = static_cast<std::uint32_t>(disk.triangles.size());
         disk.triangles.emplace_back();
+        if (origin) {
+            origin->push_back((*origin)[t1]);
+            origin->push_back((*origin)[t2]);
+        }
         set(t1, {a, m, c});
         set(t1_second, {m, b, c});
         set(t2, {b, m, d});

@@ -20,6 +20,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include <fhr/param/disk.hpp>
 
@@ -31,8 +33,9 @@ namespace fhr::param {
 ///       boundary, the corners, the old vertices (indices and positions) are unchanged; the new
 ///       vertices are appended, one per split edge, at its midpoint; each split triangle is
 ///       replaced in place by its first half and its second half is appended, with the same
-///       orientation; the surface (union of the triangles) is unchanged. Deterministic.
+///       orientation; the surface (union of the triangles) is unchanged. Deterministic. With
+///       `origin`, it holds for every triangle after the splits the triangle before them that holds it.
 /// \return the number of edges split.
-std::size_t split_dividing_edges(Disk& disk);
+std::size_t split_dividing_edges(Disk& disk, std::vector<std::uint32_t>* origin = nullptr);
 
 }  // namespace fhr::param

@@ -57,10 +57,11 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     out.maps.resize(n_patches);
     out.certificates.resize(n_patches);
     std::vector<std::size_t> split(n_patches, 0);
+    std::vector<std::vector<std::uint32_t>> origin(n_patches);  // per patch: the triangle before the splits
     executor_or_default(options.executor).for_each(n_patches, 16, [&](std::size_t i) {
         const FaceId d(static_cast<FaceId::Index>(i));
         param::Disk disk = P.patches.patch[d].disk;
-        split[i] = param::split_dividing_edges(disk);
+        split[i] = param::split_dividing_edges(disk, &origin[i]);
         try {
             out.maps[d] = param::map_patch(disk, options.map);
         } catch (const InvalidInput& e) {  // the patch is fhr's own (§3), not the caller's input
@@ -79,6 +80,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     out.refined_faces.reserve(faces);
     out.face_patch.reserve(faces);
     out.face_beta.reserve(faces);
+    out.face_t.reserve(faces);
     for (FaceId d : out.disks.ids()) {
         const param::Disk& disk = out.disks[d];
         const partition::Patch& patch = P.patches.patch[d];
@@ -91,9 +93,11 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
                 out.refined_positions.push_back(disk.positions[v]);
             }
         }
-        for (const auto& t : disk.triangles) {
+        for (std::size_t i = 0; i < disk.triangles.size(); ++i) {
+            const auto& t = disk.triangles[i];
             out.refined_faces.push_back({global[t[0]], global[t[1]], global[t[2]]});
             out.face_patch.push_back(d.idx());
+            out.face_t.push_back(P.network.t_face[patch.faces[origin[d.idx()][i]]].idx());
             out.face_beta.push_back({out.maps[d].beta[t[0]], out.maps[d].beta[t[1]], out.maps[d].beta[t[2]]});
         }
     }

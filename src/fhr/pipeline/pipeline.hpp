@@ -59,6 +59,7 @@ struct Parameterization {
     // Per face of the final T′ (parallel to refined_faces, as in the `fhr-param 1` file):
     std::vector<std::uint32_t> face_patch;                      ///< the D face of its patch (FaceId::idx())
     std::vector<std::array<std::array<double, 3>, 3>> face_beta;  ///< per corner: β of ψ
+    std::vector<std::uint32_t> face_t;                          ///< the face of T that holds it (FaceId::idx())
     bool certified() const;                          ///< every patch's certificate passed
 };
 

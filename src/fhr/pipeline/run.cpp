@@ -65,9 +65,10 @@ RunResult run(const TriMesh& T, RunOptions options) {
             // φ's faces, from the file the oracle reads (read-only on both sides).
             const wavelet::AffinePieces pieces{
                 lent.surface_vertices, lent.surface_faces.size(),
-                [&](std::size_t f, Triangle& corners, std::uint32_t& patch, std::array<std::array<double, 3>, 3>& beta) {
+                [&](std::size_t f, Triangle& corners, std::uint32_t& patch, std::array<std::array<double, 3>, 3>& beta,
+                    std::uint32_t& t_face) {
                     const exchange::ParamFace& face = lent.surface_faces[f];
-                    corners = face.v, patch = face.patch, beta = face.beta;
+                    corners = face.v, patch = face.patch, beta = face.beta, t_face = out.parameterization.face_t[f];
                 }};
             out.wavelets = wavelet::analyse(out.parameterization.partition.domain.mesh,
                                             [&](FaceId d, const std::array<double, 3>& beta) { return phi.phi(d, beta); },

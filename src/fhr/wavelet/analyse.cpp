@@ -18,9 +18,10 @@ namespace {
 // (within 1e−12: a point on a side shared by two faces goes to both), down the one-to-four split
 // of refine.hpp: children 4g … 4g + 3 = (a, m_ab, m_ca), (m_ab, b, m_bc), (m_ca, m_bc, c),
 // (m_ab, m_bc, m_ca).
-void locate(std::uint32_t g, const std::array<double, 3>& l, int levels, const Vec3& phi, std::vector<AffineBounds::Corner>& out) {
+void locate(std::uint32_t g, std::uint32_t t, const std::array<double, 3>& l, int levels, const Vec3& phi,
+            std::vector<AffineBounds::Corner>& out) {
     if (levels == 0) {
-        out.push_back({g, l, phi});
+        out.push_back({g, t, l, phi});
         return;
     }
     const std::array<std::array<double, 3>, 4> child{{{2 * l[0] - 1, 2 * l[1], 2 * l[2]},
@@ -28,51 +29,61 @@ void locate(std::uint32_t g, const std::array<double, 3>& l, int levels, const V
                                                       {2 * l[0], 2 * l[1], 2 * l[2] - 1},
                                                       {1 - 2 * l[2], 1 - 2 * l[0], 1 - 2 * l[1]}}};
     for (std::uint32_t k = 0; k < 4; ++k)
-        if (std::min({child[k][0], child[k][1], child[k][2]}) >= -1e-12) locate(4 * g + k, child[k], levels - 1, phi, out);
+        if (std::min({child[k][0], child[k][1], child[k][2]}) >= -1e-12) locate(4 * g + k, t, child[k], levels - 1, phi, out);
 }
 
 }  // namespace
 
-// The vertices of T′ (once per patch: a face's corner unless a face of the same patch gave it
-// just before) and the crossings of T′'s sides with the lines β_c = m/2^J (each side is met from
+// The vertices of T′ (a face's corner unless a face of the same patch and the same face of T gave
+// it just before) and the crossings of T′'s sides with the lines β_c = m/2^J (each side is met from
 // both its faces: its crossings are found twice); D^J's vertices are the operator's.
 AffineBounds::AffineBounds(const Refinement& r, const AffinePieces& pieces) : faces_(r.finest().triangles()) {
     const int J = r.depth();
     corners_.reserve(8 * pieces.faces);
-    std::vector<std::uint32_t> seen_in(pieces.points.size(), std::numeric_limits<std::uint32_t>::max());
+    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> seen_in(pieces.points.size(), {none, none});  // (patch, face of T)
     const double n = std::ldexp(1.0, J);
     Triangle v;
-    std::uint32_t d = 0;
+    std::uint32_t d = 0, t = 0;
     std::array<std::array<double, 3>, 3> beta;
     for (std::size_t f = 0; f < pieces.faces; ++f) {
-        pieces.face(f, v, d, beta);
+        pieces.face(f, v, d, beta, t);
         for (int k = 0; k < 3; ++k) {
             const int e = (k + 1) % 3;
             const Vec3 &x = pieces.points[v[k]], &y = pieces.points[v[e]];
-            if (seen_in[v[k]] != d) locate(d, beta[k], J, x, corners_);
-            seen_in[v[k]] = d;
+            if (seen_in[v[k]] != std::pair(d, t)) locate(d, t, beta[k], J, x, corners_);
+            seen_in[v[k]] = {d, t};
             for (int c = 0; c < 3; ++c) {
                 const double from = beta[k][c] * n, to = beta[e][c] * n;
                 for (double m = std::floor(std::min(from, to)) + 1; m < std::max(from, to); ++m) {
-                    const double t = (m - from) / (to - from);
+                    const double s = (m - from) / (to - from);
                     std::array<double, 3> b;
-                    for (int i = 0; i < 3; ++i) b[i] = beta[k][i] + t * (beta[e][i] - beta[k][i]);
-                    locate(d, b, J, x + t * (y - x), corners_);
+                    for (int i = 0; i < 3; ++i) b[i] = beta[k][i] + s * (beta[e][i] - beta[k][i]);
+                    locate(d, t, b, J, x + s * (y - x), corners_);
                 }
             }
         }
     }
 }
 
+// |f − φ| at the corner p of a piece.
+double AffineBounds::gap(const Corner& p, std::span<const Vec3> f) const {
+    const Triangle& c = faces_[p.face];
+    return (p.lambda[0] * f[c[0]] + p.lambda[1] * f[c[1]] + p.lambda[2] * f[c[2]] - p.phi).norm();
+}
+
 std::vector<double> AffineBounds::operator()(std::span<const Vec3> f, std::span<const Vec3> f_j, double on_t) const {
     std::vector<double> bound(faces_.size(), 0);
     for (std::size_t g = 0; g < faces_.size(); ++g)
         for (std::uint32_t v : faces_[g]) bound[g] = std::max(bound[g], (f[v] - f_j[v]).norm());
-    for (const Corner& p : corners_) {
-        const Triangle& c = faces_[p.face];
-        const Vec3 at = p.lambda[0] * f[c[0]] + p.lambda[1] * f[c[1]] + p.lambda[2] * f[c[2]];
-        bound[p.face] = std::max(bound[p.face], (at - p.phi).norm());
-    }
+    for (const Corner& p : corners_) bound[p.face] = std::max(bound[p.face], gap(p, f));
+    for (double& b : bound) b = b * (1 + 1e-12) + on_t;
+    return bound;
+}
+
+std::vector<double> AffineBounds::from_t(std::size_t t_faces, std::span<const Vec3> f_j, double on_t) const {
+    std::vector<double> bound(t_faces, 0);
+    for (const Corner& p : corners_) bound[p.t_face] = std::max(bound[p.t_face], gap(p, f_j));
     for (double& b : bound) b = b * (1 + 1e-12) + on_t;
     return bound;
 }
@@ -106,17 +117,20 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     if (ho.resolution <= 0) ho.resolution = 1e-4 * out.bbox_diagonal;
     const TriangleTree t_tree(T.positions(), t_faces);
     // WAV-15: with φ's faces, per face of D^J a bound of its distance to T from |f − φ|, for the
-    // directions from f^J and from each reconstruction to T. T′ lies on T within PARAM-11's
+    // directions from f^J and from each reconstruction to T, and per face of T one of its distance
+    // to f^J (which, through f^J's per-triangle bounds, sharpens the reconstructions' priors from T
+    // too). T′ lies on T within PARAM-11's
     // tolerance (1e−9 of the diagonal plus 64u·|x|max), the points' rounding within as much again.
     std::optional<AffineBounds> affine;
-    std::vector<double> from_f;
+    std::vector<double> fj_to_t, t_to_fj;
     double on_t = 0;
     if (pieces) {
         double max_abs = 0;
         for (const Vec3& x : T.positions()) max_abs = std::max(max_abs, x.cwiseAbs().maxCoeff());
         on_t = 1e-9 * out.bbox_diagonal + 128 * std::numeric_limits<double>::epsilon() / 2 * max_abs;
         affine.emplace(r, *pieces);
-        from_f = (*affine)(out.remesh_positions, out.remesh_positions, on_t);
+        fj_to_t = (*affine)(out.remesh_positions, out.remesh_positions, on_t);
+        t_to_fj = affine->from_t(T.n_faces(), out.remesh_positions, on_t);
     }
     const auto bracket = [&](const std::vector<Vec3>& positions, Hausdorff& h, const HausdorffOptions& o) {
         h = hausdorff(T.positions(), t_faces, t_tree, positions, out.remesh_faces, TriangleTree(positions, out.remesh_faces), o, executor);
@@ -151,7 +165,8 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     executor_or_default(executor).for_each(2, 1, [&](std::size_t task) {
         if (task == 0) {
             HausdorffOptions o = ho;
-            o.prior_back = from_f;
+            o.prior = t_to_fj;
+            o.prior_back = fj_to_t;
             return bracket(out.remesh_positions, out.remesh_hausdorff, o);
         }
         auto begin = detail::Clock::now();
