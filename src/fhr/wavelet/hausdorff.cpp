@@ -469,21 +469,55 @@ constexpr std::uint32_t search_blocks = 8;
 
 DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles,
                                      const TriangleTree& B, const HausdorffOptions& options, Executor* executor) {
-    // The vertices first: they give the search a good lower bound to prune with. In blocks too;
-    // each vertex's distance is the same whatever the block (the hint only speeds the query).
+    // The vertices first: they give the search a good lower bound to prune with. With priors, a
+    // vertex's distance is at most the least prior of its triangles: the vertices are queried one
+    // by one in decreasing order of that bound until it falls below the largest distance found —
+    // the others cannot raise it, so lower (and the first farthest vertex) are the same as from
+    // all — and then, in blocks, those of the triangles their priors do not settle yet. Without
+    // priors, all of them in blocks. Each vertex's distance is the same whatever the block (the
+    // hint only speeds the query).
     std::vector<TriangleTree::Hit> at_vertex(a_positions.size(), TriangleTree::Hit{0, 0, Vec3::Zero()});
-    std::vector<char> used(a_positions.size(), 0);
+    enum : char { unused, wanted, queried };
+    std::vector<char> state(a_positions.size(), unused);
     for (const Triangle& t : a_triangles)
-        for (std::uint32_t v : t) used[v] = 1;
+        for (std::uint32_t v : t) state[v] = wanted;
+    DirectedHausdorff h;
+    if (!options.prior.empty()) {
+        std::vector<double> bound(a_positions.size(), std::numeric_limits<double>::infinity());
+        for (std::size_t i = 0; i < a_triangles.size(); ++i)
+            for (std::uint32_t v : a_triangles[i]) bound[v] = std::min(bound[v], options.prior[i]);
+        std::vector<std::uint32_t> order;
+        for (std::uint32_t v = 0; v < state.size(); ++v)
+            if (state[v] == wanted) order.push_back(v);
+        std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return bound[x] > bound[y] || (bound[x] == bound[y] && x < y); });
+        BlockSearch first(a_positions, a_triangles, B, options, at_vertex);
+        for (std::uint32_t v : order) {
+            if (bound[v] < first.h.lower) break;
+            at_vertex[v] = first.query(a_positions[v]);
+            state[v] = queried;
+        }
+        h.lower = first.h.lower;
+        h.samples = first.h.samples;
+        std::uint32_t farthest = static_cast<std::uint32_t>(state.size());  // the lowest index at lower
+        for (std::uint32_t v : order)
+            if (state[v] == queried && at_vertex[v].distance == h.lower) farthest = std::min(farthest, v);
+        if (farthest < state.size()) h.farthest = a_positions[farthest];
+        for (std::uint32_t v = 0; v < state.size(); ++v)
+            if (state[v] == wanted) state[v] = unused;
+        const double settled = std::max(h.lower, options.known);
+        for (std::size_t i = 0; i < a_triangles.size(); ++i)
+            if (!(options.prior[i] <= settled))
+                for (std::uint32_t v : a_triangles[i])
+                    if (state[v] == unused) state[v] = wanted;
+    }
     std::vector<DirectedHausdorff> parts(search_blocks);
     const auto nv = static_cast<std::uint64_t>(a_positions.size());
     executor_or_default(executor).for_each(search_blocks, 1, [&](std::size_t k) {
         BlockSearch block(a_positions, a_triangles, B, options, at_vertex);
         for (std::size_t v = nv * k / search_blocks; v < nv * (k + 1) / search_blocks; ++v)
-            if (used[v]) at_vertex[v] = block.query(a_positions[v]);
+            if (state[v] == wanted) at_vertex[v] = block.query(a_positions[v]);
         parts[k] = std::move(block.h);
     });
-    DirectedHausdorff h;
     for (const DirectedHausdorff& part : parts) {  // in block order: the first farthest vertex
         if (part.lower > h.lower) h.lower = part.lower, h.farthest = part.farthest;
         h.samples += part.samples;
