@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
+#include <utility>
 
 #include <fhr/core/detail/stopwatch.hpp>
 #include <fhr/core/geometry.hpp>
@@ -14,78 +14,82 @@
 namespace fhr::wavelet {
 namespace {
 
-// Every face of D^J under face g of D^{J − levels} that holds the point with coordinates l in g
-// (within 1e−12: a point on a side shared by two faces goes to both), down the one-to-four split
-// of refine.hpp: children 4g … 4g + 3 = (a, m_ab, m_ca), (m_ab, b, m_bc), (m_ca, m_bc, c),
-// (m_ab, m_bc, m_ca).
-void locate(std::uint32_t g, std::uint32_t t, const std::array<double, 3>& l, int levels, const Vec3& phi,
-            std::vector<AffineBounds::Corner>& out) {
-    if (levels == 0) {
-        out.push_back({g, t, l, phi});
-        return;
-    }
+// Calls visit(g, l) for every face g of D^J under face g0 of D^{J − levels} that holds the point
+// with coordinates l in g0 (within 1e−12: a point on a side shared by two faces goes to both), l
+// its coordinates in g, down the one-to-four split of refine.hpp: children 4g … 4g + 3 =
+// (a, m_ab, m_ca), (m_ab, b, m_bc), (m_ca, m_bc, c), (m_ab, m_bc, m_ca).
+template <class Visit>
+void locate(std::uint32_t g, const std::array<double, 3>& l, int levels, Visit& visit) {
+    if (levels == 0) return visit(g, l);
     const std::array<std::array<double, 3>, 4> child{{{2 * l[0] - 1, 2 * l[1], 2 * l[2]},
                                                       {2 * l[0], 2 * l[1] - 1, 2 * l[2]},
                                                       {2 * l[0], 2 * l[1], 2 * l[2] - 1},
                                                       {1 - 2 * l[2], 1 - 2 * l[0], 1 - 2 * l[1]}}};
     for (std::uint32_t k = 0; k < 4; ++k)
-        if (std::min({child[k][0], child[k][1], child[k][2]}) >= -1e-12) locate(4 * g + k, t, child[k], levels - 1, phi, out);
+        if (std::min({child[k][0], child[k][1], child[k][2]}) >= -1e-12) locate(4 * g + k, child[k], levels - 1, visit);
 }
+
+constexpr std::size_t affine_blocks = 8;
 
 }  // namespace
 
-// The vertices of T′ (a face's corner unless a face of the same patch and the same face of T gave
-// it just before) and the crossings of T′'s sides with the lines β_c = m/2^J (each side is met from
-// both its faces: its crossings are found twice); D^J's vertices are the operator's.
-AffineBounds::AffineBounds(const Refinement& r, const AffinePieces& pieces) : faces_(r.finest().triangles()) {
+// The corners: the vertices of T′ (a face's corner unless a face of the same patch and the same
+// face of T gave it just before) and the crossings of T′'s sides with the lines β_c = m/2^J (each
+// side is met from both its faces: its crossings are found twice). Blocks of T′'s faces with
+// their own maxima, merged.
+AffineBounds affine_bounds(const Refinement& r, std::span<const Vec3> f_j, const AffinePieces& pieces, std::size_t t_faces,
+                           double on_t, Executor* executor) {
     const int J = r.depth();
-    corners_.reserve(8 * pieces.faces);
-    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> seen_in(pieces.points.size(), {none, none});  // (patch, face of T)
     const double n = std::ldexp(1.0, J);
-    Triangle v;
-    std::uint32_t d = 0, t = 0;
-    std::array<std::array<double, 3>, 3> beta;
-    for (std::size_t f = 0; f < pieces.faces; ++f) {
-        pieces.face(f, v, d, beta, t);
-        for (int k = 0; k < 3; ++k) {
-            const int e = (k + 1) % 3;
-            const Vec3 &x = pieces.points[v[k]], &y = pieces.points[v[e]];
-            if (seen_in[v[k]] != std::pair(d, t)) locate(d, t, beta[k], J, x, corners_);
-            seen_in[v[k]] = {d, t};
-            for (int c = 0; c < 3; ++c) {
-                const double from = beta[k][c] * n, to = beta[e][c] * n;
-                for (double m = std::floor(std::min(from, to)) + 1; m < std::max(from, to); ++m) {
-                    const double s = (m - from) / (to - from);
-                    std::array<double, 3> b;
-                    for (int i = 0; i < 3; ++i) b[i] = beta[k][i] + s * (beta[e][i] - beta[k][i]);
-                    locate(d, t, b, J, x + s * (y - x), corners_);
+    const std::vector<Triangle> faces = r.finest().triangles();
+    std::vector<AffineBounds> block(affine_blocks);
+    executor_or_default(executor).for_each(affine_blocks, 1, [&](std::size_t b) {
+        AffineBounds& m = block[b];
+        m.remesh.assign(faces.size(), 0);
+        m.t.assign(t_faces, 0);
+        constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> seen_in(pieces.points.size(), {none, none});  // (patch, face of T)
+        Triangle v;
+        std::uint32_t d = 0, t = 0;
+        std::array<std::array<double, 3>, 3> beta;
+        Vec3 phi;
+        auto visit = [&](std::uint32_t g, const std::array<double, 3>& l) {
+            const Triangle& c = faces[g];
+            const double gap = (l[0] * f_j[c[0]] + l[1] * f_j[c[1]] + l[2] * f_j[c[2]] - phi).norm();
+            m.remesh[g] = std::max(m.remesh[g], gap);
+            m.t[t] = std::max(m.t[t], gap);
+        };
+        for (std::size_t i = pieces.faces * b / affine_blocks; i < pieces.faces * (b + 1) / affine_blocks; ++i) {
+            pieces.face(i, v, d, beta, t);
+            for (int k = 0; k < 3; ++k) {
+                const int e = (k + 1) % 3;
+                const Vec3 &x = pieces.points[v[k]], &y = pieces.points[v[e]];
+                if (seen_in[v[k]] != std::pair(d, t)) {
+                    phi = x;
+                    locate(d, beta[k], J, visit);
+                }
+                seen_in[v[k]] = {d, t};
+                for (int c = 0; c < 3; ++c) {
+                    const double from = beta[k][c] * n, to = beta[e][c] * n;
+                    for (double q = std::floor(std::min(from, to)) + 1; q < std::max(from, to); ++q) {
+                        const double s = (q - from) / (to - from);
+                        std::array<double, 3> at;
+                        for (int w = 0; w < 3; ++w) at[w] = beta[k][w] + s * (beta[e][w] - beta[k][w]);
+                        phi = x + s * (y - x);
+                        locate(d, at, J, visit);
+                    }
                 }
             }
         }
+    });
+    AffineBounds out{std::vector<double>(faces.size(), 0), std::vector<double>(t_faces, 0)};
+    for (const AffineBounds& m : block) {
+        for (std::size_t g = 0; g < faces.size(); ++g) out.remesh[g] = std::max(out.remesh[g], m.remesh[g]);
+        for (std::size_t g = 0; g < t_faces; ++g) out.t[g] = std::max(out.t[g], m.t[g]);
     }
-}
-
-// |f − φ| at the corner p of a piece.
-double AffineBounds::gap(const Corner& p, std::span<const Vec3> f) const {
-    const Triangle& c = faces_[p.face];
-    return (p.lambda[0] * f[c[0]] + p.lambda[1] * f[c[1]] + p.lambda[2] * f[c[2]] - p.phi).norm();
-}
-
-std::vector<double> AffineBounds::operator()(std::span<const Vec3> f, std::span<const Vec3> f_j, double on_t) const {
-    std::vector<double> bound(faces_.size(), 0);
-    for (std::size_t g = 0; g < faces_.size(); ++g)
-        for (std::uint32_t v : faces_[g]) bound[g] = std::max(bound[g], (f[v] - f_j[v]).norm());
-    for (const Corner& p : corners_) bound[p.face] = std::max(bound[p.face], gap(p, f));
-    for (double& b : bound) b = b * (1 + 1e-12) + on_t;
-    return bound;
-}
-
-std::vector<double> AffineBounds::from_t(std::size_t t_faces, std::span<const Vec3> f_j, double on_t) const {
-    std::vector<double> bound(t_faces, 0);
-    for (const Corner& p : corners_) bound[p.t_face] = std::max(bound[p.t_face], gap(p, f_j));
-    for (double& b : bound) b = b * (1 + 1e-12) + on_t;
-    return bound;
+    for (std::vector<double>* bound : {&out.remesh, &out.t})
+        for (double& x : *bound) x = x * (1 + 1e-12) + on_t;
+    return out;
 }
 
 WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::span<const double> keep_percent,
@@ -116,21 +120,17 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     HausdorffOptions ho = hausdorff_options;
     if (ho.resolution <= 0) ho.resolution = 1e-4 * out.bbox_diagonal;
     const TriangleTree t_tree(T.positions(), t_faces);
-    // WAV-15: with φ's faces, per face of D^J a bound of its distance to T from |f − φ|, for the
-    // directions from f^J and from each reconstruction to T, and per face of T one of its distance
-    // to f^J (which, through f^J's per-triangle bounds, sharpens the reconstructions' priors from T
-    // too). T′ lies on T within PARAM-11's
-    // tolerance (1e−9 of the diagonal plus 64u·|x|max), the points' rounding within as much again.
-    std::optional<AffineBounds> affine;
-    std::vector<double> fj_to_t, t_to_fj;
-    double on_t = 0;
+    // WAV-15: with φ's faces, per face of D^J a bound of its distance to T from |f^J − φ|, and per
+    // face of T one of its distance to f^J: f^J's priors both ways; through f^J's per-triangle
+    // bounds (DirectedHausdorff::triangle_upper) they sharpen the reconstructions' priors too. T′
+    // lies on T within PARAM-11's tolerance (1e−9 of the diagonal plus 64u·|x|max), the points'
+    // rounding within as much again.
+    AffineBounds affine;
     if (pieces) {
         double max_abs = 0;
         for (const Vec3& x : T.positions()) max_abs = std::max(max_abs, x.cwiseAbs().maxCoeff());
-        on_t = 1e-9 * out.bbox_diagonal + 128 * std::numeric_limits<double>::epsilon() / 2 * max_abs;
-        affine.emplace(r, *pieces);
-        fj_to_t = (*affine)(out.remesh_positions, out.remesh_positions, on_t);
-        t_to_fj = affine->from_t(T.n_faces(), out.remesh_positions, on_t);
+        const double on_t = 1e-9 * out.bbox_diagonal + 128 * std::numeric_limits<double>::epsilon() / 2 * max_abs;
+        affine = affine_bounds(r, out.remesh_positions, *pieces, T.n_faces(), on_t, executor);
     }
     const auto bracket = [&](const std::vector<Vec3>& positions, Hausdorff& h, const HausdorffOptions& o) {
         h = hausdorff(T.positions(), t_faces, t_tree, positions, out.remesh_faces, TriangleTree(positions, out.remesh_faces), o, executor);
@@ -153,10 +153,6 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
             const Triangle& t = out.remesh_faces[i];
             to_t[i] = (f.b_to_a.triangle_upper[i] + std::max({moved[t[0]], moved[t[1]], moved[t[2]]})) * up;
         }
-        if (affine) {
-            const std::vector<double> from_k = (*affine)(k.positions, out.remesh_positions, on_t);
-            for (std::size_t i = 0; i < to_t.size(); ++i) to_t[i] = std::min(to_t[i], from_k[i]);
-        }
         HausdorffOptions o = ho;
         o.prior = from_t;
         o.prior_back = to_t;
@@ -165,8 +161,8 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     executor_or_default(executor).for_each(2, 1, [&](std::size_t task) {
         if (task == 0) {
             HausdorffOptions o = ho;
-            o.prior = t_to_fj;
-            o.prior_back = fj_to_t;
+            o.prior = affine.t;
+            o.prior_back = affine.remesh;
             return bracket(out.remesh_positions, out.remesh_hausdorff, o);
         }
         auto begin = detail::Clock::now();

@@ -53,7 +53,7 @@ struct WaveletResult {
 
 /// φ where it is affine: on each face of T′ (T refined by the partition, paper §3) φ maps the
 /// β of the face's corners in the face `patch` of D to the corners' points of T; the face lies in
-/// the face `t_face` of T. With it, the brackets start from per-face bounds (AffineBounds, WAV-15).
+/// the face `t_face` of T. With it, the brackets start from per-face bounds (affine_bounds, WAV-15).
 struct AffinePieces {
     std::span<const Vec3> points;  ///< the vertices of T′
     std::size_t faces = 0;         ///< #F(T′)
@@ -64,37 +64,23 @@ struct AffinePieces {
         face;
 };
 
-/// WAV-15: on a face of D^J, d(f(p), T) ≤ |f(p) − φ(p)| + (how far T′ lies from T), f affine on
-/// the faces of D^J and φ on the images of T′'s faces, both in the β of a face of D. So f − φ is
-/// affine on each piece where they overlap, and its norm, convex there, is largest at the pieces'
-/// corners: the vertices of T′, the crossings of T′'s sides with the sides of D^J's faces (lines
-/// β_c = m/2^J), and the vertices of D^J (where φ = f^J). Likewise on a face t of T, d(x, f^J) ≤
-/// |x − f^J(ψ(x))| + (how far T′ lies from T), largest at the same corners in T′'s faces in t (at
-/// D^J's vertices it is 0).
-class AffineBounds {
-public:
-    /// The corners of the pieces in each face of D^J = r.finest() (a corner on a side shared by two
-    /// faces, within 10⁻¹² in β, counts for both). \pre pieces certified (AffinePieces, analyse).
-    AffineBounds(const Refinement& r, const AffinePieces& pieces);
-    /// Per face of D^J, max |f − φ| over it, raised by 10⁻¹² relative, plus `on_t`: f at the
-    /// vertices of D^J, f_j = f^J there (φ's samples).
-    std::vector<double> operator()(std::span<const Vec3> f, std::span<const Vec3> f_j, double on_t) const;
-    /// Per face of T (t_faces of them), max |x − f^J(ψ(x))| over it, raised likewise.
-    std::vector<double> from_t(std::size_t t_faces, std::span<const Vec3> f_j, double on_t) const;
-
-    struct Corner {
-        std::uint32_t face;            ///< of D^J
-        std::uint32_t t_face;          ///< of T, under the face of T′ it was found in
-        std::array<double, 3> lambda;  ///< its barycentric coordinates there (face_vertices order)
-        Vec3 phi;                      ///< φ there
-    };
-    std::span<const Corner> corners() const { return corners_; }
-
-private:
-    std::vector<Triangle> faces_;
-    std::vector<Corner> corners_;
-    double gap(const Corner& p, std::span<const Vec3> f) const;
+/// WAV-15: on a face of D^J, d(f^J(p), T) ≤ |f^J(p) − φ(p)| + (how far T′ lies from T), f^J
+/// affine on the faces of D^J and φ on the images of T′'s faces, both in the β of a face of D. So
+/// f^J − φ is affine on each piece where they overlap, and its norm, convex there, is largest at
+/// the pieces' corners: the vertices of T′, the crossings of T′'s sides with the sides of D^J's
+/// faces (lines β_c = m/2^J), and the vertices of D^J, where it is 0. Likewise on a face t of T,
+/// d(x, f^J) ≤ |x − f^J(ψ(x))| + (how far T′ lies from T), largest at the same corners in the
+/// faces of T′ in t.
+struct AffineBounds {
+    std::vector<double> remesh;  ///< per face of D^J: max over it of |f^J − φ|
+    std::vector<double> t;       ///< per face of T: max over it of |x − f^J(ψ(x))|
 };
+/// Both, each raised by 10⁻¹² relative and by `on_t`, in one pass over T′'s faces (a corner on a
+/// side shared by two faces of D^J, within 10⁻¹² in β, counts for both), in fixed blocks of them on
+/// `executor` (maxima: the same bits on any number of threads). f_j: f^J at the vertices of
+/// D^J = r.finest(); t_faces: #F(T). \pre pieces certified (AffinePieces, analyse).
+AffineBounds affine_bounds(const Refinement& r, std::span<const Vec3> f_j, const AffinePieces& pieces, std::size_t t_faces,
+                           double on_t, Executor* executor = nullptr);
 
 /// The §5 wavelet stage for a domain D (closed or with boundary, one component or several),
 /// φ: Ω_D → Ω_T and the input surface T. Hausdorff distances use `hausdorff_options`; a

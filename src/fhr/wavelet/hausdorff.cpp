@@ -471,9 +471,10 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
                                      const TriangleTree& B, const HausdorffOptions& options, Executor* executor) {
     // The vertices first: they give the search a good lower bound to prune with. With priors, a
     // vertex's distance is at most the least prior of its triangles: the vertices are queried one
-    // by one in decreasing order of that bound until it falls below the largest distance found —
-    // the others cannot raise it, so lower (and the first farthest vertex) are the same as from
-    // all — and then, in blocks, those of the triangles their priors do not settle yet. Without
+    // by one in decreasing order of that bound until it falls below the largest distance found or
+    // below `known` — the others cannot raise max(lower, known), so that is the same as from all
+    // vertices, and so is lower (with its first farthest vertex) when it is above known — and
+    // then, in blocks, those of the triangles their priors do not settle yet. Without
     // priors, all of them in blocks. Each vertex's distance is the same whatever the block (the
     // hint only speeds the query).
     std::vector<TriangleTree::Hit> at_vertex(a_positions.size(), TriangleTree::Hit{0, 0, Vec3::Zero()});
@@ -492,7 +493,7 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
         std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return bound[x] > bound[y] || (bound[x] == bound[y] && x < y); });
         BlockSearch first(a_positions, a_triangles, B, options, at_vertex);
         for (std::uint32_t v : order) {
-            if (bound[v] < first.h.lower) break;
+            if (bound[v] < std::max(first.h.lower, options.known)) break;
             at_vertex[v] = first.query(a_positions[v]);
             state[v] = queried;
         }
