@@ -32,7 +32,10 @@
 //             convex: sup ≤ max_k d(x_k, P) + h + ε. This settles the pieces at the vertices of B,
 //             inner or on its boundary.
 //             The piece's bound is the smallest of these
-//   search    lower <- max over A's vertices of d(v, B); then for each triangle of A (the 64
+//   search    lower <- max over A's vertices of d(v, B) (with priors, only the vertices whose
+//             bound — the least prior of their triangles — can raise max(lower, known), largest
+//             first, and those of the triangles not settled by their priors: directed_hausdorff);
+//             then for each triangle of A (the 64
 //             with the farthest corner first, to raise lower soon; then the others in A's own
 //             order, whose neighbours' queries then find the tree's nodes in cache), branch and
 //             bound: a piece whose bound is ≤ max(lower, known) is done (the bounds are tried
