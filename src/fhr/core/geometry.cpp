@@ -109,6 +109,15 @@ ShapeStats shape_stats(const TriMesh& m) {
     return s;
 }
 
+double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+    double d2 = 0;
+    for (int i = 0; i < 3; ++i) {
+        const double d = std::max(std::max(lo[i] - p[i], p[i] - hi[i]), 0.0);
+        d2 += d * d;
+    }
+    return d2;
+}
+
 namespace {
 
 Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {

@@ -45,6 +45,12 @@ struct ShapeStats {
 };
 ShapeStats shape_stats(const TriMesh& m);
 
+/// The squared distance from p to the box [lo, hi] (0 inside), without branches: which side p is
+/// on is as good as random, and mispredicted branches were most of a Hausdorff query's time (issue
+/// 18). closest_point_on_triangle's rounded squared distance to p is never below its triangle's
+/// box's: a search may skip boxes no nearer than its best so far (§5's tree, the oracle's PARAM-11).
+double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi);
+
 /// The point of triangle abc closest to p: p's projection onto the plane when it falls inside,
 /// else the nearest point of the edges; within a few u·(diameter) of the exact one also on needles
 /// (geometry.cpp). Shared by the oracle's PARAM-11 (src/fhr/exchange) and the Hausdorff distance

@@ -910,8 +910,7 @@ public:
         for (; it != listing_.end() && it->first == k; ++it) {
             const Triangle& t = simplices_[it->second];
             const Vec3 &a = pos(t[0]), &b = pos(t[1]), &c = pos(t[2]);
-            const Vec3 gap = (a.cwiseMin(b).cwiseMin(c) - p).cwiseMax(p - a.cwiseMax(b).cwiseMax(c)).cwiseMax(0.0);
-            if (!(gap.squaredNorm() < best)) continue;
+            if (!(box_distance2(p, a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)) < best)) continue;
             const Vec3 q = t[1] == t[2] ? closest_point_on_segment(p, a, b) : closest_point_on_triangle(p, a, b, c);
             best = std::min(best, (q - p).squaredNorm());
         }

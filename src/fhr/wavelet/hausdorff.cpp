@@ -34,17 +34,6 @@ double farthest_from_corners(const Vec3 (&x)[3]) {
     return std::min(r, std::sqrt(s2[c] / 3)) * (1 + 1e-12);
 }
 
-// Squared distance from p to the box [lo, hi] (0 inside). Without branches: which side p is on
-// is as good as random, and mispredicted branches were most of a query's time (issue 18).
-double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
-    double d2 = 0;
-    for (int i = 0; i < 3; ++i) {
-        const double d = std::max(std::max(lo[i] - p[i], p[i] - hi[i]), 0.0);
-        d2 += d * d;
-    }
-    return d2;
-}
-
 constexpr std::uint32_t leaf_size = 4;
 
 }  // namespace
