@@ -62,6 +62,7 @@ def fuzz(program, *extra):
 
 
 def test_oracle_fuzz_two_shards_by_parallel_merge_to_the_unsharded_table(program, tmp_path):
+    """CLI-ORACLE-8, CLI-ORACLE-9: two shards' tables merge into the unsharded run's, byte for byte."""
     whole = run(fuzz(program, "--keep", tmp_path / "keep", "--table", tmp_path / "whole.tsv"))
     shards = parallel(*fuzz(program, "--keep", tmp_path / "keep-{}", "--shard", "{}/2", "--table", tmp_path / "shard-{}.tsv"))
     assert shards.stderr == "", shards.stderr
@@ -109,6 +110,7 @@ def tables(tmp_path_factory):
       "fhr: error: %%(d)s/valid%d.tsv:13: a malformed row (empty field, a bad escape, or '-' missing after 'valid')" % k)
      for k in (4, 5, 6)])
 def test_oracle_fuzz_merge_errors(tables, case, files, message):
+    """CLI-ORACLE-9: a merge of tables that are not one campaign's shards names the file and the mismatch."""
     a2 = (tables / "a2.tsv").read_text()
     (tables / "cut.tsv").write_text(a2[:len(a2) - 20])
     lines = a2.splitlines(keepends=True)

@@ -13,6 +13,7 @@
 #include <fhr/core/errors.hpp>
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/io/read.hpp>
+#include <fhr/version.hpp>
 #include "cli/common.hpp"
 #include "support/test_support.hpp"
 
@@ -128,7 +129,22 @@ TEST_CASE("CLI-ERR-3: usage errors name the problem and exit with 2", "[cli]") {
     const auto faces = run_fhr({"generate", "--faces", "lots", "--out", temp_path("g.off")});
     CHECK(faces.exit_code == 2);
     CHECK_THAT(faces.err, Catch::Contains("--faces needs an integer"));
-    CHECK(run_fhr({"help"}).exit_code == 0);
+}
+
+TEST_CASE("CLI-ERR-4: help and --version print on stdout and exit with 0", "[cli]") {
+    for (const char* help : {"help", "--help", "-h"}) {
+        const auto r = run_fhr({help});
+        CHECK(r.exit_code == 0);
+        CHECK(r.err.empty());
+        for (const char* command : {"fhr info", "fhr generate", "fhr convert", "fhr decimate", "fhr attach", "fhr geodesic", "fhr run",
+                                    "fhr verify", "fhr oracle-fuzz"})
+            CHECK_THAT(r.out, Catch::Contains(std::string("  ") + command + " "));
+    }
+    for (const char* version : {"--version", "version"}) {
+        const auto r = run_fhr({version});
+        CHECK(r.exit_code == 0);
+        CHECK(r.out == "fhr " + std::string(fhr::version) + "\n");
+    }
 }
 
 TEST_CASE("CLI-INFO-1: warnings for repaired input, exit code 0", "[cli]") {

@@ -399,7 +399,7 @@ TEST_CASE("CLI-RUN-5: a domain edge whose geodesic the exact search loses exits 
     CHECK_THAT(r.err, Catch::Contains("no shortest path found for domain edge 0 between vertices 9 and 87 of T"));
 }
 
-TEST_CASE("CLI-RUN-1..3, REN-14: --levels 3 --keep 5,20 on the fandisk reproduces the paper's §6 counts; --figures draws "
+TEST_CASE("CLI-RUN-1..3, CLI-RUN-6, REN-14: --levels 3 --keep 5,20 on the fandisk reproduces the paper's §6 counts; --figures draws "
           "Figs. 6-9 and the rate-distortion plot",
           "[cli][run][wavelet]") {
     const std::string mesh = fandisk(), dir = temp_path("run-wav");

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <fhr/core/errors.hpp>
+#include <fhr/version.hpp>
 #include "cli/common.hpp"
 
 namespace {
@@ -63,7 +64,7 @@ usage:
   fhr oracle-fuzz --merge FILE... [--table FILE]
       the tables of a campaign's shards as the one table of the unsharded run; its failures and
       `N meshes, K failures`; exit 0 without failures, 1 with, 2 if the tables do not fit together
-  fhr help
+  fhr help | fhr --version
 
 MESH files: .off/.coff, .obj, .ply (ascii or binary), .stl (ascii or binary).
 exit codes: 0 ok, 2 invalid input or usage, 3 partition failure, 4 numerical failure, 70 bug.
@@ -92,6 +93,10 @@ int main(int argc, char** argv) {
         if (command == "oracle-fuzz") return fhr::cli::run_oracle_fuzz(args);
         if (command == "help" || command == "--help" || command == "-h") {
             std::fputs(usage, stdout);
+            return 0;
+        }
+        if (command == "--version" || command == "version") {
+            std::printf("fhr %.*s\n", static_cast<int>(fhr::version.size()), fhr::version.data());
             return 0;
         }
         fhr::cli::usage_error(command.empty() ? "no command given" : "unknown command '" + command + "'");
