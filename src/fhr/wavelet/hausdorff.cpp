@@ -378,18 +378,6 @@ private:
                     b = std::min(b, B_.fan_bound(q.x, v));
         return b;
     }
-    // Not settled by the corners' triangles: the triangle closest to the centroid too, alone and
-    // with each corner's (where A lies on B across a crease, the corners' closest triangles can
-    // be on the other side of it; the centroid's is the one under the piece).
-    double centroid_bound(const Piece& q) {
-        const Vec3 c = (q.x[0] + q.x[1] + q.x[2]) / 3.0;
-        const std::uint32_t t = query(c).triangle;
-        double b = std::max({B_.distance_to(q.x[0], t), B_.distance_to(q.x[1], t), B_.distance_to(q.x[2], t)});
-        for (std::uint32_t s : q.near)
-            if (s != t) b = std::min(b, B_.pair_bound(q.x, s, t));
-        return b;
-    }
-
     // Triangle i of A searched; the largest bound of its pieces where the search ended.
     double root(std::uint32_t i) {
         if (!options_.prior.empty() && options_.prior[i] <= settled()) {
@@ -411,7 +399,6 @@ private:
             const double dmax = std::max({q.d[0], q.d[1], q.d[2]});
             double b = bound(q);
             if (q.depth == 0 && !options_.prior.empty()) b = std::min(b, options_.prior[i]);
-            if (b > settled() && b - dmax > options_.resolution) b = std::min(b, centroid_bound(q));
             if (b <= settled()) {
                 if (b > h.lower) dropped_ = std::max(dropped_, b);
                 upper = std::max(upper, b);
