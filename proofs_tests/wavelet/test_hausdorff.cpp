@@ -82,6 +82,27 @@ TEST_CASE("WAV-9: the tree's closest point equals brute force over all triangles
     });
 }
 
+TEST_CASE("WAV-9: a tree refitted to moved vertices answers as brute force over the moved triangles", "[property][wavelet]") {
+    rc::prop("random closed meshes, every vertex moved by up to a chosen amount, random queries", [] {
+        const fhr::testing::GeneratedMesh m = *test::gen_domain(600);
+        const std::vector<Triangle> t = m.triangles();
+        const TriangleTree tree(m.positions(), t);
+        // From a small displacement (a reconstruction of f^J) to one that scrambles the hierarchy.
+        const double move = *rc::gen::element(1e-3, 0.1, 2.0);
+        std::mt19937_64 rng(*rc::gen::inRange<std::uint64_t>(0, 1u << 30));
+        std::uniform_real_distribution<double> u(-1, 1), q(-4, 4);
+        std::vector<Vec3> moved = m.positions();
+        for (Vec3& p : moved) p += move * Vec3(u(rng), u(rng), u(rng));
+        const TriangleTree refitted(tree, moved);
+        for (int k = 0; k < 50; ++k) {
+            const Vec3 p(q(rng), q(rng), q(rng));
+            const TriangleTree::Hit h = refitted.closest(p, static_cast<std::uint32_t>(k % t.size()));
+            RC_ASSERT(h.distance == brute_distance(p, moved, t));
+            RC_ASSERT(h.distance == refitted.distance_to(p, h.triangle));
+        }
+    });
+}
+
 TEST_CASE("WAV-9: parallel squares at distance h: h in both directions, bracket width ≤ δ", "[unit][wavelet]") {
     const std::vector<Triangle> t{{0, 1, 2}, {0, 2, 3}};
     const std::vector<Vec3> a{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include <fhr/core/detail/stopwatch.hpp>
@@ -132,8 +133,10 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
         const double on_t = 1e-9 * out.bbox_diagonal + 128 * std::numeric_limits<double>::epsilon() / 2 * max_abs;
         affine = affine_bounds(r, out.remesh_positions, *pieces, T.n_faces(), on_t, executor);
     }
-    const auto bracket = [&](const std::vector<Vec3>& positions, Hausdorff& h, const HausdorffOptions& o) {
-        h = hausdorff(T.positions(), t_faces, t_tree, positions, out.remesh_faces, TriangleTree(positions, out.remesh_faces), o, executor);
+    // f^J's tree, built in its bracket's task; each reconstruction's is f^J's refitted to its positions.
+    std::optional<TriangleTree> f_tree;
+    const auto bracket = [&](const std::vector<Vec3>& positions, const TriangleTree& tree, Hausdorff& h, const HausdorffOptions& o) {
+        h = hausdorff(T.positions(), t_faces, t_tree, positions, out.remesh_faces, tree, o, executor);
     };
     // A reconstruction's brackets from f^J's (HausdorffOptions::prior): on a triangle of D^J its
     // distance to T is at most f^J's bound there plus the triangle's largest corner displacement,
@@ -156,14 +159,14 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
         HausdorffOptions o = ho;
         o.prior = from_t;
         o.prior_back = to_t;
-        bracket(k.positions, k.hausdorff, o);
+        bracket(k.positions, TriangleTree(*f_tree, k.positions), k.hausdorff, o);
     };
     executor_or_default(executor).for_each(2, 1, [&](std::size_t task) {
         if (task == 0) {
             HausdorffOptions o = ho;
             o.prior = affine.t;
             o.prior_back = affine.remesh;
-            return bracket(out.remesh_positions, out.remesh_hausdorff, o);
+            return bracket(out.remesh_positions, f_tree.emplace(out.remesh_positions, out.remesh_faces), out.remesh_hausdorff, o);
         }
         auto begin = detail::Clock::now();
         const FilterBank bank(r, executor);

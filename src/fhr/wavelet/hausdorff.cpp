@@ -49,14 +49,7 @@ TriangleTree::TriangleTree(std::span<const Vec3> positions, std::span<const Tria
     }
     nodes_.reserve(2 * triangles_.size() / leaf_size + 2);
     if (!triangles_.empty()) build(0, static_cast<std::uint32_t>(triangles_.size()), centroid);
-    // The leaves' triangles in leaf order, corners and box, where a query reads them in turn.
-    leaf_.resize(triangles_.size());
-    for (std::size_t i = 0; i < order_.size(); ++i) {
-        LeafTriangle& t = leaf_[i];
-        for (int k = 0; k < 3; ++k) t.corner[k] = positions_[triangles_[order_[i]][k]];
-        t.lo = t.corner[0].cwiseMin(t.corner[1]).cwiseMin(t.corner[2]);
-        t.hi = t.corner[0].cwiseMax(t.corner[1]).cwiseMax(t.corner[2]);
-    }
+    fit_leaves();
     fan_start_.assign(positions_.size() + 1, 0);
     for (const Triangle& f : triangles_)
         for (std::uint32_t v : f) ++fan_start_[v + 1];
@@ -65,6 +58,43 @@ TriangleTree::TriangleTree(std::span<const Vec3> positions, std::span<const Tria
     std::vector<std::uint32_t> next(fan_start_.begin(), fan_start_.end() - 1);
     for (std::uint32_t t = 0; t < triangles_.size(); ++t)
         for (std::uint32_t v : triangles_[t]) fan_[next[v]++] = t;
+}
+
+TriangleTree::TriangleTree(const TriangleTree& other, std::span<const Vec3> positions)
+    : positions_(positions.begin(), positions.end()),
+      triangles_(other.triangles_),
+      order_(other.order_),
+      nodes_(other.nodes_),
+      fan_start_(other.fan_start_),
+      fan_(other.fan_) {
+    FHR_DCHECK(positions_.size() == other.positions_.size());
+    fit_leaves();
+    // Children come after their parent (build numbers nodes in preorder): from the last node to
+    // the first, every box is refitted after its children's.
+    for (std::size_t id = nodes_.size(); id-- > 0;) {
+        Node& n = nodes_[id];
+        if (n.count > 0) {
+            n.lo = leaf_[n.first].lo, n.hi = leaf_[n.first].hi;
+            for (std::uint32_t i = n.first + 1; i < n.first + n.count; ++i) {
+                n.lo = n.lo.cwiseMin(leaf_[i].lo);
+                n.hi = n.hi.cwiseMax(leaf_[i].hi);
+            }
+        } else {
+            n.lo = nodes_[n.left].lo.cwiseMin(nodes_[n.right].lo);
+            n.hi = nodes_[n.left].hi.cwiseMax(nodes_[n.right].hi);
+        }
+    }
+}
+
+// The leaves' triangles in leaf order, corners and box, where a query reads them in turn.
+void TriangleTree::fit_leaves() {
+    leaf_.resize(triangles_.size());
+    for (std::size_t i = 0; i < order_.size(); ++i) {
+        LeafTriangle& t = leaf_[i];
+        for (int k = 0; k < 3; ++k) t.corner[k] = positions_[triangles_[order_[i]][k]];
+        t.lo = t.corner[0].cwiseMin(t.corner[1]).cwiseMin(t.corner[2]);
+        t.hi = t.corner[0].cwiseMax(t.corner[1]).cwiseMax(t.corner[2]);
+    }
 }
 
 std::uint32_t TriangleTree::build(std::uint32_t first, std::uint32_t count, std::vector<Vec3>& centroid) {

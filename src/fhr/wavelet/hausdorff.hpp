@@ -68,6 +68,11 @@ class TriangleTree {
 public:
     /// \pre every index < positions.size(). Keeps its own copy.
     TriangleTree(std::span<const Vec3> positions, std::span<const Triangle> triangles);
+    /// The same triangles at other positions, in `other`'s hierarchy with its boxes refitted
+    /// (issue 18: a reconstruction of f^J moves its vertices a little, and refitting costs a pass
+    /// where building sorts). Any hierarchy gives the same distances; one whose boxes fit loosely
+    /// only prunes less. \pre positions.size() equals other's position count.
+    TriangleTree(const TriangleTree& other, std::span<const Vec3> positions);
 
     struct Hit {
         double distance;     ///< |p − point|
@@ -107,6 +112,7 @@ private:
     std::vector<LeafTriangle> leaf_;  ///< triangle order_[i]'s corners and box
     std::vector<std::uint32_t> fan_start_, fan_;  ///< the triangles at vertex v: fan_[fan_start_[v] .. fan_start_[v + 1])
     std::uint32_t build(std::uint32_t first, std::uint32_t count, std::vector<Vec3>& centroid);
+    void fit_leaves();  ///< leaf_ from positions_ and order_
 };
 
 struct HausdorffOptions {
