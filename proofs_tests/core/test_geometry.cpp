@@ -175,6 +175,39 @@ TEST_CASE("closest_point_on_triangle is within a few ulp of the exact closest po
     });
 }
 
+TEST_CASE("WAV-9: corner_cover_radius bounds how far a point of the triangle is from every corner, tightly", "[property][geometry]") {
+    // Closed forms: the equilateral's ℓ/√3, a right triangle's half hypotenuse, and the obtuse
+    // (0,0), (4,0), (1,1), whose farthest points lie on the long side where the bisectors of the
+    // short sides meet it: x = 1 (1 from (0,0) and (1,1)) and x = 7/3 (5/3 from (4,0) and (1,1)).
+    const auto near = [](double r, double expected) { return std::fabs(r - expected) <= 2e-12 * expected; };
+    CHECK(near(corner_cover_radius({0, 0, 0}, {1, 0, 0}, {0.5, std::sqrt(3.0) / 2, 0}), 1 / std::sqrt(3.0)));
+    CHECK(near(corner_cover_radius({0, 0, 0}, {3, 0, 0}, {0, 4, 0}), 2.5));
+    for (const auto& [a, b, c] : std::vector<std::array<Vec3, 3>>{{Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(1, 1, 0)},
+                                                                 {Vec3(4, 0, 0), Vec3(1, 1, 0), Vec3(0, 0, 0)},
+                                                                 {Vec3(1, 1, 0), Vec3(0, 0, 0), Vec3(4, 0, 0)}})
+        CHECK(near(corner_cover_radius(a, b, c), 5.0 / 3));
+    // Random triangles, acute, obtuse and needles, in every corner order, against a dense sample:
+    // max over the samples of min_k |p − x_k| is at most the radius, and at least the radius less
+    // the sample's spacing (min_k |· − x_k| is 1-Lipschitz).
+    rc::prop("sampled ≤ r ≤ sampled + spacing", [] {
+        auto coordinate = [] { return *rc::gen::inRange(-1000, 1001) / 1000.0; };
+        const Vec3 x[3] = {{coordinate(), coordinate(), coordinate()}, {coordinate(), coordinate(), coordinate()},
+                           {coordinate(), coordinate(), coordinate()}};
+        const int k = 120;
+        double sampled = 0, longest = 0;
+        for (int i = 0; i < 3; ++i) longest = std::max(longest, (x[i] - x[(i + 1) % 3]).norm());
+        for (int i = 0; i <= k; ++i)
+            for (int j = 0; i + j <= k; ++j) {
+                const Vec3 p = x[0] + (double(i) / k) * (x[1] - x[0]) + (double(j) / k) * (x[2] - x[0]);
+                sampled = std::max(sampled, std::min({(p - x[0]).norm(), (p - x[1]).norm(), (p - x[2]).norm()}));
+            }
+        const int order = *rc::gen::inRange(0, 3);
+        const double r = corner_cover_radius(x[order], x[(order + 1) % 3], x[(order + 2) % 3]);
+        RC_ASSERT(r >= sampled);
+        RC_ASSERT(r <= (sampled + longest / k) * (1 + 1e-11) + 1e-15);
+    });
+}
+
 TEST_CASE("normals of degenerate faces are zero; a flat disk's boundary vertex has the disk's normal", "[unit][geometry]") {
     // The triangle (0, 1, 2) on the x axis has no normal; nor has any of its vertices.
     const std::vector<Triangle> line{{0, 1, 2}};

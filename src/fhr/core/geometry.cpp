@@ -160,6 +160,30 @@ Vec3 difference_error(const Vec3& b, const Vec3& a, const Vec3& rounded) {
 
 }  // namespace
 
+// Not obtuse: the circumradius abc / (4·area), the circumcentre lying in the triangle (a point
+// inside is nearest to some corner, and the farthest such point is where all three are equally
+// far). Obtuse at the corner opposite side c: the circumcentre lies beyond c, and the farthest
+// points lie on c, where the perpendicular bisectors of the two other sides meet it, at
+// b²c / (b² + c² − a²) from c's end on side b's corner and a²c / (a² + c² − b²) from the other. At
+// most ℓ/√3 (at a point p inside, one of the angles the sides subtend at p is ≥ 120°, so
+// ℓ² ≥ 3 min|p − x_k|²): much less for a long flat triangle. Raised by 10⁻¹² relative against
+// rounding.
+double corner_cover_radius(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+    const Vec3* x[3] = {&p0, &p1, &p2};
+    double s2[3];  // squared side opposite corner k
+    for (int k = 0; k < 3; ++k) s2[k] = (*x[(k + 1) % 3] - *x[(k + 2) % 3]).squaredNorm();
+    const int c = static_cast<int>(std::max_element(s2, s2 + 3) - s2), a = (c + 1) % 3, b = (c + 2) % 3;
+    double r;
+    if (s2[a] + s2[b] >= s2[c]) {
+        const double area2 = (p1 - p0).cross(p2 - p0).norm();  // twice the area
+        r = area2 > 0 ? std::sqrt(s2[0] * s2[1] * s2[2]) / (2 * area2) : std::sqrt(s2[c]) / 2;
+    } else {
+        const double side = std::sqrt(s2[c]);
+        r = std::max(s2[b] * side / (s2[b] + s2[c] - s2[a]), s2[a] * side / (s2[a] + s2[c] - s2[b]));
+    }
+    return std::min(r, std::sqrt(s2[c] / 3)) * (1 + 1e-12);
+}
+
 /// p projected onto the plane of abc when that projection is in the triangle, else the nearest
 /// point of its sides; a zero-area triangle is the union of its sides. Well conditioned for
 /// needles (spec/param.md, PARAM-11), in two cases:

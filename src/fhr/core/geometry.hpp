@@ -51,6 +51,12 @@ ShapeStats shape_stats(const TriMesh& m);
 /// box's: a search may skip boxes no nearer than its best so far (§5's tree, the oracle's PARAM-11).
 double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi);
 
+/// An upper bound, within 10⁻¹² relative, of max over the points p of triangle abc of min_k |p − x_k|:
+/// how far a point of the triangle can be from every corner (§5's Lipschitz bound, WAV-9). Not
+/// obtuse: the circumradius; obtuse: where the perpendicular bisectors of the two shorter sides
+/// meet the longest; never above ℓ/√3 (ℓ the longest side).
+double corner_cover_radius(const Vec3& a, const Vec3& b, const Vec3& c);
+
 /// The point of triangle abc closest to p: p's projection onto the plane when it falls inside,
 /// else the nearest point of the edges; within a few u·(diameter) of the exact one also on needles
 /// (geometry.cpp). Shared by the oracle's PARAM-11 (src/fhr/exchange) and the Hausdorff distance

@@ -12,28 +12,6 @@
 namespace fhr::wavelet {
 namespace {
 
-// max over the points p of triangle x of min_k |p − x_k|: how far a point can be from every corner
-// (the Lipschitz bound's radius). Not obtuse: the circumradius abc / (4·area), the circumcentre
-// lying in the triangle. Obtuse at the corner opposite side c: the farthest points lie on c, where
-// the perpendicular bisectors of the two other sides meet it, at b²c / (b² + c² − a²) from c's end
-// on side b's corner and a²c / (a² + c² − b²) from the other. At most ℓ/√3 (ℓ the longest side,
-// the equilateral's value), much less for a long flat piece. Raised by 10⁻¹² relative against
-// rounding.
-double farthest_from_corners(const Vec3 (&x)[3]) {
-    double s2[3];  // squared side opposite corner k
-    for (int k = 0; k < 3; ++k) s2[k] = (x[(k + 1) % 3] - x[(k + 2) % 3]).squaredNorm();
-    const int c = static_cast<int>(std::max_element(s2, s2 + 3) - s2), a = (c + 1) % 3, b = (c + 2) % 3;
-    double r;
-    if (s2[a] + s2[b] >= s2[c]) {
-        const double area2 = (x[1] - x[0]).cross(x[2] - x[0]).norm();  // twice the area
-        r = area2 > 0 ? std::sqrt(s2[0] * s2[1] * s2[2]) / (2 * area2) : std::sqrt(s2[c]) / 2;
-    } else {
-        const double side = std::sqrt(s2[c]);
-        r = std::max(s2[b] * side / (s2[b] + s2[c] - s2[a]), s2[a] * side / (s2[a] + s2[c] - s2[b]));
-    }
-    return std::min(r, std::sqrt(s2[c] / 3)) * (1 + 1e-12);
-}
-
 constexpr std::uint32_t leaf_size = 4;
 
 }  // namespace
@@ -388,7 +366,7 @@ private:
     // the least so far is not settled (on the horse, the Lipschitz bound alone settles 99.8 % of
     // T's triangles).
     double bound(const Piece& q) const {
-        double b = std::max({q.d[0], q.d[1], q.d[2]}) + farthest_from_corners(q.x);  // Lipschitz
+        double b = std::max({q.d[0], q.d[1], q.d[2]}) + corner_cover_radius(q.x[0], q.x[1], q.x[2]);  // Lipschitz
         if (b <= settled()) return b;
         for (int j = 0; j < 3; ++j) {                                                  // convexity
             const std::uint32_t t = q.near[j];
