@@ -587,6 +587,14 @@ TEST_CASE("DOM-23: the pass over the cells keeps every rule (every family, bound
             RC_ASSERT(open_violation(T, d, o) == "");
         RC_ASSERT(undo_gives_back(T, d));
         RC_ASSERT(domain::history_describes(d, T));
+        // Undoing some of the collapses, into the pass's or not: the history's first entries, of
+        // which the pass's are those it had among them.
+        const std::size_t undone = *rc::gen::inRange<std::size_t>(0, d.history.size() + 1);
+        const Domain finer = domain::undo_collapses(d, T, undone);
+        RC_ASSERT(finer.by_cells == d.by_cells);
+        RC_ASSERT(std::equal(finer.history.begin(), finer.history.end(), d.history.begin(), d.history.end() - static_cast<std::ptrdiff_t>(undone)));
+        RC_ASSERT(finer.cell_collapses == std::min(d.cell_collapses, finer.history.size()));
+        RC_TAG(undone > d.history.size() - d.cell_collapses ? "undone into the pass" : "the pass kept");
         const Domain again = decimate(T, o);  // DOM-7
         RC_ASSERT(again.mesh.arrays() == d.mesh.arrays() && again.history == d.history);
     });

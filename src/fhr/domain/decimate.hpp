@@ -145,8 +145,9 @@ bool history_describes(const Domain& d, const TriMesh& T);
 
 /// Undoes the last `count` collapses of d.history (vertex splits, most recent first), giving a
 /// finer domain whose vertices are again vertices of T. With count = d.history.size() the result
-/// is T itself, with its vertices renumbered: result.t_vertex maps them to T. With boundary, the
-/// collapses are undone on D̂ and T̂ and the cones taken off again.
+/// is T itself, with its vertices renumbered: result.t_vertex maps them to T. result.history is
+/// d.history's first size − count entries (cell_collapses: the pass's among them). With boundary,
+/// the collapses are undone on D̂ and T̂ and the cones taken off again.
 /// \pre count <= d.history.size().
 Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count);
 
