@@ -487,8 +487,7 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
         for (std::uint32_t v : order)
             if (state[v] == queried && at_vertex[v].distance == h.lower) farthest = std::min(farthest, v);
         if (farthest < state.size()) h.farthest = a_positions[farthest];
-        for (std::uint32_t v = 0; v < state.size(); ++v)
-            if (state[v] == wanted) state[v] = unused;
+        std::replace(state.begin(), state.end(), char{wanted}, char{unused});
         const double settled = std::max(h.lower, options.known);
         for (std::size_t i = 0; i < a_triangles.size(); ++i)
             if (!(options.prior[i] <= settled))
