@@ -133,7 +133,7 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
         const double on_t = 1e-9 * out.bbox_diagonal + 128 * std::numeric_limits<double>::epsilon() / 2 * max_abs;
         affine = affine_bounds(r, out.remesh_positions, *pieces, T.n_faces(), on_t, executor);
     }
-    // f^J's tree, built in its bracket's task; each reconstruction's is f^J's refitted to its positions.
+    // f^J's tree, built in its bracket's task; each reconstruction's is it refitted to its positions.
     std::optional<TriangleTree> f_tree;
     const auto bracket = [&](const std::vector<Vec3>& positions, const TriangleTree& tree, Hausdorff& h, const HausdorffOptions& o) {
         h = hausdorff(T.positions(), t_faces, t_tree, positions, out.remesh_faces, tree, o, executor);
@@ -144,7 +144,7 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     // closest point of f^J moves by at most that). Raised by 10⁻¹² relative against rounding.
     // Where the bound is settled no point is sampled (issue 18: with the D of session 15, f^J
     // nearer to T, the fandisk's reconstructions' brackets took 42,000 samples each).
-    const auto kept_bracket = [&](KeptResult& k) {
+    const auto kept_bracket = [&](KeptResult& k, const TriangleTree& tree) {
         const Hausdorff& f = out.remesh_hausdorff;
         std::vector<double> moved(k.positions.size());
         double most = 0;
@@ -159,7 +159,7 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
         HausdorffOptions o = ho;
         o.prior = from_t;
         o.prior_back = to_t;
-        bracket(k.positions, TriangleTree(*f_tree, k.positions), k.hausdorff, o);
+        bracket(k.positions, tree, k.hausdorff, o);
     };
     executor_or_default(executor).for_each(2, 1, [&](std::size_t task) {
         if (task == 0) {
@@ -196,7 +196,13 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
             out.kept.push_back(std::move(k));
         }
     });
-    executor_or_default(executor).for_each(out.kept.size(), 1, [&](std::size_t i) { kept_bracket(out.kept[i]); });
+    // Their trees first, the last one f^J's own (no more trees alive than when each was built).
+    std::vector<TriangleTree> kept_trees;
+    kept_trees.reserve(out.kept.size());
+    for (std::size_t i = 0; i < out.kept.size(); ++i)
+        kept_trees.emplace_back(i + 1 < out.kept.size() ? *f_tree : std::move(*f_tree), out.kept[i].positions);
+    f_tree.reset();
+    executor_or_default(executor).for_each(out.kept.size(), 1, [&](std::size_t i) { kept_bracket(out.kept[i], kept_trees[i]); });
     // Wall time from T's tree to the last bracket, which overlaps the decomposition and reconstructions.
     out.hausdorff_seconds = detail::seconds_since(bracketing);
     out.hausdorff_relative = out.remesh_hausdorff.lower() / out.bbox_diagonal;

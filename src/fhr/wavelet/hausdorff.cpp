@@ -38,14 +38,9 @@ TriangleTree::TriangleTree(std::span<const Vec3> positions, std::span<const Tria
         for (std::uint32_t v : triangles_[t]) fan_[next[v]++] = t;
 }
 
-TriangleTree::TriangleTree(const TriangleTree& other, std::span<const Vec3> positions)
-    : positions_(positions.begin(), positions.end()),
-      triangles_(other.triangles_),
-      order_(other.order_),
-      nodes_(other.nodes_),
-      fan_start_(other.fan_start_),
-      fan_(other.fan_) {
-    FHR_DCHECK(positions_.size() == other.positions_.size());
+TriangleTree::TriangleTree(TriangleTree other, std::span<const Vec3> positions) : TriangleTree(std::move(other)) {
+    FHR_DCHECK(positions.size() == positions_.size());
+    std::copy(positions.begin(), positions.end(), positions_.begin());
     fit_leaves();
     // Children come after their parent (build numbers nodes in preorder): from the last node to
     // the first, every box is refitted after its children's.

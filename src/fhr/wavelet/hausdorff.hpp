@@ -70,9 +70,10 @@ public:
     TriangleTree(std::span<const Vec3> positions, std::span<const Triangle> triangles);
     /// The same triangles at other positions, in `other`'s hierarchy with its boxes refitted
     /// (issue 18: a reconstruction of f^J moves its vertices a little, and refitting costs a pass
-    /// where building sorts). Any hierarchy gives the same distances; one whose boxes fit loosely
-    /// only prunes less. \pre positions.size() equals other's position count.
-    TriangleTree(const TriangleTree& other, std::span<const Vec3> positions);
+    /// where building sorts); `other` is taken over (pass a copy to keep it). Any hierarchy gives
+    /// the same distances; one whose boxes fit loosely only prunes less.
+    /// \pre positions.size() equals other's position count.
+    TriangleTree(TriangleTree other, std::span<const Vec3> positions);
 
     struct Hit {
         double distance;     ///< |p − point|
