@@ -1,6 +1,7 @@
 // §4 the global maps φ: Ω_D → Ω_T and ψ: Ω_T′ → Ω_D of a whole run (pipeline::GlobalMap): corners to
 // corners, a point on an edge of D the same from both faces bit for bit, and φ(ψ(p)) = p; and the
-// per-face bounds of |f^J − φ| on D^J and on T that start §5's brackets (wavelet::affine_bounds, WAV-15).
+// per-face bounds of |f^J − φ| on D^J and on T that start §5's brackets (wavelet::affine_bounds, WAV-15),
+// and the brackets a whole run reports with them, against brackets computed from scratch.
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
@@ -11,6 +12,7 @@
 #include <fhr/domain/decimate.hpp>
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/pipeline/pipeline.hpp>
+#include <fhr/pipeline/run.hpp>
 #include <fhr/testing/rapidcheck.hpp>
 #include <fhr/wavelet/analyse.hpp>
 #include "support/test_support.hpp"
@@ -146,5 +148,43 @@ TEST_CASE("WAV-15: on every face of D^J, |f^J − φ| is at most its affine boun
                 const auto [d, beta] = map.psi(i, w);
                 RC_ASSERT((x - fj_at(d, beta)).norm() <= bounds.t[p->face_t[i]] * (1 + 1e-9) + 1e-12 * diagonal);
             }
+    });
+}
+
+TEST_CASE("WAV-9, WAV-15: a run's Hausdorff brackets (bounds from φ, priors, refitted trees) overlap brackets from scratch",
+          "[pipeline][property][wavelet]") {
+    // pipeline::run's §5 brackets f^J and each reconstruction with the bounds from φ as priors, the
+    // reconstructions' priors from f^J's, their trees refitted from f^J's, and the vertex passes
+    // cut short by the priors; wavelet::hausdorff on the same two meshes uses none of that (fresh
+    // trees, no priors). Both bracket the same distance, so they must overlap: a prior below the
+    // distance somewhere, or a tree that misses a triangle, gives an upper bound below the other's
+    // lower.
+    rc::prop("every embedded family, J = 1..3, two kept percentages", [] {
+        const fhr::testing::GeneratedMesh T = *fhr::testing::gen_mesh(
+            {.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 0, .max_holes = 1,
+             .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+        pipeline::RunOptions options;
+        options.faces = std::max<std::size_t>(8, T.n_faces() / 40);
+        options.levels = *rc::gen::inRange(1, 4);
+        options.keep = {*rc::gen::element(2.0, 5.0, 10.0), *rc::gen::element(20.0, 50.0)};
+        std::optional<pipeline::RunResult> r;
+        try {
+            r.emplace(pipeline::run(T, options));
+        } catch (const std::exception& e) {
+            RC_DISCARD(e.what());
+        }
+        RC_PRE(r->certified());
+        const wavelet::WaveletResult& w = *r->wavelets;
+        const std::vector<Triangle> t_faces = T.triangles();
+        const double slack = 1e-12 * w.bbox_diagonal;
+        const auto overlaps = [&](const std::vector<Vec3>& positions, const wavelet::Hausdorff& reported) {
+            const wavelet::Hausdorff fresh =
+                wavelet::hausdorff(T.positions(), t_faces, positions, w.remesh_faces, {.resolution = reported.resolution});
+            RC_ASSERT(reported.lower() <= fresh.upper() * (1 + 1e-9) + slack);
+            RC_ASSERT(fresh.lower() <= reported.upper() * (1 + 1e-9) + slack);
+            RC_ASSERT(reported.upper() - reported.lower() <= reported.resolution * (1 + 1e-9) + slack);
+        };
+        overlaps(w.remesh_positions, w.remesh_hausdorff);
+        for (const wavelet::KeptResult& k : w.kept) overlaps(k.positions, k.hausdorff);
     });
 }
