@@ -19,6 +19,16 @@
 
 using namespace fhr;
 
+namespace {
+
+// §5's properties draw from every embedded family: genus 0–2, up to one hole, ≤ 1,200 faces.
+rc::Gen<fhr::testing::GeneratedMesh> small_family_mesh() {
+    return fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 0, .max_holes = 1,
+                                   .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+}
+
+}  // namespace
+
 TEST_CASE("GlobalMap: φ maps corners to x_j, is continuous across D's edges, and inverts ψ", "[pipeline][global]") {
     const auto path = test::cgal_mesh("fandisk.off");
     if (!path) FAIL("fandisk.off is missing: run ./run demo to extract libcgal-demo's meshes");
@@ -84,9 +94,7 @@ TEST_CASE("WAV-15: on every face of D^J, |f^J − φ| is at most its affine boun
     // a corner of the pieces (a crossing of T′'s sides with D^J's, a vertex of T′ on a side shared
     // by two faces of D^J or of T) falls below the gap near it.
     rc::prop("per face of D^J", [] {
-        const fhr::testing::GeneratedMesh T = *fhr::testing::gen_mesh(
-            {.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 0, .max_holes = 1,
-             .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+        const fhr::testing::GeneratedMesh T = *small_family_mesh();
         const int J = *rc::gen::inRange(1, 4);
         std::optional<pipeline::Parameterization> p;
         try {
@@ -160,9 +168,7 @@ TEST_CASE("WAV-9, WAV-15: a run's Hausdorff brackets (bounds from φ, priors, re
     // distance somewhere, or a tree that misses a triangle, gives an upper bound below the other's
     // lower.
     rc::prop("every embedded family, J = 1..3, two kept percentages", [] {
-        const fhr::testing::GeneratedMesh T = *fhr::testing::gen_mesh(
-            {.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 0, .max_holes = 1,
-             .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+        const fhr::testing::GeneratedMesh T = *small_family_mesh();
         pipeline::RunOptions options;
         options.faces = std::max<std::size_t>(8, T.n_faces() / 40);
         options.levels = *rc::gen::inRange(1, 4);
