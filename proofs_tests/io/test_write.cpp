@@ -128,6 +128,15 @@ TEST_CASE("FMT-WRITE-3: OBJ with per-corner texture coordinates", "[unit][io]") 
     CHECK_THAT(fhr::test::read_file(path), Contains("\nf 1 2 3\n"));
     CHECK_THROWS_AS(fhr::io::write_obj(path, unit_points, unit_triangle, std::vector<fhr::io::Vec2>(2)),
                     std::invalid_argument);
+    // Made as written: corner c's coordinate asked once, in order.
+    std::vector<std::size_t> asked;
+    fhr::io::write_obj(path, unit_points, unit_triangle, [&](std::size_t c) {
+        asked.push_back(c);
+        return uv[c];
+    });
+    CHECK(asked == std::vector<std::size_t>{0, 1, 2});
+    CHECK(fhr::test::read_file(path) ==
+          "v 0.1 -0 1e-300\nv 1 2 3\nv 5e-324 -1e+150 0.5\nvt 0 0\nvt 1 0.1\nvt 0.3333333333333333 1\nf 1/1 2/2 3/3\n");
 }
 
 TEST_CASE("FMT-WRITE-3: binary PLY layout (little endian doubles, uchar/uint face lists)", "[unit][io]") {

@@ -2,7 +2,9 @@
 // fandisk with the paper's settings, every stage reported to the observer in order, the oracle's
 // verdict and the wavelets in the result; options it cannot take are refused as InvalidInput; the
 // independent tasks run on the caller's executor, with the same result on any number of threads;
-// pipeline::write_figures draws the boundary of a surface with holes in every figure (REN-15).
+// a caller's task runs beside the oracle on the file it judges (fhr run writes its files there,
+// the same bytes as write_outputs after the run). REN-15: pipeline::write_figures draws the
+// boundary of a surface with holes in every figure.
 #include <catch2/catch.hpp>
 
 #include <atomic>
@@ -111,6 +113,47 @@ TEST_CASE("LIB-3: the tasks run on the caller's executor, bit-identical on 1 and
     CHECK(a.wavelets->kept[0].positions == b.wavelets->kept[0].positions);
     CHECK(a.wavelets->remesh_hausdorff.lower() == b.wavelets->remesh_hausdorff.lower());
     CHECK(a.wavelets->remesh_hausdorff.upper() == b.wavelets->remesh_hausdorff.upper());
+}
+
+TEST_CASE("LIB-3: the caller's task runs beside the oracle on what param.fhrp holds; the files written there are write_outputs' bytes", "[pipeline][library]") {
+    const TriMesh T = generate::random_mesh({1, 2400, 3, 0.1});
+    pipeline::RunOptions options;
+    options.faces = 80;
+    options.levels = 1;
+    options.keep = {20};
+    const std::string beside = test::temp_path("run-beside"), after = test::temp_path("run-after");
+    std::size_t calls = 0;
+    exchange::ParamFile seen;
+    options.beside_oracle = [&](const pipeline::Parameterization& p, const exchange::ParamFile& file) {
+        ++calls;
+        CHECK(p.refined_positions.empty());  // lent to the file meanwhile
+        CHECK(p.face_beta.empty());
+        seen = file;
+        pipeline::write_parameterization(beside, p, file, options.method.executor);
+    };
+    const pipeline::RunResult r = pipeline::run(T, options);
+    REQUIRE(r.certified());
+    REQUIRE(r.wavelets);
+    CHECK(calls == 1);
+    CHECK(seen == pipeline::to_param_file(r.parameterization));
+    // The rest written after the run, and everything written after it in another folder: the same bytes.
+    const pipeline::InputInfo input{.path = "generated", .vertices = T.n_vertices(), .faces = T.n_faces(), .genus = 1};
+    const pipeline::Timings timings;
+    pipeline::write_outputs(beside, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets, 0.25);
+    pipeline::write_outputs(after, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets);
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(after)) names.push_back(entry.path().filename().string());
+    CHECK(names.size() == 9);  // five of the parameterization, two of §5 (D^1, 20 % kept), the report, the timings
+    for (const std::string& name : names) {
+        INFO(name);
+        REQUIRE(std::filesystem::exists(beside + "/" + name));
+        if (name != "timings.json") CHECK(test::read_file(beside + "/" + name) == test::read_file(after + "/" + name));
+    }
+    CHECK(test::read_file(beside + "/timings.json").find("\"writing\"") != std::string::npos);
+
+    // A task that throws: the run throws it, once the oracle and §5 are done.
+    options.beside_oracle = [](const pipeline::Parameterization&, const exchange::ParamFile&) { throw InvalidInput("out", 0, "cannot write"); };
+    CHECK_THROWS_AS(pipeline::run(T, options), InvalidInput);
 }
 
 TEST_CASE("REN-15: write_figures draws the boundary of a surface with holes in both panels of Figs. 6-9", "[pipeline][render]") {

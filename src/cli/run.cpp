@@ -79,7 +79,13 @@ int run_run(const std::vector<std::string>& argv) {
         timings.stage("mesh_reduction", detail::seconds_since(start), true);
     }
 
-    // Run.
+    // Run; the files of the parameterization are written beside the oracle (they need no verdict).
+    std::optional<double> written;
+    options.beside_oracle = [&](const pipeline::Parameterization& p, const exchange::ParamFile& file) {
+        const auto writing = detail::Clock::now();
+        pipeline::write_parameterization(out, p, file, method.executor);
+        written = detail::seconds_since(writing);
+    };
     const pipeline::RunResult result = pipeline::run(T, options);  // a copy: `method` is used below
     const pipeline::Parameterization& p = result.parameterization;
     const wavelet::WaveletResult* wavelets = result.wavelets ? &*result.wavelets : nullptr;
@@ -87,7 +93,7 @@ int run_run(const std::vector<std::string>& argv) {
     input.domain_faces_requested = result.domain_faces_requested;
 
     // Write.
-    pipeline::write_outputs(out, input, p, result.oracle, timings, method, wavelets);
+    pipeline::write_outputs(out, input, p, result.oracle, timings, method, wavelets, written);
     if (args.flag("figures")) {
         pipeline::write_figures(out, T, p, up[0] - 'x', wavelets);
         method.progress("figures: " + out + "/figures/");

@@ -58,9 +58,14 @@ void write_off(const std::string& path, std::span<const Vec3> points, std::span<
 
 void write_obj(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles,
                std::span<const Vec2> corner_uv) {
-    check_indices(points.size(), triangles);
     if (!corner_uv.empty() && corner_uv.size() != 3 * triangles.size())
         throw std::invalid_argument("fhr::io::write_obj: corner_uv must hold 3 entries per triangle");
+    write_obj(path, points, triangles, corner_uv.empty() ? std::function<Vec2(std::size_t)>() : [&](std::size_t c) { return corner_uv[c]; });
+}
+
+void write_obj(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles,
+               const std::function<Vec2(std::size_t)>& corner_uv) {
+    check_indices(points.size(), triangles);
     AtomicFile file(path);
     std::string& out = file.text;
     for (const Vec3& p : points) {
@@ -68,7 +73,8 @@ void write_obj(const std::string& path, std::span<const Vec3> points, std::span<
         append_point(out, p);
         file.step();
     }
-    for (const Vec2& uv : corner_uv) {
+    for (std::size_t c = 0; corner_uv && c < 3 * triangles.size(); ++c) {
+        const Vec2 uv = corner_uv(c);
         out += "vt ";
         append_number(out, uv.x());
         out += ' ';
@@ -81,7 +87,7 @@ void write_obj(const std::string& path, std::span<const Vec3> points, std::span<
         for (std::size_t c = 0; c < 3; ++c) {
             out += ' ';
             append_number(out, std::uint64_t{triangles[f][c]} + 1);
-            if (!corner_uv.empty()) {
+            if (corner_uv) {
                 out += '/';
                 append_number(out, 3 * f + c + 1);
             }

@@ -736,6 +736,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
     std::size_t undone = 0;
     std::optional<Network_> net;
     std::optional<Embedding> checked;  // the direct start's embedding, while its curves stay as they are
+    std::optional<Patches> checked_patches;  // and its patches
     if (start == Start::fast) {
         try {
             if (std::optional<Network_> found = direct(T, real_vertices, D, geodesics, conflicts, order, executor)) {
@@ -743,7 +744,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
                 const auto [paths, unsnapped] = in_edge_order(D, found->curves());
                 Embedding check = embed(T, D, paths, unsnapped, &executor);
                 if (check.conflicts.empty()) {
-                    extract_patches(D, check.network);
+                    checked_patches = extract_patches(D, check.network);
                     net.emplace(std::move(*found));
                     checked = std::move(check);
                 }
@@ -860,7 +861,10 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
     auto [paths, unsnapped] = in_edge_order(D, net->curves());
     out.paths = EdgeData<geodesic::GeodesicPath>(std::move(paths));
     out.unsnapped = EdgeData<std::uint8_t>(std::move(unsnapped));
-    out.embedding = std::move(checked);
+    if (checked) {
+        out.embedding = std::move(checked);
+        out.patches = std::move(checked_patches);
+    }
     for (std::size_t e = 0; e < ends.size(); ++e) {
         const auto [a, b] = ends[e];
         const Pair k = key_of(a, b);

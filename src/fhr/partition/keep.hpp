@@ -51,6 +51,7 @@
 #include <fhr/domain/decimate.hpp>
 #include <fhr/geodesic/ellipse.hpp>
 #include <fhr/partition/embed.hpp>
+#include <fhr/partition/patches.hpp>
 
 namespace fhr::partition {
 
@@ -78,9 +79,11 @@ struct KeptNetwork {
     EdgeData<CurveInfo> info;                   ///< #E(D)
     EdgeData<std::uint8_t> unsnapped;           ///< #E(D): 1 when embed() must place it as given
     std::size_t start_faces = 0;                ///< #F(D_i), the start, on T (D̂_i's cone faces not counted)
-    /// embed(T, D, paths, unsnapped) when it was already computed (the direct start's check, its
-    /// curves unchanged since), so that the caller need not embed the same curves again (issue 18).
+    /// embed(T, D, paths, unsnapped) and its patches when they were already computed (the direct
+    /// start's check, its curves unchanged since), so that the caller need not embed the same
+    /// curves again nor cut the same patches (issue 18: at 10⁶ faces 0.8 s and 0.2 s).
     std::optional<Embedding> embedding;
+    std::optional<Patches> patches;  ///< with `embedding`: extract_patches(D, embedding->network)
 };
 
 /// How far the valid start steps back (see the pseudocode above).

@@ -322,6 +322,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             }
         }
         std::vector<std::uint8_t> unsnapped;
+        std::optional<Patches> patches;  // the kept network's, cut already with its embedding
         if (!embedding.conflicts.empty() && attempt) {
             KeptNetwork& kept = *attempt;
             for (EdgeId e : kept.paths.ids()) out.paths[e].path = kept.paths[e];
@@ -330,6 +331,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             out.resolved = embedding.conflicts;
             unsnapped = kept.unsnapped.values();
             embedding = kept.embedding ? std::move(*kept.embedding) : embed(T_hat, D_hat, kept.paths.values(), unsnapped, &executor);
+            patches = std::move(kept.patches);
             if (!embedding.conflicts.empty())
                 throw std::logic_error("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
         }
@@ -349,8 +351,9 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
                 embedding = embed(T, D, open, unsnapped, &executor);
                 if (!embedding.conflicts.empty())
                     throw std::logic_error("partition: the network breaks (1)/(2) without the cones: " + embedding.conflicts.front().describe());
+                patches.reset();  // D̂'s on T̂
             }
-            out.patches = extract_patches(D, embedding.network);
+            out.patches = patches ? std::move(*patches) : extract_patches(D, embedding.network);
             out.network = std::move(embedding.network);
             out.vertices_added = D.mesh.n_vertices() - vertices0;
             out.kept = std::move(keep);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <optional>
 
 #include <fhr/core/detail/stopwatch.hpp>
 #include <fhr/core/errors.hpp>
@@ -57,22 +58,25 @@ void take_back_param_file(Parameterization& p, exchange::ParamFile f) {
 namespace {
 
 // The patches laid out as an atlas in [0, 1]²: patch i's triangle (equilateral, corners
-// e_0, e_1, e_2 at its lower left, lower right and top) in cell i of a G × G grid, with a margin.
-std::vector<io::Vec2> atlas_uv(const Parameterization& p) {
-    const std::size_t n = p.disks.size();
-    const std::size_t G = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(n))));
-    const double cell = 1.0 / static_cast<double>(G), size = 0.9 * cell;
-    const std::array<io::Vec2, 3> corner{io::Vec2(0, 0), io::Vec2(1, 0), io::Vec2(0.5, std::sqrt(3.0) / 2)};
-    std::vector<io::Vec2> uv;
-    uv.reserve(3 * p.refined_faces.size());
-    for (std::size_t f = 0; f < p.refined_faces.size(); ++f) {
-        const std::size_t i = p.face_patch[f];
-        const io::Vec2 origin(static_cast<double>(i % G) * cell + 0.05 * cell, static_cast<double>(i / G) * cell + 0.05 * cell);
-        for (const auto& beta : p.face_beta[f])
-            uv.push_back(origin + size * (beta[0] * corner[0] + beta[1] * corner[1] + beta[2] * corner[2]));
+// e_0, e_1, e_2 at its lower left, lower right and top) in cell i of a G × G grid, with a margin;
+// the texture coordinate of corner c (3f + k) of T′.
+class Atlas {
+public:
+    explicit Atlas(const exchange::ParamFile& file)
+        : file_(file), G_(static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(file.domain_faces.size()))))) {}
+    io::Vec2 operator()(std::size_t c) const {
+        const exchange::ParamFace& face = file_.surface_faces[c / 3];
+        const auto& beta = face.beta[c % 3];
+        const double cell = 1.0 / static_cast<double>(G_), size = 0.9 * cell;
+        const io::Vec2 origin(static_cast<double>(face.patch % G_) * cell + 0.05 * cell, static_cast<double>(face.patch / G_) * cell + 0.05 * cell);
+        return origin + size * (beta[0] * corner_[0] + beta[1] * corner_[1] + beta[2] * corner_[2]);
     }
-    return uv;
-}
+
+private:
+    const exchange::ParamFile& file_;
+    std::size_t G_;
+    std::array<io::Vec2, 3> corner_{io::Vec2(0, 0), io::Vec2(1, 0), io::Vec2(0.5, std::sqrt(3.0) / 2)};
+};
 
 // The percentage as a file-name part: 5 -> "5", 2.5 -> "2.5".
 std::string percent_name(double p) {
@@ -221,22 +225,18 @@ std::vector<render::RatePoint> rate_curve(const wavelet::Refinement& r, const Tr
 
 }  // namespace
 
-void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
-                   const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
-                   const wavelet::WaveletResult* wavelets) {
-    const auto start = detail::Clock::now();
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) throw InvalidInput(dir, 0, "cannot create the output folder: " + ec.message());
-    const std::string base = dir + "/";
-    const partition::Partition& P = p.partition;
-    // The files are independent, each streamed a chunk at a time (io::AtomicFile), so they are
-    // written in parallel (issue 18): the largest first, so that the threads finish together.
+namespace {
+
+// The files of write_parameterization, one task each, the largest first (so that the threads
+// finish together). `file` must outlive the tasks.
+std::vector<std::function<void()>> parameterization_files(const std::string& base, const Parameterization& p,
+                                                          const exchange::ParamFile& file) {
     std::vector<std::function<void()>> files;
-    files.emplace_back([&] { io::write_obj(base + "textured.obj", p.refined_positions, p.refined_faces, atlas_uv(p)); });
-    files.emplace_back([&] { exchange::write_param(base + "param.fhrp", to_param_file(p)); });
-    files.emplace_back([&] { io::write_ply(base + "refined.ply", p.refined_positions, p.refined_faces, p.face_patch); });
-    files.emplace_back([&] {
+    files.emplace_back([&, base] { io::write_obj(base + "textured.obj", file.surface_vertices, p.refined_faces, Atlas(file)); });
+    files.emplace_back([&, base] { exchange::write_param(base + "param.fhrp", file); });
+    files.emplace_back([&, base] { io::write_ply(base + "refined.ply", file.surface_vertices, p.refined_faces, p.face_patch); });
+    files.emplace_back([&, base] {
+        const partition::Partition& P = p.partition;
         std::vector<std::vector<std::uint32_t>> lines;
         for (const auto& path : P.network.path) {
             auto& line = lines.emplace_back();
@@ -246,7 +246,37 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
         for (const partition::CurveInfo& c : P.curves) kinds.push_back(partition::name(c.kind));
         io::write_obj_polylines(base + "geodesics.obj", P.network.mesh.positions(), lines, kinds);
     });
-    files.emplace_back([&] { io::write_off(base + "domain.off", P.domain.mesh.positions(), P.domain.mesh.triangles()); });
+    files.emplace_back([&, base] {
+        io::write_off(base + "domain.off", p.partition.domain.mesh.positions(), p.partition.domain.mesh.triangles());
+    });
+    return files;
+}
+
+std::string folder(const std::string& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw InvalidInput(dir, 0, "cannot create the output folder: " + ec.message());
+    return dir + "/";
+}
+
+}  // namespace
+
+void write_parameterization(const std::string& dir, const Parameterization& p, const exchange::ParamFile& file,
+                            Executor* executor) {
+    const std::vector<std::function<void()>> files = parameterization_files(folder(dir), p, file);
+    executor_or_default(executor).for_each(files.size(), 1, [&](std::size_t i) { files[i](); });
+}
+
+void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
+                   const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
+                   const wavelet::WaveletResult* wavelets, std::optional<double> parameterization_written) {
+    const auto start = detail::Clock::now();
+    const std::string base = folder(dir);
+    // The files are independent, each streamed a chunk at a time (io::AtomicFile), so they are
+    // written in parallel (issue 18).
+    std::optional<exchange::ParamFile> file;
+    std::vector<std::function<void()>> files;
+    if (!parameterization_written) files = parameterization_files(base, p, file.emplace(to_param_file(p)));
     if (wavelets) {
         files.emplace_back([&] {
             io::write_off(base + "remesh_L" + std::to_string(wavelets->levels) + ".off", wavelets->remesh_positions, wavelets->remesh_faces);
@@ -256,9 +286,10 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
     }
     executor_or_default(options.executor).for_each(files.size(), 1, [&](std::size_t i) { files[i](); });
     write_report(base + "report.json", input, p, oracle, options, wavelets);
-    // "writing": every file above and the report; timings.json itself is a few hundred bytes.
+    // "writing": every file above and the report, and those written beside the oracle;
+    // timings.json itself is a few hundred bytes.
     Timings with_writing = timings;
-    with_writing.stage("writing", detail::seconds_since(start), false);
+    with_writing.stage("writing", detail::seconds_since(start) + parameterization_written.value_or(0), false);
     write_timings(base + "timings.json", with_writing);
 }
 

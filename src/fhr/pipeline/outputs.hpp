@@ -4,6 +4,7 @@
 // byte-identical across runs.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <fhr/core/trimesh.hpp>
@@ -43,14 +44,24 @@ struct InputInfo {
     std::size_t domain_faces_requested = 0;  ///< the domain's faces before §3's recovery
 };
 
+/// Writes the files of the parameterization alone into DIR (created if needed): domain.off,
+/// geodesics.obj, refined.ply, param.fhrp and textured.obj, in parallel on `executor`, from
+/// `file`, which is to_param_file(p) or the file p lends (lend_param_file: then T′'s vertices and
+/// β are in the file only). `fhr run` writes them beside the oracle (RunOptions::beside_oracle).
+void write_parameterization(const std::string& dir, const Parameterization& p, const exchange::ParamFile& file,
+                            Executor* executor);
+
 /// Writes DIR/{domain.off, geodesics.obj, refined.ply, param.fhrp, textured.obj, report.json,
 /// timings.json}; `oracle` is fhr verify's judgement of param.fhrp against T. With §5's result
 /// (`wavelets` not null) also remesh_L{J}.off, wavelet_keep{p}.off and the report's `remesh`
 /// and `wavelet` sections. The files are written in parallel on `options.executor`; timings.json
 /// gets one more measurement after the total, "writing": the seconds spent on all the others.
+/// `parameterization_written`: the seconds write_parameterization(DIR, p, …) took when the caller
+/// has written those five files already (beside the oracle); they are then not written again, and
+/// "writing" adds these seconds.
 void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
                    const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
-                   const wavelet::WaveletResult* wavelets);
+                   const wavelet::WaveletResult* wavelets, std::optional<double> parameterization_written = std::nullopt);
 
 /// The paper's Figures 6 and 7 (fig6.png: T and D; fig7.png: the geodesic network on T, and T′
 /// with a checkerboard over every patch through ψ) and one SVG per chosen patch (ψ_i(S_i) in its

@@ -49,11 +49,16 @@ RunResult run(const TriMesh& T, RunOptions options) {
     // §3, §4.
     out.parameterization = parameterize(T, std::move(D), method);
     // The independent oracle (src/fhr/exchange) judges exactly what param.fhrp will hold; §5 reads
-    // the patches' maps, which the oracle does not touch: the two run side by side on the
-    // executor (issue 18: most of the oracle runs on one thread, §5 fills the other).
+    // the patches' maps, which the oracle does not touch; the caller's task (fhr run: writing the
+    // files) reads both: the three run side by side on the executor (issue 18: most of the oracle
+    // runs on one thread, §5 and the writing fill the other).
     exchange::ParamFile lent = lend_param_file(out.parameterization);
     double verifying = 0, locating = 0;
-    executor_or_default(method.executor).for_each(2, 1, [&](std::size_t task) {
+    executor_or_default(method.executor).for_each(3, 1, [&](std::size_t task) {
+        if (task == 2) {
+            if (options.beside_oracle) options.beside_oracle(out.parameterization, lent);
+            return;
+        }
         const auto start = detail::Clock::now();
         if (task == 0) {
             out.oracle = exchange::verify(lent, &T, method.executor);

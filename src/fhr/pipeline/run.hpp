@@ -10,13 +10,15 @@
 //   with J = levels > 0: refinement, decomposition, reconstruction: D^J sampled through φ, its
 //                     prewavelet coefficients, the kept percentages reconstructed (src/fhr/wavelet),
 //                     beside the oracle (two tasks: they read different parts of the result, and
-//                     each stage's seconds are its own, so the stages' sum may exceed the wall time)
+//                     each stage's seconds are its own, so the stages' sum may exceed the wall time);
+//                     beside them also the caller's `beside_oracle` task (fhr run writes its files)
 // Thread safety: run() keeps no state between calls; concurrent calls (on the same T too) are safe.
 // Its progress lines and stage times are reported on the calling thread; its independent tasks run
 // on options.method.executor (core/executor.hpp), with the same result on any executor.
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -34,6 +36,11 @@ struct RunOptions {
     Options method;                        ///< §3–§4: weights, solver, keeping D, progress, stage observer
     int levels = 0;                        ///< §5: J ≥ 1 to remesh and decompose; 0 for none
     std::vector<double> keep;              ///< §5: the percentages of coefficients to keep, each in (0, 100]
+    /// Optional: a task run beside the oracle (and §5) once the parameterization is made, such as
+    /// writing its files (`fhr run`: write_parameterization, outputs.hpp), which need no verdict.
+    /// Meanwhile p lends T′'s vertices and β to `file` (lend_param_file: exactly what param.fhrp
+    /// holds), so it reads them there; both are read-only for every task.
+    std::function<void(const Parameterization& p, const exchange::ParamFile& file)> beside_oracle;
 };
 
 struct RunResult {
