@@ -471,7 +471,7 @@ TEST_CASE("is_collapse_ok refuses link-condition violations", "[unit]") {
 // --- refused construction: from_triangles (from_arrays below) -----------------------------
 
 TEST_CASE("from_triangles refuses input that would break the invariants", "[unit]") {
-    const std::vector<Vec3> p{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(1, 1, 0)};
+    std::vector<Vec3> p{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(1, 1, 0)};
     auto refused = [&](const std::vector<Triangle>& t, const std::string& part) {
         try {
             TriMesh::from_triangles(p, t);
@@ -487,6 +487,9 @@ TEST_CASE("from_triangles refuses input that would break the invariants", "[unit
     refused({{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}, "edge in more than two faces");   // INV-MESH-4
     refused({{0, 1, 2}, {0, 1, 3}}, "faces 0 and 1 are inconsistently oriented"); // INV-MESH-4
     refused({{0, 1, 2}, {0, 3, 4}}, "vertex 0 has more than one fan");           // INV-MESH-7 (bow-tie)
+    p.emplace_back(1, 0, 1);
+    refused({{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {0, 4, 5}}, "vertex 0 has more than one fan");  // a closed fan and an open one
+    refused({{0, 1, 2}, {1, 3, 4}, {1, 4, 5}}, "vertex 1 has more than one fan");  // the first such vertex, not vertex 0
     refused({{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}}, "vertex 4 is in no face");  // INV-MESH-6
 }
 

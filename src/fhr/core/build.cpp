@@ -43,10 +43,9 @@ public:
         if (options_.refuse_degenerate) check_degenerate();
         check_edge_manifold(table);
         if (orient(table)) table = detail::build_edge_table(positions_.size(), tris_);  // corners moved
-        if (const std::uint32_t v = detail::first_non_manifold_vertex(positions_.size(), tris_, table);
-            v != UINT32_MAX)
-            fail_vertex(v, "non-manifold vertex " + vname(v) + ": its faces form more than one fan");
         TriMesh mesh = TriMesh::from_triangles(std::move(positions_), tris_, table);
+        if (const std::uint32_t v = detail::first_non_manifold_vertex(mesh, tris_); v != UINT32_MAX)
+            fail_vertex(v, "non-manifold vertex " + vname(v) + ": its faces form more than one fan");
         check_closed_and_connected(mesh);
         log_.vertex_origin = VertexData<std::uint32_t>(std::move(origin_));
         return mesh;

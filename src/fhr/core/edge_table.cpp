@@ -44,51 +44,23 @@ EdgeTable build_edge_table(std::size_t n_vertices, std::span<const Triangle> t) 
 
 namespace fhr::detail {
 
-std::uint32_t first_non_manifold_vertex(std::size_t n_vertices, std::span<const Triangle> t,
-                                        const EdgeTable& table) {
-    // Corners grouped by their tail vertex: corner c = 3f+k has tail t[f][k], i.e. it is the
-    // corner of face f at that vertex.
-    const auto n_corners = static_cast<std::uint32_t>(3 * t.size());
-    std::vector<std::uint32_t> offsets(n_vertices + 1, 0), at(n_corners);
-    for (std::uint32_t c = 0; c < n_corners; ++c) ++offsets[corner_tail(t, c) + 1];
-    for (std::size_t v = 0; v < n_vertices; ++v) offsets[v + 1] += offsets[v];
-    {
-        std::vector<std::uint32_t> fill(offsets.begin(), offsets.end() - 1);
-        for (std::uint32_t c = 0; c < n_corners; ++c) at[fill[corner_tail(t, c)]++] = c;
-    }
-    // The corner on the other side of the edge of corner c, or UINT32_MAX on the boundary.
-    auto across = [&](std::uint32_t c) -> std::uint32_t {
-        const std::uint32_t e = table.corner_edge[c];
-        if (table.edge_degree(e) != 2) return UINT32_MAX;
-        const std::uint32_t* pair = &table.edge_corners[table.edge_offsets[e]];
-        return pair[0] == c ? pair[1] : pair[0];
-    };
-    auto prev_in_face = [](std::uint32_t c) { return c - c % 3 + (c % 3 + 2) % 3; };
-    for (std::uint32_t v = 0; v < n_vertices; ++v) {
-        const std::uint32_t incident = offsets[v + 1] - offsets[v];
-        if (incident == 0) continue;
-        // Around v, the corner of v in the next face is found across the edge leaving v
-        // (corner c itself): with consistent orientation that edge is traversed backwards there,
-        // so the next corner at v follows the crossed one. Walk forward, then backward.
-        const std::uint32_t start = at[offsets[v]];
-        std::uint32_t visited = 1;
-        bool closed = false;
-        for (std::uint32_t c = start;;) {
-            const std::uint32_t o = across(c);
-            if (o == UINT32_MAX) break;
-            const std::uint32_t n = o - o % 3 + (o % 3 + 1) % 3;  // corner of v in o's face
-            if (n == start) { closed = true; break; }
-            if (++visited > incident) break;
-            c = n;
-        }
-        if (!closed) {
-            for (std::uint32_t c = start;;) {
-                const std::uint32_t o = across(prev_in_face(c));  // the edge entering v in c's face
-                if (o == UINT32_MAX || ++visited > incident) break;
-                c = o;  // o leaves v in its face, so o is the corner of v there
-            }
-        }
-        if (visited != incident) return v;
+std::uint32_t first_non_manifold_vertex(const TriMesh& mesh, std::span<const Triangle> t) {
+    std::vector<std::uint32_t> incident(mesh.n_vertices(), 0);
+    for (const Triangle& f : t)
+        for (const std::uint32_t v : f) ++incident[v];
+    // Around v, from out(v): the next halfedge out of v follows the twin of the last one (on the
+    // boundary, the boundary halfedge into v links to out(v)). The walk sees one fan of v, the
+    // whole star when it is one fan; it stops when back at out(v), or one step after it has seen
+    // as many halfedges as v has faces (when another fan's boundary links lead it astray).
+    for (std::uint32_t v = 0; v < mesh.n_vertices(); ++v) {
+        const HalfedgeId first = mesh.out(VertexId(v));
+        HalfedgeId h = first;
+        std::uint32_t faces = 0, steps = 0;
+        do {
+            faces += !mesh.is_boundary(h);
+            h = mesh.next(TriMesh::twin(h));
+        } while (h != first && ++steps <= incident[v]);
+        if (faces != incident[v]) return v;
     }
     return UINT32_MAX;
 }

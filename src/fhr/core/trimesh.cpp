@@ -40,7 +40,7 @@ TriMesh TriMesh::from_triangles(std::vector<Vec3> positions, std::span<const Tri
     }
     const detail::EdgeTable table = detail::build_edge_table(nv, triangles);
     TriMesh m = from_triangles(std::move(positions), triangles, table);
-    if (const std::uint32_t v = detail::first_non_manifold_vertex(nv, triangles, table); v != UINT32_MAX)
+    if (const std::uint32_t v = detail::first_non_manifold_vertex(m, triangles); v != UINT32_MAX)
         broken("from_triangles: " + vname(VertexId(v)) + " has more than one fan");
     return m;
 }
