@@ -75,11 +75,12 @@ SCALING = [
 # timing noise and for the working set outgrowing the caches, which no algorithm change removes.
 MAX_EXPONENT = 1.15
 # Issue 18 at 10^6 triangles: wall seconds (all outputs written) and peak bytes per input
-# triangle; the stretch budget per stage (seconds; "rest" is the wall time outside the stages).
+# triangle; the stretch budget per stage (seconds; "writing in wall" is the writing's share of the
+# wall time, "rest" the wall time outside the stages and that share: with_rest).
 MILLION_WALL, MILLION_BYTES_PER_FACE = 20.0, 1000.0
 STRETCH_WALL = 10.0
 STRETCH_STAGES = [("reading", 0.5), ("mesh_reduction", 2.5), ("geodesic_paths", 3.0), ("parameterization", 1.0),
-                  ("verification", 1.0), ("writing", 1.0), ("rest", 1.0)]
+                  ("verification", 1.0), ("writing_in_wall", 1.0), ("rest", 1.0)]
 DECIMATION_VS_CGAL = 5.0  # at 10^6 triangles (issue 18); 3x on the meshes of the default mode (issue 9)
 TEN_MILLION = 10_000_000
 MEMORY_LIMIT_GB = 24.0
@@ -248,10 +249,14 @@ def exponent(ns, ts):
 
 
 def with_rest(timings, wall):
-    """timings.json plus "rest": the process's wall time outside the stages and the writing (start,
-    the report's topology counts, joining threads, exit)."""
+    """timings.json plus "writing_in_wall", the writing's share of the wall time: the files written
+    after the run, and the time by which the parameterization's files, written beside the oracle,
+    outlast its verification; and "rest": the process's wall time outside the stages and that share
+    (start, the report's topology counts, joining threads, exit)."""
     t = dict(timings)
-    t["rest"] = wall - t["total"] - t.get("writing", 0.0) - t.get("hausdorff", 0.0)
+    beside = t.get("writing_beside_oracle", 0.0)
+    t["writing_in_wall"] = t.get("writing", 0.0) - beside + max(0.0, beside - t.get("verification", 0.0))
+    t["rest"] = wall - t["total"] - t["writing_in_wall"] - t.get("hausdorff", 0.0)
     return t
 
 
@@ -299,13 +304,16 @@ def bench_scaling(build, runs, goals, results):
         ns = [m["faces"] for _, m in columns]
         fitted = {key: exponent(ns, [m[key] for _, m in columns])
                   for key in [k for k, _ in STAGES] + ["writing", "rest", "wall", "peak_mb"]}
-        stage_table(columns + [("exponent", fitted)], [("writing", "writing", "%12.3f"), ("rest", "rest", "%12.3f"),
+        stage_table(columns + [("exponent", fitted)], [("writing", "writing", "%12.3f"),
+                                                       ("writing in wall", "writing_in_wall", "%12.3f"),
+                                                       ("rest", "rest", "%12.3f"),
                                                        ("wall fhr run", "wall", "%12.3f"),
                                                        ("peak memory MB", "peak_mb", "%12.1f"),
                                                        ("§5 peak MB", "wavelet_peak_mb", "%12.1f"),
                                                        ("domain faces", "domain", "%12d")])
-        print("  (total: the stages, §5's from bench_wavelet; writing: every output of fhr run, after the total; rest: the"
-              " wall time of fhr run outside both)")
+        print("  (total: the stages, §5's from bench_wavelet; writing: every output of fhr run, after the total, its"
+              " parameterization's files beside the oracle; writing in wall: the files after the run and the part of those"
+              " beside the oracle that outlasts it; rest: the wall time of fhr run outside the total and that share)")
         for key, label in STAGES + [("writing", "writing")]:
             goal(goals, "%s: exponent of %s (%s)" % (series, label, ", ".join("%d" % n for n in ns)), fitted[key], "",
                  MAX_EXPONENT)
@@ -346,7 +354,8 @@ def ten_million(build, fhr, goals, results):
     results["scaling"]["ten million"] = m
     print("== 10^7 triangles: genus-2 generated, %d faces to %d domain faces: wall %.1f s, peak %.2f GB" % (
         n, m["domain"], wall, peak / 1024))
-    stage_table([("seconds", m)], [("writing", "writing", "%12.3f"), ("rest", "rest", "%12.3f")])
+    stage_table([("seconds", m)], [("writing", "writing", "%12.3f"), ("writing in wall", "writing_in_wall", "%12.3f"),
+                                   ("rest", "rest", "%12.3f")])
     goal(goals, "genus-2 generated, %d triangles: completes within %g GB (peak memory)" % (n, MEMORY_LIMIT_GB), peak / 1024,
          "GB", MEMORY_LIMIT_GB)
 

@@ -181,6 +181,7 @@ TEST_CASE("CLI-RUN-1..4: fhr run on the fandisk writes every file, certified, ve
     for (const char* stage : {"mesh_reduction", "geodesic_paths", "parameterization", "total"})
         CHECK(timings.find(std::string("\"") + stage + "\"") != std::string::npos);
     CHECK(timings.find("\"writing\"") > timings.find("\"total\""));  // after the total, not in it (CLI-RUN-3)
+    CHECK(timings.find("\"writing_beside_oracle\"") > timings.find("\"writing\""));  // the part of it beside the oracle
     // refined.ply is T′ as our own strict reader sees it, with as many faces as the report says.
     const fhr::PolygonSoup soup = fhr::io::read_soup(dir + "/refined.ply");
     CHECK(static_cast<long>(soup.polygon_count()) == json_integer(report, "refined_faces"));

@@ -290,6 +290,7 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
     // timings.json itself is a few hundred bytes.
     Timings with_writing = timings;
     with_writing.stage("writing", detail::seconds_since(start) + parameterization_written.value_or(0), false);
+    if (parameterization_written) with_writing.stage("writing_beside_oracle", *parameterization_written, false);
     write_timings(base + "timings.json", with_writing);
 }
 

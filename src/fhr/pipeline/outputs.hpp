@@ -57,8 +57,8 @@ void write_parameterization(const std::string& dir, const Parameterization& p, c
 /// and `wavelet` sections. The files are written in parallel on `options.executor`; timings.json
 /// gets one more measurement after the total, "writing": the seconds spent on all the others.
 /// `parameterization_written`: the seconds write_parameterization(DIR, p, …) took when the caller
-/// has written those five files already (beside the oracle); they are then not written again, and
-/// "writing" adds these seconds.
+/// has written those five files already (beside the oracle); they are then not written again,
+/// "writing" adds these seconds, and "writing_beside_oracle" follows with them alone.
 void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
                    const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
                    const wavelet::WaveletResult* wavelets, std::optional<double> parameterization_written = std::nullopt);
