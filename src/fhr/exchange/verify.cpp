@@ -298,13 +298,14 @@ private:
     /// face has no ψ) and no face turned — each component consistently oriented, a closed one
     /// with positive volume (the orientation is part of the contract: PARAM-8 reads it; a
     /// component with boundary has no outside, so either of its two orientations is accepted).
-    std::optional<Surface> build(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
-                                 const char* what, Recorder& rec) const {
+    /// `triangle(i)` gives triangle i of `count`.
+    std::optional<Surface> build(const std::vector<Vec3>& points, std::size_t count,
+                                 const std::function<const Triangle&(std::size_t)>& triangle, const char* what, Recorder& rec) const {
         PolygonSoup soup;
         soup.points = points;
-        soup.indices.reserve(3 * triangles.size());
-        soup.offsets.reserve(triangles.size() + 1);
-        for (const Triangle& t : triangles) soup.add_polygon(t.data(), 3);
+        soup.indices.reserve(3 * count);
+        soup.offsets.reserve(count + 1);
+        for (std::size_t i = 0; i < count; ++i) soup.add_polygon(triangle(i).data(), 3);
         BuildLog log;
         try {
             TriMesh mesh = build_trimesh(soup, BuildOptions{.require_closed = false, .require_connected = false}, log);
@@ -329,10 +330,12 @@ private:
 
     CheckResult check_manifolds() {
         Recorder rec("PARAM-3", title_3);
-        domain_ = build(f_.domain_vertices, f_.domain_faces, "domain D", rec);
-        std::vector<Triangle> triangles(f_.surface_faces.size());
-        for (std::size_t f = 0; f < triangles.size(); ++f) triangles[f] = f_.surface_faces[f].v;
-        surface_ = build(f_.surface_vertices, triangles, "surface T'", rec);
+        domain_ = build(f_.domain_vertices, f_.domain_faces.size(), [&](std::size_t i) -> const Triangle& { return f_.domain_faces[i]; },
+                        "domain D", rec);
+        // T′'s triangles straight from the file's faces (at 10⁶ faces a copy of them was 20 MB more at
+        // the run's peak, issue 18).
+        surface_ = build(f_.surface_vertices, f_.surface_faces.size(),
+                         [&](std::size_t i) -> const Triangle& { return f_.surface_faces[i].v; }, "surface T'", rec);
         rec.examined(2);
         return rec.done();
     }
@@ -883,8 +886,6 @@ public:
             cell_ *= 2;
             listed = listings();
         }
-        const auto top = cell(max_);
-        for (int k = 0; k < 3; ++k) cells_[k] = static_cast<std::uint64_t>(top[k]) + 1;
         std::vector<std::pair<std::uint64_t, std::uint32_t>> entries;
         entries.reserve(static_cast<std::size_t>(listed));
         for (std::uint32_t f = 0; f < simplices_.size(); ++f) {
@@ -893,7 +894,8 @@ public:
                 for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
                     for (std::int64_t z = lo[2]; z <= hi[2]; ++z) entries.emplace_back(key(x, y, z), f);
         }
-        listing_ = sorted_by_key(std::move(entries));
+        std::sort(entries.begin(), entries.end());
+        listing_ = std::move(entries);
     }
 
     /// The distance from p to the nearest simplex listed in p's cell, or +inf when there is none
@@ -924,7 +926,6 @@ private:
     std::vector<Triangle> simplices_;
     Vec3 min_, max_;
     double cell_ = 0;
-    std::array<std::uint64_t, 3> cells_{};                          // cells per axis
     std::vector<std::pair<std::uint64_t, std::uint32_t>> listing_;  // (cell key, simplex), sorted
 
     const Vec3& pos(std::uint32_t v) const { return mesh_.position(VertexId(v)); }
@@ -956,28 +957,8 @@ private:
         return n;
     }
 
-    /// The cell's index in x, then y, then z order.
-    std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) const {
-        return (static_cast<std::uint64_t>(x) * cells_[1] + static_cast<std::uint64_t>(y)) * cells_[2] + static_cast<std::uint64_t>(z);
-    }
-
-    /// The pairs by increasing key, and those of one key by increasing simplex (they are made in
-    /// simplex order and a least-significant-digit radix sort is stable): std::sort's order, in a
-    /// few linear passes (issue 18: the sort was a third of the grid's time at 10⁶ faces).
-    static std::vector<std::pair<std::uint64_t, std::uint32_t>> sorted_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t>> v) {
-        constexpr int digit = 11;
-        constexpr std::uint64_t mask = (std::uint64_t{1} << digit) - 1;
-        std::uint64_t largest = 0;
-        for (const auto& e : v) largest = std::max(largest, e.first);
-        std::vector<std::pair<std::uint64_t, std::uint32_t>> out(v.size());
-        for (int shift = 0; shift < 64 && (largest >> shift) != 0; shift += digit) {
-            std::vector<std::size_t> start(mask + 2, 0);
-            for (const auto& e : v) ++start[((e.first >> shift) & mask) + 1];
-            for (std::size_t d = 0; d <= mask; ++d) start[d + 1] += start[d];
-            for (const auto& e : v) out[start[(e.first >> shift) & mask]++] = e;
-            v.swap(out);
-        }
-        return v;
+    static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
+        return static_cast<std::uint64_t>(x) << 42 | static_cast<std::uint64_t>(y) << 21 | static_cast<std::uint64_t>(z);
     }
 };
 

@@ -5,6 +5,7 @@
 #include <fhr/pipeline/pipeline.hpp>
 
 #include <algorithm>
+#include <utility>
 
 #include <fhr/core/errors.hpp>
 #include <fhr/param/dividing_edges.hpp>
@@ -60,7 +61,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     std::vector<std::vector<std::uint32_t>> origin(n_patches);  // per patch: the triangle before the splits
     executor_or_default(options.executor).for_each(n_patches, 16, [&](std::size_t i) {
         const FaceId d(static_cast<FaceId::Index>(i));
-        param::Disk disk = P.patches.patch[d].disk;
+        param::Disk disk = std::move(out.partition.patches.patch[d].disk);  // each task its own patch
         split[i] = param::split_dividing_edges(disk, &origin[i]);
         try {
             out.maps[d] = param::map_patch(disk, options.map);
