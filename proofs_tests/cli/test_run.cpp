@@ -89,7 +89,7 @@ void check_rate_distortion(const std::string& svg, const std::string& report) {
 // patch's corners (β = e_c exactly, MAP-5) lie at the lower left, lower right and top of an
 // equilateral triangle with a horizontal base, one size for all; every corner of a face of the
 // patch lies at its β in that triangle; and the n triangles lie in distinct cells of a
-// ⌈√n⌉ × ⌈√n⌉ grid of [0, 1]².
+// ⌈√n⌉ × ⌈√n⌉ grid of [0, 1]², each clear of its cell's borders.
 void check_atlas(const std::string& obj, const fhr::exchange::ParamFile& param) {
     using UV = std::array<double, 2>;
     std::vector<UV> vt;
@@ -140,7 +140,11 @@ void check_atlas(const std::string& obj, const fhr::exchange::ParamFile& param) 
         std::set<std::size_t> in;
         for (const UV& p : q) {
             bad_triangles += !(p[0] >= 0 && p[0] <= 1 && p[1] >= 0 && p[1] <= 1);
-            in.insert(std::min(G - 1, static_cast<std::size_t>(p[1] * G)) * G + std::min(G - 1, static_cast<std::size_t>(p[0] * G)));
+            const std::size_t x = std::min(G - 1, static_cast<std::size_t>(p[0] * G)), y = std::min(G - 1, static_cast<std::size_t>(p[1] * G));
+            in.insert(y * G + x);
+            // Clear of its cell's borders (charts that touch bleed into each other when rendered).
+            const double dx = p[0] * static_cast<double>(G) - static_cast<double>(x), dy = p[1] * static_cast<double>(G) - static_cast<double>(y);
+            bad_triangles += !(dx > 0.01 && dx < 0.99 && dy > 0.01 && dy < 0.99);
         }
         bad_triangles += in.size() != 1;
         cells.insert(*in.begin());
