@@ -735,8 +735,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
     // 1. The direct start, when the kept geodesics leave polygons for the others.
     std::size_t undone = 0;
     std::optional<Network_> net;
-    std::optional<Embedding> checked;  // the direct start's embedding, while its curves stay as they are
-    std::optional<Patches> checked_patches;  // and its patches
+    std::optional<KeptNetwork::Embedded> checked;  // the direct start's, while its curves stay as they are
     if (start == Start::fast) {
         try {
             if (std::optional<Network_> found = direct(T, real_vertices, D, geodesics, conflicts, order, executor)) {
@@ -744,9 +743,9 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
                 const auto [paths, unsnapped] = in_edge_order(D, found->curves());
                 Embedding check = embed(T, D, paths, unsnapped, &executor);
                 if (check.conflicts.empty()) {
-                    checked_patches = extract_patches(D, check.network);
+                    Patches patches = extract_patches(D, check.network);
                     net.emplace(std::move(*found));
-                    checked = std::move(check);
+                    checked = KeptNetwork::Embedded{std::move(check), std::move(patches)};
                 }
             }
         } catch (const PartitionFailure&) {  // no room to separate: step back instead
@@ -861,10 +860,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
     auto [paths, unsnapped] = in_edge_order(D, net->curves());
     out.paths = EdgeData<geodesic::GeodesicPath>(std::move(paths));
     out.unsnapped = EdgeData<std::uint8_t>(std::move(unsnapped));
-    if (checked) {
-        out.embedding = std::move(checked);
-        out.patches = std::move(checked_patches);
-    }
+    out.embedded = std::move(checked);
     for (std::size_t e = 0; e < ends.size(); ++e) {
         const auto [a, b] = ends[e];
         const Pair k = key_of(a, b);

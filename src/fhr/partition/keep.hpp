@@ -82,8 +82,11 @@ struct KeptNetwork {
     /// embed(T, D, paths, unsnapped) and its patches when they were already computed (the direct
     /// start's check, its curves unchanged since), so that the caller need not embed the same
     /// curves again nor cut the same patches (issue 18: at 10⁶ faces 0.8 s and 0.2 s).
-    std::optional<Embedding> embedding;
-    std::optional<Patches> patches;  ///< with `embedding`: extract_patches(D, embedding->network)
+    struct Embedded {
+        Embedding embedding;
+        Patches patches;  ///< extract_patches(D, embedding.network)
+    };
+    std::optional<Embedded> embedded;
 };
 
 /// How far the valid start steps back (see the pseudocode above).

@@ -330,8 +330,12 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
             out.keep_start_faces = kept.start_faces;
             out.resolved = embedding.conflicts;
             unsnapped = kept.unsnapped.values();
-            embedding = kept.embedding ? std::move(*kept.embedding) : embed(T_hat, D_hat, kept.paths.values(), unsnapped, &executor);
-            patches = std::move(kept.patches);
+            if (kept.embedded) {
+                embedding = std::move(kept.embedded->embedding);
+                patches = std::move(kept.embedded->patches);
+            } else {
+                embedding = embed(T_hat, D_hat, kept.paths.values(), unsnapped, &executor);
+            }
             if (!embedding.conflicts.empty())
                 throw std::logic_error("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
         }
