@@ -49,6 +49,18 @@ const CheckResult& check(const VerifyReport& r, const std::string& id) {
 
 std::string first_failure(const VerifyReport& r) { return r.first_failure() ? r.first_failure()->id : "none"; }
 
+/// Where two reports differ (check by check: id, status, counts, first failure and its place), or "".
+std::string difference(const VerifyReport& a, const VerifyReport& b) {
+    if (a.checks.size() != b.checks.size()) return std::to_string(a.checks.size()) + " checks against " + std::to_string(b.checks.size());
+    for (std::size_t i = 0; i < a.checks.size(); ++i) {
+        const CheckResult &x = a.checks[i], &y = b.checks[i];
+        if (x.id != y.id || x.status != y.status || x.checked != y.checked || x.failures != y.failures ||
+            x.first_failure != y.first_failure || x.face != y.face || x.vertex != y.vertex || x.patch != y.patch)
+            return x.id + " differs from " + y.id + ": " + x.first_failure + " | " + y.first_failure;
+    }
+    return "";
+}
+
 std::string describe(const VerifyReport& r) {
     std::string s;
     for (const CheckResult& c : r.checks)
@@ -406,6 +418,7 @@ void expect_caught(const Corruption& c, const TriMesh& domain, int k) {
     const Expect e = c.apply(file, input);
     const VerifyReport r = verify(file, &input);
     INFO(c.name << "\n" << describe(r));
+    CHECK(difference(r, verify(file, fhr::exchange::PreparedInput(input))).empty());  // T's side prepared apart
     REQUIRE_FALSE(r.valid());
     CHECK(first_failure(r) == e.first);
     const CheckResult& first = check(r, e.first);
@@ -427,6 +440,7 @@ void rc_expect_caught(const std::vector<Corruption>& list, const TriMesh& domain
         const Expect e = c.apply(file, input);
         const VerifyReport r = verify(file, &input);
         RC_LOG() << c.name << "\n" << describe(r);
+        RC_ASSERT(difference(r, verify(file, fhr::exchange::PreparedInput(input))) == "");
         RC_ASSERT(first_failure(r) == e.first);
         if (e.vertex >= 0) RC_ASSERT(check(r, e.first).vertex == e.vertex);
         if (!e.also.empty()) RC_ASSERT(check(r, e.also).status == CheckStatus::fail);
@@ -958,17 +972,27 @@ TEST_CASE("PARAM-3: a flat closed component is refused (INV-IN-13 for each close
     }
 }
 
-TEST_CASE("PARAM-11: a vertex on T's boundary must be on T''s boundary", "[exchange][boundary]") {
-    // T = the hexagon slit along the spoke (0, 1): rim vertex 1 doubled (as vertex 7, in the last
-    // face), so the centre is on T's boundary. T′ = the unslit hexagon: the same point set, the
-    // same chi, boundary loops and components, the same area — but the centre is inside T′.
+namespace {
+
+/// The hexagon slit along the spoke (0, 1): rim vertex 1 doubled (as vertex 7, in the last face),
+/// so the centre is on its boundary.
+TriMesh slit_hexagon_disk() {
     const TriMesh disk = hexagon_disk();
     std::vector<fhr::Vec3> p = disk.positions();
     p.push_back(p[1]);
     std::vector<fhr::Triangle> t = disk.triangles();
     for (auto& v : t.back())
         if (v == 1) v = 7;
-    const TriMesh slit_disk = TriMesh::from_triangles(p, t);
+    return TriMesh::from_triangles(p, t);
+}
+
+}  // namespace
+
+TEST_CASE("PARAM-11: a vertex on T's boundary must be on T''s boundary", "[exchange][boundary]") {
+    // T = the slit hexagon. T′ = the unslit hexagon: the same point set, the same chi, boundary
+    // loops and components, the same area — but the centre is inside T′.
+    const TriMesh disk = hexagon_disk();
+    const TriMesh slit_disk = slit_hexagon_disk();
     const VerifyReport r = verify(fhr::test::subdivided_param(disk, 2), &slit_disk);
     INFO(describe(r));
     CHECK(first_failure(r) == "PARAM-11");
@@ -1008,4 +1032,37 @@ TEST_CASE("the oracle on 1 and 3 threads: the same report (PARAM-11's distances 
         CHECK(x.first_failure == y.first_failure);
         CHECK((x.face == y.face && x.vertex == y.vertex && x.patch == y.patch));
     }
+}
+
+TEST_CASE("PARAM-11: T's side prepared once (PreparedInput) serves several files, moved, on any number of threads",
+          "[exchange]") {
+    // The same reports as verify(file, &T): a valid file, one with vertices moved off T (PARAM-11
+    // fails in several blocks), one with a broken β (PARAM-5), and on a surface with boundary one
+    // whose T has a slit (PARAM-11's boundary grid).
+    const TriMesh domain = random_domain(1, 600, 11);
+    const ParamFile valid = fhr::test::subdivided_param(domain, 6);
+    ParamFile moved = valid, broken = valid;
+    for (std::size_t v = 5000; v < moved.surface_vertices.size(); v += 7) moved.surface_vertices[v] += fhr::Vec3(0, 0, 1);
+    broken.surface_faces[100].beta[0] = {2.0, -1.0};
+    fhr::exchange::PreparedInput made(domain);
+    const fhr::exchange::PreparedInput prepared = std::move(made);
+    CHECK(&prepared.mesh() == &domain);
+    fhr::ThreadPool one(1), three(3);
+    for (const ParamFile* file : std::vector<const ParamFile*>{&valid, &moved, &broken}) {
+        const VerifyReport direct = verify(*file, &domain);
+        INFO(describe(direct));
+        CHECK(difference(direct, verify(*file, prepared, &one)).empty());
+        CHECK(difference(direct, verify(*file, prepared, &three)).empty());
+    }
+    CHECK(verify(valid, prepared).valid());
+    CHECK(check(verify(moved, prepared), "PARAM-11").status == CheckStatus::fail);
+    CHECK(first_failure(verify(broken, prepared)) == "PARAM-5");
+
+    const TriMesh disk = hexagon_disk();
+    const TriMesh slit_disk = slit_hexagon_disk();
+    const ParamFile on_disk = fhr::test::subdivided_param(disk, 2);
+    const VerifyReport slit = verify(on_disk, fhr::exchange::PreparedInput(slit_disk));
+    CHECK(first_failure(slit) == "PARAM-11");
+    CHECK(difference(slit, verify(on_disk, &slit_disk)).empty());
+    CHECK(verify(on_disk, fhr::exchange::PreparedInput(disk)).valid());
 }

@@ -56,6 +56,17 @@ TEST_CASE("WAV-10: analyse: counts, round trip, kept counts, errors and Hausdorf
     // one is used as given.
     CHECK(w.remesh_hausdorff.resolution == 1e-4 * w.bbox_diagonal);
     for (const auto& k : w.kept) CHECK(k.hausdorff.resolution == w.remesh_hausdorff.resolution);
+    // T's tree built by the caller (pipeline::run: beside §2): the same brackets, bit for bit.
+    const std::vector<Triangle> t_faces = T.triangles();
+    const wavelet::TriangleTree t_tree(T.positions(), t_faces);
+    const wavelet::WaveletResult with_tree = wavelet::analyse(D, phi, 3, keep, T, {}, nullptr, nullptr, &t_tree);
+    const auto same_bracket = [](const wavelet::Hausdorff& a, const wavelet::Hausdorff& b) {
+        return a.a_to_b.lower == b.a_to_b.lower && a.a_to_b.upper == b.a_to_b.upper && a.b_to_a.lower == b.b_to_a.lower &&
+               a.b_to_a.upper == b.b_to_a.upper && a.a_to_b.samples == b.a_to_b.samples && a.b_to_a.samples == b.b_to_a.samples;
+    };
+    CHECK(same_bracket(with_tree.remesh_hausdorff, w.remesh_hausdorff));
+    REQUIRE(with_tree.kept.size() == w.kept.size());
+    for (std::size_t i = 0; i < w.kept.size(); ++i) CHECK(same_bracket(with_tree.kept[i].hausdorff, w.kept[i].hausdorff));
     const wavelet::WaveletResult given = wavelet::analyse(D, phi, 1, std::array<double, 1>{50}, T, {.resolution = 0.002});
     CHECK(given.remesh_hausdorff.resolution == 0.002);
     CHECK(given.kept[0].hausdorff.resolution == 0.002);

@@ -220,13 +220,15 @@ struct Surface {
 
 class Verifier {
 public:
-    Verifier(const ParamFile& file, const TriMesh* input, Executor& executor) : f_(file), input_(input), executor_(executor) {}
+    Verifier(const ParamFile& file, const TriMesh* input, const detail::InputSide* prepared, Executor& executor)
+        : f_(file), input_(input), prepared_(prepared), executor_(executor) {}
 
     VerifyReport run();
 
 private:
     const ParamFile& f_;
     const TriMesh* input_;
+    const detail::InputSide* prepared_;  // T's side of PARAM-11 when the caller prepared it (PreparedInput)
     Executor& executor_;
     std::optional<Surface> domain_, surface_;  // built by PARAM-3 when valid
     std::vector<std::uint32_t> run_vertex_;    // PARAM-9 → PARAM-10
@@ -838,10 +840,10 @@ private:
     }
 
     // ---- PARAM-11 --------------------------------------------------------------------------
-    struct InputSide;
     static constexpr std::size_t side_by_side_below = std::size_t{1} << 19;
-    /// \param t_side T's part, prepared beforehand or (when empty) here, once T′'s vertices are checked.
-    CheckResult check_geometry(std::optional<InputSide>& t_side) const;
+    /// \param t_side T's part when not prepared_: made beforehand or (when empty) here, once T′'s
+    /// vertices are checked.
+    CheckResult check_geometry(std::optional<detail::InputSide>& t_side) const;
 };
 
 // ---- PARAM-11: Ω_T′ = Ω_T ------------------------------------------------------------------
@@ -972,12 +974,15 @@ double total_area(const TriMesh& mesh) {
     return sum.value();
 }
 
-/// PARAM-11's side of T alone (prepared beside PARAM-3 when they run side by side): the tolerance (within 1e-9
+}  // namespace
+
+/// PARAM-11's side of T alone (prepared by the caller, PreparedInput, or beside PARAM-3 when they
+/// run side by side): the tolerance (within 1e-9
 /// of the bounding-box diagonal, plus 64u·|x|max for the rounding of a point computed on an edge or
 /// face of T — a few u·|x| per coordinate, by the producer and again by closest_point — when T lies
 /// far from the origin), its area, and grids over its faces and over its boundary edges (none when
 /// T is closed: then no point is on its boundary).
-struct Verifier::InputSide {
+struct detail::InputSide {
     const double tolerance, area;
     const SimplexGrid faces;
     std::optional<SimplexGrid> boundary;
@@ -1009,7 +1014,9 @@ private:
     }
 };
 
-CheckResult Verifier::check_geometry(std::optional<InputSide>& t_side) const {
+namespace {
+
+CheckResult Verifier::check_geometry(std::optional<detail::InputSide>& t_side) const {
     Recorder rec("PARAM-11", title_11);
     const TriMesh& t = *input_;
     const TriMesh& refined = surface_->mesh;
@@ -1050,13 +1057,13 @@ CheckResult Verifier::check_geometry(std::optional<InputSide>& t_side) const {
     }
     std::vector<std::pair<Bits, std::uint32_t>>().swap(refined_bits);  // freed before T's grid is built here
     // ... inserts points only on T (InputSide: the tolerance) ...
-    if (!t_side) t_side.emplace(t);
-    const double tolerance = t_side->tolerance, area_t = t_side->area, area_r = total_area(refined);
+    const detail::InputSide& side = prepared_ ? *prepared_ : t_side ? *t_side : t_side.emplace(t);
+    const double tolerance = side.tolerance, area_t = side.area, area_r = total_area(refined);
     {
         // The distances in parallel, in blocks; the failures in vertex order below.
         std::vector<double> distance(refined.n_vertices());
         for_each_block(executor_, distance.size(), 4096, 4, [&](std::size_t first, std::size_t end) {
-            for (std::size_t v = first; v < end; ++v) distance[v] = t_side->faces.distance(refined.position(VertexId(static_cast<VertexId::Index>(v))));
+            for (std::size_t v = first; v < end; ++v) distance[v] = side.faces.distance(refined.position(VertexId(static_cast<VertexId::Index>(v))));
         });
         for (VertexId v : refined.vertices()) {
             const double d = distance[v.idx()];
@@ -1075,7 +1082,7 @@ CheckResult Verifier::check_geometry(std::optional<InputSide>& t_side) const {
     if (!refined_boundary.empty()) {
         for (std::uint32_t w : refined_boundary) {
             const Vec3& p = refined.position(VertexId(w));
-            const double d = t_side->boundary ? t_side->boundary->distance(p) : std::numeric_limits<double>::infinity();
+            const double d = side.boundary ? side.boundary->distance(p) : std::numeric_limits<double>::infinity();
             if (!(d <= tolerance))
                 rec.fail([&] { return "surface vertex " + std::to_string(w) + " " + str(p) +
                                       " is on the boundary of T' but not on T's boundary (distance " +
@@ -1122,10 +1129,10 @@ VerifyReport Verifier::run() {
         }
         executor_.for_each(2, 1, [&](std::size_t task) { task == 0 ? first() : second(); });
     };
-    std::optional<InputSide> input_side;
+    std::optional<detail::InputSide> input_side;
     both([&] { checks.push_back(check_manifolds()); },
          [&] {
-             if (input_ && side_by_side) input_side.emplace(*input_);
+             if (input_ && !prepared_ && side_by_side) input_side.emplace(*input_);
          });
     const std::string needs_surface = "needs PARAM-3 (T' a manifold)";
     CheckResult geometry;
@@ -1151,7 +1158,16 @@ VerifyReport Verifier::run() {
 }  // namespace
 
 VerifyReport verify(const ParamFile& file, const TriMesh* input_mesh, Executor* executor) {
-    return Verifier(file, input_mesh, executor_or_default(executor)).run();
+    return Verifier(file, input_mesh, nullptr, executor_or_default(executor)).run();
+}
+
+PreparedInput::PreparedInput(const TriMesh& T) : mesh_(&T), side_(std::make_unique<detail::InputSide>(T)) {}
+PreparedInput::~PreparedInput() = default;
+PreparedInput::PreparedInput(PreparedInput&&) noexcept = default;
+PreparedInput& PreparedInput::operator=(PreparedInput&&) noexcept = default;
+
+VerifyReport verify(const ParamFile& file, const PreparedInput& input, Executor* executor) {
+    return Verifier(file, &input.mesh(), input.side_.get(), executor_or_default(executor)).run();
 }
 
 CheckResult grammar_check(const ParamFile& file) {

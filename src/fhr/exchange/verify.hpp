@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -74,5 +75,31 @@ CheckResult grammar_check(const ParamFile& file);
 /// PARAM-11's distances of T′'s vertices to T are computed in parallel on `executor`
 /// (default_executor() when null); the report is the same on any number of threads.
 VerifyReport verify(const ParamFile& file, const TriMesh* input_mesh, Executor* executor = nullptr);
+
+namespace detail {
+struct InputSide;
+}
+
+/// PARAM-11's side of an input mesh T alone — its tolerance, its area, and the grids over its
+/// faces and boundary edges — prepared once. It then serves every file verified against T, and
+/// can be made before a file exists (fhr run prepares it beside §2's decimation, which runs on one
+/// thread: issue 18). Read-only once made: concurrent verify calls may share it.
+class PreparedInput {
+public:
+    /// \pre T is a valid mesh (as for verify), kept alive and unchanged while this object is used.
+    explicit PreparedInput(const TriMesh& T);
+    ~PreparedInput();
+    PreparedInput(PreparedInput&&) noexcept;
+    PreparedInput& operator=(PreparedInput&&) noexcept;
+    const TriMesh& mesh() const { return *mesh_; }
+
+private:
+    friend VerifyReport verify(const ParamFile&, const PreparedInput&, Executor*);
+    const TriMesh* mesh_;
+    std::unique_ptr<detail::InputSide> side_;
+};
+
+/// verify(file, &input.mesh(), executor), the same report, with T's side already prepared.
+VerifyReport verify(const ParamFile& file, const PreparedInput& input, Executor* executor = nullptr);
 
 }  // namespace fhr::exchange

@@ -10,6 +10,11 @@
 #include <fhr/pipeline/outputs.hpp>
 
 namespace fhr::pipeline {
+namespace {
+
+constexpr std::size_t prepare_beside_below = std::size_t{1} << 18;
+
+}  // namespace
 
 RunResult run(const TriMesh& T, RunOptions options) {
     if ((options.faces > 0) == options.domain.has_value()) throw std::logic_error("run: give exactly one of faces and domain");
@@ -25,15 +30,35 @@ RunResult run(const TriMesh& T, RunOptions options) {
         if (method.observer) method.observer->stage(stage, seconds, in_total);
     };
     RunResult out;
-    // §2: the domain.
+    // §2: the domain. Its decimation runs on one thread; beside it, what the oracle and §5 need of
+    // T alone (issue 18: on the horse 45 and 42 ms of CPU off the busiest part of the run, where
+    // the oracle, §5 and the writing share the cores). From prepare_beside_below faces of T on each
+    // is left to its stage, as before: there the memory they would hold through §3 and §4 (the
+    // oracle's grid of T, and §5's tree of T about 200 bytes per face) weighs more than the time
+    // (1 KB per triangle, issue 18).
+    Executor& executor = executor_or_default(method.executor);
     domain::Domain D;
-    if (options.domain) {
-        D = std::move(*options.domain);
-    } else {
-        const auto start = detail::Clock::now();
-        D = domain::decimate(T, {.target_faces = options.faces, .corner_angle_deg = options.corner_angle_deg});
-        observe("mesh_reduction", detail::seconds_since(start), true);
-    }
+    std::optional<exchange::PreparedInput> oracle_t;  // the oracle's side of T (PARAM-11)
+    std::optional<wavelet::TriangleTree> t_tree;      // §5's brackets' tree of T
+    double decimating = -1, oracle_t_seconds = 0, t_tree_seconds = 0;  // each counted in its stage's seconds
+    executor.for_each(2, 1, [&](std::size_t task) {
+        auto start = detail::Clock::now();
+        if (task == 1) {
+            if (T.n_faces() >= prepare_beside_below) return;
+            oracle_t.emplace(T);
+            oracle_t_seconds = detail::seconds_since(start);
+            if (options.levels == 0) return;
+            start = detail::Clock::now();
+            t_tree.emplace(T.positions(), T.triangles());
+            t_tree_seconds = detail::seconds_since(start);
+        } else if (options.domain) {
+            D = std::move(*options.domain);
+        } else {
+            D = domain::decimate(T, {.target_faces = options.faces, .corner_angle_deg = options.corner_angle_deg});
+            decimating = detail::seconds_since(start);
+        }
+    });
+    if (decimating >= 0) observe("mesh_reduction", decimating, true);
     out.domain_faces_asked = options.faces;
     out.domain_faces_requested = D.mesh.n_faces();
     std::string more;  // why §2 gave more faces than asked (surfaces with boundary, several components)
@@ -54,14 +79,14 @@ RunResult run(const TriMesh& T, RunOptions options) {
     // runs on one thread, §5 and the writing fill the other).
     exchange::ParamFile lent = lend_param_file(out.parameterization);
     double verifying = 0, locating = 0;
-    executor_or_default(method.executor).for_each(3, 1, [&](std::size_t task) {
+    executor.for_each(3, 1, [&](std::size_t task) {
         if (task == 2) {
             if (options.beside_oracle) options.beside_oracle(out.parameterization, lent);
             return;
         }
         const auto start = detail::Clock::now();
         if (task == 0) {
-            out.oracle = exchange::verify(lent, &T, method.executor);
+            out.oracle = oracle_t ? exchange::verify(lent, *oracle_t, method.executor) : exchange::verify(lent, &T, method.executor);
             verifying = detail::seconds_since(start);
         } else if (options.levels > 0) {
             // §5: D^J sampled through φ, prewavelet decomposition, compression.
@@ -77,16 +102,17 @@ RunResult run(const TriMesh& T, RunOptions options) {
                 }};
             out.wavelets = wavelet::analyse(out.parameterization.partition.domain.mesh,
                                             [&](FaceId d, const std::array<double, 3>& beta) { return phi.phi(d, beta); },
-                                            options.levels, options.keep, T, {}, options.method.executor, &pieces);
+                                            options.levels, options.keep, T, {}, options.method.executor, &pieces,
+                                            t_tree ? &*t_tree : nullptr);
         }
     });
     take_back_param_file(out.parameterization, std::move(lent));
-    observe("verification", verifying, true);
+    observe("verification", oracle_t_seconds + verifying, true);
     if (out.wavelets) {
         observe("refinement", locating + out.wavelets->refinement_seconds, true);
         observe("decomposition", out.wavelets->decomposition_seconds, true);
         observe("reconstruction", out.wavelets->reconstruction_seconds, true);
-        observe("hausdorff", out.wavelets->hausdorff_seconds, false);
+        observe("hausdorff", t_tree_seconds + out.wavelets->hausdorff_seconds, false);
         say("wavelets: D^" + std::to_string(options.levels) + " " + std::to_string(out.wavelets->remesh_faces.size()) + " faces, " +
             std::to_string(out.wavelets->coefficients) + " coefficients");
     }

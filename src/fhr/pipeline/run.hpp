@@ -4,7 +4,8 @@
 // parsing its arguments and writing its files (src/cli/run.cpp, src/fhr/pipeline/outputs.hpp).
 //
 // Pseudocode:
-//   mesh_reduction:   D <- decimate(T) to `faces`, or the domain given (already attached to T)
+//   mesh_reduction:   D <- decimate(T) to `faces`, or the domain given (already attached to T);
+//                     beside it (T below 2^18 faces) the oracle's side of T and §5's tree of T
 //   geodesic_paths, parameterization: parameterize(T, D)                  (pipeline.hpp)
 //   verification:     the oracle (src/fhr/exchange) on exactly what param.fhrp would hold
 //   with J = levels > 0: refinement, decomposition, reconstruction: D^J sampled through φ, its

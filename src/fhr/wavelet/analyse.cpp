@@ -22,22 +22,24 @@ namespace {
 template <class Visit>
 void locate(std::uint32_t g, const std::array<double, 3>& l, int levels, Visit& visit) {
     if (levels == 0) return visit(g, l);
-    const std::array<std::array<double, 3>, 4> child{{{2 * l[0] - 1, 2 * l[1], 2 * l[2]},
-                                                      {2 * l[0], 2 * l[1] - 1, 2 * l[2]},
-                                                      {2 * l[0], 2 * l[1], 2 * l[2] - 1},
-                                                      {1 - 2 * l[2], 1 - 2 * l[0], 1 - 2 * l[1]}}};
-    for (std::uint32_t k = 0; k < 4; ++k)
-        if (std::min({child[k][0], child[k][1], child[k][2]}) >= -1e-12) locate(4 * g + k, child[k], levels - 1, visit);
+    constexpr double margin = -1e-12;
+    const double a = 2 * l[0], b = 2 * l[1], c = 2 * l[2];
+    if (a - 1 >= margin && b >= margin && c >= margin) locate(4 * g, {a - 1, b, c}, levels - 1, visit);
+    if (a >= margin && b - 1 >= margin && c >= margin) locate(4 * g + 1, {a, b - 1, c}, levels - 1, visit);
+    if (a >= margin && b >= margin && c - 1 >= margin) locate(4 * g + 2, {a, b, c - 1}, levels - 1, visit);
+    if (1 - c >= margin && 1 - a >= margin && 1 - b >= margin) locate(4 * g + 3, {1 - c, 1 - a, 1 - b}, levels - 1, visit);
 }
 
 constexpr std::size_t affine_blocks = 8;
 
 }  // namespace
 
-// The corners: the vertices of T′ (a face's corner unless a face of the same patch and the same
-// face of T gave it just before) and the crossings of T′'s sides with the lines β_c = m/2^J (each
-// side is met from both its faces: its crossings are found twice). Blocks of T′'s faces with
-// their own maxima, merged.
+// The corners: the vertices of T′ (located once per patch in a row: a vertex has one β in a patch,
+// and a face of T′ in another face of T of the same patch only takes the largest gap found there)
+// and the crossings of T′'s sides with the lines β_c = m/2^J (each side is met from both its
+// faces: its crossings are found twice). Blocks of T′'s faces with their own maxima, merged. The
+// maxima are of squared gaps, square-rooted at the end: √ rounds monotonically, so the largest
+// root is the root of the largest square, bit for bit (issue 18: 2·10⁶ square roots on the horse).
 AffineBounds affine_bounds(const Refinement& r, std::span<const Vec3> f_j, const AffinePieces& pieces, std::size_t t_faces,
                            double on_t, Executor* executor) {
     const int J = r.depth();
@@ -49,27 +51,35 @@ AffineBounds affine_bounds(const Refinement& r, std::span<const Vec3> f_j, const
         m.remesh.assign(faces.size(), 0);
         m.t.assign(t_faces, 0);
         constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> seen_in(pieces.points.size(), {none, none});  // (patch, face of T)
+        struct Seen {
+            std::uint32_t patch;
+            double gap2;  // the largest squared gap found at the vertex in that patch
+        };
+        std::vector<Seen> seen_in(pieces.points.size(), {none, 0});
         Triangle v;
         std::uint32_t d = 0, t = 0;
         std::array<std::array<double, 3>, 3> beta;
         Vec3 phi;
+        double found = 0;  // the largest squared gap of the point being located
         auto visit = [&](std::uint32_t g, const std::array<double, 3>& l) {
             const Triangle& c = faces[g];
-            const double gap = (l[0] * f_j[c[0]] + l[1] * f_j[c[1]] + l[2] * f_j[c[2]] - phi).norm();
-            m.remesh[g] = std::max(m.remesh[g], gap);
-            m.t[t] = std::max(m.t[t], gap);
+            const double gap2 = (l[0] * f_j[c[0]] + l[1] * f_j[c[1]] + l[2] * f_j[c[2]] - phi).squaredNorm();
+            m.remesh[g] = std::max(m.remesh[g], gap2);
+            found = std::max(found, gap2);
         };
         for (std::size_t i = pieces.faces * b / affine_blocks; i < pieces.faces * (b + 1) / affine_blocks; ++i) {
             pieces.face(i, v, d, beta, t);
+            double& on_t_face = m.t[t];
             for (int k = 0; k < 3; ++k) {
                 const int e = (k + 1) % 3;
                 const Vec3 &x = pieces.points[v[k]], &y = pieces.points[v[e]];
-                if (seen_in[v[k]] != std::pair(d, t)) {
+                if (Seen& seen = seen_in[v[k]]; seen.patch != d) {
                     phi = x;
+                    found = 0;
                     locate(d, beta[k], J, visit);
+                    seen = {d, found};
                 }
-                seen_in[v[k]] = {d, t};
+                on_t_face = std::max(on_t_face, seen_in[v[k]].gap2);
                 for (int c = 0; c < 3; ++c) {
                     const double from = beta[k][c] * n, to = beta[e][c] * n;
                     for (double q = std::floor(std::min(from, to)) + 1; q < std::max(from, to); ++q) {
@@ -77,7 +87,9 @@ AffineBounds affine_bounds(const Refinement& r, std::span<const Vec3> f_j, const
                         std::array<double, 3> at;
                         for (int w = 0; w < 3; ++w) at[w] = beta[k][w] + s * (beta[e][w] - beta[k][w]);
                         phi = x + s * (y - x);
+                        found = 0;
                         locate(d, at, J, visit);
+                        on_t_face = std::max(on_t_face, found);
                     }
                 }
             }
@@ -89,13 +101,13 @@ AffineBounds affine_bounds(const Refinement& r, std::span<const Vec3> f_j, const
         for (std::size_t g = 0; g < t_faces; ++g) out.t[g] = std::max(out.t[g], m.t[g]);
     }
     for (std::vector<double>* bound : {&out.remesh, &out.t})
-        for (double& x : *bound) x = x * (1 + 1e-12) + on_t;
+        for (double& x : *bound) x = std::sqrt(x) * (1 + 1e-12) + on_t;
     return out;
 }
 
 WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::span<const double> keep_percent,
                       const TriMesh& T, const HausdorffOptions& hausdorff_options, Executor* executor,
-                      const AffinePieces* pieces) {
+                      const AffinePieces* pieces, const TriangleTree* t_tree_given) {
     WaveletResult out;
     out.levels = levels;
     for (double p : keep_percent) kept_count(0, p);  // refuse a bad percentage before any work
@@ -109,7 +121,7 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
 
     // The Hausdorff brackets of D^J's f^J and of each reconstruction; each directed search runs in
     // fixed blocks on the executor (core/executor.hpp; the same result on any number of threads).
-    // T's tree is built once for all of them (issue 18). hausdorff() takes the distance from T
+    // T's tree is built once for all of them, here or by the caller (issue 18). hausdorff() takes the distance from T
     // first and searches the one to T only down to its lower bound (HausdorffOptions::known):
     // f^J's vertices lie on T, and resolving its distance to T to δ along the creases of a CAD
     // model was most of the brackets' time (the fandisk's f^J: 67 ms of 170). f^J's brackets need
@@ -120,7 +132,8 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     out.bbox_diagonal = bounding_box(T).diagonal();
     HausdorffOptions ho = hausdorff_options;
     if (ho.resolution <= 0) ho.resolution = 1e-4 * out.bbox_diagonal;
-    const TriangleTree t_tree(T.positions(), t_faces);
+    std::optional<TriangleTree> t_tree_own;
+    const TriangleTree& t_tree = t_tree_given ? *t_tree_given : t_tree_own.emplace(T.positions(), t_faces);
     // WAV-15: with φ's faces, per face of D^J a bound of its distance to T from |f^J − φ|, and per
     // face of T one of its distance to f^J: f^J's priors both ways; through f^J's per-triangle
     // bounds (DirectedHausdorff::triangle_upper) they sharpen the reconstructions' priors too. T′

@@ -89,12 +89,15 @@ AffineBounds affine_bounds(const Refinement& r, std::span<const Vec3> f_j, const
 /// tasks, run on `executor` (default_executor() when null). `pieces`, when given, is φ's faces
 /// (AffinePieces; T′ certified: its faces' images tile D, PARAM-6..8, and its points lie on T
 /// within PARAM-11's tolerance, which the bounds add).
+/// `t_tree`, when given, is T's tree for the brackets, built by the caller (fhr run: beside §2's
+/// decimation, which runs on one thread); else it is built here.
 /// \pre D passes validate(); phi defined on all of Ω_D (DomainMap); 0 ≤ levels with
-///      4^levels·#F(D) ≤ max_refined_faces; each keep_percent in [0, 100]; T has a face.
+///      4^levels·#F(D) ≤ max_refined_faces; each keep_percent in [0, 100]; T has a face; t_tree,
+///      when given, is TriangleTree(T.positions(), T.triangles()).
 /// \throws InvalidInput for a bad level or percentage, NumericalFailure when the decomposition's
 ///         solve fails (filter_bank.hpp), and whatever phi throws.
 WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::span<const double> keep_percent,
                       const TriMesh& T, const HausdorffOptions& hausdorff_options = {}, Executor* executor = nullptr,
-                      const AffinePieces* pieces = nullptr);
+                      const AffinePieces* pieces = nullptr, const TriangleTree* t_tree = nullptr);
 
 }  // namespace fhr::wavelet
