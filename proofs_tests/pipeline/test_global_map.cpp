@@ -7,6 +7,8 @@
 
 #include <optional>
 #include <random>
+#include <span>
+#include <vector>
 
 #include <fhr/core/geometry.hpp>
 #include <fhr/domain/decimate.hpp>
@@ -25,6 +27,64 @@ namespace {
 rc::Gen<fhr::testing::GeneratedMesh> small_family_mesh() {
     return fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 0, .max_holes = 1,
                                    .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+}
+
+// WAV-15's maxima computed another way, for their tightness: every face of T′ clipped against
+// every face of D^J under its patch's face of D (Sutherland–Hodgman in the plane of (β_0, β_1)),
+// |f^J − φ| evaluated at each corner of each piece, both maps by their own barycentric
+// coordinates there. No crossings, no 10⁻¹² margins, no reuse of a vertex: a bound from
+// affine_bounds above these maxima by more than rounding counted a point where it lies in no piece.
+wavelet::AffineBounds clipped_maxima(const wavelet::Refinement& r, std::span<const Vec3> fj, const pipeline::Parameterization& p,
+                                     std::size_t t_faces) {
+    using P2 = std::array<double, 2>;
+    const int J = r.depth();
+    const auto children = static_cast<std::uint32_t>(1u << (2 * J));
+    wavelet::AffineBounds out{std::vector<double>(r.finest().n_faces(), 0), std::vector<double>(t_faces, 0)};
+    // Barycentric coordinates of q in the triangle (a, b, c).
+    const auto bary = [](const P2& q, const P2& a, const P2& b, const P2& c) {
+        const double det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+        const double l1 = ((q[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (q[1] - a[1])) / det;
+        const double l2 = ((b[0] - a[0]) * (q[1] - a[1]) - (q[0] - a[0]) * (b[1] - a[1])) / det;
+        return std::array<double, 3>{1 - l1 - l2, l1, l2};
+    };
+    for (std::size_t i = 0; i < p.refined_faces.size(); ++i) {
+        const auto& beta = p.face_beta[i];
+        const std::array<P2, 3> f{P2{beta[0][0], beta[0][1]}, P2{beta[1][0], beta[1][1]}, P2{beta[2][0], beta[2][1]}};
+        for (std::uint32_t g = p.face_patch[i] * children; g < (p.face_patch[i] + 1) * children; ++g) {
+            const auto& cb = r.corner_beta[g];
+            const std::array<P2, 3> h{P2{cb[0][0], cb[0][1]}, P2{cb[1][0], cb[1][1]}, P2{cb[2][0], cb[2][1]}};
+            const double orientation = (h[1][0] - h[0][0]) * (h[2][1] - h[0][1]) - (h[2][0] - h[0][0]) * (h[1][1] - h[0][1]);
+            std::vector<P2> poly(f.begin(), f.end());
+            for (int k = 0; k < 3 && !poly.empty(); ++k) {  // keep the side of h's edge k where h lies
+                const P2 &a = h[k], &b = h[(k + 1) % 3];
+                const auto side = [&](const P2& q) { return ((b[0] - a[0]) * (q[1] - a[1]) - (q[0] - a[0]) * (b[1] - a[1])) * orientation; };
+                std::vector<P2> kept;
+                for (std::size_t m = 0; m < poly.size(); ++m) {
+                    const P2 &x = poly[m], &y = poly[(m + 1) % poly.size()];
+                    const double sx = side(x), sy = side(y);
+                    if (sx >= 0) kept.push_back(x);
+                    if ((sx < 0) != (sy < 0)) {
+                        const double t = sx / (sx - sy);
+                        kept.push_back({x[0] + t * (y[0] - x[0]), x[1] + t * (y[1] - x[1])});
+                    }
+                }
+                poly = std::move(kept);
+            }
+            const auto c = r.finest().face_vertices(FaceId(g));
+            for (const P2& q : poly) {
+                const auto w = bary(q, f[0], f[1], f[2]), l = bary(q, h[0], h[1], h[2]);
+                Vec3 phi = Vec3::Zero(), at = Vec3::Zero();
+                for (std::size_t k = 0; k < 3; ++k) {
+                    phi += w[k] * p.refined_positions[p.refined_faces[i][k]];
+                    at += l[k] * fj[c[k].idx()];
+                }
+                const double gap = (at - phi).norm();
+                out.remesh[g] = std::max(out.remesh[g], gap);
+                out.t[p.face_t[i]] = std::max(out.t[p.face_t[i]], gap);
+            }
+        }
+    }
+    return out;
 }
 
 }  // namespace
@@ -113,6 +173,11 @@ TEST_CASE("WAV-15: on every face of D^J, |f^J − φ| is at most its affine boun
                                            }};
         const wavelet::AffineBounds bounds = wavelet::affine_bounds(r, fj, pieces, T.n_faces(), 0);
         const double diagonal = (bounding_box(T).max - bounding_box(T).min).norm();
+        // Tight: each bound is the exact maximum over its face (found by clipping), up to rounding.
+        const wavelet::AffineBounds exact = clipped_maxima(r, fj, *p, T.n_faces());
+        for (std::size_t g = 0; g < exact.remesh.size(); ++g)
+            RC_ASSERT(std::abs(bounds.remesh[g] - exact.remesh[g]) <= 1e-9 * diagonal);
+        for (std::size_t t = 0; t < exact.t.size(); ++t) RC_ASSERT(std::abs(bounds.t[t] - exact.t[t]) <= 1e-9 * diagonal);
         std::mt19937_64 rng(*rc::gen::arbitrary<std::uint64_t>());
         std::uniform_real_distribution<double> u(0, 1);
         const TriMesh& finest = r.finest();
