@@ -8,14 +8,14 @@
 // Pseudocode (Sethian's fast marching with the Kimmel–Sethian triangle update):
 //   d(v) <- ∞ for all v;  push (0, s) for every source s
 //   while the heap is not empty:
-//       look at the smallest (d, v) (ties: lowest vertex index); drop it if v is final or d stale
+//       look at the smallest (d, v) (ties: lowest vertex index; a vertex is in the heap once)
 //       if d > max_distance: stop
 //       pop it; make v final (append to `finalized`)
 //       for every neighbour w of v that is not final:   relax(w, d(v) + |vw|)      (edge update)
 //       for every triangle (v, b, c) at v, for each of its two other vertices (say c, the other b)
 //       that is not final:                               relax(c, triangle(c; v, b))
 //       for every obtuse corner c whose virtual vertex is v: the same triangle update of c
-//   relax(c, t): t <- max(t, d(v)); if t < d(c): d(c) <- t, push (t, c)
+//   relax(c, t): t <- max(t, d(v)); if t < d(c): d(c) <- t, push (t, c) or move c's entry up
 //       (only rounding can make the max act: a value that lowers d(c) comes from an update
 //       that uses d(v), and each update is >= its inputs in exact arithmetic. So vertices are
 //       accepted in non-decreasing order, which early stopping relies on.)
