@@ -203,17 +203,17 @@ void put_param(const ParamFile& file, std::string& out, Step step) {
         step();
     }
     append_section(out, "surface_faces", file.surface_faces.size());
+    io::RecentNumbers<3> betas;  // a vertex's β in a patch is written with each face around it
     for (const ParamFace& face : file.surface_faces) {
         for (const std::uint32_t v : face.v) {
             io::append_number(out, std::uint64_t{v});
             out += ' ';
         }
         io::append_number(out, std::uint64_t{face.patch});
-        for (const Beta& beta : face.beta)
-            for (const double x : beta) {
-                out += ' ';
-                io::append_number(out, x);
-            }
+        for (const Beta& beta : face.beta) {
+            out += ' ';
+            betas.append(out, beta);
+        }
         out += '\n';
         step();
     }

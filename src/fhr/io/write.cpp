@@ -73,12 +73,11 @@ void write_obj(const std::string& path, std::span<const Vec3> points, std::span<
         append_point(out, p);
         file.step();
     }
+    RecentNumbers<2> uvs;  // a vertex's place in a chart is written with each face around it
     for (std::size_t c = 0; corner_uv && c < 3 * triangles.size(); ++c) {
         const Vec2 uv = corner_uv(c);
         out += "vt ";
-        append_number(out, uv.x());
-        out += ' ';
-        append_number(out, uv.y());
+        uvs.append(out, {uv.x(), uv.y()});
         out += '\n';
         file.step();
     }
