@@ -186,3 +186,21 @@ TEST_CASE("REN-15: write_figures draws the boundary of a surface with holes in b
         CHECK(right > 50);
     }
 }
+
+TEST_CASE("LIB-3: from 2^18 faces of T on, the oracle and §5 make their parts of T in their own stages: a certified run", "[pipeline][library]") {
+    // Below 2^18 faces run() prepares the oracle's side of T and §5's tree of T beside §2's
+    // decimation (the other tests); from 2^18 on each stage makes its own, for the memory.
+    const TriMesh T = generate::random_mesh({0, std::size_t{1} << 18, 7, 0.1});
+    REQUIRE(T.n_faces() == std::size_t{1} << 18);
+    pipeline::RunOptions options;
+    options.faces = 2000;
+    options.levels = 1;
+    const pipeline::RunResult r = pipeline::run(T, options);
+    CHECK(r.certified());
+    REQUIRE(r.oracle.checks.size() == 10u);
+    CHECK(r.oracle.checks.back().id == "PARAM-11");
+    CHECK(r.oracle.checks.back().status == exchange::CheckStatus::pass);
+    REQUIRE(r.wavelets);
+    CHECK(r.wavelets->remesh_hausdorff.lower() > 0);
+    CHECK(r.wavelets->remesh_hausdorff.lower() <= r.wavelets->remesh_hausdorff.upper());
+}
