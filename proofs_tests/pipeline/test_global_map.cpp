@@ -178,6 +178,12 @@ TEST_CASE("WAV-15: on every face of D^J, |f^J − φ| is at most its affine boun
         for (std::size_t g = 0; g < exact.remesh.size(); ++g)
             RC_ASSERT(std::abs(bounds.remesh[g] - exact.remesh[g]) <= 1e-9 * diagonal);
         for (std::size_t t = 0; t < exact.t.size(); ++t) RC_ASSERT(std::abs(bounds.t[t] - exact.t[t]) <= 1e-9 * diagonal);
+        // How far T′ lies from T (on_t) is added to every bound.
+        const double on_t = 1e-3 * diagonal;
+        const wavelet::AffineBounds raised = wavelet::affine_bounds(r, fj, pieces, T.n_faces(), on_t);
+        for (std::size_t g = 0; g < exact.remesh.size(); ++g)
+            RC_ASSERT(std::abs(raised.remesh[g] - on_t - bounds.remesh[g]) <= 1e-12 * diagonal);
+        for (std::size_t t = 0; t < exact.t.size(); ++t) RC_ASSERT(std::abs(raised.t[t] - on_t - bounds.t[t]) <= 1e-12 * diagonal);
         std::mt19937_64 rng(*rc::gen::arbitrary<std::uint64_t>());
         std::uniform_real_distribution<double> u(0, 1);
         const TriMesh& finest = r.finest();

@@ -121,8 +121,8 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
 
     // The Hausdorff brackets of D^J's f^J and of each reconstruction; each directed search runs in
     // fixed blocks on the executor (core/executor.hpp; the same result on any number of threads).
-    // T's tree is built once for all of them, here or by the caller (issue 18). hausdorff() takes the distance from T
-    // first and searches the one to T only down to its lower bound (HausdorffOptions::known):
+    // T's tree is built once for all of them, here or by the caller (issue 18). hausdorff() takes
+    // the distance from T first and searches the one to T only down to its lower bound (HausdorffOptions::known):
     // f^J's vertices lie on T, and resolving its distance to T to δ along the creases of a CAD
     // model was most of the brackets' time (the fandisk's f^J: 67 ms of 170). f^J's brackets need
     // no wavelets: they run beside the decomposition and reconstructions; the reconstructions'
