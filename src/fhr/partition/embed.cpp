@@ -396,11 +396,7 @@ private:
                 double& b = best[i * m + j];
                 b = -inf;
                 for (std::size_t k = i + 1; k < j; ++k) {
-                    // The apex k wins only with both sides better than b: the angles (three
-                    // atan2, most of the programme's time) are not needed otherwise.
-                    const double sides = std::min(best[i * m + k], best[k * m + j]);
-                    if (!(sides > b)) continue;
-                    const double q = std::min(sides, quality(poly, x.mask, piece[i], piece[k], piece[j]));
+                    const double q = std::min({best[i * m + k], best[k * m + j], quality(poly, x.mask, piece[i], piece[k], piece[j])});
                     if (q > b) {
                         b = q;
                         apex[i * m + j] = k;
