@@ -451,6 +451,18 @@ TEST_CASE("deterministic: repeated runs and reordered or repeated sources agree 
     });
 }
 
+TEST_CASE("ties go to the lower vertex index: sources, all at 0, are final in increasing index order", "[unit][geodesic]") {
+    const TriMesh m = flat_grid(10);
+    for (const std::vector<std::uint32_t>& given : {std::vector<std::uint32_t>{70, 3, 41, 12}, {12, 41, 3, 70}, {41, 70, 12, 3}}) {
+        std::vector<VertexId> sources;
+        for (std::uint32_t v : given) sources.push_back(VertexId(v));
+        const DistanceField f = fast_marching(m, sources);
+        REQUIRE(f.finalized.size() >= 4);
+        CHECK(std::vector<VertexId>(f.finalized.begin(), f.finalized.begin() + 4) ==
+              std::vector<VertexId>{VertexId(3), VertexId(12), VertexId(41), VertexId(70)});
+    }
+}
+
 TEST_CASE("fast marching refuses bad sources and handles empty ones", "[unit][geodesic]") {
     const TriMesh m = icosphere(1);
     const std::vector<VertexId> bad{VertexId(static_cast<std::uint32_t>(m.n_vertices()))};

@@ -184,13 +184,12 @@ private:
         }
         sift_up(i, {d, v});
     }
-    // Removes the smallest entry: the last one takes its place and sinks.
+    // Removes the smallest entry: the last one takes its place and sinks through the n entries
+    // left; its old place is dropped at the end.
     void pop() {
         at_[heap_.front().v] = not_in_heap;
         const HeapEntry last = heap_.back();
-        heap_.pop_back();
-        const auto n = static_cast<std::uint32_t>(heap_.size());
-        if (n == 0) return;
+        const auto n = static_cast<std::uint32_t>(heap_.size() - 1);
         std::uint32_t i = 0;
         for (;;) {
             std::uint32_t child = 2 * i + 1;
@@ -200,7 +199,8 @@ private:
             place(i, heap_[child]);
             i = child;
         }
-        place(i, last);
+        if (n > 0) place(i, last);
+        heap_.pop_back();
     }
 
     void accept(std::uint32_t v) {

@@ -44,7 +44,7 @@ public:
             bits[i] = std::bit_cast<std::uint64_t>(x[i]);
             hash = (hash ^ bits[i]) * 0x9e3779b97f4a7c15u;
         }
-        Entry& e = table_[hash >> (64 - table_bits)];
+        Entry& e = table_[hash >> 52];  // the top 12 bits
         if (e.length == 0 || e.bits != bits) {
             char* at = e.text;
             for (std::size_t i = 0; i < N; ++i) {
@@ -58,13 +58,12 @@ public:
     }
 
 private:
-    static constexpr int table_bits = 12;
     struct Entry {
         std::array<std::uint64_t, N> bits{};
         std::uint8_t length = 0;  // 0: empty (a number has at least one character)
         char text[25 * N];        // a shortest double has at most 24 characters
     };
-    std::vector<Entry> table_ = std::vector<Entry>(std::size_t{1} << table_bits);
+    std::vector<Entry> table_ = std::vector<Entry>(4096);
 };
 
 }  // namespace fhr::io
