@@ -977,11 +977,11 @@ double total_area(const TriMesh& mesh) {
 }  // namespace
 
 /// PARAM-11's side of T alone (prepared by the caller, PreparedInput, or beside PARAM-3 when they
-/// run side by side): the tolerance (within 1e-9
-/// of the bounding-box diagonal, plus 64u·|x|max for the rounding of a point computed on an edge or
-/// face of T — a few u·|x| per coordinate, by the producer and again by closest_point — when T lies
-/// far from the origin), its area, and grids over its faces and over its boundary edges (none when
-/// T is closed: then no point is on its boundary).
+/// run side by side): the tolerance (within 1e-9 of the bounding-box diagonal, plus 64u·|x|max for
+/// the rounding of a point computed on an edge or face of T — a few u·|x| per coordinate, by the
+/// producer and again by closest_point — when T lies far from the origin), its area, and grids
+/// over its faces and over its boundary edges (none when T is closed: then no point is on its
+/// boundary).
 struct detail::InputSide {
     const double tolerance, area;
     const SimplexGrid faces;
