@@ -96,13 +96,13 @@ private:
         for (std::size_t p = 0; p < soup_.polygon_count(); ++p) {
             const std::uint32_t n = soup_.polygon_size(p);
             const std::uint32_t* idx = soup_.polygon(p);
-            const std::string name = "face " + std::to_string(p);
-            if (n < 3) fail(polygon_line(p), name + " has " + std::to_string(n) + " vertices (at least 3 are needed)");
+            const auto name = [p] { return "face " + std::to_string(p); };
+            if (n < 3) fail(polygon_line(p), name() + " has " + std::to_string(n) + " vertices (at least 3 are needed)");
             for (std::uint32_t i = 0; i < n; ++i)
                 for (std::uint32_t j = i + 1; j < n; ++j)
-                    if (idx[i] == idx[j]) fail(polygon_line(p), name + " repeats vertex " + std::to_string(idx[i]));
+                    if (idx[i] == idx[j]) fail(polygon_line(p), name() + " repeats vertex " + std::to_string(idx[i]));
             if (n > 3 && !options_.triangulate)
-                fail(polygon_line(p), name + " has " + std::to_string(n) +
+                fail(polygon_line(p), name() + " has " + std::to_string(n) +
                                           " vertices: only triangles are accepted (use --triangulate)");
             for (std::uint32_t i = 1; i + 1 < n; ++i) {
                 tris_.push_back({idx[0], idx[i], idx[i + 1]});
@@ -119,12 +119,9 @@ private:
             const std::uint32_t degree = table.edge_degree(e);
             if (degree < 2) continue;
             const std::uint32_t* c = &table.edge_corners[table.edge_offsets[e]];
-            if (degree == 2) {  // the usual case: two faces, two vertex sets to compare
+            if (degree == 2) {  // the usual case: two faces on the edge, the same set when their third vertices are
                 const std::uint32_t a = c[0] / 3, b = c[1] / 3;
-                Triangle ka = tris_[a], kb = tris_[b];
-                std::sort(ka.begin(), ka.end());
-                std::sort(kb.begin(), kb.end());
-                if (ka == kb)
+                if (tris_[a][(c[0] + 2) % 3] == tris_[b][(c[1] + 2) % 3])
                     fail_face(std::max(a, b), "faces " + std::to_string(tri_polygon_[std::min(a, b)]) + " and " +
                                                   std::to_string(tri_polygon_[std::max(a, b)]) +
                                                   " are duplicates (vertices " + tri_vertices(std::max(a, b)) + ")");

@@ -19,14 +19,16 @@ constexpr std::uint32_t leaf_size = 4;
 TriangleTree::TriangleTree(std::span<const Vec3> positions, std::span<const Triangle> triangles)
     : positions_(positions.begin(), positions.end()), triangles_(triangles.begin(), triangles.end()) {
     order_.resize(triangles_.size());
-    std::vector<Vec3> centroid(triangles_.size());
+    std::vector<Extent> extent(triangles_.size());
     for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
         order_[t] = t;
-        const Triangle& f = triangles_[t];
-        centroid[t] = (positions_[f[0]] + positions_[f[1]] + positions_[f[2]]) / 3.0;
+        const Vec3 &a = positions_[triangles_[t][0]], &b = positions_[triangles_[t][1]], &c = positions_[triangles_[t][2]];
+        extent[t] = {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c), (a + b + c) / 3.0};
     }
     nodes_.reserve(2 * triangles_.size() / leaf_size + 2);
-    if (!triangles_.empty()) build(0, static_cast<std::uint32_t>(triangles_.size()), centroid);
+    std::vector<std::pair<double, std::uint32_t>> keys;
+    keys.reserve(triangles_.size());
+    if (!triangles_.empty()) build(0, static_cast<std::uint32_t>(triangles_.size()), extent, keys);
     fit_leaves();
     fan_start_.assign(positions_.size() + 1, 0);
     for (const Triangle& f : triangles_)
@@ -70,15 +72,19 @@ void TriangleTree::fit_leaves() {
     }
 }
 
-std::uint32_t TriangleTree::build(std::uint32_t first, std::uint32_t count, std::vector<Vec3>& centroid) {
+// A node's box is the union of its triangles' boxes (the same bounds as over their corners: min
+// and max are exact); its triangles are split at the median centroid along the box's longest
+// axis, ties by index. The split runs on packed (coordinate, index) keys (issue 18: reading each
+// comparison's centroids through order_ was most of the build's time).
+std::uint32_t TriangleTree::build(std::uint32_t first, std::uint32_t count, const std::vector<Extent>& extent,
+                                  std::vector<std::pair<double, std::uint32_t>>& keys) {
     const auto id = static_cast<std::uint32_t>(nodes_.size());
     nodes_.push_back(Node{});
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (std::uint32_t i = first; i < first + count; ++i)
-        for (std::uint32_t v : triangles_[order_[i]]) {
-            lo = lo.cwiseMin(positions_[v]);
-            hi = hi.cwiseMax(positions_[v]);
-        }
+    for (std::uint32_t i = first; i < first + count; ++i) {
+        lo = lo.cwiseMin(extent[order_[i]].lo);
+        hi = hi.cwiseMax(extent[order_[i]].hi);
+    }
     nodes_[id].lo = lo;
     nodes_[id].hi = hi;
     if (count <= leaf_size) {
@@ -89,12 +95,12 @@ std::uint32_t TriangleTree::build(std::uint32_t first, std::uint32_t count, std:
     int axis = 0;
     (hi - lo).maxCoeff(&axis);
     const std::uint32_t half = count / 2;
-    std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
-                     [&](std::uint32_t x, std::uint32_t y) {
-                         return centroid[x][axis] < centroid[y][axis] || (centroid[x][axis] == centroid[y][axis] && x < y);
-                     });
-    const std::uint32_t left = build(first, half, centroid);
-    const std::uint32_t right = build(first + half, count - half, centroid);
+    keys.clear();
+    for (std::uint32_t i = first; i < first + count; ++i) keys.emplace_back(extent[order_[i]].centroid[axis], order_[i]);
+    std::nth_element(keys.begin(), keys.begin() + half, keys.end());
+    for (std::uint32_t i = 0; i < count; ++i) order_[first + i] = keys[i].second;
+    const std::uint32_t left = build(first, half, extent, keys);
+    const std::uint32_t right = build(first + half, count - half, extent, keys);
     nodes_[id].first = first;
     nodes_[id].count = 0;
     nodes_[id].left = left;

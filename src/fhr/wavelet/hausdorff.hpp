@@ -56,6 +56,7 @@
 
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <fhr/core/executor.hpp>
@@ -112,7 +113,11 @@ private:
     };
     std::vector<LeafTriangle> leaf_;  ///< triangle order_[i]'s corners and box
     std::vector<std::uint32_t> fan_start_, fan_;  ///< the triangles at vertex v: fan_[fan_start_[v] .. fan_start_[v + 1])
-    std::uint32_t build(std::uint32_t first, std::uint32_t count, std::vector<Vec3>& centroid);
+    struct Extent {
+        Vec3 lo, hi, centroid;  ///< a triangle's box and centroid
+    };
+    std::uint32_t build(std::uint32_t first, std::uint32_t count, const std::vector<Extent>& extent,
+                        std::vector<std::pair<double, std::uint32_t>>& keys);
     void fit_leaves();  ///< leaf_ from positions_ and order_
 };
 
