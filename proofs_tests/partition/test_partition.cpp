@@ -477,7 +477,7 @@ TEST_CASE("PART-4: two paths through one point of an edge, given on the edge's t
     }
 }
 
-TEST_CASE("PART-4, PART-5: embed cuts the faces in parallel blocks with the sequential result, conflicts in face order",
+TEST_CASE("PART-4..8: embed cuts the faces and extract_patches makes the disks in parallel blocks with the sequential result, conflicts in face order",
           "[partition][unit]") {
     // 40,000 faces: three blocks of embed's parallel loop. A coarse domain (24 faces) has long
     // geodesics that conflict; a finer one (2,000 faces) embeds. Both give the same conflicts, in
@@ -494,6 +494,17 @@ TEST_CASE("PART-4, PART-5: embed cuts the faces in parallel blocks with the sequ
         CHECK(a.network.mesh.triangles() == b.network.mesh.triangles());
         CHECK(a.network.t_face.values() == b.network.t_face.values());
         if (faces == 24) CHECK_FALSE(a.conflicts.empty());
-        if (faces == 2000) CHECK(a.network.mesh.n_faces() > T.n_faces());
+        if (faces == 2000) {
+            CHECK(a.network.mesh.n_faces() > T.n_faces());
+            // PART-6..8: the patches, made in blocks of 125 of D's faces, the same on one thread and on three.
+            const partition::Patches p = partition::extract_patches(D, a.network, &one), q = partition::extract_patches(D, a.network, &three);
+            CHECK(p.patch_of_face.values() == q.patch_of_face.values());
+            for (FaceId df : D.mesh.faces()) {
+                CHECK(p.patch[df].vertices == q.patch[df].vertices);
+                CHECK(p.patch[df].disk.triangles == q.patch[df].disk.triangles);
+                CHECK(p.patch[df].disk.boundary == q.patch[df].disk.boundary);
+                CHECK(p.patch[df].disk.corners == q.patch[df].disk.corners);
+            }
+        }
     }
 }

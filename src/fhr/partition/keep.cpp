@@ -743,7 +743,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
                 const auto [paths, unsnapped] = in_edge_order(D, found->curves());
                 Embedding check = embed(T, D, paths, unsnapped, &executor);
                 if (check.conflicts.empty()) {
-                    Patches patches = extract_patches(D, check.network);
+                    Patches patches = extract_patches(D, check.network, &executor);
                     net.emplace(std::move(*found));
                     checked = KeptNetwork::Embedded{std::move(check), std::move(patches)};
                 }
@@ -784,7 +784,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
                 net->curves()[key_of(a, b)] = Curve{a.idx() < b.idx() ? paths[e] : reversed(paths[e]), true, {}, true,
                                                     domain::on_cone(Di.mesh, Di.t_vertex, EdgeId(static_cast<EdgeId::Index>(e)), real_vertices)};
             }
-            const Patches patches = extract_patches(Di, embedding.network);
+            const Patches patches = extract_patches(Di, embedding.network, &executor);
             for (FaceId df : Di.mesh.faces()) {
                 std::vector<FaceId> touched;
                 for (FaceId f : patches.patch[df].faces) touched.push_back(embedding.network.t_face[f]);

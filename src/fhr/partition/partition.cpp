@@ -357,7 +357,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
                     throw std::logic_error("partition: the network breaks (1)/(2) without the cones: " + embedding.conflicts.front().describe());
                 patches.reset();  // D̂'s on T̂
             }
-            out.patches = patches ? std::move(*patches) : extract_patches(D, embedding.network);
+            out.patches = patches ? std::move(*patches) : extract_patches(D, embedding.network, &executor);
             out.network = std::move(embedding.network);
             out.vertices_added = D.mesh.n_vertices() - vertices0;
             out.kept = std::move(keep);

@@ -15,6 +15,7 @@
 
 #include <vector>
 
+#include <fhr/core/executor.hpp>
 #include <fhr/domain/decimate.hpp>
 #include <fhr/param/disk.hpp>
 #include <fhr/partition/embed.hpp>
@@ -34,10 +35,11 @@ struct Patches {
     FaceData<FaceId> patch_of_face;     ///< #F(T′): the D face whose patch holds it
 };
 
-/// Cuts T′ along the network into one disk per face of D.
+/// Cuts T′ along the network into one disk per face of D; the disks are made on `executor`
+/// (default_executor() when null), the same on any.
 /// \pre network is the conflict-free result of embed() for D.
 /// \throws PartitionFailure naming the D face when a region is not a disk bounded by its three
 ///         curves (Theorem: impossible when (1) and (2) hold; checked all the same).
-Patches extract_patches(const domain::Domain& D, const Network& network);
+Patches extract_patches(const domain::Domain& D, const Network& network, Executor* executor = nullptr);
 
 }  // namespace fhr::partition
