@@ -115,15 +115,16 @@ TEST_CASE("LIB-3: the tasks run on the caller's executor, bit-identical on 1 and
     CHECK(a.wavelets->remesh_hausdorff.upper() == b.wavelets->remesh_hausdorff.upper());
 }
 
-TEST_CASE("LIB-3: the caller's task runs beside the oracle on what param.fhrp holds; the files written there are write_outputs' bytes", "[pipeline][library]") {
+TEST_CASE("LIB-3: the caller's tasks run beside the oracle on what param.fhrp holds and on §5's result; the files written there are write_outputs' bytes", "[pipeline][library]") {
     const TriMesh T = generate::random_mesh({1, 2400, 3, 0.1});
     pipeline::RunOptions options;
     options.faces = 80;
     options.levels = 1;
     options.keep = {20};
     const std::string beside = test::temp_path("run-beside"), after = test::temp_path("run-after");
-    std::size_t calls = 0;
+    std::size_t calls = 0, wavelet_calls = 0;
     exchange::ParamFile seen;
+    std::vector<Vec3> seen_remesh;
     options.beside_oracle = [&](const pipeline::Parameterization& p, const exchange::ParamFile& file) {
         ++calls;
         CHECK(p.refined_positions.empty());  // lent to the file meanwhile
@@ -131,15 +132,23 @@ TEST_CASE("LIB-3: the caller's task runs beside the oracle on what param.fhrp ho
         seen = file;
         pipeline::write_parameterization(beside, p, file, options.method.executor);
     };
+    options.after_wavelets = [&](const wavelet::WaveletResult& w) {  // §5's meshes as soon as §5 is done
+        ++wavelet_calls;
+        seen_remesh = w.remesh_positions;
+        pipeline::write_wavelets(beside, w, options.method.executor);
+    };
     const pipeline::RunResult r = pipeline::run(T, options);
     REQUIRE(r.certified());
     REQUIRE(r.wavelets);
     CHECK(calls == 1);
+    CHECK(wavelet_calls == 1);
     CHECK(seen == pipeline::to_param_file(r.parameterization));
+    CHECK(seen_remesh == r.wavelets->remesh_positions);
     // The rest written after the run, and everything written after it in another folder: the same bytes.
     const pipeline::InputInfo input{.path = "generated", .vertices = T.n_vertices(), .faces = T.n_faces(), .genus = 1};
     const pipeline::Timings timings;
-    pipeline::write_outputs(beside, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets, 0.25);
+    pipeline::write_outputs(beside, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets,
+                            {.parameterization = 0.25, .wavelets = 0.125});
     pipeline::write_outputs(after, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets);
     std::vector<std::string> names;
     for (const auto& entry : std::filesystem::directory_iterator(after)) names.push_back(entry.path().filename().string());
@@ -149,10 +158,16 @@ TEST_CASE("LIB-3: the caller's task runs beside the oracle on what param.fhrp ho
         REQUIRE(std::filesystem::exists(beside + "/" + name));
         if (name != "timings.json") CHECK(test::read_file(beside + "/" + name) == test::read_file(after + "/" + name));
     }
+    // "writing" adds both groups' seconds; "writing_beside_oracle" is them alone.
     CHECK(test::read_file(beside + "/timings.json").find("\"writing\"") != std::string::npos);
+    CHECK(test::read_file(beside + "/timings.json").find("\"writing_beside_oracle\": 0.375") != std::string::npos);
+    CHECK(test::read_file(after + "/timings.json").find("\"writing_beside_oracle\"") == std::string::npos);
 
     // A task that throws: the run throws it, once the oracle and §5 are done.
     options.beside_oracle = [](const pipeline::Parameterization&, const exchange::ParamFile&) { throw InvalidInput("out", 0, "cannot write"); };
+    CHECK_THROWS_AS(pipeline::run(T, options), InvalidInput);
+    options.beside_oracle = nullptr;
+    options.after_wavelets = [](const wavelet::WaveletResult&) { throw InvalidInput("out", 0, "cannot write"); };
     CHECK_THROWS_AS(pipeline::run(T, options), InvalidInput);
 }
 

@@ -79,12 +79,18 @@ int run_run(const std::vector<std::string>& argv) {
         timings.stage("mesh_reduction", detail::seconds_since(start), true);
     }
 
-    // Run; the files of the parameterization are written beside the oracle (they need no verdict).
-    std::optional<double> written;
+    // Run; the files of the parameterization, and §5's meshes once §5 is done, are written beside
+    // the oracle (they need no verdict).
+    pipeline::WrittenBeside written;
     options.beside_oracle = [&](const pipeline::Parameterization& p, const exchange::ParamFile& file) {
         const auto writing = detail::Clock::now();
         pipeline::write_parameterization(out, p, file, method.executor);
-        written = detail::seconds_since(writing);
+        written.parameterization = detail::seconds_since(writing);
+    };
+    options.after_wavelets = [&](const wavelet::WaveletResult& w) {
+        const auto writing = detail::Clock::now();
+        pipeline::write_wavelets(out, w, method.executor);
+        written.wavelets = detail::seconds_since(writing);
     };
     const pipeline::RunResult result = pipeline::run(T, options);  // a copy: `method` is used below
     const pipeline::Parameterization& p = result.parameterization;

@@ -252,6 +252,20 @@ std::vector<std::function<void()>> parameterization_files(const std::string& bas
     return files;
 }
 
+// §5's meshes: D^J through φ and each kept percentage's reconstruction, one task each.
+// `wavelets` must outlive the tasks.
+std::vector<std::function<void()>> wavelet_files(const std::string& base, const wavelet::WaveletResult& wavelets) {
+    std::vector<std::function<void()>> files;
+    files.emplace_back([&wavelets, base] {
+        io::write_off(base + "remesh_L" + std::to_string(wavelets.levels) + ".off", wavelets.remesh_positions, wavelets.remesh_faces);
+    });
+    for (const auto& k : wavelets.kept)
+        files.emplace_back([&wavelets, &k, base] {
+            io::write_off(base + "wavelet_keep" + percent_name(k.percent) + ".off", k.positions, wavelets.remesh_faces);
+        });
+    return files;
+}
+
 std::string folder(const std::string& dir) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
@@ -267,30 +281,31 @@ void write_parameterization(const std::string& dir, const Parameterization& p, c
     executor_or_default(executor).for_each(files.size(), 1, [&](std::size_t i) { files[i](); });
 }
 
+void write_wavelets(const std::string& dir, const wavelet::WaveletResult& wavelets, Executor* executor) {
+    const std::vector<std::function<void()>> files = wavelet_files(folder(dir), wavelets);
+    executor_or_default(executor).for_each(files.size(), 1, [&](std::size_t i) { files[i](); });
+}
+
 void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
                    const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
-                   const wavelet::WaveletResult* wavelets, std::optional<double> parameterization_written) {
+                   const wavelet::WaveletResult* wavelets, const WrittenBeside& written) {
     const auto start = detail::Clock::now();
     const std::string base = folder(dir);
     // The files are independent, each streamed a chunk at a time (io::AtomicFile), so they are
     // written in parallel (issue 18).
     std::optional<exchange::ParamFile> file;
     std::vector<std::function<void()>> files;
-    if (!parameterization_written) files = parameterization_files(base, p, file.emplace(to_param_file(p)));
-    if (wavelets) {
-        files.emplace_back([&] {
-            io::write_off(base + "remesh_L" + std::to_string(wavelets->levels) + ".off", wavelets->remesh_positions, wavelets->remesh_faces);
-        });
-        for (const auto& k : wavelets->kept)
-            files.emplace_back([&] { io::write_off(base + "wavelet_keep" + percent_name(k.percent) + ".off", k.positions, wavelets->remesh_faces); });
-    }
+    if (!written.parameterization) files = parameterization_files(base, p, file.emplace(to_param_file(p)));
+    if (wavelets && !written.wavelets)
+        for (auto& f : wavelet_files(base, *wavelets)) files.push_back(std::move(f));
     executor_or_default(options.executor).for_each(files.size(), 1, [&](std::size_t i) { files[i](); });
     write_report(base + "report.json", input, p, oracle, options, wavelets);
     // "writing": every file above and the report, and those written beside the oracle;
     // timings.json itself is a few hundred bytes.
+    const double beside = written.parameterization.value_or(0) + written.wavelets.value_or(0);
     Timings with_writing = timings;
-    with_writing.stage("writing", detail::seconds_since(start) + parameterization_written.value_or(0), false);
-    if (parameterization_written) with_writing.stage("writing_beside_oracle", *parameterization_written, false);
+    with_writing.stage("writing", detail::seconds_since(start) + beside, false);
+    if (written.parameterization || written.wavelets) with_writing.stage("writing_beside_oracle", beside, false);
     write_timings(base + "timings.json", with_writing);
 }
 

@@ -51,17 +51,28 @@ struct InputInfo {
 void write_parameterization(const std::string& dir, const Parameterization& p, const exchange::ParamFile& file,
                             Executor* executor);
 
+/// Writes §5's meshes into DIR (created if needed): remesh_L{J}.off (f^J on D^J) and
+/// wavelet_keep{p}.off for each kept percentage, in parallel on `executor`. `fhr run` writes them
+/// as soon as §5 is done, beside the oracle (RunOptions::after_wavelets).
+void write_wavelets(const std::string& dir, const wavelet::WaveletResult& wavelets, Executor* executor);
+
+/// Files the caller has written already into DIR, with the seconds each group took: they are not
+/// written again by write_outputs.
+struct WrittenBeside {
+    std::optional<double> parameterization;  ///< write_parameterization's five files
+    std::optional<double> wavelets;          ///< write_wavelets' meshes
+};
+
 /// Writes DIR/{domain.off, geodesics.obj, refined.ply, param.fhrp, textured.obj, report.json,
 /// timings.json}; `oracle` is fhr verify's judgement of param.fhrp against T. With §5's result
 /// (`wavelets` not null) also remesh_L{J}.off, wavelet_keep{p}.off and the report's `remesh`
 /// and `wavelet` sections. The files are written in parallel on `options.executor`; timings.json
 /// gets one more measurement after the total, "writing": the seconds spent on all the others.
-/// `parameterization_written`: the seconds write_parameterization(DIR, p, …) took when the caller
-/// has written those five files already (beside the oracle); they are then not written again,
-/// "writing" adds these seconds, and "writing_beside_oracle" follows with them alone.
+/// `written`: the groups the caller has written already (beside the oracle); they are not written
+/// again, "writing" adds their seconds, and "writing_beside_oracle" follows with them alone.
 void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
                    const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
-                   const wavelet::WaveletResult* wavelets, std::optional<double> parameterization_written = std::nullopt);
+                   const wavelet::WaveletResult* wavelets, const WrittenBeside& written = {});
 
 /// The paper's Figures 6 and 7 (fig6.png: T and D; fig7.png: the geodesic network on T, and T′
 /// with a checkerboard over every patch through ψ) and one SVG per chosen patch (ψ_i(S_i) in its

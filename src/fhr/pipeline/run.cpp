@@ -104,6 +104,7 @@ RunResult run(const TriMesh& T, RunOptions options) {
                                             [&](FaceId d, const std::array<double, 3>& beta) { return phi.phi(d, beta); },
                                             options.levels, options.keep, T, {}, options.method.executor, &pieces,
                                             t_tree ? &*t_tree : nullptr);
+            if (options.after_wavelets) options.after_wavelets(*out.wavelets);
         }
     });
     take_back_param_file(out.parameterization, std::move(lent));

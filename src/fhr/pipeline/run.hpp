@@ -12,7 +12,8 @@
 //                     prewavelet coefficients, the kept percentages reconstructed (src/fhr/wavelet),
 //                     beside the oracle (two tasks: they read different parts of the result, and
 //                     each stage's seconds are its own, so the stages' sum may exceed the wall time);
-//                     beside them also the caller's `beside_oracle` task (fhr run writes its files)
+//                     beside them also the caller's `beside_oracle` task (fhr run writes its files),
+//                     and once §5 is done its `after_wavelets` task (fhr run writes §5's meshes)
 // Thread safety: run() keeps no state between calls; concurrent calls (on the same T too) are safe.
 // Its progress lines and stage times are reported on the calling thread; its independent tasks run
 // on options.method.executor (core/executor.hpp), with the same result on any executor.
@@ -42,6 +43,10 @@ struct RunOptions {
     /// Meanwhile p lends T′'s vertices and β to `file` (lend_param_file: exactly what param.fhrp
     /// holds), so it reads them there; both are read-only for every task.
     std::function<void(const Parameterization& p, const exchange::ParamFile& file)> beside_oracle;
+    /// Optional, with levels ≥ 1: a task run on §5's result as soon as it is made, on §5's thread
+    /// (so still beside the oracle and `beside_oracle`), such as writing its meshes (`fhr run`:
+    /// write_wavelets, outputs.hpp).
+    std::function<void(const wavelet::WaveletResult& wavelets)> after_wavelets;
 };
 
 struct RunResult {
