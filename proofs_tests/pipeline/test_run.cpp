@@ -147,8 +147,13 @@ TEST_CASE("LIB-3: the caller's tasks run beside the oracle on what param.fhrp ho
     // The rest written after the run, and everything written after it in another folder: the same bytes.
     const pipeline::InputInfo input{.path = "generated", .vertices = T.n_vertices(), .faces = T.n_faces(), .genus = 1};
     const pipeline::Timings timings;
+    // The files written beside are not written again (a new file would have a new time).
+    const auto written_at = [&](const char* name) { return std::filesystem::last_write_time(beside + "/" + name); };
+    const auto param_at = written_at("param.fhrp"), remesh_at = written_at("remesh_L1.off");
     pipeline::write_outputs(beside, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets,
                             {.parameterization = 0.25, .wavelets = 0.125});
+    CHECK(written_at("param.fhrp") == param_at);
+    CHECK(written_at("remesh_L1.off") == remesh_at);
     pipeline::write_outputs(after, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets);
     std::vector<std::string> names;
     for (const auto& entry : std::filesystem::directory_iterator(after)) names.push_back(entry.path().filename().string());
@@ -162,6 +167,15 @@ TEST_CASE("LIB-3: the caller's tasks run beside the oracle on what param.fhrp ho
     CHECK(test::read_file(beside + "/timings.json").find("\"writing\"") != std::string::npos);
     CHECK(test::read_file(beside + "/timings.json").find("\"writing_beside_oracle\": 0.375") != std::string::npos);
     CHECK(test::read_file(after + "/timings.json").find("\"writing_beside_oracle\"") == std::string::npos);
+    // One group alone: its seconds alone (the other group written here).
+    const std::string one = test::temp_path("run-one-group");
+    pipeline::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets, {.parameterization = 0.25});
+    CHECK(test::read_file(one + "/timings.json").find("\"writing_beside_oracle\": 0.25\n") != std::string::npos);
+    CHECK(std::filesystem::exists(one + "/remesh_L1.off"));
+    CHECK_FALSE(std::filesystem::exists(one + "/param.fhrp"));
+    pipeline::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets, {.wavelets = 0.125});
+    CHECK(test::read_file(one + "/timings.json").find("\"writing_beside_oracle\": 0.125\n") != std::string::npos);
+    CHECK(std::filesystem::exists(one + "/param.fhrp"));
 
     // A task that throws: the run throws it, once the oracle and §5 are done.
     options.beside_oracle = [](const pipeline::Parameterization&, const exchange::ParamFile&) { throw InvalidInput("out", 0, "cannot write"); };
