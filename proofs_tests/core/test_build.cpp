@@ -114,6 +114,12 @@ TEST_CASE("INV-IN-4: two faces on the same three edges are duplicates too; the m
     const auto e = refused(soup(pts, {{1, 2, 3}, {1, 3, 2}}));
     CHECK(e.problem() == "faces 0 and 1 are duplicates (vertices 1, 3, 2)");
     CHECK(e.line() == 3 + 5 + 1);
+    // Every order of the second face's corners: turned over, or the same orientation started
+    // elsewhere (then no corner of one sits where the same vertex sits in the other).
+    for (const std::vector<std::uint32_t>& second : std::vector<std::vector<std::uint32_t>>{{1, 2, 3}, {2, 3, 1}, {3, 1, 2}, {1, 3, 2}, {3, 2, 1}, {2, 1, 3}}) {
+        INFO(second[0] << ", " << second[1] << ", " << second[2]);
+        CHECK_THAT(refused(soup(pts, {{1, 2, 3}, second})).problem(), Catch::StartsWith("faces 0 and 1 are duplicates"));
+    }
 }
 
 TEST_CASE("INV-IN-5: exactly degenerate triangles are refused", "[unit][build]") {

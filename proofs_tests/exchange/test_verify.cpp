@@ -428,6 +428,10 @@ void expect_caught(const Corruption& c, const TriMesh& domain, int k) {
     if (e.vertex >= 0) CHECK(first.vertex == e.vertex);
     if (!e.also.empty()) CHECK(check(r, e.also).status == CheckStatus::fail);
     if (e.face >= 0) CHECK(check(r, e.also.empty() ? e.first : e.also).face == e.face);
+    if (e.first == "PARAM-11") {  // it names vertices (of T or T′), never a face or a patch
+        CHECK(first.face == -1);
+        CHECK(first.patch == -1);
+    }
     CHECK_THAT(first.first_failure, Catch::Contains(e.says));
     if (!e.also.empty()) CHECK_THAT(check(r, e.also).first_failure, Catch::Contains(e.also_says));
 }
@@ -999,6 +1003,10 @@ TEST_CASE("PARAM-11: a vertex on T's boundary must be on T''s boundary", "[excha
     CHECK_THAT(check(r, "PARAM-11").first_failure,
                Catch::StartsWith("vertex 0 of T (0, 0, 0) is on T's boundary, but surface vertex 0 at the same point is "
                                  "not on the boundary of T'"));
+    // Where: T's vertex 0, no face, no patch.
+    CHECK(check(r, "PARAM-11").vertex == 0);
+    CHECK(check(r, "PARAM-11").face == -1);
+    CHECK(check(r, "PARAM-11").patch == -1);
 }
 
 TEST_CASE("the oracle on 1 and 3 threads: the same report (PARAM-11's distances in parallel blocks, the checks side by side)",
