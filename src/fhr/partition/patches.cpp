@@ -79,43 +79,43 @@ Patches extract_patches(const domain::Domain& D, const Network& net, Executor* e
                 p.disk.positions.push_back(M.position(v));
             }
             return static_cast<std::uint32_t>(local[v.idx()]);
-    };
-    std::size_t boundary_halfedges = 0;
-    for (FaceId f : p.faces) {
-        HalfedgeId h = M.halfedge(f);
-        std::array<std::uint32_t, 3> tri{};
-        for (int i = 0; i < 3; ++i, h = M.next(h)) {
-            tri[static_cast<std::size_t>(i)] = local_of(M.from(h));
-            if (net.d_halfedge[h].valid()) ++boundary_halfedges;
+        };
+        std::size_t boundary_halfedges = 0;
+        for (FaceId f : p.faces) {
+            HalfedgeId h = M.halfedge(f);
+            std::array<std::uint32_t, 3> tri{};
+            for (int i = 0; i < 3; ++i, h = M.next(h)) {
+                tri[static_cast<std::size_t>(i)] = local_of(M.from(h));
+                if (net.d_halfedge[h].valid()) ++boundary_halfedges;
+            }
+            p.disk.triangles.push_back(tri);
         }
-        p.disk.triangles.push_back(tri);
-    }
-    // The boundary: the curves of D's halfedges around T_i = (v_j, v_k, v_l), from x_j.
-    HalfedgeId dh = D.mesh.halfedge(df);
-    std::vector<VertexId> loop;
-    for (std::size_t c = 0; c < 3; ++c, dh = D.mesh.next(dh)) {
-        p.disk.corners[c] = loop.size();
-        std::vector<VertexId> curve = net.path[TriMesh::edge(dh)];
-        if (dh.idx() & 1u) std::reverse(curve.begin(), curve.end());
-        loop.insert(loop.end(), curve.begin(), curve.end() - 1);
-    }
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-        const HalfedgeId h = M.find_halfedge(loop[i], loop[(i + 1) % loop.size()]);
-        if (!h.valid() || region_face[static_cast<std::size_t>(region[M.face(h).idx()])] != df)
-            fail(df, "is not on the left of its curves");
-        if (local[loop[i].idx()] < 0) fail(df, "has a corner or curve vertex outside it");
-        p.disk.boundary.push_back(static_cast<std::uint32_t>(local[loop[i].idx()]));
-    }
-    // Theorem (Euler): a connected triangulated surface with one boundary loop of L edges,
-    // V vertices and F faces is a disk iff V − (3F + L)/2 + F = 1.
-    std::vector<std::uint32_t> sorted = p.disk.boundary;
-    std::sort(sorted.begin(), sorted.end());
-    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) fail(df, "touches itself on its boundary");
-    if (boundary_halfedges != loop.size()) fail(df, "has a second boundary loop");
-    const long V = static_cast<long>(p.vertices.size()), F = static_cast<long>(p.faces.size()),
-               L = static_cast<long>(loop.size());
-    if (2 * V - (3 * F + L) + 2 * F != 2) fail(df, "is not a topological disk");
-    for (VertexId v : p.vertices) local[v.idx()] = -1;
+        // The boundary: the curves of D's halfedges around T_i = (v_j, v_k, v_l), from x_j.
+        HalfedgeId dh = D.mesh.halfedge(df);
+        std::vector<VertexId> loop;
+        for (std::size_t c = 0; c < 3; ++c, dh = D.mesh.next(dh)) {
+            p.disk.corners[c] = loop.size();
+            std::vector<VertexId> curve = net.path[TriMesh::edge(dh)];
+            if (dh.idx() & 1u) std::reverse(curve.begin(), curve.end());
+            loop.insert(loop.end(), curve.begin(), curve.end() - 1);
+        }
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+            const HalfedgeId h = M.find_halfedge(loop[i], loop[(i + 1) % loop.size()]);
+            if (!h.valid() || region_face[static_cast<std::size_t>(region[M.face(h).idx()])] != df)
+                fail(df, "is not on the left of its curves");
+            if (local[loop[i].idx()] < 0) fail(df, "has a corner or curve vertex outside it");
+            p.disk.boundary.push_back(static_cast<std::uint32_t>(local[loop[i].idx()]));
+        }
+        // Theorem (Euler): a connected triangulated surface with one boundary loop of L edges,
+        // V vertices and F faces is a disk iff V − (3F + L)/2 + F = 1.
+        std::vector<std::uint32_t> sorted = p.disk.boundary;
+        std::sort(sorted.begin(), sorted.end());
+        if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) fail(df, "touches itself on its boundary");
+        if (boundary_halfedges != loop.size()) fail(df, "has a second boundary loop");
+        const long V = static_cast<long>(p.vertices.size()), F = static_cast<long>(p.faces.size()),
+                   L = static_cast<long>(loop.size());
+        if (2 * V - (3 * F + L) + 2 * F != 2) fail(df, "is not a topological disk");
+        for (VertexId v : p.vertices) local[v.idx()] = -1;
     };
     // In a few blocks of D's faces, each with its own scratch; a failure is thrown from the lowest
     // block at its first patch, as one pass in order would.
