@@ -10,9 +10,14 @@
 
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
+#include <thread>
+
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 
+#include <fhr/core/executor.hpp>
 #include <fhr/io/atomic_file.hpp>
 #include <fhr/io/detail/number_text.hpp>
 #include <fhr/io/read.hpp>
@@ -241,8 +246,8 @@ TEST_CASE("FMT-WRITE-1: a failed write throws InvalidInput and leaves nothing be
 }
 
 TEST_CASE("FMT-WRITE-1, FMT-WRITE-2: files of many chunks are written whole, and one failing after its first chunks leaves nothing", "[unit][io]") {
-    // io::AtomicFile writes a chunk (1 MiB) at a time as the writers format: 200,000 points and
-    // triangles make several MiB in every format.
+    // io::FileParts makes a part of every 16,384 elements: 200,000 points and triangles make
+    // several MiB and dozens of parts in every format.
     const fs::path dir = fhr::test::temp_path("atomic-chunks");
     fs::create_directories(dir);
     std::vector<Vec3> points;
@@ -264,4 +269,69 @@ TEST_CASE("FMT-WRITE-1, FMT-WRITE-2: files of many chunks are written whole, and
     const std::vector<std::vector<std::uint32_t>> lines = {std::vector<std::uint32_t>(300000, 1), {0, 200000}};
     CHECK_THROWS_AS(fhr::io::write_obj_polylines((dir / "lines.obj").string(), points, lines, {}), std::invalid_argument);
     CHECK(listing(dir) == std::vector<std::string>{"big.obj", "big.off", "big.ply"});
+}
+
+TEST_CASE("FMT-WRITE-4: a file of many parts has the same bytes on one thread and on three, as joined", "[unit][io]") {
+    // Parts of unequal sizes, texts between element blocks, and a part formatted slowly so that
+    // later parts are formatted first and wait for its length.
+    const fs::path dir = fhr::test::temp_path("parts-threads");
+    fs::create_directories(dir);
+    auto parts = [](std::atomic<int>& slow_calls) {
+        fhr::io::FileParts p;
+        p.text("head\n");
+        p.elements(3 * fhr::io::FileParts::block + 5, [&slow_calls](std::size_t first, std::size_t end, std::string& out) {
+            if (first == fhr::io::FileParts::block) {  // the second part
+                ++slow_calls;
+                std::this_thread::sleep_for(std::chrono::milliseconds(50));
+            }
+            for (std::size_t i = first; i < end; ++i) {
+                fhr::io::append_number(out, i * i);
+                out += i % 7 == 0 ? "\n" : " ";
+            }
+        });
+        p.text("");
+        p.text("middle\n");
+        p.elements(2, [](std::size_t first, std::size_t end, std::string& out) { out += std::to_string(first) + "-" + std::to_string(end); });
+        return p;
+    };
+    std::atomic<int> calls{0};
+    const fhr::io::FileParts p = parts(calls);
+    const std::string joined = p.joined();
+    CHECK(joined.substr(0, 5) == "head\n");
+    CHECK(joined.substr(joined.size() - 10) == "middle\n0-2");
+    fhr::ThreadPool one(1), three(3);
+    p.write((dir / "one.txt").string(), &one);
+    p.write((dir / "three.txt").string(), &three);
+    p.write((dir / "default.txt").string());
+    CHECK(calls == 4);
+    CHECK(fhr::test::read_file((dir / "one.txt").string()) == joined);
+    CHECK(fhr::test::read_file((dir / "three.txt").string()) == joined);
+    CHECK(fhr::test::read_file((dir / "default.txt").string()) == joined);
+    CHECK(listing(dir) == std::vector<std::string>{"default.txt", "one.txt", "three.txt"});
+}
+
+TEST_CASE("FMT-WRITE-1, FMT-WRITE-4: when parts fail, the first failing part's exception is thrown and nothing is left", "[unit][io]") {
+    const fs::path dir = fhr::test::temp_path("parts-fail");
+    fs::create_directories(dir);
+    fhr::io::FileParts p;
+    p.elements(8 * fhr::io::FileParts::block, [](std::size_t first, std::size_t, std::string& out) {
+        const std::size_t part = first / fhr::io::FileParts::block;
+        // Part 5 fails at once, part 3 only after the parts around it are done: still part 3's.
+        if (part == 3) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+            throw std::runtime_error("part 3");
+        }
+        if (part == 5) throw std::runtime_error("part 5");
+        out += std::string(1000, 'x');
+    });
+    fhr::ThreadPool three(3);
+    for (fhr::Executor* executor : {static_cast<fhr::Executor*>(&three), static_cast<fhr::Executor*>(nullptr)}) {
+        try {
+            p.write((dir / "failed.txt").string(), executor);
+            FAIL("no exception");
+        } catch (const std::runtime_error& e) {
+            CHECK(std::string(e.what()) == "part 3");
+        }
+        CHECK(listing(dir).empty());
+    }
 }

@@ -169,11 +169,11 @@ TEST_CASE("LIB-3: the caller's tasks run beside the oracle on what param.fhrp ho
     CHECK(test::read_file(after + "/timings.json").find("\"writing_beside_oracle\"") == std::string::npos);
     // One group alone: its seconds alone (the other group written here).
     const std::string one = test::temp_path("run-one-group");
-    pipeline::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets, {.parameterization = 0.25});
+    pipeline::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets, {.parameterization = 0.25, .wavelets = std::nullopt});
     CHECK(test::read_file(one + "/timings.json").find("\"writing_beside_oracle\": 0.25\n") != std::string::npos);
     CHECK(std::filesystem::exists(one + "/remesh_L1.off"));
     CHECK_FALSE(std::filesystem::exists(one + "/param.fhrp"));
-    pipeline::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets, {.wavelets = 0.125});
+    pipeline::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets, {.parameterization = std::nullopt, .wavelets = 0.125});
     CHECK(test::read_file(one + "/timings.json").find("\"writing_beside_oracle\": 0.125\n") != std::string::npos);
     CHECK(std::filesystem::exists(one + "/param.fhrp"));
 

@@ -14,7 +14,8 @@
 // (finite, in range) is checked by the oracle, PARAM-2.
 //
 // Writer: shortest round-trip decimals (std::to_chars), so read(write(p)) is bit-identical, and
-// one fixed layout, so equal files give equal bytes; written atomically (FMT-WRITE-1), a chunk at a time (io::AtomicFile).
+// one fixed layout, so equal files give equal bytes; written atomically (FMT-WRITE-1), in parts formatted at once on the executor's threads
+// (io::FileParts).
 #include <fhr/exchange/fhr_param.hpp>
 
 #include <limits>
@@ -183,56 +184,54 @@ ParamFile read_param(const std::string& path) { return parse_param(io::read_byte
 
 namespace {
 
-/// The text of `file` appended to `out`; step() after each line (AtomicFile::step when writing).
-template <class Step>
-void put_param(const ParamFile& file, std::string& out, Step step) {
-    out += "fhr-param 1\n";
-    append_section(out, "domain_vertices", file.domain_vertices.size());
-    for (const Vec3& p : file.domain_vertices) io::append_point(out, p);
-    append_section(out, "domain_faces", file.domain_faces.size());
-    for (const Triangle& t : file.domain_faces) {
-        for (int c = 0; c < 3; ++c) {
-            io::append_number(out, std::uint64_t{t[c]});
-            out += c < 2 ? ' ' : '\n';
+/// The parts of `file`'s text (io::FileParts): its four sections, each a heading and its records.
+io::FileParts param_parts(const ParamFile& file) {
+    auto heading = [](const char* keyword, std::size_t count) {
+        std::string out;
+        append_section(out, keyword, count);
+        return out;
+    };
+    io::FileParts parts;
+    parts.text("fhr-param 1\n" + heading("domain_vertices", file.domain_vertices.size()));
+    parts.elements(file.domain_vertices.size(), [&](std::size_t first, std::size_t end, std::string& out) {
+        for (std::size_t i = first; i < end; ++i) io::append_point(out, file.domain_vertices[i]);
+    });
+    parts.text(heading("domain_faces", file.domain_faces.size()));
+    parts.elements(file.domain_faces.size(), [&](std::size_t first, std::size_t end, std::string& out) {
+        for (std::size_t f = first; f < end; ++f)
+            for (int c = 0; c < 3; ++c) {
+                io::append_number(out, std::uint64_t{file.domain_faces[f][c]});
+                out += c < 2 ? ' ' : '\n';
+            }
+    });
+    parts.text(heading("surface_vertices", file.surface_vertices.size()));
+    parts.elements(file.surface_vertices.size(), [&](std::size_t first, std::size_t end, std::string& out) {
+        for (std::size_t i = first; i < end; ++i) io::append_point(out, file.surface_vertices[i]);
+    });
+    parts.text(heading("surface_faces", file.surface_faces.size()));
+    parts.elements(file.surface_faces.size(), [&](std::size_t first, std::size_t end, std::string& out) {
+        io::RecentNumbers<3> betas;  // a vertex's β in a patch is written with each face around it
+        for (std::size_t f = first; f < end; ++f) {
+            const ParamFace& face = file.surface_faces[f];
+            for (const std::uint32_t v : face.v) {
+                io::append_number(out, std::uint64_t{v});
+                out += ' ';
+            }
+            io::append_number(out, std::uint64_t{face.patch});
+            for (const Beta& beta : face.beta) {
+                out += ' ';
+                betas.append(out, beta);
+            }
+            out += '\n';
         }
-    }
-    step();
-    append_section(out, "surface_vertices", file.surface_vertices.size());
-    for (const Vec3& p : file.surface_vertices) {
-        io::append_point(out, p);
-        step();
-    }
-    append_section(out, "surface_faces", file.surface_faces.size());
-    io::RecentNumbers<3> betas;  // a vertex's β in a patch is written with each face around it
-    for (const ParamFace& face : file.surface_faces) {
-        for (const std::uint32_t v : face.v) {
-            io::append_number(out, std::uint64_t{v});
-            out += ' ';
-        }
-        io::append_number(out, std::uint64_t{face.patch});
-        for (const Beta& beta : face.beta) {
-            out += ' ';
-            betas.append(out, beta);
-        }
-        out += '\n';
-        step();
-    }
+    });
+    return parts;
 }
 
 }  // namespace
 
-std::string format_param(const ParamFile& file) {
-    std::string out;
-    out.reserve(64 * (file.domain_vertices.size() + file.surface_vertices.size()) + 32 * file.domain_faces.size() +
-                256 * file.surface_faces.size());
-    put_param(file, out, [] {});
-    return out;
-}
+std::string format_param(const ParamFile& file) { return param_parts(file).joined(); }
 
-void write_param(const std::string& path, const ParamFile& file) {
-    io::AtomicFile out(path);
-    put_param(file, out.text, [&] { out.step(); });
-    out.commit();
-}
+void write_param(const std::string& path, const ParamFile& file, Executor* executor) { param_parts(file).write(path, executor); }
 
 }  // namespace fhr::exchange

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include <fhr/core/executor.hpp>
 #include <fhr/core/polygon_soup.hpp>
 #include <fhr/core/trimesh.hpp>
 
@@ -59,8 +60,9 @@ ParamFile read_param(const std::string& path);
 /// for bit (so it compares equal to p when p holds no NaN).
 std::string format_param(const ParamFile& file);
 
-/// Writes format_param(file) atomically (temporary name, then rename; FMT-WRITE-1), formatted a chunk at a time.
-/// \throws InvalidInput(path, 0, "cannot write: ...").
-void write_param(const std::string& path, const ParamFile& file);
+/// Writes format_param(file) atomically (temporary name, then rename; FMT-WRITE-1), in parts
+/// formatted and written on the threads of `executor` (default_executor() when null; io::FileParts):
+/// the same bytes on any number of threads. \throws InvalidInput(path, 0, "cannot write: ...").
+void write_param(const std::string& path, const ParamFile& file, Executor* executor = nullptr);
 
 }  // namespace fhr::exchange

@@ -227,15 +227,19 @@ std::vector<render::RatePoint> rate_curve(const wavelet::Refinement& r, const Tr
 
 namespace {
 
-// The files of write_parameterization, one task each, the largest first (so that the threads
-// finish together). `file` must outlive the tasks.
+// The files of write_parameterization, each written in parts on the executor's threads
+// (io::FileParts). `file` must outlive the writers.
 std::vector<std::function<void()>> parameterization_files(const std::string& base, const Parameterization& p,
-                                                          const exchange::ParamFile& file) {
+                                                          const exchange::ParamFile& file, Executor* executor) {
     std::vector<std::function<void()>> files;
-    files.emplace_back([&, base] { io::write_obj(base + "textured.obj", file.surface_vertices, p.refined_faces, Atlas(file)); });
-    files.emplace_back([&, base] { exchange::write_param(base + "param.fhrp", file); });
-    files.emplace_back([&, base] { io::write_ply(base + "refined.ply", file.surface_vertices, p.refined_faces, p.face_patch); });
-    files.emplace_back([&, base] {
+    files.emplace_back([&, base, executor] {
+        io::write_obj(base + "textured.obj", file.surface_vertices, p.refined_faces, Atlas(file), executor);
+    });
+    files.emplace_back([&, base, executor] { exchange::write_param(base + "param.fhrp", file, executor); });
+    files.emplace_back([&, base, executor] {
+        io::write_ply(base + "refined.ply", file.surface_vertices, p.refined_faces, p.face_patch, executor);
+    });
+    files.emplace_back([&, base, executor] {
         const partition::Partition& P = p.partition;
         std::vector<std::vector<std::uint32_t>> lines;
         for (const auto& path : P.network.path) {
@@ -244,24 +248,25 @@ std::vector<std::function<void()>> parameterization_files(const std::string& bas
         }
         std::vector<std::string> kinds;  // each curve's kind (report.json's partition.restricted lists why)
         for (const partition::CurveInfo& c : P.curves) kinds.push_back(partition::name(c.kind));
-        io::write_obj_polylines(base + "geodesics.obj", P.network.mesh.positions(), lines, kinds);
+        io::write_obj_polylines(base + "geodesics.obj", P.network.mesh.positions(), lines, kinds, executor);
     });
-    files.emplace_back([&, base] {
-        io::write_off(base + "domain.off", p.partition.domain.mesh.positions(), p.partition.domain.mesh.triangles());
+    files.emplace_back([&, base, executor] {
+        io::write_off(base + "domain.off", p.partition.domain.mesh.positions(), p.partition.domain.mesh.triangles(), executor);
     });
     return files;
 }
 
-// §5's meshes: D^J through φ and each kept percentage's reconstruction, one task each.
-// `wavelets` must outlive the tasks.
-std::vector<std::function<void()>> wavelet_files(const std::string& base, const wavelet::WaveletResult& wavelets) {
+// §5's meshes: D^J through φ and each kept percentage's reconstruction. `wavelets` must outlive
+// the writers.
+std::vector<std::function<void()>> wavelet_files(const std::string& base, const wavelet::WaveletResult& wavelets, Executor* executor) {
     std::vector<std::function<void()>> files;
-    files.emplace_back([&wavelets, base] {
-        io::write_off(base + "remesh_L" + std::to_string(wavelets.levels) + ".off", wavelets.remesh_positions, wavelets.remesh_faces);
+    files.emplace_back([&wavelets, base, executor] {
+        io::write_off(base + "remesh_L" + std::to_string(wavelets.levels) + ".off", wavelets.remesh_positions, wavelets.remesh_faces,
+                      executor);
     });
     for (const auto& k : wavelets.kept)
-        files.emplace_back([&wavelets, &k, base] {
-            io::write_off(base + "wavelet_keep" + percent_name(k.percent) + ".off", k.positions, wavelets.remesh_faces);
+        files.emplace_back([&wavelets, &k, base, executor] {
+            io::write_off(base + "wavelet_keep" + percent_name(k.percent) + ".off", k.positions, wavelets.remesh_faces, executor);
         });
     return files;
 }
@@ -277,13 +282,11 @@ std::string folder(const std::string& dir) {
 
 void write_parameterization(const std::string& dir, const Parameterization& p, const exchange::ParamFile& file,
                             Executor* executor) {
-    const std::vector<std::function<void()>> files = parameterization_files(folder(dir), p, file);
-    executor_or_default(executor).for_each(files.size(), 1, [&](std::size_t i) { files[i](); });
+    for (const auto& write : parameterization_files(folder(dir), p, file, executor)) write();
 }
 
 void write_wavelets(const std::string& dir, const wavelet::WaveletResult& wavelets, Executor* executor) {
-    const std::vector<std::function<void()>> files = wavelet_files(folder(dir), wavelets);
-    executor_or_default(executor).for_each(files.size(), 1, [&](std::size_t i) { files[i](); });
+    for (const auto& write : wavelet_files(folder(dir), wavelets, executor)) write();
 }
 
 void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
@@ -291,14 +294,13 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
                    const wavelet::WaveletResult* wavelets, const WrittenBeside& written) {
     const auto start = detail::Clock::now();
     const std::string base = folder(dir);
-    // The files are independent, each streamed a chunk at a time (io::AtomicFile), so they are
-    // written in parallel (issue 18).
+    // Each file is written in parts on every thread (io::FileParts, issue 18).
     std::optional<exchange::ParamFile> file;
     std::vector<std::function<void()>> files;
-    if (!written.parameterization) files = parameterization_files(base, p, file.emplace(to_param_file(p)));
+    if (!written.parameterization) files = parameterization_files(base, p, file.emplace(to_param_file(p)), options.executor);
     if (wavelets && !written.wavelets)
-        for (auto& f : wavelet_files(base, *wavelets)) files.push_back(std::move(f));
-    executor_or_default(options.executor).for_each(files.size(), 1, [&](std::size_t i) { files[i](); });
+        for (auto& f : wavelet_files(base, *wavelets, options.executor)) files.push_back(std::move(f));
+    for (const auto& write : files) write();
     write_report(base + "report.json", input, p, oracle, options, wavelets);
     // "writing": every file above and the report, and those written beside the oracle;
     // timings.json itself is a few hundred bytes.

@@ -45,14 +45,14 @@ struct InputInfo {
 };
 
 /// Writes the files of the parameterization alone into DIR (created if needed): domain.off,
-/// geodesics.obj, refined.ply, param.fhrp and textured.obj, in parallel on `executor`, from
+/// geodesics.obj, refined.ply, param.fhrp and textured.obj, each in parts on `executor`'s threads, from
 /// `file`, which is to_param_file(p) or the file p lends (lend_param_file: then T′'s vertices and
 /// β are in the file only). `fhr run` writes them beside the oracle (RunOptions::beside_oracle).
 void write_parameterization(const std::string& dir, const Parameterization& p, const exchange::ParamFile& file,
                             Executor* executor);
 
 /// Writes §5's meshes into DIR (created if needed): remesh_L{J}.off (f^J on D^J) and
-/// wavelet_keep{p}.off for each kept percentage, in parallel on `executor`. `fhr run` writes them
+/// wavelet_keep{p}.off for each kept percentage, each in parts on `executor`'s threads. `fhr run` writes them
 /// as soon as §5 is done, beside the oracle (RunOptions::after_wavelets).
 void write_wavelets(const std::string& dir, const wavelet::WaveletResult& wavelets, Executor* executor);
 
@@ -66,7 +66,7 @@ struct WrittenBeside {
 /// Writes DIR/{domain.off, geodesics.obj, refined.ply, param.fhrp, textured.obj, report.json,
 /// timings.json}; `oracle` is fhr verify's judgement of param.fhrp against T. With §5's result
 /// (`wavelets` not null) also remesh_L{J}.off, wavelet_keep{p}.off and the report's `remesh`
-/// and `wavelet` sections. The files are written in parallel on `options.executor`; timings.json
+/// and `wavelet` sections. Each file is written in parts on `options.executor`'s threads; timings.json
 /// gets one more measurement after the total, "writing": the seconds spent on all the others.
 /// `written`: the groups the caller has written already (beside the oracle); they are not written
 /// again, "writing" adds their seconds, and "writing_beside_oracle" follows with them alone.
