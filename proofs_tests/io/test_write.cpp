@@ -1,18 +1,20 @@
 // Tests of the writers (spec/formats.md FMT-WRITE-*): exact round trip through our own readers
 // for OFF, OBJ and PLY, the written layouts, and atomic replacement of the output file.
 #include <algorithm>
+#include <atomic>
 #include <bit>
+#include <cerrno>
 #include <cfloat>
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include <sys/resource.h>
 #include <unistd.h>
-
-#include <atomic>
-#include <chrono>
-#include <thread>
 
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
@@ -334,4 +336,60 @@ TEST_CASE("FMT-WRITE-1, FMT-WRITE-4: when parts fail, the first failing part's e
         }
         CHECK(listing(dir).empty());
     }
+}
+
+TEST_CASE("FMT-WRITE-1, FMT-WRITE-4: a part the system refuses to write (a file size limit) throws InvalidInput and leaves nothing", "[unit][io]") {
+    // RLIMIT_FSIZE makes writes past 64 KiB fail with EFBIG (SIGXFSZ ignored), after a first part
+    // went to the temporary in full and the one across the limit in part.
+    const fs::path dir = fhr::test::temp_path("parts-limit");
+    fs::create_directories(dir);
+    fhr::io::FileParts p;
+    p.elements(4 * fhr::io::FileParts::block, [](std::size_t first, std::size_t end, std::string& out) { out.append(4 * (end - first), 'x'); });
+    rlimit before{};
+    REQUIRE(::getrlimit(RLIMIT_FSIZE, &before) == 0);
+    const auto previous = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit limited = before;
+    limited.rlim_cur = 64 * 1024;
+    REQUIRE(::setrlimit(RLIMIT_FSIZE, &limited) == 0);
+    const std::string path = (dir / "big.txt").string();
+    std::string problem;
+    try {
+        p.write(path);
+    } catch (const fhr::InvalidInput& e) {
+        problem = e.problem();
+        CHECK(e.file() == path);
+    }
+    ::setrlimit(RLIMIT_FSIZE, &before);
+    std::signal(SIGXFSZ, previous);
+    CHECK(problem == "cannot write: File too large");
+    CHECK(listing(dir).empty());
+    p.write(path);  // the limit lifted: the whole file
+    CHECK(fs::file_size(path) == 4 * 4 * fhr::io::FileParts::block);
+}
+
+TEST_CASE("FMT-WRITE-1: a one-byte file, a file whose descriptor is 0 (standard input closed), and a stale errno: each written", "[unit][io]") {
+    // open() returns the lowest free descriptor: with standard input closed, the temporary is fd 0,
+    // which is a valid descriptor, not a failure; a write of one byte is a whole write; errno left
+    // at EINTR by an earlier call says nothing about a write that succeeded.
+    const fs::path dir = fhr::test::temp_path("parts-small");
+    fs::create_directories(dir);
+    const std::string one = (dir / "one.txt").string();
+    errno = EINTR;
+    fhr::io::write_file_atomically(one, "x");
+    CHECK(fhr::test::read_file(one) == "x");
+    const int saved = ::dup(0);
+    REQUIRE(saved >= 0);
+    ::close(0);
+    const std::string zero = (dir / "zero.txt").string();
+    std::string problem;
+    try {
+        fhr::io::write_file_atomically(zero, "written through descriptor 0\n");
+    } catch (const fhr::InvalidInput& e) {
+        problem = e.problem();
+    }
+    ::dup2(saved, 0);
+    ::close(saved);
+    CHECK(problem.empty());
+    CHECK(fhr::test::read_file(zero) == "written through descriptor 0\n");
+    CHECK(listing(dir) == std::vector<std::string>{"one.txt", "zero.txt"});
 }
