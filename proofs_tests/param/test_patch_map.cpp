@@ -600,3 +600,64 @@ TEST_CASE("MAP-10: uniform weights are not linear on an irregular planar patch (
     CHECK(deviation > 1e-4);
     CHECK(param::certify(d, psi).passed);
 }
+
+namespace {
+
+// The smallest image angle by brute force: every corner of every image triangle in the domain
+// triangle, atan2(|u × w|, u · w) in degrees (MAP-8's statistic, computed here corner by corner).
+double every_corner_min_angle(const Disk& d, const PatchMap& psi, const std::array<Vec3, 3>& abc) {
+    double smallest = 180;
+    for (const auto& f : d.triangles) {
+        std::array<Vec3, 3> p;
+        for (int k = 0; k < 3; ++k) {
+            const auto& b = psi.beta[f[k]];
+            p[k] = Vec3(b[0] * abc[0] + b[1] * abc[1] + b[2] * abc[2]);
+        }
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 u = p[(k + 1) % 3] - p[k], w = p[(k + 2) % 3] - p[k];
+            smallest = std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) * 180 / std::numbers::pi);
+        }
+    }
+    return smallest;
+}
+
+}  // namespace
+
+TEST_CASE("MAP-8: the certificate's smallest image angle is the least of all corners' angles, bit for bit", "[property][param]") {
+    // The certificate computes a corner's atan2 only where its tangent does not already show it
+    // above the minimum; the value must be the one of computing every corner.
+    rc::prop("maps of random disks, in the equilateral triangle and in a random one", [] {
+        Disk d = *gen_disk();
+        param::split_dividing_edges(d);
+        const PatchMap psi = param::map_patch(d);
+        const std::array<Vec3, 3> equilateral{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, std::sqrt(3.0) / 2, 0)};
+        const param::Certificate cert = param::certify(d, psi);
+        RC_ASSERT(cert.passed);
+        RC_ASSERT(cert.min_image_angle_degrees == every_corner_min_angle(d, psi, equilateral));
+        const auto coordinate = [] { return *rc::gen::inRange(-1000, 1000) / 100.0; };
+        std::array<Vec3, 3> abc;
+        for (Vec3& p : abc) p = Vec3(coordinate(), coordinate(), coordinate());
+        RC_PRE((abc[1] - abc[0]).cross(abc[2] - abc[0]).norm() > 1e-3);
+        RC_ASSERT(param::certify(d, psi, abc).min_image_angle_degrees == every_corner_min_angle(d, psi, abc));
+    });
+    rc::prop("a needle: one interior vertex at distance 10^-e of a side (e up to 15), in the equilateral triangle", [] {
+        // Corners 0, 1, 2 and vertex 3 inside, near the side from corner 1 to corner 2.
+        Disk d;
+        d.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0.3, 0.3, 0.1)};
+        d.triangles = {{0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+        d.boundary = {0, 1, 2};
+        d.corners = {0, 1, 2};
+        const double delta = std::pow(10.0, -*rc::gen::inRange(1, 16)) * (1 + *rc::gen::inRange(0, 1000) / 1000.0);
+        // Halfway along, the needle's two small angles are equal but for rounding: the minimum
+        // must still be the smaller of the two, to the last bit.
+        const double along = *rc::gen::inRange(0, 2) == 0 ? 0.5 : *rc::gen::inRange(1, 1000) / 1000.0;
+        PatchMap psi;
+        psi.beta = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {delta, (1 - delta) * along, 0}};
+        psi.beta[3][2] = 1 - psi.beta[3][0] - psi.beta[3][1];
+        const std::array<Vec3, 3> equilateral{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, std::sqrt(3.0) / 2, 0)};
+        const param::Certificate cert = param::certify(d, psi);
+        RC_PRE(cert.passed);  // β3 summing to 1 within 2ε, and the needle still positively oriented
+        RC_TAG(cert.min_image_angle_degrees < 1e-9 ? "below 1e-9 degrees" : "larger");
+        RC_ASSERT(cert.min_image_angle_degrees == every_corner_min_angle(d, psi, equilateral));
+    });
+}

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -47,6 +49,100 @@ std::set<std::uint32_t> faces_holding(const TriMesh& T, const partition::Origin&
 // Components, boundary loops and χ of a mesh (the topology §2–§3 keep).
 std::tuple<std::size_t, std::size_t, long> topology(const TriMesh& m) {
     return {connected_components(m).count, boundary_loops(m).size(), euler_characteristic(m)};
+}
+
+// PART-13: the faces of T′ in one face F of T, joined across the edges on no curve, are the pieces
+// the curves' chords cut F into; each is a convex polygon of points on F's sides, triangulated
+// with the largest smallest angle of all its triangulations. The optimum is found here again by
+// dynamic programming over the polygon's sub-polygons (Klincsek), with the same measure: a
+// triangle's smallest angle (atan2 of |u × w| and u · w, at least the least positive double), or
+// −1 for three corners on one side of F.
+std::string piece_violation(const TriMesh& T, const partition::Network& net) {
+    const TriMesh& M = net.mesh;
+    std::vector<std::uint32_t> piece(M.n_faces());
+    for (std::uint32_t f = 0; f < M.n_faces(); ++f) piece[f] = f;
+    const auto root = [&](std::uint32_t f) {
+        while (piece[f] != f) f = piece[f] = piece[piece[f]];
+        return f;
+    };
+    for (HalfedgeId h : M.halfedges()) {
+        const HalfedgeId t = TriMesh::twin(h);
+        if (M.is_boundary(h) || M.is_boundary(t) || net.d_halfedge[h].valid()) continue;
+        const FaceId f = M.face(h), g = M.face(t);
+        if (net.t_face[f] == net.t_face[g]) piece[root(f.idx())] = root(g.idx());
+    }
+    std::vector<std::vector<FaceId>> pieces(M.n_faces());
+    for (FaceId f : M.faces()) pieces[root(f.idx())].push_back(f);
+    // The sides of F a vertex of T′ lies on, as bits of F's three edges.
+    const auto sides = [&](VertexId v, FaceId F) {
+        const partition::Origin& o = net.origin[v];
+        unsigned bits = 0;
+        HalfedgeId h = T.halfedge(F);
+        for (unsigned s = 0; s < 3; ++s, h = T.next(h))
+            if (o.vertex.valid() ? (T.from(h) == o.vertex || T.to(h) == o.vertex) : TriMesh::edge(h) == o.edge) bits |= 1u << s;
+        return bits;
+    };
+    for (const std::vector<FaceId>& faces : pieces) {
+        if (faces.size() < 2) continue;  // a triangle has one triangulation
+        const FaceId F = net.t_face[faces.front()];
+        std::set<std::uint32_t> in_piece;
+        for (FaceId f : faces) in_piece.insert(f.idx());
+        std::map<std::uint32_t, std::uint32_t> after;  // the piece's boundary, vertex to next vertex
+        for (FaceId f : faces) {
+            HalfedgeId h = M.halfedge(f);
+            for (int k = 0; k < 3; ++k, h = M.next(h)) {
+                const HalfedgeId t = TriMesh::twin(h);
+                if (!M.is_boundary(t) && in_piece.count(M.face(t).idx())) continue;
+                if (!after.emplace(M.from(h).idx(), M.to(h).idx()).second) return "PART-13: a piece of a face of T is not a disk";
+            }
+        }
+        std::vector<VertexId> polygon{VertexId(after.begin()->first)};
+        while (polygon.size() <= after.size()) {
+            const auto next = after.find(polygon.back().idx());
+            if (next == after.end()) return "PART-13: a piece's boundary is not a loop";
+            if (next->second == polygon.front().idx()) break;
+            polygon.push_back(VertexId(next->second));
+        }
+        const std::size_t m = polygon.size();
+        if (m != after.size() || faces.size() != m - 2) return "PART-13: a piece of a face of T has vertices inside";
+        std::map<std::uint32_t, std::size_t> at;
+        std::vector<unsigned> mask(m);
+        for (std::size_t i = 0; i < m; ++i) {
+            at[polygon[i].idx()] = i;
+            mask[i] = sides(polygon[i], F);
+        }
+        const auto quality = [&](std::size_t a, std::size_t b, std::size_t c) {
+            if (mask[a] & mask[b] & mask[c]) return -1.0;
+            const Vec3 p[3] = {M.position(polygon[a]), M.position(polygon[b]), M.position(polygon[c])};
+            double smallest = INFINITY;
+            for (int k = 0; k < 3; ++k) {
+                const Vec3 u = p[(k + 1) % 3] - p[k], w = p[(k + 2) % 3] - p[k];
+                smallest = std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)));
+            }
+            return std::max(smallest, std::numeric_limits<double>::denorm_min());
+        };
+        std::vector<double> best(m * m, INFINITY);  // best[i·m + j]: the optimum of sub-polygon i..j
+        for (std::size_t len = 2; len < m; ++len)
+            for (std::size_t i = 0; i + len < m; ++i) {
+                const std::size_t j = i + len;
+                best[i * m + j] = -INFINITY;
+                for (std::size_t k = i + 1; k < j; ++k)
+                    best[i * m + j] = std::max(best[i * m + j], std::min({best[i * m + k], best[k * m + j], quality(i, k, j)}));
+            }
+        double made = INFINITY;
+        for (FaceId f : faces) {
+            const auto v = M.face_vertices(f);
+            made = std::min(made, quality(at.at(v[0].idx()), at.at(v[1].idx()), at.at(v[2].idx())));
+        }
+        if (made != best[m - 1]) {
+            std::ostringstream why;
+            why.precision(17);
+            why << "PART-13: a piece of face " << F.idx() << " of T (" << m << " corners) is triangulated with smallest angle " << made
+                << ", its best triangulation has " << best[m - 1];
+            return why.str();
+        }
+    }
+    return "";
 }
 
 }  // namespace
@@ -186,7 +282,7 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
         for (std::size_t i = 0; i < p.vertices.size(); ++i)
             if (p.disk.positions[i] != M.position(p.vertices[i])) return "PART-8: a patch vertex's position differs from T′'s";
     }
-    return "";
+    return piece_violation(T, P.network);
 }
 
 std::string recovery_violation(const TriMesh& T, const domain::Domain& D0, const partition::Partition& P) {

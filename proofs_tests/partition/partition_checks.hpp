@@ -1,4 +1,4 @@
-// FHR tests — the invariants PART-1..8 of spec/partition.md, checked on any result of §3's
+// FHR tests — the invariants PART-1..8 and PART-13 of spec/partition.md, checked on any result of §3's
 // partition: shared by the unit, property and real-mesh tests.
 #pragma once
 

@@ -31,16 +31,37 @@ private:
     double sum_ = 0, compensation_ = 0;
 };
 
-// The smallest angle of the triangle (a, b, c) in degrees (atan2 form).
-double min_angle_degrees(const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 p[3] = {a, b, c};
-    double smallest = 180;
-    for (int k = 0; k < 3; ++k) {
-        const Vec3 u = p[(k + 1) % 3] - p[k], w = p[(k + 2) % 3] - p[k];
-        smallest = std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) * 180 / std::numbers::pi);
+// The smallest angle of a sequence of triangles, in degrees (atan2 form: atan2(|u×w|, u·w) at
+// each corner). A corner's atan2 is computed only where it could lower the minimum: when the
+// tangent |u×w| / (u·w) exceeds tan(minimum) by a relative 10⁻⁶ (squares compared, both in the
+// normal range), or u·w ≤ 0 (90° or more), its angle is above the minimum by far more than the
+// few rounding errors of atan2 and tan, so the minimum is exactly the one of all corners.
+class SmallestAngle {
+public:
+    void add(const Vec3& a, const Vec3& b, const Vec3& c) {
+        const Vec3 p[3] = {a, b, c};
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 u = p[(k + 1) % 3] - p[k], w = p[(k + 2) % 3] - p[k];
+            const double cross2 = u.cross(w).squaredNorm(), dot = u.dot(w);
+            if (skipping_) {
+                const double bound = tan2_ * dot * dot;
+                if (dot <= 0 || (bound >= 1e-290 && cross2 > bound)) continue;
+            }
+            const double angle = std::atan2(std::sqrt(cross2), dot) * 180 / std::numbers::pi;
+            if (angle < degrees_) {
+                degrees_ = angle;
+                const double tan = std::tan(angle * std::numbers::pi / 180) * (1 + 1e-6);
+                tan2_ = tan * tan;
+                skipping_ = angle < 89;
+            }
+        }
     }
-    return smallest;
-}
+    double degrees() const { return degrees_; }
+
+private:
+    double degrees_ = 180, tan2_ = 0;
+    bool skipping_ = false;
+};
 
 std::string vertex_text(const std::array<double, 3>& b) {
     std::ostringstream s;
@@ -78,7 +99,7 @@ Certificate certify(const Disk& disk, const PatchMap& psi, const std::array<Vec3
 
     // Orientation: Theorem (degree argument, certificate.hpp) needs every sign exactly.
     cert.triangles = disk.triangles.size();
-    cert.min_image_angle_degrees = 180;
+    SmallestAngle smallest;
     CompensatedSum area;
     for (std::size_t t = 0; t < disk.triangles.size(); ++t) {
         const auto& f = disk.triangles[t];
@@ -88,16 +109,15 @@ Certificate certify(const Disk& disk, const PatchMap& psi, const std::array<Vec3
             if (cert.flipped_triangles++ == 0)
                 fail("MAP-8", Element::face, static_cast<std::int64_t>(t), "orientation: image of triangle " + std::to_string(t) + " (" + std::to_string(f[0]) + ", " +
                      std::to_string(f[1]) + ", " + std::to_string(f[2]) + ") is folded or degenerate");
-            cert.min_image_angle_degrees = 0;
             continue;
         }
         auto in_domain = [&](std::uint32_t v) {
             const auto& beta = psi.beta[v];
             return Vec3(beta[0] * domain_triangle[0] + beta[1] * domain_triangle[1] + beta[2] * domain_triangle[2]);
         };
-        cert.min_image_angle_degrees =
-            std::min(cert.min_image_angle_degrees, min_angle_degrees(in_domain(f[0]), in_domain(f[1]), in_domain(f[2])));
+        smallest.add(in_domain(f[0]), in_domain(f[1]), in_domain(f[2]));
     }
+    cert.min_image_angle_degrees = cert.flipped_triangles > 0 ? 0 : smallest.degrees();
 
     // Boundary: side c runs from e_c to e_{c+1}; its parameter (β1 on side 0, β2 on side 1, −β2
     // on side 2) must increase strictly, every vertex lying exactly on the side's line.

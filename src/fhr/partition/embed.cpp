@@ -367,16 +367,21 @@ private:
     // corners on two or three sides of the face are in convex position, so the triangle is proper
     // in exact arithmetic even when its angle rounds to 0 (two points 2·10⁻¹⁷ apart beside a
     // 10⁻⁹° corner of the quality family): such an angle counts as the least positive double.
+    // The caller only asks whether it exceeds `floor`: once one angle shows it does not, that
+    // angle is returned (a value ≤ floor, as the smallest would be) and the others are not computed.
     double quality(const std::vector<VertexId>& poly, const std::vector<SideMask>& mask, std::size_t a, std::size_t b,
-                   std::size_t c) const {
+                   std::size_t c, double floor) const {
         if (mask[a] & mask[b] & mask[c]) return -1;
         const Vec3 &pa = positions_[poly[a].idx()], &pb = positions_[poly[b].idx()], &pc = positions_[poly[c].idx()];
         auto angle = [](const Vec3& o, const Vec3& x, const Vec3& y) {
             const Vec3 u = x - o, w = y - o;
-            return std::atan2(u.cross(w).norm(), u.dot(w));
+            return std::max(std::atan2(u.cross(w).norm(), u.dot(w)), std::numeric_limits<double>::denorm_min());
         };
-        return std::max(std::min({angle(pa, pb, pc), angle(pb, pc, pa), angle(pc, pa, pb)}),
-                        std::numeric_limits<double>::denorm_min());
+        const double first = angle(pa, pb, pc);
+        if (first <= floor) return first;
+        const double second = std::min(first, angle(pb, pc, pa));
+        if (second <= floor) return second;
+        return std::min(second, angle(pc, pa, pb));
     }
 
     // The triangulation of a convex piece (indices into poly, in boundary order) that maximizes
@@ -396,7 +401,11 @@ private:
                 double& b = best[i * m + j];
                 b = -inf;
                 for (std::size_t k = i + 1; k < j; ++k) {
-                    const double q = std::min({best[i * m + k], best[k * m + j], quality(poly, x.mask, piece[i], piece[k], piece[j])});
+                    // Only a q above b changes anything: the triangle's angles are computed only
+                    // when the two sub-polygons' optima leave it room to.
+                    const double sides = std::min(best[i * m + k], best[k * m + j]);
+                    if (!(sides > b)) continue;
+                    const double q = std::min(sides, quality(poly, x.mask, piece[i], piece[k], piece[j], b));
                     if (q > b) {
                         b = q;
                         apex[i * m + j] = k;
