@@ -634,10 +634,15 @@ TEST_CASE("MAP-8: the certificate's smallest image angle is the least of all cor
         const param::Certificate cert = param::certify(d, psi);
         RC_ASSERT(cert.passed);
         RC_ASSERT(cert.min_image_angle_degrees == every_corner_min_angle(d, psi, equilateral));
+        // Scaled by 10^-80, 10^-150 and 10^150 too: the tangent test's products of coordinates are
+        // then subnormal, or round to 0, or overflow.
         const auto coordinate = [] { return *rc::gen::inRange(-1000, 1000) / 100.0; };
         std::array<Vec3, 3> abc;
         for (Vec3& p : abc) p = Vec3(coordinate(), coordinate(), coordinate());
         RC_PRE((abc[1] - abc[0]).cross(abc[2] - abc[0]).norm() > 1e-3);
+        const double scale = *rc::gen::element(1.0, 1e-80, 1e-150, 1e150);
+        for (Vec3& p : abc) p *= scale;
+        RC_TAG(scale);
         RC_ASSERT(param::certify(d, psi, abc).min_image_angle_degrees == every_corner_min_angle(d, psi, abc));
     });
     rc::prop("a needle: one interior vertex at distance 10^-e of a side (e up to 15), in the equilateral triangle", [] {
@@ -659,5 +664,39 @@ TEST_CASE("MAP-8: the certificate's smallest image angle is the least of all cor
         RC_PRE(cert.passed);  // β3 summing to 1 within 2ε, and the needle still positively oriented
         RC_TAG(cert.min_image_angle_degrees < 1e-9 ? "below 1e-9 degrees" : "larger");
         RC_ASSERT(cert.min_image_angle_degrees == every_corner_min_angle(d, psi, equilateral));
+        // The same needle in an equilateral triangle of side 10^-s, s in 76..84: the tangent test's
+        // bound is subnormal there.
+        const double side = std::pow(10.0, -*rc::gen::inRange(76, 85));
+        std::array<Vec3, 3> small = equilateral;
+        for (Vec3& p : small) p *= side;
+        RC_ASSERT(param::certify(d, psi, small).min_image_angle_degrees == every_corner_min_angle(d, psi, small));
     });
+}
+
+TEST_CASE("MAP-8: three images that round to one point give the smallest angle 0, as computed at every corner", "[unit][param]") {
+    // P, R, Q differ by an ulp in the β plane (positively oriented there, so certified) but their
+    // points in the equilateral triangle round to one point: every corner of (P, R, Q) has
+    // u · w = 0 and |u × w| = 0, atan2(0, 0) = 0. Triangle (0, 1, R) first sets a positive minimum.
+    Disk d;
+    const double px = 0.20000000000000004, py = 0.7000000000000004;
+    const std::array<double, 2> plane[6] = {{0, 0}, {1, 0}, {0, 1}, {px, py}, {std::nextafter(px, 1.0), py}, {px, std::nextafter(py, 1.0)}};
+    PatchMap psi;
+    for (const auto& [b1, b2] : plane) {
+        d.positions.emplace_back(b1, b2, 0);
+        psi.beta.push_back({1 - b1 - b2, b1, b2});
+    }
+    d.triangles = {{0, 1, 4}, {3, 4, 5}, {0, 4, 3}, {0, 3, 2}, {2, 3, 5}, {1, 2, 5}, {1, 5, 4}};
+    d.boundary = {0, 1, 2};
+    d.corners = {0, 1, 2};
+    const std::array<Vec3, 3> equilateral{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, std::sqrt(3.0) / 2, 0)};
+    auto image = [&](std::uint32_t v) {
+        const auto& b = psi.beta[v];
+        return Vec3(b[0] * equilateral[0] + b[1] * equilateral[1] + b[2] * equilateral[2]);
+    };
+    REQUIRE(image(3) == image(4));
+    REQUIRE(image(3) == image(5));
+    const param::Certificate cert = param::certify(d, psi);
+    CHECK(cert.passed);
+    CHECK(cert.min_image_angle_degrees == 0);
+    CHECK(every_corner_min_angle(d, psi, equilateral) == 0);
 }

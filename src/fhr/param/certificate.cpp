@@ -32,10 +32,15 @@ private:
 };
 
 // The smallest angle of a sequence of triangles, in degrees (atan2 form: atan2(|u×w|, u·w) at
-// each corner). A corner's atan2 is computed only where it could lower the minimum: when the
-// tangent |u×w| / (u·w) exceeds tan(minimum) by a relative 10⁻⁶ (squares compared, both in the
-// normal range), or u·w ≤ 0 (90° or more), its angle is above the minimum by far more than the
-// few rounding errors of atan2 and tan, so the minimum is exactly the one of all corners.
+// each corner). A corner's atan2 is computed only where it could lower the minimum. It cannot
+// when u·w < 0 (above 90°: never a triangle's smallest), nor when |u×w|² > t·(u·w)·(u·w), once
+// the minimum is acute, with t = tan²(minimum) enlarged by a relative 2·10⁻⁶ and raised to 10⁻²⁹⁰
+// if below (a larger t only skips fewer corners): t·(u·w) is then a normal double within an ulp,
+// unless u·w < 10⁻¹⁷, where the whole bound rounds to 0 and a positive |u×w|² is far above it;
+// the bound is within two ulps when normal, and when subnormal is rounded once to the grid that
+// |u×w|² lies on, so exceeding it exceeds the exact bound. The margin covers these ulps and those
+// of tan and atan2: the minimum is exactly the one of all corners. (Images rounded to one point
+// give u·w = 0 and |u×w| = 0: computed, atan2(0, 0) = 0.)
 class SmallestAngle {
 public:
     void add(const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -43,24 +48,21 @@ public:
         for (int k = 0; k < 3; ++k) {
             const Vec3 u = p[(k + 1) % 3] - p[k], w = p[(k + 2) % 3] - p[k];
             const double cross2 = u.cross(w).squaredNorm(), dot = u.dot(w);
-            if (skipping_) {
-                const double bound = tan2_ * dot * dot;
-                if (dot <= 0 || (bound >= 1e-290 && cross2 > bound)) continue;
-            }
+            if (dot < 0 || cross2 > tan2_ * dot * dot) continue;  // ∞ · 0 is NaN: not skipped
             const double angle = std::atan2(std::sqrt(cross2), dot) * 180 / std::numbers::pi;
             if (angle < degrees_) {
                 degrees_ = angle;
-                const double tan = std::tan(angle * std::numbers::pi / 180) * (1 + 1e-6);
-                tan2_ = tan * tan;
-                skipping_ = angle < 89;
+                if (angle < 89) {
+                    const double tan = std::tan(angle * std::numbers::pi / 180) * (1 + 1e-6);
+                    tan2_ = std::max(tan * tan, 1e-290);
+                }
             }
         }
     }
     double degrees() const { return degrees_; }
 
 private:
-    double degrees_ = 180, tan2_ = 0;
-    bool skipping_ = false;
+    double degrees_ = 180, tan2_ = std::numeric_limits<double>::infinity();
 };
 
 std::string vertex_text(const std::array<double, 3>& b) {

@@ -96,10 +96,21 @@ Refinement refine(const TriMesh& D, int J) {
 }
 
 std::vector<Vec3> sample(const Refinement& r, const DomainMap& phi, Executor* executor) {
+    // The vertices face by face of D (a counting sort): consecutive locations then fall in one
+    // patch of φ, whose data stays in cache (issue 18: at 10⁶ triangles, in vertex order, each
+    // block of samples touched patches all over T′). Each sample is phi's either way.
+    std::vector<std::uint32_t> start(r.levels.front().n_faces() + 1, 0);
+    for (const DomainPoint& p : r.location) ++start[p.face.idx() + 1];
+    for (std::size_t d = 1; d < start.size(); ++d) start[d] += start[d - 1];
+    std::vector<std::uint32_t> order(r.location.size());
+    for (std::uint32_t v = 0; v < order.size(); ++v) order[start[r.location[v].face.idx()]++] = v;
     std::vector<Vec3> f(r.location.size());
     constexpr std::size_t block = 4096;  // point locations per task
     for_each_block(executor_or_default(executor), f.size(), block, 1, [&](std::size_t first, std::size_t end) {
-        for (std::size_t v = first; v < end; ++v) f[v] = phi(r.location[v].face, r.location[v].beta);
+        for (std::size_t i = first; i < end; ++i) {
+            const std::uint32_t v = order[i];
+            f[v] = phi(r.location[v].face, r.location[v].beta);
+        }
     });
     return f;
 }
