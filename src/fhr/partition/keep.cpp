@@ -416,13 +416,86 @@ std::pair<std::vector<geodesic::GeodesicPath>, std::vector<std::uint8_t>> in_edg
     return out;
 }
 
+// Whether the kept curves can be taken as they are without embedding them first (direct()
+// without check_kept): no two share a node or pass through a corner inside, and around each
+// corner x_j their first steps leave in D's cyclic order of the kept edges at v_j. The first
+// steps are ordered by T's fan around x_j: along a spoke (a vertex or a point of the spoke), or
+// across the face between two spokes (a point of its far edge, ordered along it). False also
+// where this cannot be read off (a first step to a point inside a face): the caller then embeds
+// and checks them, as it does when anything here was too hopeful (snapping, say).
+bool kept_plausible(const TriMesh& T, const TriMesh& m, const std::function<VertexId(VertexId)>& x,
+                    const std::function<bool(HalfedgeId)>& is_kept, const std::function<const geodesic::GeodesicPath&(HalfedgeId)>& curve) {
+    std::set<std::pair<std::uint32_t, double>> nodes;  // vertices as (index, -1), edge points as (edge, t along halfedge (e, 0))
+    std::set<std::uint32_t> corners;
+    for (VertexId v : m.vertices()) corners.insert(x(v).idx());
+    for (EdgeId e : m.edges()) {
+        const HalfedgeId h = TriMesh::halfedge(e, 0);
+        if (!is_kept(h)) continue;
+        const auto& points = curve(h).points;
+        for (std::size_t i = 1; i + 1 < points.size(); ++i) {
+            const SurfacePoint& p = points[i];
+            std::pair<std::uint32_t, double> key;
+            if (p.kind == SurfacePoint::Kind::vertex) {
+                if (corners.count(p.vertex.idx())) return false;
+                key = {p.vertex.idx(), -1};
+            } else if (p.kind == SurfacePoint::Kind::edge) {
+                const bool forward = p.halfedge == TriMesh::halfedge(TriMesh::edge(p.halfedge), 0);
+                key = {static_cast<std::uint32_t>(T.n_vertices() + TriMesh::edge(p.halfedge).idx()), forward ? p.t : 1 - p.t};
+            } else {
+                return false;
+            }
+            if (!nodes.insert(key).second) return false;
+        }
+    }
+    for (VertexId v : m.vertices()) {
+        const VertexId xv = x(v);
+        std::vector<HalfedgeId> spokes;
+        T.for_each_outgoing(xv, [&](HalfedgeId h) { spokes.push_back(h); });
+        std::vector<std::pair<std::pair<std::size_t, double>, std::size_t>> in_t;  // (place in the fan, rank in D)
+        std::size_t rank = 0;
+        bool readable = true;
+        m.for_each_outgoing(v, [&](HalfedgeId h) {
+            if (!is_kept(h) || !readable) return;
+            const auto& points = curve(h).points;
+            const SurfacePoint& p = points.front().vertex == xv ? points[1] : points[points.size() - 2];
+            std::pair<std::size_t, double> place{SIZE_MAX, 0};
+            for (std::size_t k = 0; k < spokes.size() && place.first == SIZE_MAX; ++k) {
+                const HalfedgeId s = spokes[k];
+                if (p.kind == SurfacePoint::Kind::vertex && p.vertex == T.to(s)) place = {2 * k, 0};
+                if (p.kind == SurfacePoint::Kind::edge && TriMesh::edge(p.halfedge) == TriMesh::edge(s))
+                    place = {2 * k, p.halfedge == s ? p.t : 1 - p.t};
+                // face(s) = (x_j, to(s), b) lies between s and the spoke before it clockwise
+                // (for_each_outgoing's order), x_j -> b: its far edge is crossed from b to to(s).
+                if (p.kind == SurfacePoint::Kind::edge && !T.is_boundary(s) && TriMesh::edge(p.halfedge) == TriMesh::edge(T.next(s)))
+                    place = {(2 * k + 2 * spokes.size() - 1) % (2 * spokes.size()), p.halfedge == T.next(s) ? 1 - p.t : p.t};
+            }
+            if (place.first == SIZE_MAX) readable = false;
+            in_t.push_back({place, rank++});
+        });
+        if (!readable) return false;
+        std::sort(in_t.begin(), in_t.end());
+        for (std::size_t i = 0; i < in_t.size(); ++i) {
+            if (i > 0 && in_t[i].first == in_t[i - 1].first) return false;  // two curves leave through one point
+            // D's cyclic order: the ranks follow each other around, from wherever the fan starts.
+            if (in_t[(i + 1) % in_t.size()].second != (in_t[i].second + 1) % in_t.size()) return false;
+        }
+    }
+    return true;
+}
+
 // The direct start: keep the geodesics of D that conflict with no kept one, and put each other edge
 // in as a restricted path in the polygon its two faces (and those of other removed edges) leave.
 // nullopt when the kept geodesics do not leave such polygons (disks bounded by kept curves, one
 // region of T each), or when anything on the way fails: the caller then steps back instead.
+// `check_kept`: embed every kept geodesic first, drop those in conflicts the geodesics' conflicts
+// did not name or out of D's order around a corner, and find every polygon's region of T in that
+// embedding. Without it (issue 18: at 10⁶ faces that embedding cost ~0.6 s for one removed edge
+// among 15,000), the kept set is taken as it is and only the curves around polygons of more than
+// one face are embedded to find their regions; the faces of D kept whole get no touched faces
+// (the caller takes them from its check, which also decides whether the kept set was sound).
 std::optional<Network_> direct(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D,
                                std::span<const geodesic::EllipsePath> geodesics, std::span<const Conflict> conflicts,
-                               std::span<const Pair> order, Executor& executor) {
+                               std::span<const Pair> order, Executor& executor, bool check_kept) {
     const auto ends = domain::edge_endpoints(D);
     std::map<Pair, std::size_t> edge_of;
     for (std::size_t e = 0; e < ends.size(); ++e) edge_of[key_of(ends[e].first, ends[e].second)] = e;
@@ -468,6 +541,12 @@ std::optional<Network_> direct(const TriMesh& T, std::size_t real_vertices, cons
             const auto [a, b] = ends[e];
             index[key_of(a, b)] = paths.size();
             paths.push_back(a.idx() < b.idx() ? geodesics[e].path : reversed(geodesics[e].path));
+        }
+        if (!check_kept) {
+            if (!kept_plausible(T, m, [&](VertexId v) { return net.x(v); }, is_kept,
+                                [&](HalfedgeId h) -> const geodesic::GeodesicPath& { return paths[index.at(edge_key(h))]; }))
+                return std::nullopt;
+            break;
         }
         cut = embed_curves(T, paths, {}, &executor);
         if (round == 64) return std::nullopt;
@@ -583,18 +662,35 @@ std::optional<Network_> direct(const TriMesh& T, std::size_t real_vertices, cons
         const long chi = static_cast<long>(vertices.size()) - static_cast<long>(inner / 2 + boundary) + static_cast<long>(g.size());
         if (boundary == 0 || walk != boundary || chi != 1 - static_cast<long>(repeated)) return std::nullopt;
     }
-    // Each group's region of T′, found from one of its boundary curves.
+    // Each group's region of T′, found from one of its boundary curves (without check_kept, only
+    // the polygons' curves embedded, and a face kept whole left to the caller).
+    std::map<Pair, std::size_t> embedded = index;  // a curve's number in `cut`
+    if (!check_kept) {
+        std::vector<geodesic::GeodesicPath> around;
+        embedded.clear();
+        for (const std::vector<FaceId>& g : groups) {
+            if (g.size() == 1) continue;
+            for (FaceId a : g) {
+                HalfedgeId h = m.halfedge(a);
+                for (int i = 0; i < 3; ++i, h = m.next(h))
+                    if (is_kept(h) && embedded.emplace(edge_key(h), around.size()).second) around.push_back(paths[index.at(edge_key(h))]);
+            }
+        }
+        cut = embed_curves(T, around, {}, &executor);
+        if (!cut.conflicts.empty()) return std::nullopt;
+    }
     const TriMesh& M = cut.network.mesh;
     std::vector<std::int32_t> region(M.n_faces(), -1);
     std::vector<std::vector<FaceId>> touched(groups.size());
     for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+        if (!check_kept && groups[gi].size() == 1) continue;
         HalfedgeId boundary;
         for (FaceId a : groups[gi]) {
             HalfedgeId h = m.halfedge(a);
             for (int i = 0; i < 3; ++i, h = m.next(h))
                 if (is_kept(h)) boundary = h;
         }
-        const auto& path = cut.network.path[EdgeId(index.at(edge_key(boundary)))];
+        const auto& path = cut.network.path[EdgeId(embedded.at(edge_key(boundary)))];
         const HalfedgeId first = M.find_halfedge(path[0], path[1]);
         const FaceId seed = M.face(net.x(m.from(boundary)).idx() < net.x(m.to(boundary)).idx() ? first : TriMesh::twin(first));
         if (region[seed.idx()] >= 0) return std::nullopt;
@@ -687,7 +783,7 @@ std::optional<Network_> direct(const TriMesh& T, std::size_t real_vertices, cons
     }
     for (std::size_t gi = 0; gi < groups.size(); ++gi) {
         if (groups[gi].size() != 1) throw std::logic_error("keeping the domain: a polygon left unsplit");
-        net.touched()[corners_of(Dn, groups[gi][0])] = std::move(touched[gi]);
+        if (!touched[gi].empty()) net.touched()[corners_of(Dn, groups[gi][0])] = std::move(touched[gi]);  // else the caller's
     }
     return net;
 }
@@ -737,19 +833,30 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
     std::optional<Network_> net;
     std::optional<KeptNetwork::Embedded> checked;  // the direct start's, while its curves stay as they are
     if (start == Start::fast) {
-        try {
-            if (std::optional<Network_> found = direct(T, real_vertices, D, geodesics, conflicts, order, executor)) {
-                // Checked as a whole before it is used: (1), (2) and the patches.
-                const auto [paths, unsnapped] = in_edge_order(D, found->curves());
-                Embedding check = embed(T, D, paths, unsnapped, &executor);
-                if (check.conflicts.empty()) {
-                    Patches patches = extract_patches(D, check.network, &executor);
-                    net.emplace(std::move(*found));
-                    checked = KeptNetwork::Embedded{std::move(check), std::move(patches)};
+        // First with the kept set taken as it is; when the check refuses it, with every kept
+        // geodesic embedded and checked first (direct's check_kept).
+        for (const bool check_kept : {false, true}) {
+            try {
+                if (std::optional<Network_> found = direct(T, real_vertices, D, geodesics, conflicts, order, executor, check_kept)) {
+                    // Checked as a whole before it is used: (1), (2) and the patches.
+                    const auto [paths, unsnapped] = in_edge_order(D, found->curves());
+                    Embedding check = embed(T, D, paths, unsnapped, &executor);
+                    if (check.conflicts.empty()) {
+                        Patches patches = extract_patches(D, check.network, &executor);
+                        for (FaceId df : D.mesh.faces()) {  // the faces of D that direct() left whole
+                            auto& touched = found->touched()[corners_of(D, df)];
+                            if (!touched.empty()) continue;
+                            for (FaceId f : patches.patch[df].faces) touched.push_back(check.network.t_face[f]);
+                            touched = merged(std::move(touched), {});
+                        }
+                        net.emplace(std::move(*found));
+                        checked = KeptNetwork::Embedded{std::move(check), std::move(patches)};
+                    }
                 }
+            } catch (const PartitionFailure&) {  // no room to separate: step back instead
+            } catch (const std::logic_error&) {   // a region that is not what the kept curves promised: the same
             }
-        } catch (const PartitionFailure&) {  // no room to separate: step back instead
-        } catch (const std::logic_error&) {   // a region that is not what the kept curves promised: the same
+            if (net) break;
         }
         if (net) say("keeping the domain: the geodesics that conflict with no kept one are kept, the others restricted");
     }
