@@ -35,6 +35,23 @@ TriMesh cgal_mesh(const char* name) {
 
 TriMesh fandisk() { return cgal_mesh("fandisk.off"); }
 
+// partition() with its progress lines kept: said(words) is whether a line holds them.
+struct Narrated {
+    partition::Partition P;
+    std::vector<std::string> lines;
+    bool said(const char* words) const {
+        return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(words) != std::string::npos; });
+    }
+};
+
+Narrated narrated_partition(const TriMesh& T, const domain::Domain& D) {
+    Narrated n;
+    partition::PartitionOptions options;
+    options.progress = [&](const std::string& line) { n.lines.push_back(line); };
+    n.P = partition::partition(T, D, options);
+    return n;
+}
+
 bool has_kind(const partition::Embedding& e, Conflict::Kind kind) {
     return std::any_of(e.conflicts.begin(), e.conflicts.end(), [&](const Conflict& c) { return c.kind == kind; });
 }
@@ -326,6 +343,24 @@ TEST_CASE("PART-10: the elephant at 114 faces keeps its domain, conflicting edge
     CHECK(restricted_oracle_violation(T, P, true) == "");
 }
 
+TEST_CASE("PART-10: the direct start takes the cow's kept geodesics as they are, and embeds the elephant's first", "[partition][keep][real]") {
+    // At 300 faces the cow's kept geodesics read in order (no shared node, first steps in D's
+    // order around every corner): no embedding of them before the check. The elephant's leave a
+    // corner out of order: embedded and checked first, as the rounds need.
+    for (const auto& [mesh, as_they_are] : {std::pair{"cow.off", true}, std::pair{"elephant.off", false}}) {
+        const TriMesh T = cgal_mesh(mesh);
+        const domain::Domain D = domain::decimate(T, {.target_faces = 300});
+        const Narrated run = narrated_partition(T, D);
+        INFO(mesh);
+        CHECK(run.said("the geodesics that conflict with no kept one are kept"));
+        CHECK(run.said("taken as they are") == as_they_are);
+        CHECK(run.said("embedded and checked first") == !as_they_are);
+        CHECK_FALSE(run.said("refused by the check"));
+        CHECK(test::keep_violation(T, D, run.P) == "");
+        CHECK(test::partition_violation(T, run.P) == "");
+    }
+}
+
 TEST_CASE("PART-10: a decimated D flipped afterwards, where the direct start does not serve, is changed as PART-9 says why",
           "[partition][keep][real]") {
     // The elephant at 114 faces needs a finer start (its dropped edges leave an annulus), and a
@@ -342,11 +377,9 @@ TEST_CASE("PART-10: a decimated D flipped afterwards, where the direct start doe
     D.mesh.flip(flipped);
     REQUIRE_FALSE(domain::history_describes(D, T));
     REQUIRE_FALSE(partition::embed(T, D, test::exact_paths(T, D)).conflicts.empty());
-    std::vector<std::string> lines;
-    partition::PartitionOptions options;
-    options.progress = [&](const std::string& line) { lines.push_back(line); };
-    const partition::Partition P = partition::partition(T, D, options);
-    CHECK(std::count(lines.begin(), lines.end(), "keeping the domain failed (D's history does not describe it); changing D instead") == 1);
+    const Narrated run = narrated_partition(T, D);
+    const partition::Partition& P = run.P;
+    CHECK(std::count(run.lines.begin(), run.lines.end(), "keeping the domain failed (D's history does not describe it); changing D instead") == 1);
     CHECK(P.retries >= 1);
     CHECK(test::recovery_violation(T, D, P) == "");
     CHECK(test::partition_violation(T, P) == "");
@@ -357,10 +390,17 @@ TEST_CASE("PART-10: random meshes of genus 0–3 keep their decimated domain", "
         const fhr::testing::GeneratedMesh g = *fhr::testing::gen_closed_mesh(0, 3, 1500);
         const TriMesh& T = g;
         const domain::Domain D = test::random_domain(T, g.options.genus);
-        const partition::Partition P = partition::partition(T, D);
+        const Narrated run = narrated_partition(T, D);
+        const partition::Partition& P = run.P;
         RC_TAG(P.keep_start_faces == 0 ? "geodesics only"
                : P.keep_start_faces == D.mesh.n_faces() ? "kept directly (restricted paths in the polygons the others leave)"
                                                         : "kept from a finer start");
+        RC_TAG(run.said("taken as they are") ? "kept geodesics taken as they are"
+               : run.said("embedded and checked first") ? "kept geodesics embedded first" : "");
+        // The direct start's reading of the kept geodesics (nodes, first steps around corners)
+        // agrees with the check: what it passes, the embedding accepts (else a second direct
+        // start costs time; only snapping could tell them apart).
+        RC_ASSERT(!run.said("refused by the check"));
         RC_ASSERT(test::partition_violation(T, P) == "");
         RC_ASSERT(test::keep_violation(T, D, P) == "");
         RC_ASSERT(restricted_oracle_violation(T, P, false) == "");
@@ -416,7 +456,11 @@ TEST_CASE("PART-10, PART-12: surfaces with 1-5 boundary loops and 1-3 components
             *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 1, .max_holes = 5, .min_components = 1, .max_components = 3});
         const TriMesh& T = g;
         const domain::Domain D = test::random_open_domain(T);
-        const partition::Partition P = partition::partition(T, D);
+        const Narrated run = narrated_partition(T, D);
+        const partition::Partition& P = run.P;
+        RC_TAG(run.said("taken as they are") ? "kept geodesics taken as they are"
+               : run.said("embedded and checked first") ? "kept geodesics embedded first" : "");
+        RC_ASSERT(!run.said("refused by the check"));  // as on closed meshes
         RC_TAG(P.keep_start_faces == 0 ? "geodesics only"
                : P.keep_start_faces == D.mesh.n_faces() ? "kept directly (restricted paths in the polygons the others leave)"
                                                         : "kept from a finer start");

@@ -495,7 +495,8 @@ bool kept_plausible(const TriMesh& T, const TriMesh& m, const std::function<Vert
 // (the caller takes them from its check, which also decides whether the kept set was sound).
 std::optional<Network_> direct(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D,
                                std::span<const geodesic::EllipsePath> geodesics, std::span<const Conflict> conflicts,
-                               std::span<const Pair> order, Executor& executor, bool check_kept) {
+                               std::span<const Pair> order, Executor& executor, bool check_kept,
+                               const std::function<void(const std::string&)>& say) {
     const auto ends = domain::edge_endpoints(D);
     std::map<Pair, std::size_t> edge_of;
     for (std::size_t e = 0; e < ends.size(); ++e) edge_of[key_of(ends[e].first, ends[e].second)] = e;
@@ -544,8 +545,10 @@ std::optional<Network_> direct(const TriMesh& T, std::size_t real_vertices, cons
         }
         if (!check_kept) {
             if (!kept_plausible(T, m, [&](VertexId v) { return net.x(v); }, is_kept,
-                                [&](HalfedgeId h) -> const geodesic::GeodesicPath& { return paths[index.at(edge_key(h))]; }))
+                                [&](HalfedgeId h) -> const geodesic::GeodesicPath& { return paths[index.at(edge_key(h))]; })) {
+                say("keeping the domain: the kept geodesics embedded and checked first (two share a point, or some leave a corner out of D's order)");
                 return std::nullopt;
+            }
             break;
         }
         cut = embed_curves(T, paths, {}, &executor);
@@ -837,7 +840,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
         // geodesic embedded and checked first (direct's check_kept).
         for (const bool check_kept : {false, true}) {
             try {
-                if (std::optional<Network_> found = direct(T, real_vertices, D, geodesics, conflicts, order, executor, check_kept)) {
+                if (std::optional<Network_> found = direct(T, real_vertices, D, geodesics, conflicts, order, executor, check_kept, say)) {
                     // Checked as a whole before it is used: (1), (2) and the patches.
                     const auto [paths, unsnapped] = in_edge_order(D, found->curves());
                     Embedding check = embed(T, D, paths, unsnapped, &executor);
@@ -851,6 +854,9 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
                         }
                         net.emplace(std::move(*found));
                         checked = KeptNetwork::Embedded{std::move(check), std::move(patches)};
+                        if (!check_kept) say("keeping the domain: the kept geodesics taken as they are, without embedding them first");
+                    } else if (!check_kept) {
+                        say("keeping the domain: the kept geodesics, read as in order, refused by the check; embedded and checked first");
                     }
                 }
             } catch (const PartitionFailure&) {  // no room to separate: step back instead
