@@ -38,6 +38,13 @@ std::vector<FaceId> merged(std::vector<FaceId> a, std::span<const FaceId> b) {
     return a;
 }
 
+// The faces of T that patch df of an embedding's network covers, sorted, each once.
+std::vector<FaceId> faces_of_t(const Patches& patches, const Network& network, FaceId df) {
+    std::vector<FaceId> faces;
+    for (FaceId f : patches.patch[df].faces) faces.push_back(network.t_face[f]);
+    return merged(std::move(faces), {});
+}
+
 geodesic::GeodesicPath reversed(geodesic::GeodesicPath p) {
     std::reverse(p.points.begin(), p.points.end());
     return p;
@@ -848,9 +855,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
                         Patches patches = extract_patches(D, check.network, &executor);
                         for (FaceId df : D.mesh.faces()) {  // the faces of D that direct() left whole
                             auto& touched = found->touched()[corners_of(D, df)];
-                            if (!touched.empty()) continue;
-                            for (FaceId f : patches.patch[df].faces) touched.push_back(check.network.t_face[f]);
-                            touched = merged(std::move(touched), {});
+                            if (touched.empty()) touched = faces_of_t(patches, check.network, df);
                         }
                         net.emplace(std::move(*found));
                         checked = KeptNetwork::Embedded{std::move(check), std::move(patches)};
@@ -898,11 +903,7 @@ KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domai
                                                     domain::on_cone(Di.mesh, Di.t_vertex, EdgeId(static_cast<EdgeId::Index>(e)), real_vertices)};
             }
             const Patches patches = extract_patches(Di, embedding.network, &executor);
-            for (FaceId df : Di.mesh.faces()) {
-                std::vector<FaceId> touched;
-                for (FaceId f : patches.patch[df].faces) touched.push_back(embedding.network.t_face[f]);
-                net->touched()[corners_of(Di, df)] = merged(std::move(touched), {});
-            }
+            for (FaceId df : Di.mesh.faces()) net->touched()[corners_of(Di, df)] = faces_of_t(patches, embedding.network, df);
             say("keeping the domain: the geodesics of a domain of " + std::to_string(faces) + " faces (" +
                 std::to_string(undone) + " collapses undone) satisfy (1) and (2)");
             break;
