@@ -411,14 +411,15 @@ const std::vector<Corruption>& corruptions() {
     return all;
 }
 
-/// Applies `c` to the k-subdivision of `domain`, verifies against `domain`, and checks the result.
+/// Applies `c` to the k-subdivision of `domain`, verifies against `domain` as the paper's map
+/// (PARAM-10 judged), and checks the result.
 void expect_caught(const Corruption& c, const TriMesh& domain, int k) {
     ParamFile file = fhr::test::subdivided_param(domain, k);
     TriMesh input = domain;
     const Expect e = c.apply(file, input);
-    const VerifyReport r = verify(file, &input);
+    const VerifyReport r = verify(file, &input, nullptr, true);
     INFO(c.name << "\n" << describe(r));
-    CHECK(difference(r, verify(file, fhr::exchange::PreparedInput(input))).empty());  // T's side prepared apart
+    CHECK(difference(r, verify(file, fhr::exchange::PreparedInput(input), nullptr, true)).empty());  // T's side prepared apart
     REQUIRE_FALSE(r.valid());
     CHECK(first_failure(r) == e.first);
     const CheckResult& first = check(r, e.first);
@@ -442,9 +443,9 @@ void rc_expect_caught(const std::vector<Corruption>& list, const TriMesh& domain
         ParamFile file = fhr::test::subdivided_param(domain, 4);
         TriMesh input = domain;
         const Expect e = c.apply(file, input);
-        const VerifyReport r = verify(file, &input);
+        const VerifyReport r = verify(file, &input, nullptr, true);
         RC_LOG() << c.name << "\n" << describe(r);
-        RC_ASSERT(difference(r, verify(file, fhr::exchange::PreparedInput(input))) == "");
+        RC_ASSERT(difference(r, verify(file, fhr::exchange::PreparedInput(input), nullptr, true)) == "");
         RC_ASSERT(first_failure(r) == e.first);
         if (e.vertex >= 0) RC_ASSERT(check(r, e.first).vertex == e.vertex);
         if (!e.also.empty()) RC_ASSERT(check(r, e.also).status == CheckStatus::fail);
@@ -1063,4 +1064,27 @@ TEST_CASE("PARAM-11: T's side prepared once (PreparedInput) serves several files
     CHECK(first_failure(slit) == "PARAM-11");
     CHECK(difference(slit, verify(on_disk, &slit_disk)).empty());
     CHECK(verify(on_disk, fhr::exchange::PreparedInput(disk)).valid());
+}
+
+TEST_CASE("PARAM-10: chord length is judged only as the paper's map; otherwise reported as info", "[exchange]") {
+    fhr::generate::RandomMeshOptions o;
+    o.genus = 1;
+    o.faces = 120;
+    o.seed = 3;
+    o.noise = 0.2;
+    const TriMesh domain = fhr::generate::random_closed_mesh(o);
+    ParamFile file = fhr::test::subdivided_param(domain, 4);
+    // The first inner vertex of a side slid along it: still a homeomorphism, no longer chord length.
+    TriMesh input = domain;
+    slide_side_vertex(file, false);
+    const VerifyReport homeomorphism = verify(file, &input);
+    INFO(describe(homeomorphism));
+    CHECK(homeomorphism.valid());
+    CHECK(check(homeomorphism, "PARAM-10").status == CheckStatus::info);
+    CHECK(check(homeomorphism, "PARAM-10").failures >= 1);
+    CHECK_THAT(check(homeomorphism, "PARAM-10").first_failure, Catch::Contains("but chord length"));
+    const VerifyReport paper = verify(file, &input, nullptr, true);
+    CHECK_FALSE(paper.valid());
+    CHECK(first_failure(paper) == "PARAM-10");
+    CHECK(check(paper, "PARAM-10").status == CheckStatus::fail);
 }

@@ -134,7 +134,7 @@ TEST_CASE("CLI-VERIFY-3, CLI-VERIFY-4: an unreadable file or mesh gives one erro
     CHECK(count_lines(bad_mesh.err) == 1);
     const auto usage = run_fhr({"verify"});
     CHECK(usage.exit_code == 2);
-    CHECK_THAT(usage.err, Catch::Contains("PARAM.fhrp"));
+    CHECK_THAT(usage.err, Catch::Contains("FILE"));
 }
 
 TEST_CASE("CLI-VERIFY-1..4: a surface with boundary and several components: exit codes 0, 1 and 2", "[cli][exchange]") {

@@ -449,3 +449,40 @@ def test_a_given_domain_is_kept(fandisk):
         fhr.parameterize(V, F, faces=114, domain=(DV, DF, t_vertex))
     with pytest.raises(fhr.InvalidInput, match="not a vertex of T"):
         fhr.parameterize(V, F, domain=(DV, DF, np.full(len(DV), len(V))))
+
+
+# PY-3, PY-4: the atlas oracle on arrays gives the command's verdict on the same atlas as OBJ.
+def test_verify_atlas_on_arrays_is_the_commands_verdict(fandisk, fandisk_run, tmp_path):
+    V, F = fandisk
+    _, out = fandisk_run
+    lines = (out / "textured.obj").read_text().split("\n")
+    TV = np.array([[float(x) for x in l.split()[1:4]] for l in lines if l.startswith("v ")])
+    UV = np.array([[float(x) for x in l.split()[1:3]] for l in lines if l.startswith("vt ")])
+    corners = [[c.split("/") for c in l.split()[1:4]] for l in lines if l.startswith("f ")]
+    TF = np.array([[int(c[0]) - 1 for c in f] for f in corners])
+    FUV = np.array([[int(c[1]) - 1 for c in f] for f in corners])
+    ours = fhr.verify_atlas(TV, TF, UV, FUV, mesh=(V, F))
+    theirs = json.loads(cli("verify", out / "textured.obj", "--mesh", FANDISK, "--json").stdout)
+    assert ours["valid"] and ours["kind"] == "atlas"
+    checks = lambda d: [{k: v for k, v in c.items() if k != "first_failure"} for c in d["checks"]]
+    assert checks(ours) == checks(theirs)
+    assert ours["distortion"] == theirs["distortion"]
+    assert ours["charts"] == theirs["charts"] == 114
+    assert fhr.verify(str(out / "textured.obj"), mesh=(V, F)) == {k: theirs[k] for k in theirs if k not in ("file", "mesh")}
+    # A corner moved far: a fold, named as the command names it.
+    UV[FUV[7, 0]] = [5.0, 5.0]
+    bad = fhr.verify_atlas(TV, TF, UV, FUV, lists=True)
+    assert not bad["valid"] and 7 in bad["folded_face_list"] + [f for p in bad["overlapping_pair_list"] for f in p]
+
+
+# PY-2: bad atlas arrays are InvalidInput, naming the array.
+def test_verify_atlas_refuses_bad_arrays():
+    V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]])
+    F = np.array([[0, 1, 2]])
+    assert fhr.verify_atlas(V, F, V[:, :2])["valid"]  # per-vertex UV
+    with pytest.raises(fhr.InvalidInput, match="UV"):
+        fhr.verify_atlas(V, F, np.array([[0.0, 0.0], [np.nan, 0.0], [0.0, 1.0]]))
+    with pytest.raises(fhr.InvalidInput, match="face 0"):
+        fhr.verify_atlas(V, F, V[:, :2], FUV=np.array([[0, 1, 7]]))
+    with pytest.raises(fhr.InvalidInput, match="textures"):
+        fhr.verify_atlas(V, F, V[:, :2], textures=np.array([0, 1]))

@@ -4,7 +4,7 @@ genus-1 mesh), regenerated with the built `fhr` and compared with reference_outp
 
   check_reference.py FHR fandisk|genus1   run the case (CASES below) into a temporary folder and
                                           compare it with reference_outputs/CASE/; exit 1 on a difference
-  check_reference.py FHR verify           `fhr verify --mesh` on each committed exchange file (PARAM-1..11)
+  check_reference.py FHR verify           `fhr verify --mesh --paper` on each committed exchange file (PARAM-1..11)
   check_reference.py FHR --regenerate     rewrite reference_outputs/{fandisk,genus1}/ from fresh runs
 
 What is compared, and the reason of every tolerance in TOLERANCES, PNG_* and SVG_*:
@@ -233,7 +233,7 @@ def verify(fhr, work):
         param = work / (name + ".fhrp")
         param.write_text(read_param(REF / name))
         mesh = REF / name / case["mesh"] if case["generate"] else MESHES / case["mesh"]
-        proc = subprocess.run([fhr, "verify", str(param), "--mesh", str(mesh)], capture_output=True, text=True)
+        proc = subprocess.run([fhr, "verify", str(param), "--mesh", str(mesh), "--paper"], capture_output=True, text=True)
         if proc.returncode != 0:
             errors.append("fhr verify %s: exit %d\n%s%s" % (name, proc.returncode, proc.stdout, proc.stderr))
     return errors

@@ -50,8 +50,11 @@ usage:
       textured.obj, report.json, timings.json; with --levels also §5's remesh_LJ.off and
       wavelet_keepP.off (the largest P % of the wavelet coefficients); with --figures DIR/figures/: the paper's
       Figures 6-9 as PNG, patches and the rate-distortion plot as SVG; exit 3 if §3 cannot partition, 4 if not certified
-  fhr verify PARAM.fhrp [--mesh INPUT] [--json]
-      the oracle: check a `fhr-param 1` file against PARAM-1..11 (spec/param.md); exit 1 if invalid
+  fhr verify FILE [--mesh INPUT] [--json [--list]] [--kind param|atlas] [--paper] [--no-mirror] [--strict]
+      the oracle: check a `fhr-param 1` file against PARAM-1..11 (spec/param.md), or a UV atlas (OBJ
+      with vt, PLY with u v or texcoord) against ATLAS-1..8 (spec/atlas.md), the kind decided by
+      content; with the distortion figures (spec/distortion.md); --paper judges chord length (PARAM-10);
+      exit 1 if invalid
   fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--family NAME|all] [--genus-max G]
                   [--holes-max H] [--components-max C] [--seed S] [--keep DIR] [--timeout SECONDS]
                   [--shard K/N'] [--table FILE]

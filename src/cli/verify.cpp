@@ -1,8 +1,9 @@
-// FHR cli — `fhr verify PARAM.fhrp [--mesh INPUT] [--json]`: the oracle for any producer of a
-// parameterization (spec/cli.md CLI-VERIFY-*, spec/param.md). It reads the file with the strict
-// reader (PARAM-1), checks PARAM-2..10 and, with the input mesh T, PARAM-11 (src/fhr/exchange/verify.hpp),
-// and prints a verdict and one line per check, or one JSON object. D, T′ and T may have boundary
-// and several components (issue 19).
+// FHR cli — `fhr verify FILE [--mesh INPUT] [--json] [--kind K]`: the oracle for any producer of a
+// parameterization (spec/cli.md CLI-VERIFY-*). The kind of map is decided by the file's content: a
+// `fhr-param 1` file (spec/param.md: PARAM-1 by the strict reader, PARAM-2..10, and PARAM-11 with
+// the input mesh T) or a UV atlas, PLY or OBJ (spec/atlas.md: ATLAS-1..7, and ATLAS-8 with T); it
+// prints a verdict and one line per check, or one JSON object with the distortion figures
+// (spec/distortion.md). D, T′ and T may have boundary and several components.
 // Exit codes: 0 valid, 1 invalid (a check failed), 2 unreadable (the file or the mesh).
 #include <cstdio>
 #include <optional>
@@ -10,29 +11,31 @@
 #include <vector>
 
 #include <fhr/core/errors.hpp>
+#include <fhr/exchange/atlas.hpp>
 #include <fhr/exchange/fhr_param.hpp>
+#include <fhr/exchange/verdict.hpp>
 #include <fhr/exchange/verify.hpp>
 #include <fhr/io/detail/json.hpp>
+#include <fhr/io/read.hpp>
 #include "cli/common.hpp"
 
 namespace fhr::cli {
 namespace {
 
-/// PARAM-1 is decided by the reader: a file that is read satisfies it.
-std::string print_human(const std::string& path, const exchange::ParamFile& file,
-                        const std::vector<exchange::CheckResult>& checks) {
-    const exchange::CheckResult* first = nullptr;
-    for (const auto& c : checks)
-        if (!first && c.status != exchange::CheckStatus::pass) first = &c;
+/// PARAM-1 (ATLAS-1) is decided by the reader: a file that is read satisfies it. `sizes` is the
+/// line under the verdict.
+std::string print_human(const std::string& path, const std::string& sizes, const std::vector<exchange::CheckResult>& checks) {
+    const exchange::CheckResult* first = exchange::first_judged_failure(checks);
     std::string s = path + ": " + (first ? "INVALID: " + first->id + ": " + first->first_failure : "valid") + "\n";
-    s += "  D: " + std::to_string(file.domain_vertices.size()) + " vertices, " + std::to_string(file.domain_faces.size()) +
-         " faces; T': " + std::to_string(file.surface_vertices.size()) + " vertices, " +
-         std::to_string(file.surface_faces.size()) + " faces\n";
+    s += "  " + sizes + "\n";
     for (const auto& c : checks) {
         char head[64];
         std::snprintf(head, sizeof head, "  %-9s %-8s ", c.id.c_str(), exchange::to_string(c.status));
         s += head + c.title;
-        if (c.status == exchange::CheckStatus::pass) s += " (" + std::to_string(c.checked) + " checked)";
+        if (c.status == exchange::CheckStatus::info)  // reported, not judged (PARAM-10, ATLAS-7)
+            s += ": " + std::to_string(c.failures) + " of " + std::to_string(c.checked) + " (reported, not judged); first: " +
+                 c.first_failure;
+        else if (c.status == exchange::CheckStatus::pass) s += " (" + std::to_string(c.checked) + " checked)";
         else if (c.status == exchange::CheckStatus::fail)
             s += ": " + std::to_string(c.failures) + " of " + std::to_string(c.checked) + " fail; first: " + c.first_failure;
         else s += ": " + c.first_failure;
@@ -41,59 +44,40 @@ std::string print_human(const std::string& path, const exchange::ParamFile& file
     return s;
 }
 
-void index_or_null(io::JsonWriter& j, const char* key, std::int64_t index) {
-    j.key(key);
-    if (index < 0) j.null();
-    else j.value(index);
+std::string atlas_sizes(const exchange::Atlas& atlas, const exchange::AtlasReport& report) {
+    return "atlas: " + std::to_string(report.vertices) + " vertices, " + std::to_string(atlas.faces.size()) + " faces, " +
+           std::to_string(report.charts) + " charts (" + std::to_string(report.mirrored_charts) + " mirrored), " +
+           std::to_string(report.textures) + (report.textures == 1 ? " texture" : " textures");
 }
 
-std::string print_json(const std::string& path, const std::optional<std::string>& mesh,
-                       const exchange::ParamFile& file, const std::vector<exchange::CheckResult>& checks) {
-    const exchange::CheckResult* first = nullptr;
-    for (const auto& c : checks)
-        if (!first && c.status != exchange::CheckStatus::pass) first = &c;
-    io::JsonWriter j;
-    j.begin_object().key("file").value(path).key("mesh");
-    if (mesh) j.value(*mesh);
-    else j.null();
-    j.key("readable").value(true).key("valid").value(first == nullptr).key("first_failure");
-    if (first) j.value(first->id);
-    else j.null();
-    j.key("domain").begin_object().key("vertices").value(file.domain_vertices.size());
-    j.key("faces").value(file.domain_faces.size()).end_object();
-    j.key("surface").begin_object().key("vertices").value(file.surface_vertices.size());
-    j.key("faces").value(file.surface_faces.size()).end_object();
-    j.key("checks").begin_array();
-    for (const auto& c : checks) {
-        j.begin_object().key("id").value(c.id).key("title").value(c.title);
-        j.key("result").value(exchange::to_string(c.status));
-        j.key("checked").value(c.checked).key("failures").value(c.failures);
-        j.key("first_failure");
-        if (c.first_failure.empty()) j.null();
-        else j.value(c.first_failure);
-        index_or_null(j, "face", c.face);
-        index_or_null(j, "vertex", c.vertex);
-        index_or_null(j, "patch", c.patch);
-        j.end_object();
+/// The kind of FILE: `--kind` when given, else by content (exchange::kind_of_content).
+std::string kind_of(const std::string& path, const std::optional<std::string>& kind) {
+    if (kind) {
+        if (*kind != "param" && *kind != "atlas") usage_error("--kind must be param or atlas, not '" + *kind + "'");
+        return *kind;
     }
-    j.end_array().end_object();
-    return j.str();
+    return exchange::kind_of_content(io::read_bytes(path), path) == exchange::MapKind::param ? "param" : "atlas";
 }
 
 }  // namespace
 
 int run_verify(const std::vector<std::string>& argv) {
-    const Args args(argv, {"json"}, {"mesh"});
-    const std::string& path = args.single_positional("PARAM.fhrp");
+    const Args args(argv, {"json", "no-mirror", "strict", "list", "paper"}, {"mesh", "kind"});
+    const std::string& path = args.single_positional("FILE");
     const std::optional<std::string> mesh_path = args.get("mesh");
+    const bool json = args.flag("json");
+    std::string kind;
     exchange::ParamFile file;
+    exchange::Atlas atlas;
     std::optional<TriMesh> mesh;
     try {
-        file = exchange::read_param(path);
+        kind = kind_of(path, args.get("kind"));
+        if (kind == "param") file = exchange::read_param(path);
+        else atlas = exchange::read_atlas(path);
         // T may have boundary and several components, like D and T′ (spec/param.md PARAM-11).
         if (mesh_path) mesh = load_mesh(*mesh_path, {});
     } catch (const InvalidInput& e) {  // unreadable: exit 2 through main, with the one-line error
-        if (args.flag("json")) {
+        if (json) {
             io::JsonWriter j;
             j.begin_object().key("file").value(path).key("readable").value(false).key("valid").value(false);
             j.key("error").value(e.what()).end_object();
@@ -101,11 +85,27 @@ int run_verify(const std::vector<std::string>& argv) {
         }
         throw;
     }
-    std::vector<exchange::CheckResult> checks{exchange::grammar_check(file)};
-    exchange::VerifyReport report = exchange::verify(file, mesh ? &*mesh : nullptr);
-    const bool valid = report.valid();
-    for (auto& c : report.checks) checks.push_back(std::move(c));
-    const std::string out = args.flag("json") ? print_json(path, mesh_path, file, checks) : print_human(path, file, checks);
+    std::string out;
+    bool valid = false;
+    if (kind == "param") {
+        std::vector<exchange::CheckResult> checks{exchange::grammar_check(file)};
+        exchange::VerifyReport report = exchange::verify(file, mesh ? &*mesh : nullptr, nullptr, args.flag("paper"));
+        valid = report.valid();
+        for (auto& c : report.checks) checks.push_back(std::move(c));
+        out = json ? exchange::verdict_json(path, mesh_path, file, checks, report.distortion)
+                   : print_human(path,
+                                 "D: " + std::to_string(file.domain_vertices.size()) + " vertices, " +
+                                     std::to_string(file.domain_faces.size()) + " faces; T': " +
+                                     std::to_string(file.surface_vertices.size()) + " vertices, " +
+                                     std::to_string(file.surface_faces.size()) + " faces",
+                                 checks);
+    } else {
+        const exchange::AtlasOptions options{.no_mirror = args.flag("no-mirror"), .strict = args.flag("strict")};
+        const exchange::AtlasReport report = exchange::verify_atlas(atlas, mesh ? &*mesh : nullptr, options);
+        valid = report.valid();
+        out = json ? exchange::verdict_json(path, mesh_path, atlas, report, args.flag("list"))
+                   : print_human(path, atlas_sizes(atlas, report), report.checks);
+    }
     std::fputs(out.c_str(), stdout);
     return valid ? 0 : 1;
 }

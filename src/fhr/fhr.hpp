@@ -19,7 +19,10 @@
 #include <fhr/core/violation.hpp>
 #include <fhr/domain/decimate.hpp>
 #include <fhr/domain/user_domain.hpp>
+#include <fhr/exchange/atlas.hpp>
+#include <fhr/exchange/distortion.hpp>
 #include <fhr/exchange/fhr_param.hpp>
+#include <fhr/exchange/verdict.hpp>
 #include <fhr/exchange/verify.hpp>
 #include <fhr/generate/embedding.hpp>
 #include <fhr/generate/random_mesh.hpp>

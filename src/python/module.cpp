@@ -108,43 +108,50 @@ Faces faces_array(std::span<const Triangle> triangles) {
 
 py::tuple mesh_arrays(const TriMesh& m) { return py::make_tuple(vertices_array(m.positions()), faces_array(m.triangles())); }
 
-py::dict check_dict(const exchange::CheckResult& c) {
-    py::dict d;
-    d["id"] = c.id;
-    d["title"] = c.title;
-    d["result"] = exchange::to_string(c.status);
-    d["checked"] = c.checked;
-    d["failures"] = c.failures;
-    d["first_failure"] = c.first_failure.empty() ? py::object(py::none()) : py::object(py::str(c.first_failure));
-    for (const auto& [key, value] : {std::pair{"face", c.face}, std::pair{"vertex", c.vertex}, std::pair{"patch", c.patch}})
-        d[key] = value < 0 ? py::object(py::none()) : py::object(py::int_(value));
+/// A verdict of `fhr verify --json` (exchange::verdict_json) as a dict, without the file names
+/// (`file`, `mesh`) the command adds.
+py::dict verdict_dict(const std::string& json) {
+    py::dict d = py::module_::import("json").attr("loads")(json);
+    d.attr("pop")("file");
+    d.attr("pop")("mesh");
     return d;
 }
 
-/// The verdict as `fhr verify --json` gives it: PARAM-1 (the file was read) and PARAM-2..11.
-py::dict verdict(const exchange::ParamFile& file, const TriMesh* mesh) {
+/// The verdict on a `fhr-param 1` file: PARAM-1 (the file was read) and PARAM-2..11.
+py::dict verdict(const exchange::ParamFile& file, const TriMesh* mesh, bool paper) {
     exchange::VerifyReport report;
     {
         py::gil_scoped_release unlocked;
-        report = exchange::verify(file, mesh);
+        report = exchange::verify(file, mesh, nullptr, paper);
     }
-    py::list checks;
-    checks.append(check_dict(exchange::grammar_check(file)));
-    for (const auto& c : report.checks) checks.append(check_dict(c));
-    // The keys and values of `fhr verify --json` (spec/cli.md), without its file names.
-    py::dict d;
-    d["valid"] = report.valid();
-    const exchange::CheckResult* first = report.first_failure();
-    d["first_failure"] = first ? py::object(py::str(first->id)) : py::object(py::none());
-    py::dict domain, surface;
-    domain["vertices"] = file.domain_vertices.size();
-    domain["faces"] = file.domain_faces.size();
-    surface["vertices"] = file.surface_vertices.size();
-    surface["faces"] = file.surface_faces.size();
-    d["domain"] = domain;
-    d["surface"] = surface;
-    d["checks"] = checks;
-    return d;
+    std::vector<exchange::CheckResult> checks{exchange::grammar_check(file)};
+    checks.insert(checks.end(), report.checks.begin(), report.checks.end());
+    return verdict_dict(exchange::verdict_json("", std::nullopt, file, checks, report.distortion));
+}
+
+/// The verdict on an atlas: ATLAS-1 (it was read) and ATLAS-2..8.
+py::dict verdict(const exchange::Atlas& atlas, const TriMesh* mesh, const exchange::AtlasOptions& options, bool lists) {
+    exchange::AtlasReport report;
+    {
+        py::gil_scoped_release unlocked;
+        report = exchange::verify_atlas(atlas, mesh, options);
+    }
+    return verdict_dict(exchange::verdict_json(atlas.source, std::nullopt, atlas, report, lists));
+}
+
+/// UV as (k, 2) finite numbers.
+std::vector<exchange::UV> uv_of(const py::array& UV) {
+    require_shape(UV, 2, "UV");
+    const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(UV);
+    if (!a) throw InvalidInput("", 0, "UV must hold numbers");
+    std::vector<exchange::UV> uv(static_cast<std::size_t>(a.shape(0)));
+    const auto r = a.unchecked<2>();
+    for (py::ssize_t i = 0; i < r.shape(0); ++i) {
+        if (!std::isfinite(r(i, 0)) || !std::isfinite(r(i, 1)))
+            throw InvalidInput("", 0, "UV row " + std::to_string(i) + " is not finite");
+        uv[static_cast<std::size_t>(i)] = {r(i, 0), r(i, 1)};
+    }
+    return uv;
 }
 
 /// Points given as faces (k,) and coordinates (k, 3), for phi and psi: each face checked against
@@ -375,8 +382,9 @@ PYBIND11_MODULE(_fhr, m) {
                "at the corner in its domain face (corner order of DF).")
         .def_property_readonly("oracle", [](const Result& r) {
                 const exchange::ParamFile file = r.file();
-                return verdict(file, &r.T());
-            }, "The independent oracle's verdict on this parameterization against T (as fhr.verify).")
+                return verdict(file, &r.T(), true);
+            }, "The independent oracle's verdict on this parameterization against T (as fhr.verify with paper=True: "
+               "fhr's map is the paper's).")
         .def("phi", [](Result& r, const py::array& faces, const py::array& beta) {
                 const pipeline::GlobalMap& g = r.global();
                 std::vector<Vec3> out;
@@ -493,26 +501,67 @@ PYBIND11_MODULE(_fhr, m) {
         "(KeyboardInterrupt).");
     m.def(
         "verify",
-        [](const Result& r, std::optional<std::pair<py::array, py::array>> mesh) {
+        [](const Result& r, std::optional<std::pair<py::array, py::array>> mesh, bool paper) {
             const exchange::ParamFile file = r.file();
-            if (!mesh) return verdict(file, &r.T());
+            if (!mesh) return verdict(file, &r.T(), paper);
             const TriMesh T = mesh_of(mesh->first, mesh->second);
-            return verdict(file, &T);
+            return verdict(file, &T, paper);
         },
-        py::arg("parameterization"), py::arg("mesh") = py::none(),
-        "verify(parameterization, mesh=None) -> dict: the oracle on what write_param would write, against its own "
-        "T or the given (V, F).");
+        py::arg("parameterization"), py::arg("mesh") = py::none(), py::arg("paper") = false,
+        "verify(parameterization, mesh=None, paper=False) -> dict: the oracle on what write_param would write, against "
+        "its own T or the given (V, F); paper=True judges chord length (PARAM-10) too.");
     m.def(
         "verify",
-        [](const std::string& path, std::optional<std::pair<py::array, py::array>> mesh) {
-            const exchange::ParamFile file = exchange::read_param(path);
+        [](const std::string& path, std::optional<std::pair<py::array, py::array>> mesh, bool no_mirror, bool strict,
+           bool paper) {
             std::optional<TriMesh> T;
             if (mesh) T = mesh_of(mesh->first, mesh->second);
-            return verdict(file, T ? &*T : nullptr);
+            const std::string bytes = io::read_bytes(path);
+            if (exchange::kind_of_content(bytes, path) == exchange::MapKind::param)
+                return verdict(exchange::parse_param(bytes, path), T ? &*T : nullptr, paper);
+            return verdict(exchange::parse_atlas(bytes, path), T ? &*T : nullptr, {.no_mirror = no_mirror, .strict = strict},
+                           false);
         },
-        py::arg("path"), py::arg("mesh") = py::none(),
-        "verify(path, mesh=None) -> dict: the oracle's checks (PARAM-1..11) of a `fhr-param 1` file, against the "
-        "surface (V, F) when given: the keys and values of `fhr verify --json` (valid, first_failure: the first "
-        "check id that did not pass, domain and surface counts, checks: id, title, result, checked, failures, "
-        "first_failure, face, vertex, patch).");
+        py::arg("path"), py::arg("mesh") = py::none(), py::arg("no_mirror") = false, py::arg("strict") = false,
+        py::arg("paper") = false,
+        "verify(path, mesh=None, no_mirror=False, strict=False, paper=False) -> dict: the oracle's checks of a `fhr-param 1` file "
+        "(PARAM-1..11) or a UV atlas, OBJ or PLY (ATLAS-1..8; the kind by content, as `fhr verify`), against the "
+        "surface (V, F) when given: the keys and values of `fhr verify --json` without file names (kind, valid, "
+        "first_failure: the first check id that did not pass, counts, checks: id, title, result, checked, failures, "
+        "first_failure, face, vertex, patch; distortion; an atlas's charts, folds, overlaps, contacts, seams, packing).");
+    m.def(
+        "verify_atlas",
+        [](const py::array& V, const py::array& F, const py::array& UV, std::optional<py::array> FUV,
+           std::optional<py::array> textures, std::optional<std::pair<py::array, py::array>> mesh, bool no_mirror, bool strict,
+           bool lists) {
+            exchange::Atlas a;
+            a.source = "atlas";
+            a.points = points_of(V);
+            a.faces = triangles_of(F, a.points.size());
+            a.uv = uv_of(UV);
+            a.face_uv = FUV ? triangles_of(*FUV, a.uv.size()) : triangles_of(F, a.uv.size());
+            if (a.face_uv.size() != a.faces.size())
+                throw InvalidInput("", 0, "FUV has " + std::to_string(a.face_uv.size()) + " rows but F has " +
+                                              std::to_string(a.faces.size()));
+            a.face_texture.assign(a.faces.size(), 0);
+            if (textures) {
+                const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(*textures);
+                if (!t || t.ndim() != 1 || static_cast<std::size_t>(t.shape(0)) != a.faces.size())
+                    throw InvalidInput("", 0, "textures must have shape (" + std::to_string(a.faces.size()) + ",)");
+                for (py::ssize_t i = 0; i < t.shape(0); ++i) {
+                    if (t.at(i) < 0 || t.at(i) > 0xffffffffLL) throw InvalidInput("", 0, "texture " + std::to_string(t.at(i)) + " is out of range");
+                    a.face_texture[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(t.at(i));
+                }
+            }
+            std::optional<TriMesh> T;
+            if (mesh) T = mesh_of(mesh->first, mesh->second);
+            return verdict(a, T ? &*T : nullptr, {.no_mirror = no_mirror, .strict = strict}, lists);
+        },
+        py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("FUV") = py::none(), py::arg("textures") = py::none(),
+        py::arg("mesh") = py::none(), py::arg("no_mirror") = false, py::arg("strict") = false, py::arg("lists") = false,
+        "verify_atlas(V, F, UV, FUV=None, textures=None, mesh=None, no_mirror=False, strict=False, lists=False) -> dict: "
+        "the atlas oracle (spec/atlas.md) on arrays: positions V (n, 3), triangles F (m, 3), texture coordinates UV "
+        "(k, 2) indexed per corner by FUV (m, 3), or per vertex like F when FUV is None (then k = n); textures (m,) a "
+        "texture number per face. The dict of `fhr verify --json` without file names; with lists, the folded faces, "
+        "overlapping pairs and contacts themselves.");
 }

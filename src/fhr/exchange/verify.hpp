@@ -12,13 +12,16 @@
 // value; it shares no code with the parameterization it judges (src/fhr/param, src/fhr/partition).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <fhr/core/executor.hpp>
 #include <fhr/core/trimesh.hpp>
+#include <fhr/exchange/distortion.hpp>
 #include <fhr/exchange/fhr_param.hpp>
 
 namespace fhr::exchange {
@@ -27,9 +30,18 @@ enum class CheckStatus {
     pass,     ///< every element satisfies the invariant
     fail,     ///< `failures` elements break it; the first is described
     skipped,  ///< not checked because a check it relies on failed (named in `first_failure`)
+    info,     ///< reported, not judged: `failures` elements break it, the first is described, and
+              ///< the map is valid nonetheless (PARAM-10 without `paper`; ATLAS-7 without `strict`)
 };
 
-/// "pass", "fail" or "skipped".
+/// Whether a check's result makes the map invalid: fail and skipped do, pass and info do not.
+inline bool judged_against(CheckStatus status) { return status == CheckStatus::fail || status == CheckStatus::skipped; }
+
+struct CheckResult;
+/// The first of `checks` judged against the map (judged_against), or nullptr: the verdict's first failure.
+const CheckResult* first_judged_failure(const std::vector<CheckResult>& checks);
+
+/// "pass", "fail", "skipped" or "info".
 const char* to_string(CheckStatus status);
 
 /// The result of one invariant.
@@ -43,6 +55,9 @@ struct CheckResult {
     /// Where the first failure is, as indices into the file (surface face, surface vertex, patch =
     /// domain face); −1 when not applicable. PARAM-11's "vertex of T missing" names T's vertex.
     std::int64_t face = -1, vertex = -1, patch = -1;
+    /// An atlas check's first failure (spec/atlas.md): its chart (−1 when none) and UV point.
+    std::int64_t chart = -1;
+    std::optional<std::array<double, 2>> uv;
 };
 
 struct VerifyReport {
@@ -52,6 +67,10 @@ struct VerifyReport {
     bool valid() const;
     /// The first check that did not pass, or nullptr.
     const CheckResult* first_failure() const;
+    /// DIST-* of spec/distortion.md: each face of T′ from its image in its domain triangle (the β
+    /// of its corners on that triangle's 3D corners) onto its 3D triangle. Measured whenever
+    /// PARAM-2 holds (the indices are in range), whatever the verdict; empty otherwise.
+    Distortion distortion;
 };
 
 /// Tolerances of spec/param.md (each derived there and at its use in verify.cpp).
@@ -74,7 +93,10 @@ CheckResult grammar_check(const ParamFile& file);
 ///       O(size of the file · log), plus O(|T| log |T|) with an input mesh.
 /// PARAM-11's distances of T′'s vertices to T are computed in parallel on `executor`
 /// (default_executor() when null); the report is the same on any number of threads.
-VerifyReport verify(const ParamFile& file, const TriMesh* input_mesh, Executor* executor = nullptr);
+///
+/// `paper`: judge PARAM-10 (chord length, the paper's own boundary map, §4). Without it PARAM-10 is
+/// reported (`info` when it does not hold) and a homeomorphism with another boundary map is valid.
+VerifyReport verify(const ParamFile& file, const TriMesh* input_mesh, Executor* executor = nullptr, bool paper = false);
 
 namespace detail {
 struct InputSide;
@@ -94,12 +116,12 @@ public:
     const TriMesh& mesh() const { return *mesh_; }
 
 private:
-    friend VerifyReport verify(const ParamFile&, const PreparedInput&, Executor*);
+    friend VerifyReport verify(const ParamFile&, const PreparedInput&, Executor*, bool);
     const TriMesh* mesh_;
     std::unique_ptr<detail::InputSide> side_;
 };
 
 /// verify(file, &input.mesh(), executor), the same report, with T's side already prepared.
-VerifyReport verify(const ParamFile& file, const PreparedInput& input, Executor* executor = nullptr);
+VerifyReport verify(const ParamFile& file, const PreparedInput& input, Executor* executor = nullptr, bool paper = false);
 
 }  // namespace fhr::exchange

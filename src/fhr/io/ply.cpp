@@ -2,9 +2,14 @@
 // binary_big_endian bodies. The triangulation T of the paper (§1) is taken from element `vertex`
 // (properties x, y, z found by name, of any scalar type) and element `face` (list property
 // `vertex_indices` or `vertex_index` of any integer types); every other property and element is
-// read past — its size still checked — and ignored.
+// read past — its size still checked — and ignored. Asked for texture coordinates (a UV atlas,
+// spec/atlas.md ATLAS-1), it also reads per-vertex `u v`, `s t` or `texture_u texture_v`, the
+// per-face list `texcoord` (u, v of each corner; it wins over per-vertex ones) and `texnumber`.
 #include <array>
+#include <algorithm>
 #include <bit>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -62,6 +67,10 @@ struct Header {
     std::size_t vertex = 0, face = 0;  // element indices
     std::array<std::size_t, 3> xyz{};  // property indices in the vertex element
     std::size_t face_list = 0;         // property index in the face element
+    // Texture coordinates (absent: absent): per-vertex u and v, the face list texcoord, texnumber.
+    static constexpr std::size_t absent = std::numeric_limits<std::size_t>::max();
+    std::array<std::size_t, 2> vertex_uv{absent, absent};
+    std::size_t face_texcoord = absent, face_texnumber = absent;
 };
 
 Scalar parse_scalar(std::string_view token, TextScanner& in) {
@@ -159,6 +168,20 @@ Header parse_header(std::string_view bytes, TextScanner& in) {
     if (!face[k].is_list || !info(face[k].type).integer)
         detail::fail(file, 0, {"header"}, "face property '" + face[k].name + "' must be a list of integers");
     h.face_list = k;
+    // Texture coordinates, used only when asked for: the first pair of names present, as scalars.
+    const auto scalar = [](const std::vector<Property>& ps, std::string_view name) {
+        for (std::size_t j = 0; j < ps.size(); ++j)
+            if (ps[j].name == name && !ps[j].is_list) return j;
+        return Header::absent;
+    };
+    constexpr std::array<std::array<std::string_view, 2>, 3> uv_names = {{{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}}};
+    for (const auto& names : uv_names)
+        if (h.vertex_uv[0] == Header::absent && scalar(vertex, names[0]) != Header::absent &&
+            scalar(vertex, names[1]) != Header::absent)
+            h.vertex_uv = {scalar(vertex, names[0]), scalar(vertex, names[1])};
+    for (std::size_t j = 0; j < face.size(); ++j)
+        if (face[j].name == "texcoord" && face[j].is_list) h.face_texcoord = j;
+    h.face_texnumber = scalar(face, "texnumber");
     if (h.elements[h.face].count == 0) detail::fail(file, 0, {"header"}, "no faces (the header declares 0)");
     return h;
 }
@@ -201,6 +224,10 @@ public:
     double real(Scalar t, Where where) {
         return info(t).integer ? static_cast<double>(integer(t, where)) : in_.real(where);
     }
+    /// real(), and the number added to the printed digits (an integer type is exact).
+    double real(Scalar t, Where where, detail::PrintedDigits& digits, double&) {
+        return info(t).integer ? static_cast<double>(integer(t, where)) : in_.real(where, digits);
+    }
     void skip(Scalar t, Where where, std::uint64_t n) {
         for (std::uint64_t k = 0; k < n; ++k) real(t, where);
     }
@@ -235,6 +262,13 @@ public:
         if (t == Scalar::float64) return std::bit_cast<double>(raw(t, where));
         return static_cast<double>(integer(t, where));
     }
+    /// real(), and `rounding` raised to half an ulp of the stored type at the value (0 for integers).
+    double real(Scalar t, Where where, detail::PrintedDigits&, double& rounding) {
+        const double v = real(t, where);
+        const double half_ulp = t == Scalar::float32 ? 0x1p-24 : t == Scalar::float64 ? 0x1p-53 : 0.0;
+        rounding = std::max(rounding, half_ulp * std::fabs(v));
+        return v;
+    }
     void skip(Scalar t, Where where, std::uint64_t n) {
         if (n > (data_.size() - pos_) / info(t).size) truncated(where);
         pos_ += n * info(t).size;
@@ -259,27 +293,50 @@ private:
     const std::string& name_;
 };
 
-/// FMT-PLY-3: every element in header order; x y z and the face lists go into the soup.
+/// FMT-PLY-3: every element in header order; x y z and the face lists go into the soup, and with
+/// `texture` the texture coordinates into soup.texture (ATLAS-1).
 template <class Body>
-void read_body(Body& body, const Header& h, PolygonSoup& soup, bool text) {
+void read_body(Body& body, const Header& h, PolygonSoup& soup, bool text, bool texture) {
     const std::uint64_t vertex_count = h.elements[h.vertex].count;
+    SoupTexture& tex = soup.texture;
+    const bool per_vertex_uv = texture && h.vertex_uv[0] != Header::absent;
+    const bool per_corner_uv = texture && h.face_texcoord != Header::absent;
+    std::vector<double> corner_uv;  // the current face's texcoord list
+    detail::PrintedDigits digits;   // of the coordinates, in an ascii body
     for (std::size_t e = 0; e < h.elements.size(); ++e) {
         const Element& element = h.elements[e];
+        const bool is_vertex = e == h.vertex, is_face = e == h.face;
         for (std::uint64_t i = 0; i < element.count; ++i) {
             const Where where{element.name, i};
             body.begin(where, element.count);
             Vec3 p = Vec3::Zero();
+            std::array<double, 2> uv{};
+            std::uint32_t texnumber = 0;
+            std::int64_t polygon_size = -1;
+            corner_uv.clear();
             for (std::size_t k = 0; k < element.properties.size(); ++k) {
                 const Property& prop = element.properties[k];
                 if (!prop.is_list) {
-                    const double v = body.real(prop.type, where);
+                    const bool coordinate = is_vertex && (k == h.xyz[0] || k == h.xyz[1] || k == h.xyz[2]);
+                    const double v = texture && coordinate ? body.real(prop.type, where, digits, tex.rounding) : body.real(prop.type, where);
                     for (int c = 0; c < 3; ++c)
-                        if (e == h.vertex && k == h.xyz[c]) p[c] = v;
+                        if (is_vertex && k == h.xyz[c]) p[c] = v;
+                    for (int c = 0; c < 2; ++c)
+                        if (per_vertex_uv && is_vertex && k == h.vertex_uv[c]) uv[c] = v;
+                    if (texture && is_face && k == h.face_texnumber) {
+                        if (!(v >= 0 && v < 4294967296.0 && v == std::floor(v)))
+                            detail::fail(soup.source, body.line(), where, "texnumber is not an integer in [0, 2^32)");
+                        texnumber = static_cast<std::uint32_t>(v);
+                    }
                     continue;
                 }
                 const std::int64_t n = body.integer(prop.count_type, where);
                 if (n < 0) detail::fail(soup.source, body.line(), where, "negative list length " + std::to_string(n));
-                if (e != h.face || k != h.face_list) {
+                if (per_corner_uv && is_face && k == h.face_texcoord) {
+                    for (std::int64_t j = 0; j < n; ++j) corner_uv.push_back(body.real(prop.type, where));
+                    continue;
+                }
+                if (!is_face || k != h.face_list) {
                     body.skip(prop.type, where, static_cast<std::uint64_t>(n));
                     continue;
                 }
@@ -289,20 +346,46 @@ void read_body(Body& body, const Header& h, PolygonSoup& soup, bool text) {
                                                                  soup.source, body.line(), where));
                 soup.offsets.push_back(static_cast<std::uint32_t>(soup.indices.size()));
                 if (text) soup.polygon_line.push_back(body.line());
+                polygon_size = n;
             }
             body.end(where);
-            if (e != h.vertex) continue;
+            if (texture && is_face) {
+                tex.polygon_texture.push_back(texnumber);
+                if (per_corner_uv) {
+                    if (static_cast<std::int64_t>(corner_uv.size()) != 2 * polygon_size)
+                        detail::fail(soup.source, body.line(), where,
+                                     "texcoord has " + std::to_string(corner_uv.size()) + " values, expected " +
+                                         std::to_string(2 * polygon_size) + " (u v per corner)");
+                    for (std::size_t j = 0; j < corner_uv.size(); j += 2) {
+                        if (!std::isfinite(corner_uv[j]) || !std::isfinite(corner_uv[j + 1]))
+                            detail::fail(soup.source, body.line(), where, "texture coordinate is not finite");
+                        tex.corner_uv.push_back(static_cast<std::uint32_t>(tex.uv.size()));
+                        tex.uv.push_back({corner_uv[j], corner_uv[j + 1]});
+                    }
+                } else {
+                    const std::uint32_t* corners = soup.polygon(soup.polygon_count() - 1);
+                    for (std::int64_t j = 0; j < polygon_size; ++j)
+                        tex.corner_uv.push_back(per_vertex_uv ? corners[j] : SoupTexture::none);
+                }
+            }
+            if (!is_vertex) continue;
             detail::check_point(p, soup.source, body.line(), where);
             soup.points.push_back(p);
             if (text) soup.point_line.push_back(body.line());
+            if (per_vertex_uv) {
+                if (!std::isfinite(uv[0]) || !std::isfinite(uv[1]))
+                    detail::fail(soup.source, body.line(), where, "texture coordinate is not finite");
+                tex.uv.push_back(uv);
+            }
         }
     }
     body.finish();
+    tex.rounding = std::max(tex.rounding, digits.rounding());
 }
 
 }  // namespace
 
-PolygonSoup parse_ply(std::string_view bytes, const std::string& name) {
+PolygonSoup parse_ply(std::string_view bytes, const std::string& name, bool texture) {
     detail::check_input_size(bytes, name);
     TextScanner in(bytes, name, '\0');
     const Header h = parse_header(bytes, in);
@@ -327,10 +410,10 @@ PolygonSoup parse_ply(std::string_view bytes, const std::string& name) {
         soup.point_line.reserve(vertex_count);
         soup.polygon_line.reserve(face_count);
         AsciiBody body(in);
-        read_body(body, h, soup, true);
+        read_body(body, h, soup, true, texture);
     } else {
         BinaryBody body(body_bytes, h.encoding == Encoding::big_endian, name);
-        read_body(body, h, soup, false);
+        read_body(body, h, soup, false, texture);
     }
     return soup;
 }

@@ -33,9 +33,11 @@ TriMesh read_mesh(const std::string& path, const BuildOptions& options = {}, Bui
 /// Parsers over bytes already in memory; `name` is used in messages. These are what the fuzz
 /// harnesses call. \post every point is finite, every index < points.size(), every polygon has
 /// at least one index; polygons may still be degenerate (build_trimesh decides).
+/// With `texture`, OBJ and PLY also fill soup.texture (spec/atlas.md ATLAS-1): every record read is
+/// finite and every corner's record index is in range or SoupTexture::none (a corner without one).
 PolygonSoup parse_off(std::string_view bytes, const std::string& name);
-PolygonSoup parse_obj(std::string_view bytes, const std::string& name);
-PolygonSoup parse_ply(std::string_view bytes, const std::string& name);
+PolygonSoup parse_obj(std::string_view bytes, const std::string& name, bool texture = false);
+PolygonSoup parse_ply(std::string_view bytes, const std::string& name, bool texture = false);
 PolygonSoup parse_stl(std::string_view bytes, const std::string& name);
 PolygonSoup parse(Format format, std::string_view bytes, const std::string& name);
 

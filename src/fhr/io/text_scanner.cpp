@@ -3,6 +3,7 @@
 // through these, so each refusal is decided and worded in exactly one place.
 #include <fhr/io/detail/text_scanner.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -91,6 +92,29 @@ NumberStatus parse_double(std::string_view token, double& out) {
     return NumberStatus::ok;
 }
 
+void PrintedDigits::add(std::string_view token, double value) {
+    any_ = true;
+    max_abs_ = std::max(max_abs_, std::fabs(value));
+    const std::size_t e = token.find_first_of("eE");
+    const std::string_view mantissa = token.substr(0, e);
+    const std::size_t dot = mantissa.find('.');
+    const int decimals = dot == std::string_view::npos ? -1 : static_cast<int>(mantissa.size() - dot - 1);
+    if (e != std::string_view::npos || decimals < 0 || (decimals_ >= 0 && decimals != decimals_)) fixed_ = false;
+    decimals_ = std::max(decimals_, decimals);
+    int digits = 0;  // significant: from the first non-zero digit on
+    for (const char c : mantissa)
+        if (c >= '0' && c <= '9' && (digits > 0 || c != '0')) ++digits;
+    significant_ = std::max(significant_, digits);
+}
+
+double PrintedDigits::rounding() const {
+    if (!any_) return 0;
+    if (fixed_) return 0.5 * std::pow(10.0, -decimals_);
+    if (max_abs_ == 0) return 0;
+    const double place = std::floor(std::log10(max_abs_)) - std::max(significant_, 1) + 1;
+    return 0.5 * std::pow(10.0, std::max(place, -400.0));
+}
+
 void check_point(const Vec3& p, const std::string& name, std::uint64_t line, Where where) {
     for (int c = 0; c < 3; ++c)
         if (const char* problem = coordinate_problem(p[c])) fail(name, line, where, problem);
@@ -155,6 +179,14 @@ double TextScanner::real(Where where) {
     return v;
 }
 
+double TextScanner::real(Where where, PrintedDigits& digits) {
+    const std::string_view t = token(where, "a number");
+    double v = 0;
+    if (const NumberStatus s = parse_double(t, v); s != NumberStatus::ok) fail_number(where, t, s);
+    digits.add(t, v);
+    return v;
+}
+
 std::int64_t TextScanner::integer(Where where) {
     const std::string_view t = token(where, "an integer");
     std::int64_t v = 0;
@@ -180,9 +212,9 @@ std::uint32_t TextScanner::index(Where where, std::uint64_t size) {
     return checked_index(v, size, name_, line_, where);
 }
 
-Vec3 TextScanner::point(Where where) {
+Vec3 TextScanner::point(Where where, PrintedDigits* digits) {
     Vec3 p;
-    for (int k = 0; k < 3; ++k) p[k] = real(where);
+    for (int k = 0; k < 3; ++k) p[k] = digits ? real(where, *digits) : real(where);
     check_point(p, name_, line_, where);
     return p;
 }

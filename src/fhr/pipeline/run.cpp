@@ -86,7 +86,9 @@ RunResult run(const TriMesh& T, RunOptions options) {
         }
         const auto start = detail::Clock::now();
         if (task == 0) {
-            out.oracle = oracle_t ? exchange::verify(lent, *oracle_t, method.executor) : exchange::verify(lent, &T, method.executor);
+            // fhr's map is the paper's: chord length (PARAM-10) is judged.
+            out.oracle = oracle_t ? exchange::verify(lent, *oracle_t, method.executor, true)
+                                  : exchange::verify(lent, &T, method.executor, true);
             verifying = detail::seconds_since(start);
         } else if (options.levels > 0) {
             // §5: D^J sampled through φ, prewavelet decomposition, compression.

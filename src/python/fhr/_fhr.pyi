@@ -53,6 +53,25 @@ def parameterize(
     progress: Optional[Callable[[str], object]] = ...,
 ) -> Parameterization: ...
 @overload
-def verify(parameterization: Parameterization, mesh: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ...) -> dict[str, Any]: ...
+def verify(
+    parameterization: Parameterization, mesh: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ..., paper: bool = ...
+) -> dict[str, Any]: ...
 @overload
-def verify(path: str, mesh: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ...) -> dict[str, Any]: ...
+def verify(
+    path: str,
+    mesh: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ...,
+    no_mirror: bool = ...,
+    strict: bool = ...,
+    paper: bool = ...,
+) -> dict[str, Any]: ...
+def verify_atlas(
+    V: npt.ArrayLike,
+    F: npt.ArrayLike,
+    UV: npt.ArrayLike,
+    FUV: Optional[npt.ArrayLike] = ...,
+    textures: Optional[npt.ArrayLike] = ...,
+    mesh: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ...,
+    no_mirror: bool = ...,
+    strict: bool = ...,
+    lists: bool = ...,
+) -> dict[str, Any]: ...

@@ -32,6 +32,25 @@ enum class NumberStatus { ok, not_a_number, out_of_range };
 /// write "+1.5"; std::from_chars refuses it).
 NumberStatus parse_double(std::string_view token, double& out);
 
+/// How far the numbers of a text file may lie from the values their writer meant (spec/atlas.md
+/// ATLAS-8), from the digits it printed. A fixed-point writer (every number with a decimal point,
+/// no exponent, the same number d of decimals: `%.6f`) rounds by half a unit in the d-th decimal.
+/// Any other writer (`%g`, `%e`, shortest round-trip) drops trailing zeros, so a number's own digits
+/// understate its precision: it rounds by half a unit in the P-th significant digit, P the most
+/// significant digits of any number in the file (`%g`: 6; shortest round-trip: up to 17).
+class PrintedDigits {
+public:
+    /// One number as written. \pre parse_double(token) gave `value`.
+    void add(std::string_view token, double value);
+    /// The largest rounding of any number added (0 when none was).
+    double rounding() const;
+
+private:
+    bool any_ = false, fixed_ = true;
+    int decimals_ = -1, significant_ = 0;
+    double max_abs_ = 0;
+};
+
 /// FMT-NUM-1: `[+-]digits`, exactly; out_of_range beyond int64. A plain digit loop: readers
 /// parse hundreds of thousands of indices, and this is several times cheaper than the general
 /// std::from_chars (the tests check that both agree).
@@ -103,13 +122,15 @@ public:
     }
 
     double real(Where where);
+    /// real(), and the number added to `digits`.
+    double real(Where where, PrintedDigits& digits);
     std::int64_t integer(Where where);
     /// A non-negative integer (a count).
     std::uint64_t count(Where where);
     /// A 0-based index into `size` points (OFF, PLY ascii).
     std::uint32_t index(Where where, std::uint64_t size);
-    /// Three coordinates that pass check_point().
-    Vec3 point(Where where);
+    /// Three coordinates that pass check_point(); with `digits`, added to them.
+    Vec3 point(Where where, PrintedDigits* digits = nullptr);
     /// Fails when the current line has tokens left.
     void expect_end_of_line(Where where);
 

@@ -1,0 +1,163 @@
+"""The atlas oracle (`fhr verify` on an atlas, spec/atlas.md) against the independent exact checker
+atlas_reference.py, written apart from it: on fhr's own textured.obj (valid), on atlases with
+planted folds and overlaps, and as a property over random meshes of several genera projected
+onto a plane (folds, overlaps and contacts by the hundred), the sets of folded faces, overlapping
+pairs and contacts must be equal, and the distortion figures (spec/distortion.md) agree within
+stated tolerances. Run with Debian's /usr/bin/python3; FHR names the built `fhr` and
+FHR_CGAL_MESHES the libcgal-demo meshes."""
+import json
+import os
+import random
+import subprocess
+import sys
+
+import pytest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import atlas_reference  # noqa: E402
+
+FHR = os.environ.get("FHR")
+MESHES = os.environ.get("FHR_CGAL_MESHES")
+
+
+def fhr(*args, check=True):
+    if not FHR or not os.path.exists(FHR):
+        pytest.fail("FHR must name the built fhr program (the meson test sets it)")
+    return subprocess.run([FHR, *map(str, args)], capture_output=True, text=True, check=check)
+
+
+def oracle(path, *extra):
+    proc = fhr("verify", path, "--json", "--list", *extra, check=False)
+    assert proc.returncode in (0, 1), proc.stderr
+    verdict = json.loads(proc.stdout)
+    assert verdict["kind"] == "atlas"
+    assert (proc.returncode == 0) == verdict["valid"]
+    return verdict
+
+
+def mesh(name):
+    if not MESHES:
+        pytest.fail("FHR_CGAL_MESHES must name libcgal-demo's meshes (./run extracts them)")
+    path = os.path.join(MESHES, name)
+    if not os.path.exists(path):
+        pytest.fail("%s is missing: ./run extracts libcgal-demo's data.tar.gz into out/cgal-data" % path)
+    return path
+
+
+def assert_same_figures(ours, theirs):
+    """The sets exactly; the figures within tolerances: the distortion's σ to 1e-9 relative (both
+    compute it in double, by different formulas: the Gram matrices here, an SVD there), the
+    percentiles to 1e-6 (neighbouring faces may be picked where a running sum ties), the packing to
+    1e-9 (a slab union here, GEOS there)."""
+    assert ours["folded_face_list"] == theirs["folded_faces"]
+    assert [tuple(p) for p in ours["overlapping_pair_list"]] == [tuple(p) for p in theirs["overlapping_pairs"]]
+    assert [tuple(p) for p in ours["contact_list"]] == [tuple(p) for p in theirs["contacts"]]
+    assert ours["charts"] == theirs["charts"]
+    assert ours["mirrored_charts"] == theirs["mirrored_charts"]
+    a, b = ours["distortion"], theirs["distortion"]
+    assert a["degenerate"] == b["degenerate"]
+    for key in ("l2_stretch", "linf_stretch", "symmetric_dirichlet"):
+        assert a[key] == pytest.approx(b[key], rel=1e-9), key
+    for key in ("p50", "p99", "p999", "max"):
+        assert a["anisotropy"][key] == pytest.approx(b["anisotropy"][key], rel=1e-6), key
+    assert a["anisotropy"]["above_10"] == b["anisotropy"]["above_10"]
+    assert a["area_distortion"]["max"] == pytest.approx(b["area_distortion"]["max"], rel=1e-9)
+    for key in ("packing_unit_square", "packing_bounding_square", "seam_length"):
+        assert ours[key] == pytest.approx(theirs[key], rel=1e-9, abs=1e-12), key
+
+
+def reference(path):
+    return atlas_reference.analyze(atlas_reference.read_atlas(path))
+
+
+@pytest.fixture(scope="module")
+def fandisk_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("fandisk")
+    fhr("run", mesh("fandisk.off"), "--faces", "114", "--out", out)
+    return out
+
+
+# ATLAS-2..8: fhr's own atlas is valid, also against its input mesh.
+def test_fhr_textured_obj_of_the_fandisk_is_valid(fandisk_run):
+    path = fandisk_run / "textured.obj"
+    ours = oracle(path, "--mesh", mesh("fandisk.off"))
+    assert ours["valid"], ours["first_failure"]
+    assert ours["charts"] == 114
+    assert_same_figures(ours, reference(path))
+
+
+def test_fhr_textured_obj_of_a_genus_3_mesh_is_valid(tmp_path):
+    surface = tmp_path / "g3.off"
+    fhr("generate", "--genus", "3", "--faces", "3000", "--seed", "5", "--out", surface)
+    fhr("run", surface, "--faces", "200", "--out", tmp_path / "run")
+    path = tmp_path / "run" / "textured.obj"
+    ours = oracle(path, "--mesh", surface)
+    assert ours["valid"], ours["first_failure"]
+    assert_same_figures(ours, reference(path))
+
+
+def planted(source, target, moves):
+    """A copy of an OBJ atlas with some `vt` lines replaced: moves maps a 0-based vt to (u, v)."""
+    lines, k = [], 0
+    for line in open(source):
+        if line.startswith("vt "):
+            if k in moves:
+                line = "vt %.17g %.17g\n" % moves[k]
+            k += 1
+        lines.append(line)
+    open(target, "w").write("".join(lines))
+
+
+# ATLAS-4, ATLAS-6: faults planted in a real atlas are found, the same by both checkers.
+def test_planted_folds_and_overlaps_in_fhr_atlas(fandisk_run, tmp_path):
+    source = fandisk_run / "textured.obj"
+    uv = [tuple(map(float, line.split()[1:3])) for line in open(source) if line.startswith("vt ")]
+    rng = random.Random(3)
+    moves = {}
+    for k in rng.sample(range(len(uv)), 12):
+        u, v = uv[k]
+        moves[k] = (u + rng.uniform(-0.05, 0.05), v + rng.uniform(-0.05, 0.05))
+    bad = tmp_path / "bad.obj"
+    planted(source, bad, moves)
+    ours = oracle(bad)
+    assert not ours["valid"]
+    assert ours["folded_faces"] + ours["overlapping_pairs"] > 0
+    assert_same_figures(ours, reference(bad))
+
+
+def projected_atlas(surface, target, axis_seed):
+    """An atlas of `surface` (OFF) by parallel projection onto a random plane, one vt per vertex:
+    faces seen from behind fold, and the two sides of the surface overlap."""
+    rng = random.Random(axis_seed)
+    text = open(surface).read().split()
+    assert text[0] == "OFF"
+    n, m = int(text[1]), int(text[2])
+    values = text[4:]
+    points = [tuple(float(x) for x in values[3 * i:3 * i + 3]) for i in range(n)]
+    faces = [tuple(int(x) for x in values[3 * n + 4 * j + 1:3 * n + 4 * j + 4]) for j in range(m)]
+    a = [rng.uniform(-1, 1) for _ in range(3)]
+    b = [rng.uniform(-1, 1) for _ in range(3)]
+    with open(target, "w") as out:
+        for p in points:
+            out.write("v %.17g %.17g %.17g\n" % p)
+        for p in points:
+            out.write("vt %.17g %.17g\n" % (sum(x * y for x, y in zip(a, p)), sum(x * y for x, y in zip(b, p))))
+        for f in faces:
+            out.write("f %d/%d %d/%d %d/%d\n" % tuple(i + 1 for i in f for _ in range(2)))
+
+
+# ATLAS-4, -6, -7 and DIST-*: a property over random meshes of genus 0-3, with and without boundary.
+@pytest.mark.parametrize("genus,holes,seed", [(0, 0, 1), (1, 0, 2), (2, 0, 3), (3, 0, 4), (0, 2, 5), (1, 3, 6)])
+def test_projected_random_meshes_agree_with_the_exact_reference(tmp_path, genus, holes, seed):
+    surface = tmp_path / "s.off"
+    fhr("generate", "--genus", genus, "--holes", holes, "--faces", 600 + 48 * genus, "--seed", seed, "--out", surface)
+    path = tmp_path / "projected.obj"
+    projected_atlas(surface, path, seed)
+    ours = oracle(path, "--mesh", surface)
+    theirs = reference(path)
+    if theirs["degenerate_uv"]:  # ATLAS-3 fails: the oracle then skips the pair checks
+        assert ours["first_failure"] == "ATLAS-3"
+        return
+    assert ours["folded_faces"] > 0 and ours["overlapping_pairs"] > 0
+    assert_same_figures(ours, theirs)

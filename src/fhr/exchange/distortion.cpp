@@ -1,0 +1,105 @@
+// FHR exchange — DIST-1..9 of spec/distortion.md. The singular values come from the two Gram
+// matrices, so an image given in 3D (a domain triangle in its own plane) and one given in UV are
+// measured by the same few lines, with no frame to choose.
+#include <fhr/exchange/distortion.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <fhr/core/predicates.hpp>
+
+namespace fhr::exchange {
+
+namespace {
+
+/// The Gram matrix [a·a, a·b; a·b, b·b] of a triangle's two edge vectors, as (E, F, G).
+struct Gram {
+    double e, f, g;
+    double det() const { return e * g - f * f; }
+};
+
+Gram gram(const Vec3& a, const Vec3& b) { return {a.dot(a), a.dot(b), b.dot(b)}; }
+
+}  // namespace
+
+FaceStretch face_stretch(const Vec3& q0, const Vec3& q1, const Vec3& q2, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+    // DIST-1: M = G_Q⁻¹ G_P; tr M = (g_Q e_P − 2 f_Q f_P + e_Q g_P) / det G_Q, det M = det G_P / det G_Q.
+    const Gram gq = gram(q1 - q0, q2 - q0), gp = gram(p1 - p0, p2 - p0);
+    // Each area from the cross product: it keeps its accuracy where det G = |a|²|b|² − (a·b)² cancels.
+    FaceStretch s;
+    s.image_area = 0.5 * (q1 - q0).cross(q2 - q0).norm();
+    s.surface_area = 0.5 * (p1 - p0).cross(p2 - p0).norm();
+    // DIST-2: exactly degenerate triangles (a rounded area can be 1e-16 for three collinear points).
+    if (collinear(q0, q1, q2) || collinear(p0, p1, p2) || !(s.image_area > 0) || !(s.surface_area > 0)) return s;
+    const double det_q = 4 * s.image_area * s.image_area;
+    const double t = (gq.g * gp.e - 2 * gq.f * gp.f + gq.e * gp.g) / det_q;
+    const double root_d = s.surface_area / s.image_area;  // σ₁σ₂ = √det M
+    const double disc = std::max(t * t - 4 * root_d * root_d, 0.0);
+    s.sigma1 = std::sqrt((t + std::sqrt(disc)) / 2);
+    s.sigma2 = root_d / s.sigma1;
+    s.degenerate = !(std::isfinite(s.sigma1) && std::isfinite(s.sigma2) && s.sigma2 > 0);
+    return s;
+}
+
+double weighted_percentile(const std::vector<double>& values, const std::vector<double>& weights, double p) {
+    std::vector<std::size_t> order(values.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+    const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+    double below = 0;
+    for (std::size_t i : order) {
+        below += weights[i];
+        if (below >= p * total) return values[i];
+    }
+    return values[order.back()];  // rounding of the running sum: p = 1 lands here
+}
+
+Distortion summarize(const std::vector<FaceStretch>& faces) {
+    Distortion d;
+    d.faces = faces.size();
+    double image = 0, surface = 0;
+    for (const FaceStretch& f : faces) {
+        if (f.degenerate) {
+            ++d.degenerate;
+            continue;
+        }
+        image += f.image_area;
+        surface += f.surface_area;
+    }
+    if (d.degenerate == d.faces) return d;
+    // DIST-3: images scaled by k = √(ΣA_P / ΣA_Q): σ′ = σ / k, weight A = k²·A_Q.
+    const double k2 = surface / image, k = std::sqrt(k2);
+    double weight = 0, l2 = 0, dirichlet = 0, linf = 0, aniso_max = 0, area_max = 0;
+    std::vector<double> weights, anisotropy, area;
+    weights.reserve(faces.size());
+    anisotropy.reserve(faces.size());
+    area.reserve(faces.size());
+    for (const FaceStretch& f : faces) {
+        if (f.degenerate) continue;
+        const double a = k2 * f.image_area, s1 = f.sigma1 / k, s2 = f.sigma2 / k;
+        weight += a;
+        l2 += a * (s1 * s1 + s2 * s2) / 2;
+        dirichlet += a * (s1 * s1 + s2 * s2 + 1 / (s1 * s1) + 1 / (s2 * s2));
+        linf = std::max(linf, s1);
+        const double ratio = f.sigma1 / f.sigma2, scale = s1 * s2, distortion = std::max(scale, 1 / scale);
+        aniso_max = std::max(aniso_max, ratio);
+        area_max = std::max(area_max, distortion);
+        if (ratio > 10) ++d.anisotropy_above_10;
+        weights.push_back(a);
+        anisotropy.push_back(ratio);
+        area.push_back(distortion);
+    }
+    d.l2_stretch = std::sqrt(l2 / weight);
+    d.linf_stretch = linf;
+    d.symmetric_dirichlet = dirichlet / weight;
+    d.anisotropy_p50 = weighted_percentile(anisotropy, weights, 0.5);
+    d.anisotropy_p99 = weighted_percentile(anisotropy, weights, 0.99);
+    d.anisotropy_p999 = weighted_percentile(anisotropy, weights, 0.999);
+    d.anisotropy_max = aniso_max;
+    d.area_distortion_p99 = weighted_percentile(area, weights, 0.99);
+    d.area_distortion_max = area_max;
+    return d;
+}
+
+}  // namespace fhr::exchange
