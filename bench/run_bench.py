@@ -20,12 +20,17 @@ exponent a of t ~ n^a (least squares of log t against log n). Then §2 against C
 mesh, and one run on 10^7 generated triangles (skipped with a message when the disk cannot hold
 its outputs).
 
+`oracle` mode: the oracle on other programs' kinds of map at scale: fhr's own textured.obj of a
+generated genus-2 mesh of 640,000 faces (an atlas of about 10^6 faces) judged by `fhr verify`
+without and with the input mesh (median of RUNS), against reading the same file (`fhr info`: read
+and validated as a mesh), as seconds per 10^6 atlas faces.
+
 Every goal is printed as `goal: NAME: measured X UNIT (goal <=|>= Y UNIT): met|NOT met`; issue 18's
 stretch goals as `goal: stretch: NAME: ...: met|gap Z UNIT` (the target of the next round, not
 a condition of the issue). Both are written with the tables to out/bench/results.json (generated,
 never committed; out/ is git-ignored); a mode replaces only its own goals there.
 
-Usage: run_bench.py BUILD_DIR [scaling] [--runs N]"""
+Usage: run_bench.py BUILD_DIR [scaling|oracle] [--runs N]"""
 import argparse
 import json
 import math
@@ -368,22 +373,61 @@ def ten_million(build, fhr, goals, results):
          "GB", MEMORY_LIMIT_GB)
 
 
+# The atlas oracle at 10^6 faces (spec/atlas.md): seconds per 10^6 atlas faces, on 2 cores.
+ATLAS_FACES_TARGET = 640_000   # generated input faces; fhr run's T′ (the atlas) has about 1.5 times as many
+ATLAS_SECONDS, ATLAS_WITH_MESH_SECONDS = 3.0, 6.0
+
+
+def timed(cmd):
+    """Wall seconds of a command whose output is not needed; it must succeed."""
+    start = time.monotonic()
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return time.monotonic() - start
+
+
+def bench_oracle(build, runs, goals, results):
+    fhr = os.path.join(build, "src", "fhr")
+    mesh, n = scaling_input(build, "generate", ATLAS_FACES_TARGET)
+    out = os.path.join(OUT, "oracle", "run")
+    fhr_run(fhr, mesh, n // 100 // 2 * 2, out, [], RUN_TIMEOUT)
+    atlas = os.path.join(out, "textured.obj")
+    with open(atlas) as f:
+        faces = sum(1 for line in f if line.startswith("f "))
+    per_million = 1e6 / faces
+    reading, alone, with_mesh = [], [], []
+    for _ in range(runs):  # interleaved, so that a slow phase of the machine touches all three alike
+        reading.append(timed([fhr, "info", atlas]))
+        alone.append(timed([fhr, "verify", atlas]))
+        with_mesh.append(timed([fhr, "verify", atlas, "--mesh", mesh]))
+    m = {"faces": faces, "reading": statistics.median(reading), "verify": statistics.median(alone),
+         "verify_with_mesh": statistics.median(with_mesh)}
+    results["oracle"] = m
+    print("== the atlas oracle: textured.obj of a genus-2 mesh of %d faces, %d atlas faces; median of %d" % (n, faces, runs))
+    print("  reading (fhr info)        %8.3f s" % m["reading"])
+    print("  fhr verify                %8.3f s   %.2fx reading" % (m["verify"], m["verify"] / m["reading"]))
+    print("  fhr verify --mesh         %8.3f s   %.2fx reading" % (m["verify_with_mesh"], m["verify_with_mesh"] / m["reading"]))
+    goal(goals, "atlas oracle without the mesh, seconds per 10^6 faces", m["verify"] * per_million, "s", ATLAS_SECONDS)
+    goal(goals, "atlas oracle with the mesh, seconds per 10^6 faces", m["verify_with_mesh"] * per_million, "s",
+         ATLAS_WITH_MESH_SECONDS)
+    shutil.rmtree(out, ignore_errors=True)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("build")
-    parser.add_argument("mode", nargs="?", choices=["meshes", "scaling"], default="meshes")
+    parser.add_argument("mode", nargs="?", choices=["meshes", "scaling", "oracle"], default="meshes")
     parser.add_argument("--runs", type=int, help="fhr runs per mesh (default 5; scaling 3)")
     options = parser.parse_args()
     runs = options.runs or (5 if options.mode == "meshes" else 3)
     path = os.path.join(OUT, "results.json")
     os.makedirs(OUT, exist_ok=True)
-    results = {"goals": [], "meshes": {}, "scaling": {}}
+    results = {"goals": [], "meshes": {}, "scaling": {}, "oracle": {}}
     if os.path.isfile(path):
         with open(path) as f:
             results.update(json.load(f))
     goals = []
     results[options.mode] = {}
-    (bench_meshes if options.mode == "meshes" else bench_scaling)(options.build, runs, goals, results)
+    {"meshes": bench_meshes, "scaling": bench_scaling, "oracle": bench_oracle}[options.mode](options.build, runs, goals, results)
     names = {g["name"] for g in goals}
     results["goals"] = [g for g in results["goals"] if g["name"] not in names] + goals
     with open(path, "w") as f:

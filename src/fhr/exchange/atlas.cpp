@@ -204,22 +204,22 @@ CheckResult AtlasVerifier::check_surface() {
     try {
         BuildLog log;
         TriMesh mesh = build_trimesh(soup, BuildOptions{}, log);
-        // The file's own winding must be consistent: no directed edge twice (build_trimesh turns
-        // whole closed components outward, which the atlas's orientation does not depend on).
-        std::vector<std::pair<std::uint64_t, std::uint32_t>> directed;
-        directed.reserve(3 * n());
-        for (std::uint32_t f = 0; f < n(); ++f)
-            for (int k = 0; k < 3; ++k)
-                directed.emplace_back(std::uint64_t{w_faces_[f][k]} << 32 | w_faces_[f][(k + 1) % 3], f);
-        std::sort(directed.begin(), directed.end());
-        for (std::size_t i = 1; i < directed.size(); ++i)
-            if (directed[i].first == directed[i - 1].first)
-                rec.fail([&] { return "faces " + std::to_string(directed[i - 1].second) + " and " +
-                                      std::to_string(directed[i].second) + " traverse the edge (" +
-                                      std::to_string(directed[i].first >> 32) + ", " +
-                                      std::to_string(directed[i].first & 0xffffffffu) +
-                                      ") in the same direction: the surface is not consistently wound"; },
-                         directed[i].second);
+        // The file's own winding must be consistent: build_trimesh turns faces to agree with their
+        // component (and a closed component outward, which the atlas's orientation does not depend
+        // on), so in each component either every face was turned or none.
+        const std::vector<Triangle> built = mesh.triangles();
+        const Components components = connected_components(mesh);
+        std::vector<std::int8_t> turned(components.count, -1);  // per component: unknown, no, yes
+        for (std::uint32_t f = 0; f < n(); ++f) {
+            const Triangle &t = w_faces_[f], &b = built[f];
+            const bool same = (b[0] == t[0] && b[1] == t[1]) || (b[0] == t[1] && b[1] == t[2]) || (b[0] == t[2] && b[1] == t[0]);
+            std::int8_t& c = turned[components.vertex_component[VertexId(t[0])]];
+            if (c < 0) c = same ? 0 : 1;
+            else if (c != (same ? 0 : 1))
+                rec.fail([&] { return "face " + std::to_string(f) + " is wound against its neighbours: the surface is not "
+                                      "consistently oriented"; },
+                         f);
+        }
         if (rec.failures() == 0) surface_.emplace(std::move(mesh));
     } catch (const InvalidInput& e) {
         rec.fail([&] { return "the welded surface: " + e.problem(); });
@@ -243,21 +243,24 @@ CheckResult AtlasVerifier::check_degenerate() {
 }
 
 void AtlasVerifier::find_edges_and_charts() {
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> undirected;  // (edge key, 4·face + corner)
-    undirected.reserve(3 * n());
-    for (std::uint32_t f = 0; f < n(); ++f)
-        for (std::uint32_t k = 0; k < 3; ++k) {
-            const std::uint32_t a = w_faces_[f][k], b = w_faces_[f][(k + 1) % 3];
-            undirected.emplace_back(std::uint64_t{std::min(a, b)} << 32 | std::max(a, b), 4 * f + k);
-        }
-    std::sort(undirected.begin(), undirected.end());
+    // The interior edges of S, from its halfedges; each edge's corners in the file's two faces.
+    const TriMesh& s = *surface_;
+    const auto corner = [&](std::uint32_t f, std::uint32_t v) {
+        const Triangle& t = w_faces_[f];
+        return static_cast<std::uint8_t>(t[0] == v ? 0 : t[1] == v ? 1 : 2);
+    };
     Charts charts(n());
-    for (std::size_t i = 1; i < undirected.size(); ++i) {
-        if (undirected[i].first != undirected[i - 1].first) continue;  // S is manifold: at most two
-        const std::uint32_t x = undirected[i - 1].second, y = undirected[i].second;
-        const Edge e{x / 4, y / 4, static_cast<std::uint8_t>(x % 4), static_cast<std::uint8_t>(y % 4)};
+    for (HalfedgeId h : s.halfedges()) {
+        const HalfedgeId o = TriMesh::twin(h);
+        if (o.idx() < h.idx() || s.is_boundary(h) || s.is_boundary(o)) continue;
+        Edge e{s.face(h).idx(), s.face(o).idx(), 0, 0};
+        // As the file winds them: a→b in f, b→a in g.
+        const std::uint32_t a = s.from(h).idx(), b = s.to(h).idx();
+        const std::uint8_t ca = corner(e.f, a);
+        const bool forward = w_faces_[e.f][(ca + 1) % 3] == b;
+        e.cf = forward ? ca : corner(e.f, b);
+        e.cg = corner(e.g, w_faces_[e.f][(e.cf + 1) % 3]);  // b in g
         edges_.push_back(e);
-        // The edge runs a→b in f (corners cf, cf+1) and b→a in g (corners cg+1, cg).
         const bool joined = a_.face_texture[e.f] == a_.face_texture[e.g] && uv(e.f, e.cf) == uv(e.g, (e.cg + 1) % 3) &&
                             uv(e.f, (e.cf + 1) % 3) == uv(e.g, e.cg);
         if (joined) charts.join(e.f, e.g);
@@ -439,7 +442,10 @@ bool separated_by_edge_of(const std::array<Vec2, 3>& a, const std::array<Vec2, 3
     for (int k = 0; k < 3; ++k) {
         bool outside = true;
         for (int j = 0; j < 3 && outside; ++j) {
-            const int o = orient2d(a[k], a[(k + 1) % 3], b[j]);
+            // A corner the two triangles share is on the line: 0 without the exact evaluation that
+            // orient2d's filter leaves every zero to (neighbouring faces share corners by the million).
+            const bool on_end = b[j] == a[k] || b[j] == a[(k + 1) % 3];
+            const int o = on_end ? 0 : orient2d(a[k], a[(k + 1) % 3], b[j]);
             outside = strict ? o < 0 : o <= 0;
         }
         if (outside) return true;
@@ -484,31 +490,52 @@ void AtlasVerifier::find_pairs(Recorder& overlaps, Recorder& contacts) {
             lo = lo.cwiseMin(box[i][0]);
             hi = hi.cwiseMax(box[i][1]);
         }
-        // About one face per cell: cells of side √(box area / faces), at most 2^20 per axis.
+        // Cells as wide as the faces' boxes are on average (so a face is listed in a few cells and
+        // a cell lists a few faces, however much of the texture is empty), at most 2^20 per axis
+        // and about as many cells as faces.
         const Vec2 extent = (hi - lo).cwiseMax(Vec2::Constant(std::numeric_limits<double>::min()));
-        const double side = std::max({std::sqrt(extent[0] * extent[1] / static_cast<double>(faces.size())),
+        double mean_box = 0;
+        for (const auto& b : box) mean_box += (b[1] - b[0]).maxCoeff();
+        mean_box /= static_cast<double>(faces.size());
+        const double side = std::max({mean_box, std::sqrt(extent[0] * extent[1] / static_cast<double>(faces.size())) / 4,
                                       extent.maxCoeff() / (1 << 20), std::numeric_limits<double>::min()});
         const auto cell = [&](const Vec2& p) {
             return std::array<std::uint64_t, 2>{
                 static_cast<std::uint64_t>(std::clamp((p[0] - lo[0]) / side, 0.0, 1048575.0)),
                 static_cast<std::uint64_t>(std::clamp((p[1] - lo[1]) / side, 0.0, 1048575.0))};
         };
-        std::vector<std::pair<std::uint64_t, std::uint32_t>> grid;  // (cell, index into faces)
-        for (std::uint32_t i = 0; i < faces.size(); ++i) {
+        // The faces of each cell, by a counting sort on the cell (row-major, nx columns).
+        const std::uint64_t nx = cell(hi)[0] + 1, ny = cell(hi)[1] + 1;
+        std::vector<std::uint32_t> start(nx * ny + 1, 0), listed;
+        const auto for_cells = [&](std::uint32_t i, const auto& visit) {
             const auto c0 = cell(box[i][0]), c1 = cell(box[i][1]);
-            for (std::uint64_t x = c0[0]; x <= c1[0]; ++x)
-                for (std::uint64_t y = c0[1]; y <= c1[1]; ++y) grid.emplace_back(x << 21 | y, i);
+            for (std::uint64_t y = c0[1]; y <= c1[1]; ++y)
+                for (std::uint64_t x = c0[0]; x <= c1[0]; ++x) visit(y * nx + x);
+        };
+        for (std::uint32_t i = 0; i < faces.size(); ++i) for_cells(i, [&](std::uint64_t c) { ++start[c + 1]; });
+        std::partial_sum(start.begin(), start.end(), start.begin());
+        listed.resize(start.back());
+        {
+            std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+            for (std::uint32_t i = 0; i < faces.size(); ++i) for_cells(i, [&](std::uint64_t c) { listed[next[c]++] = i; });
         }
-        std::sort(grid.begin(), grid.end());
-        for (std::size_t begin = 0, end = 0; begin < grid.size(); begin = end) {
-            while (end < grid.size() && grid[end].first == grid[begin].first) ++end;
+        // The cells in blocks on the executor, each block's pairs apart (sorted below: the same
+        // result on any number of threads).
+        const std::size_t cells = start.size() - 1, block = 4096;
+        std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> block_overlap((cells + block - 1) / block),
+            block_contact((cells + block - 1) / block);
+        for_each_block(executor_, cells, block, 1, [&](std::size_t first_cell, std::size_t end_cell) {
+          auto& found_overlap = block_overlap[first_cell / block];
+          auto& found_contact = block_contact[first_cell / block];
+          for (std::uint64_t c = first_cell; c < end_cell; ++c) {
+            const std::size_t begin = start[c], end = start[c + 1];
             for (std::size_t x = begin; x < end; ++x)
                 for (std::size_t y = x + 1; y < end; ++y) {
-                    const std::uint32_t i = grid[x].second, j = grid[y].second;
+                    const std::uint32_t i = listed[x], j = listed[y];
                     const Vec2 blo = box[i][0].cwiseMax(box[j][0]), bhi = box[i][1].cwiseMin(box[j][1]);
                     if ((blo.array() > bhi.array()).any()) continue;  // boxes apart
-                    if (cell(blo) != std::array<std::uint64_t, 2>{grid[x].first >> 21, grid[x].first & 0x1fffff})
-                        continue;  // tested in the cell of the boxes' common lower-left corner
+                    const auto corner_cell = cell(blo);
+                    if (corner_cell[1] * nx + corner_cell[0] != c) continue;  // tested in the cell of the boxes' common lower-left corner
                     const std::uint32_t f = std::min(faces[i], faces[j]), g = std::max(faces[i], faces[j]);
                     const std::array<Vec2, 3> tf = ccw(f), tg = ccw(g);
                     const Meeting m = meeting(tf, tg);
@@ -518,13 +545,12 @@ void AtlasVerifier::find_pairs(Recorder& overlaps, Recorder& contacts) {
                         continue;
                     }
                     // Touching: legitimate only in shared corners (same vertex, same UV point).
-                    int shared = 0, sf = -1, sg = -1;
+                    int shared = 0, sf = -1;
                     for (int p = 0; p < 3; ++p)
                         for (int q = 0; q < 3; ++q)
                             if (w_faces_[f][p] == w_faces_[g][q] && uv(f, p) == uv(g, q)) {
                                 ++shared;
                                 sf = p;
-                                sg = q;
                             }
                     bool contact = shared == 0;
                     if (shared == 1) {
@@ -540,11 +566,13 @@ void AtlasVerifier::find_pairs(Recorder& overlaps, Recorder& contacts) {
                         const auto [gx, gy] = others(tg);
                         contact = in_cone(pf, fx, fy, gx) || in_cone(pf, fx, fy, gy) || in_cone(pf, gx, gy, fx) ||
                                   in_cone(pf, gx, gy, fy);
-                        (void)sg;
                     }
                     if (contact) found_contact.emplace_back(f, g);
                 }
-        }
+          }
+        });
+        for (auto& v : block_overlap) found_overlap.insert(found_overlap.end(), v.begin(), v.end());
+        for (auto& v : block_contact) found_contact.insert(found_contact.end(), v.begin(), v.end());
     }
     std::sort(found_overlap.begin(), found_overlap.end());
     std::sort(found_contact.begin(), found_contact.end());
@@ -659,6 +687,9 @@ CheckResult AtlasVerifier::check_input() {
 
 /// The area of triangle t (counter-clockwise) inside [0, 1]² (Sutherland–Hodgman clipping).
 double area_in_unit_square(const std::array<Vec2, 3>& t) {
+    const Vec2 lo = t[0].cwiseMin(t[1]).cwiseMin(t[2]), hi = t[0].cwiseMax(t[1]).cwiseMax(t[2]);
+    if ((lo.array() >= 0).all() && (hi.array() <= 1).all())  // inside: nothing to clip
+        return std::fabs((t[1] - t[0]).x() * (t[2] - t[0]).y() - (t[1] - t[0]).y() * (t[2] - t[0]).x()) / 2;
     std::vector<Vec2> poly(t.begin(), t.end());
     for (int side = 0; side < 4 && !poly.empty(); ++side) {
         const int axis = side / 2;

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <numeric>
+#include <utility>
 
 #include <fhr/core/predicates.hpp>
 
@@ -42,17 +44,29 @@ FaceStretch face_stretch(const Vec3& q0, const Vec3& q1, const Vec3& q2, const V
     return s;
 }
 
-double weighted_percentile(const std::vector<double>& values, const std::vector<double>& weights, double p) {
-    std::vector<std::size_t> order(values.size());
-    std::iota(order.begin(), order.end(), std::size_t{0});
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+namespace {
+
+/// DIST-9 for several p (ascending) with one sort.
+std::vector<double> weighted_percentiles(const std::vector<double>& values, const std::vector<double>& weights,
+                                         std::initializer_list<double> ps) {
+    std::vector<std::pair<double, double>> sorted(values.size());  // (value, weight)
+    for (std::size_t i = 0; i < values.size(); ++i) sorted[i] = {values[i], weights[i]};
+    std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+    std::vector<double> out;
     double below = 0;
-    for (std::size_t i : order) {
-        below += weights[i];
-        if (below >= p * total) return values[i];
+    std::size_t i = 0;
+    for (const double p : ps) {
+        while (i < sorted.size() && below + sorted[i].second < p * total) below += sorted[i++].second;
+        out.push_back(sorted[std::min(i, sorted.size() - 1)].first);  // rounding of the sum: p = 1 may run past the end
     }
-    return values[order.back()];  // rounding of the running sum: p = 1 lands here
+    return out;
+}
+
+}  // namespace
+
+double weighted_percentile(const std::vector<double>& values, const std::vector<double>& weights, double p) {
+    return weighted_percentiles(values, weights, {p}).front();
 }
 
 Distortion summarize(const std::vector<FaceStretch>& faces) {
@@ -93,11 +107,12 @@ Distortion summarize(const std::vector<FaceStretch>& faces) {
     d.l2_stretch = std::sqrt(l2 / weight);
     d.linf_stretch = linf;
     d.symmetric_dirichlet = dirichlet / weight;
-    d.anisotropy_p50 = weighted_percentile(anisotropy, weights, 0.5);
-    d.anisotropy_p99 = weighted_percentile(anisotropy, weights, 0.99);
-    d.anisotropy_p999 = weighted_percentile(anisotropy, weights, 0.999);
+    const std::vector<double> a = weighted_percentiles(anisotropy, weights, {0.5, 0.99, 0.999});
+    d.anisotropy_p50 = a[0];
+    d.anisotropy_p99 = a[1];
+    d.anisotropy_p999 = a[2];
     d.anisotropy_max = aniso_max;
-    d.area_distortion_p99 = weighted_percentile(area, weights, 0.99);
+    d.area_distortion_p99 = weighted_percentiles(area, weights, {0.99}).front();
     d.area_distortion_max = area_max;
     return d;
 }
