@@ -4,7 +4,8 @@ distortion figures of a piecewise-linear map (spec/distortion.md, DIST-*).
 
 It reads an OBJ or PLY atlas (ATLAS-1: a file with a face that is not a triangle, a corner
 without texture coordinates, a number that is not finite or an index out of range is refused
-with a one-line ValueError), welds the corners by exactly equal 3D position (-0 = +0), forms the charts
+with a one-line ValueError), welds seam duplicates (records at one 3D position on the boundary of
+the surface over the file's indices; -0 = +0), forms the charts
 and decides, per texture:
 
   * degenerate UV triangles (ATLAS-3), folded faces and mirrored charts (ATLAS-4);
@@ -455,11 +456,23 @@ class _Prepared:
 
     def __init__(self, atlas):
         self.atlas = atlas
-        # welding by exactly equal 3D position (as numbers: -0 = +0); a welded vertex is named by its first file vertex
+        # welding: records at exactly equal 3D positions (as numbers: -0 = +0) are one vertex when
+        # both lie on the boundary of the surface over the file's own indices (a seam of
+        # duplicated vertices); coincident records inside that surface stay apart. A welded vertex
+        # is named by its first file vertex.
+        uses = {}
+        for f in atlas.faces:
+            for k in range(3):
+                edge = tuple(sorted((f[k], f[(k + 1) % 3])))
+                uses[edge] = uses.get(edge, 0) + 1
+        index_boundary = {v for edge, count in uses.items() if count == 1 for v in edge}
         first = {}
         self.weld = []
         for i, p in enumerate(atlas.positions):
-            self.weld.append(first.setdefault(struct.pack("<3d", *(x + 0.0 for x in p)), i))
+            if i in index_boundary:
+                self.weld.append(first.setdefault(struct.pack("<3d", *(x + 0.0 for x in p)), i))
+            else:
+                self.weld.append(i)
         self.fv = [tuple(self.weld[i] for i in f) for f in atlas.faces]
         self.uvkey = [tuple(_bits2(u, v) for (u, v) in t) for t in atlas.uvs]
         # textures in order of first appearance

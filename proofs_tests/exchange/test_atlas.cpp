@@ -226,6 +226,28 @@ TEST_CASE("ATLAS-2: the welded surface must be a consistently wound manifold", "
     CHECK(*welded.seam_length == Approx(std::sqrt(2.0)).epsilon(1e-15));  // the diagonal over √1
 }
 
+TEST_CASE("ATLAS-2: vertices that coincide inside the surface of the file's indices stay apart", "[exchange][atlas]") {
+    // Two closed tetrahedra touching at one point, each with its own vertex there (records 0 and 4):
+    // welded, they would make a non-manifold vertex; they are two vertices, the surface two components.
+    const std::vector<Vec3> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+    std::vector<Triangle> faces;
+    for (std::uint32_t base : {0u, 4u}) {
+        const std::vector<Triangle> tetra{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+        for (const Triangle& t : tetra) faces.push_back({base + t[0], base + t[1], base + t[2]});
+    }
+    std::vector<UV> uv;  // each face its own triangle in UV, side by side, counter-clockwise
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        uv.push_back({2.0 * f, 0});
+        uv.push_back({2.0 * f + 1, 0});
+        uv.push_back({2.0 * f, 1});
+    }
+    const AtlasReport r = verify_atlas(make(points, faces, uv), nullptr);
+    INFO((r.first_failure() ? r.first_failure()->first_failure : ""));
+    CHECK(r.vertices == 8);
+    CHECK(check(r, "ATLAS-2").status == CheckStatus::pass);
+    CHECK(r.charts == 8);
+}
+
 TEST_CASE("ATLAS-1: the readers give texture coordinates; a missing one or a polygon is refused", "[exchange][atlas][io]") {
     SECTION("OBJ with vt, negative references and two usemtl groups") {
         const std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"

@@ -7,7 +7,8 @@
 //   ATLAS-6  no two UV triangles of one texture with intersecting interiors  (exact)
 //   ATLAS-7  contacts beyond shared corners reported (invalid with --strict) (exact)
 //   ATLAS-8  with the input mesh T: S has T's topology and lies on T, T's vertices on S
-// Decisions: welding by exactly equal 3D positions (PLY writers duplicate vertices at seams);
+// Decisions: welding by exactly equal 3D positions where the file's own indices leave a boundary
+// (PLY writers duplicate vertices at seams; coincident vertices inside the surface stay apart);
 // charts by exactly equal UV points across an edge; signs, overlaps and contacts decided by exact
 // orient2d on the numbers read, so no fold or overlap can pass by rounding; the candidate pairs of
 // ATLAS-6/7 from a uniform grid per texture, each pair tested once.
@@ -168,10 +169,44 @@ void AtlasVerifier::weld() {
         return std::tie(p[0], p[1], p[2], x) < std::tie(q[0], q[1], q[2], y);
     };
     std::sort(order.begin(), order.end(), less);
+    // Points at one position are welded when they lie on the boundary of the surface the file's
+    // own indices make (a seam of a writer that duplicates vertices there); points at one position
+    // inside that surface are distinct vertices that happen to coincide, and stay apart.
+    std::vector<std::uint8_t> on_index_boundary;
+    const bool coincide = std::adjacent_find(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
+                              return a_.points[x] == a_.points[y];
+                          }) != order.end();
+    if (coincide) {
+        std::vector<std::uint64_t> edges;
+        edges.reserve(3 * n());
+        for (const Triangle& t : a_.faces)
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+                edges.push_back(std::uint64_t{std::min(a, b)} << 32 | std::max(a, b));
+            }
+        std::sort(edges.begin(), edges.end());
+        on_index_boundary.assign(a_.points.size(), 0);
+        for (std::size_t e = 0; e < edges.size();) {
+            std::size_t f = e;
+            while (f < edges.size() && edges[f] == edges[e]) ++f;
+            if (f - e == 1) on_index_boundary[edges[e] >> 32] = on_index_boundary[edges[e] & 0xffffffffu] = 1;
+            e = f;
+        }
+    }
     weld_.assign(a_.points.size(), SoupTexture::none);
-    for (std::size_t i = 0; i < order.size(); ++i) {
-        if (i == 0 || a_.points[order[i]] != a_.points[order[i - 1]]) welded_.push_back(a_.points[order[i]]);
-        weld_[order[i]] = static_cast<std::uint32_t>(welded_.size() - 1);
+    for (std::size_t i = 0; i < order.size();) {
+        std::size_t end = i;
+        while (end < order.size() && a_.points[order[end]] == a_.points[order[i]]) ++end;
+        std::uint32_t seam = SoupTexture::none;  // the welded vertex of this position's boundary points
+        for (std::size_t k = i; k < end; ++k) {
+            const std::uint32_t p = order[k];
+            const bool weld_here = end - i > 1 && on_index_boundary[p];
+            if (!weld_here || seam == SoupTexture::none) welded_.push_back(a_.points[p]);
+            weld_[p] = static_cast<std::uint32_t>(welded_.size() - 1);
+            if (weld_here && seam == SoupTexture::none) seam = weld_[p];
+            if (weld_here) weld_[p] = seam;
+        }
+        i = end;
     }
     // Welded vertices numbered in order of their lowest point, so that messages follow the file.
     std::vector<std::uint32_t> first(welded_.size(), SoupTexture::none);
