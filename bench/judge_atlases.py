@@ -34,8 +34,8 @@ import atlas_reference  # noqa: E402
 # Programs and the meshes they take. MeshLab's iso-parameterization: closed, one component (it
 # refuses holes and several components), sizes it finishes on within the adapter's time limit.
 # CGAL's methods: disks (one boundary loop, genus 0, one component).
-CLOSED = ["fandisk.off", "elephant.off", "cow.off", "mushroom.off", "bunny00.off", "camel.off", "eight.off",
-          "couplingdown.off", "sphere966.off", "dino.off"]
+CLOSED = ["fandisk.off", "elephant.off", "cow.off", "bunny00.off", "camel.off", "eight.off", "couplingdown.off",
+          "sphere966.off", "dino.off", "bull.off", "triceratops.off", "homer.off", "blob-closed.off"]
 DISKS_GENERATED = [("disk-%d.off" % seed, ["--genus", "0", "--holes", "1", "--faces", "4000", "--seed", str(seed)])
                    for seed in (1, 2, 3)]
 PROGRAMS = {
