@@ -88,6 +88,11 @@ def certify(fhr, path, out, faces, genus, loops, components, timeout):
         d, p = r["domain"], r["partition"]
         row["delivered"], row["final"], row["retries"] = d["faces_requested"], d["faces"], d["retries"]
         row["curves"] = "%d / %d / %d" % (p["geodesic_edges"], p["restricted_edges"], p["boundary_edges"])
+        dist = r["parameterization"].get("distortion")  # spec/distortion.md, as fhr verify measures it
+        if dist:
+            row["distortion"] = {"l2": dist["l2_stretch"], "p50": dist["anisotropy"]["p50"], "p99": dist["anisotropy"]["p99"],
+                                 "p999": dist["anisotropy"]["p999"], "max": dist["anisotropy"]["max"],
+                                 "above_10": dist["anisotropy"]["above_10"], "faces": p["refined_faces"]}
     if code == -1:
         progress = stderr.splitlines()[:-1]
         row["failure"] = "fhr run timed out after %g s; its last line: %s" % (timeout, progress[-1] if progress else "-")
@@ -95,7 +100,7 @@ def certify(fhr, path, out, faces, genus, loops, components, timeout):
     if code != 0:
         row["failure"] = "fhr run exit %d: %s" % (code, error_line(stderr))
         return row
-    verify = subprocess.run([fhr, "verify", os.path.join(out, "param.fhrp"), "--mesh", path], capture_output=True,
+    verify = subprocess.run([fhr, "verify", os.path.join(out, "param.fhrp"), "--mesh", path, "--paper"], capture_output=True,
                             text=True, errors="replace")
     if verify.returncode != 0:
         row["failure"] = "fhr verify exit %d: %s" % (verify.returncode,

@@ -7,7 +7,8 @@ per mesh (mesh, genus, boundary loops, components, faces, domain faces requested
 retries, domain edges that are exact geodesics / restricted shortest paths / boundary arcs,
 certified, time), then `K of N certified (P %)`, `D kept on K of N`, the same two counts for the
 closed connected meshes alone and for the others, the total time, and every failure with its exit
-code and message (a domain that §3 does not keep is one). The exit code is 0 when every mesh is
+code and message; and a second table, the distortion of each map (report.json's, spec/distortion.md:
+L2 stretch, σ₁/σ₂ percentiles weighted by area, maximum, faces above 10) (a domain that §3 does not keep is one). The exit code is 0 when every mesh is
 certified with its domain kept, else 1.
 
 A campaign (campaign.py): the items are the candidate files, sorted (libcgal-demo's, then the
@@ -96,6 +97,15 @@ def report(all_rows):
         print("%-33s %5d %5d %5d %8d %22s %7s %17s %9s %8.2f  %s" % (
             row["mesh"], row["genus"], row["loops"], row["components"], row["faces"], domain, row["retries"],
             row["curves"], "yes" if row["certified"] else "NO", row["seconds"], row["note"]))
+    print("\ndistortion of each map (spec/distortion.md: σ₁/σ₂ of each face of T′, percentiles weighted by area)")
+    print("%-33s %9s %8s %8s %8s %10s %10s %9s" % ("mesh", "T' faces", "L2", "p50", "p99", "p99.9", "max", "faces>10"))
+    for row in rows:
+        d = row.get("distortion")
+        if d:
+            g = lambda x: "-" if x is None else "%.3g" % x  # noqa: E731
+            print("%-33s %9d %8s %8s %8s %10s %10s %9d" % (row["mesh"], d["faces"], g(d["l2"]), g(d["p50"]), g(d["p99"]),
+                                                          g(d["p999"]), g(d["max"]), d["above_10"]))
+    print()
     summary(rows, "")
     summary([r for r in rows if r["closed_connected"]], "closed and connected: ")
     summary([r for r in rows if not r["closed_connected"]], "with boundary or several components: ")

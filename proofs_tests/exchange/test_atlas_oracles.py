@@ -161,3 +161,15 @@ def test_projected_random_meshes_agree_with_the_exact_reference(tmp_path, genus,
         return
     assert ours["folded_faces"] > 0 and ours["overlapping_pairs"] > 0
     assert_same_figures(ours, theirs)
+
+
+# CLI-RUN-2, DIST-*: fhr run's report gives the distortion fhr verify measures on its param.fhrp.
+def test_run_report_distortion_is_the_oracles(fandisk_run):
+    report = json.loads((fandisk_run / "report.json").read_text())["parameterization"]["distortion"]
+    verdict = json.loads(fhr("verify", fandisk_run / "param.fhrp", "--json").stdout)
+    worst = report.pop("worst_patches")
+    assert report == verdict["distortion"]
+    assert len(worst) == 5
+    assert worst[0]["max_anisotropy"] == verdict["distortion"]["anisotropy"]["max"]
+    assert all(a["max_anisotropy"] >= b["max_anisotropy"] for a, b in zip(worst, worst[1:]))
+    assert sum(w["faces_above_10"] for w in worst) <= verdict["distortion"]["anisotropy"]["above_10"]

@@ -19,9 +19,9 @@ void optional_value(io::JsonWriter& j, const char* key, const std::optional<doub
     else j.null();
 }
 
-/// DIST-4..8 (spec/distortion.md) as the `distortion` object.
-void write_distortion(io::JsonWriter& j, const Distortion& d) {
-    j.key("distortion").begin_object();
+}  // namespace
+
+void write_distortion_fields(io::JsonWriter& j, const Distortion& d) {
     optional_value(j, "l2_stretch", d.l2_stretch);
     optional_value(j, "linf_stretch", d.linf_stretch);
     optional_value(j, "symmetric_dirichlet", d.symmetric_dirichlet);
@@ -35,8 +35,10 @@ void write_distortion(io::JsonWriter& j, const Distortion& d) {
     optional_value(j, "p99", d.area_distortion_p99);
     optional_value(j, "max", d.area_distortion_max);
     j.end_object();
-    j.key("degenerate").value(d.degenerate).end_object();
+    j.key("degenerate").value(d.degenerate);
 }
+
+namespace {
 
 /// The keys every kind shares (CLI-VERIFY-4) before `domain` and `surface`, which the caller writes.
 void write_head(io::JsonWriter& j, const std::string& path, const std::optional<std::string>& mesh, const char* kind,
@@ -98,7 +100,9 @@ std::string verdict_json(const std::string& path, const std::optional<std::strin
     j.key("surface").begin_object().key("vertices").value(file.surface_vertices.size());
     j.key("faces").value(file.surface_faces.size()).end_object();
     write_checks(j, checks);
-    write_distortion(j, distortion);
+    j.key("distortion").begin_object();
+    write_distortion_fields(j, distortion);
+    j.end_object();
     j.end_object();
     return j.str();
 }
@@ -111,7 +115,9 @@ std::string verdict_json(const std::string& path, const std::optional<std::strin
     j.key("surface").begin_object().key("vertices").value(report.vertices);
     j.key("faces").value(atlas.faces.size()).end_object();
     write_checks(j, report.checks);
-    write_distortion(j, report.distortion);
+    j.key("distortion").begin_object();
+    write_distortion_fields(j, report.distortion);
+    j.end_object();
     j.key("charts").value(report.charts).key("mirrored_charts").value(report.mirrored_charts);
     j.key("folded_faces").value(report.folded.size()).key("overlapping_pairs").value(report.overlapping.size());
     j.key("contacts").value(report.contacts.size());

@@ -13,7 +13,15 @@
 #include <fhr/exchange/fhr_param.hpp>
 #include <fhr/exchange/verify.hpp>
 
+namespace fhr::io {
+class JsonWriter;
+}
+
 namespace fhr::exchange {
+
+/// DIST-4..8 (spec/distortion.md) as the members of the object `distortion` of a verdict or a
+/// report, written into the object the caller opened: the one place their layout is written.
+void write_distortion_fields(io::JsonWriter& j, const Distortion& d);
 
 enum class MapKind { param, atlas };
 

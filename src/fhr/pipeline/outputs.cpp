@@ -10,6 +10,8 @@
 
 #include <fhr/core/detail/stopwatch.hpp>
 #include <fhr/core/errors.hpp>
+#include <fhr/exchange/distortion.hpp>
+#include <fhr/exchange/verdict.hpp>
 #include <fhr/io/atomic_file.hpp>
 #include <fhr/io/detail/json.hpp>
 #include <fhr/io/detail/number_text.hpp>
@@ -101,6 +103,40 @@ void write_wavelet_report(io::JsonWriter& j, const wavelet::WaveletResult& w) {
     j.end_array().end_object();
 }
 
+/// A patch and its faces' anisotropy σ₁/σ₂ (DIST-1, UV in its domain triangle onto T′).
+struct PatchAnisotropy {
+    std::uint32_t patch;
+    double max;
+    std::uint64_t above_10;
+};
+
+/// The `count` patches whose worst face is the most anisotropic, worst first (ties: lower patch).
+std::vector<PatchAnisotropy> worst_patches(const Parameterization& p, std::size_t count) {
+    const TriMesh& D = p.partition.domain.mesh;
+    const std::vector<Triangle> domain_faces = D.triangles();  // the corner order of the β (param.fhrp)
+    std::vector<PatchAnisotropy> patches(D.n_faces());
+    for (std::uint32_t d = 0; d < patches.size(); ++d) patches[d] = {d, 0, 0};
+    for (std::size_t f = 0; f < p.refined_faces.size(); ++f) {
+        const Triangle& d = domain_faces[p.face_patch[f]];
+        std::array<Vec3, 3> q;
+        for (int c = 0; c < 3; ++c)
+            q[c] = p.face_beta[f][c][0] * D.position(VertexId(d[0])) + p.face_beta[f][c][1] * D.position(VertexId(d[1])) +
+                   p.face_beta[f][c][2] * D.position(VertexId(d[2]));
+        const Triangle& t = p.refined_faces[f];
+        const exchange::FaceStretch s = exchange::face_stretch(q[0], q[1], q[2], p.refined_positions[t[0]],
+                                                               p.refined_positions[t[1]], p.refined_positions[t[2]]);
+        if (s.degenerate) continue;
+        PatchAnisotropy& a = patches[p.face_patch[f]];
+        a.max = std::max(a.max, s.sigma1 / s.sigma2);
+        a.above_10 += s.sigma1 / s.sigma2 > 10;
+    }
+    const std::size_t kept = std::min(count, patches.size());
+    std::partial_sort(patches.begin(), patches.begin() + static_cast<std::ptrdiff_t>(kept), patches.end(),
+                      [](const PatchAnisotropy& a, const PatchAnisotropy& b) { return a.max != b.max ? a.max > b.max : a.patch < b.patch; });
+    patches.resize(kept);
+    return patches;
+}
+
 void write_report(const std::string& path, const InputInfo& input, const Parameterization& p,
                   const exchange::VerifyReport& oracle, const Options& options, const wavelet::WaveletResult* wavelets) {
     const partition::Partition& P = p.partition;
@@ -180,7 +216,16 @@ void write_report(const std::string& path, const InputInfo& input, const Paramet
         if (!c.first_failure.empty()) j.key("first_failure").value(c.first_failure);
         j.end_object();
     }
-    j.end_array().end_object().end_object();
+    j.end_array().end_object();
+    // DIST-* of the map (spec/distortion.md), as `fhr verify` measures it, and the patches with the
+    // most anisotropic faces.
+    j.key("distortion").begin_object();
+    exchange::write_distortion_fields(j, oracle.distortion);
+    j.key("worst_patches").begin_array();
+    for (const auto& w : worst_patches(p, 5))
+        j.begin_object().key("patch").value(w.patch).key("max_anisotropy").value(w.max).key("faces_above_10").value(w.above_10).end_object();
+    j.end_array().end_object();
+    j.end_object();
     if (wavelets) write_wavelet_report(j, *wavelets);
     j.end_object();
     io::write_file_atomically(path, j.str());
