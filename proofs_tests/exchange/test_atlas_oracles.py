@@ -173,3 +173,65 @@ def test_run_report_distortion_is_the_oracles(fandisk_run):
     assert worst[0]["max_anisotropy"] == verdict["distortion"]["anisotropy"]["max"]
     assert all(a["max_anisotropy"] >= b["max_anisotropy"] for a, b in zip(worst, worst[1:]))
     assert sum(w["faces_above_10"] for w in worst) <= verdict["distortion"]["anisotropy"]["above_10"]
+
+
+SQUARE = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+
+
+def write(path, text):
+    path.write_text(text)
+    return path
+
+
+# CLI-VERIFY-1..5 for an atlas: exit codes, the verdict line, the JSON keys, --kind, --strict, --no-mirror.
+def test_atlas_verdicts_on_the_command_line(tmp_path):
+    good = write(tmp_path / "good.obj", SQUARE + "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
+    proc = fhr("verify", good, check=False)
+    assert proc.returncode == 0 and proc.stdout.startswith("%s: valid\n" % good)
+    assert "ATLAS-7" in proc.stdout and proc.stderr == ""
+    verdict = json.loads(fhr("verify", good, "--json").stdout)
+    for key in ("file", "mesh", "kind", "rule", "readable", "valid", "first_failure", "domain", "surface", "checks",
+                "distortion", "charts", "mirrored_charts", "folded_faces", "overlapping_pairs", "contacts", "seam_length",
+                "packing_unit_square", "packing_bounding_square"):
+        assert key in verdict, key
+    assert verdict["rule"] is None and verdict["domain"] is None and "folded_face_list" not in verdict
+    assert all({"chart", "u", "v"} <= set(c) for c in verdict["checks"])
+    # --kind param reads it as a fhr-param file: unreadable.
+    assert fhr("verify", good, "--kind", "param", check=False).returncode == 2
+    # A fold: exit 1, the verdict names the check, the face, the chart.
+    fold = write(tmp_path / "fold.obj", SQUARE + "vt 0 0\nvt 1 0\nvt 1 1\nvt 0.9 0.2\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
+    proc = fhr("verify", fold, check=False)
+    assert proc.returncode == 1
+    assert proc.stdout.splitlines()[0].startswith("%s: INVALID: ATLAS-4: face 1 of chart 0 is folded" % fold)
+    first = next(c for c in json.loads(fhr("verify", fold, "--json", check=False).stdout)["checks"] if c["id"] == "ATLAS-4")
+    assert (first["result"], first["face"], first["chart"]) == ("fail", 1, 0) and first["u"] is not None
+    # A mirrored chart: valid; invalid with --no-mirror.
+    mirrored = write(tmp_path / "mirror.obj", SQUARE + "vt 0 0\nvt -1 0\nvt -1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
+    assert fhr("verify", mirrored, check=False).returncode == 0
+    assert fhr("verify", mirrored, "--no-mirror", check=False).returncode == 1
+    # Two charts touching at a corner: info (valid), invalid with --strict.
+    touch = write(tmp_path / "touch.obj", SQUARE + "vt 0 0\nvt 1 0\nvt 1 1\nvt 2 2\nvt 3 2\nvt 2 3\nvt 1 1\n"
+                  "f 1/1 2/2 3/3\nf 1/7 3/5 4/6\n")
+    proc = fhr("verify", touch, check=False)
+    assert proc.returncode == 0, proc.stdout
+    assert "info" in next(l for l in proc.stdout.splitlines() if "ATLAS-7" in l)
+    assert fhr("verify", touch, "--strict", check=False).returncode == 1
+
+
+# CLI-VERIFY-3: an unreadable atlas is one error line and exit code 2, no verdict.
+@pytest.mark.parametrize("text,says", [
+    (SQUARE + "vt 0 0\nf 1/1 2/1 3\n", "corner 2 has no texture coordinates"),
+    (SQUARE + "vt 0 nan\nf 1/1 2/1 3/1\n", "not finite"),
+    (SQUARE + "vt 0 0\nf 1/1 2/1 9/1\n", "out of range"),
+    (SQUARE + "vt 0 0\nf 1/1 2/1 3/1 4/1\n", "has 4 corners"),
+    ("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+     "property float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+     "0 0 0 0 0\n1 0 0 1 0\n", "truncated"),
+])
+def test_unreadable_atlas(tmp_path, text, says):
+    bad = write(tmp_path / ("bad.ply" if text.startswith("ply") else "bad.obj"), text)
+    proc = fhr("verify", bad, check=False)
+    assert proc.returncode == 2 and proc.stdout == ""
+    assert proc.stderr.count("\n") == 1 and proc.stderr.startswith("fhr: error: %s" % bad) and says in proc.stderr
+    j = json.loads(fhr("verify", bad, "--json", check=False).stdout)
+    assert j["readable"] is False and says in j["error"]
