@@ -15,9 +15,8 @@ Domain size rule, N = the --faces given to `fhr run`:
   and that run is fine. §3 must keep §2's D: domain.faces = domain.faces_requested.
 When §2 cannot reach N under its validity rules it says `decimation stopped at K faces` and names
 a request that succeeds, `ask for more faces (--faces K' succeeds)` (DOM-9); the run is then repeated
-with --faces K' (noted in the row), up to `attempts` runs in all. Before session 9 it named none,
-and the harness asked for K, whose shares with several components differ from N's, so §2 could
-stop again (3 of 600 family meshes, then quality 496 of the 500-per-family sweep four times).
+with --faces K' (noted in the row), up to `attempts` runs in all. Asking for K itself would not do:
+with several components K's shares differ from N's, so §2 could stop again.
 A mesh is certified when `fhr run` exits 0 and `fhr verify --mesh` accepts its param.fhrp; its
 row's failure is also set (the mesh then counts as failed) when §3 changed §2's domain, or §2 gave
 a closed connected mesh another size than N."""

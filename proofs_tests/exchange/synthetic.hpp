@@ -9,7 +9,7 @@
 // side are equally spaced, so chord length holds (PARAM-10) up to rounding; T′ has D's vertices
 // bit for bit and lies on D (PARAM-11 with T = D). k = 1 gives T′ = D.
 //
-// D may have boundary and several components (issue 19): then a vertex of T′ on a boundary edge
+// D may have boundary and several components: then a vertex of T′ on a boundary edge
 // of D lies in one patch only, on T′'s boundary, and each component of T′ subdivides one of D.
 // The domains below make such D without any parameterization code: small planar pieces (a disk,
 // an annulus), random closed meshes with holes cut out, and disjoint unions.

@@ -1,4 +1,4 @@
-// FHR tests — the `fhr-param 1` reader and writer (spec/param.md PARAM-1, design.md §4): exact
+// FHR tests — the `fhr-param 1` reader and writer (spec/param.md PARAM-1): exact
 // round trips, deterministic bytes, and a strict reader that refuses every malformed file with a
 // one-line InvalidInput naming the line, without crashing or allocating beyond the file size.
 #include <catch2/catch.hpp>

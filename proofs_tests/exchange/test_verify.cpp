@@ -531,7 +531,7 @@ TEST_CASE("PARAM-9, PARAM-10: a failed check makes the checks that rely on it sk
     CHECK(check(r, "PARAM-7").status == CheckStatus::pass);  // needs only PARAM-2
 }
 
-// ---- surfaces with boundary and several components (issue 19; spec/param.md, "Boundary and
+// ---- surfaces with boundary and several components (spec/param.md, "Boundary and
 // components") ------------------------------------------------------------------------------------
 
 namespace {

@@ -1,4 +1,4 @@
-// FHR exchange — reading and writing `fhr-param 1` files (spec/param.md; design.md §4).
+// FHR exchange — reading and writing `fhr-param 1` files (spec/param.md).
 //
 // Reader (PARAM-1, the grammar): the input is a stream of tokens separated by any whitespace,
 // `#` starting a comment to the end of the line. It reads

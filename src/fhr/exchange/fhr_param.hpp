@@ -1,4 +1,4 @@
-// FHR exchange — the `fhr-param 1` file (spec/param.md, design.md §4): a parameterization
+// FHR exchange — the `fhr-param 1` file (spec/param.md): a parameterization
 // φ: Ω_D → Ω_T of the paper (§1) written as the domain D, the refined surface T′ (§3) and, for
 // every triangle of T′, its patch S_d (§3) and the barycentric coordinates of ψ at its corners in
 // domain triangle d (ψ_i of §4, eq. (2)). Since ψ is linear on every triangle of T′, these numbers

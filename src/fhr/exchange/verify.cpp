@@ -1,5 +1,5 @@
 // FHR exchange — `fhr verify`: the invariants PARAM-2..11 of spec/param.md, checked in order on a
-// `fhr-param 1` file (design.md §4). Why these checks together certify the paper's claim that
+// `fhr-param 1` file (spec/param.md). Why these checks together certify the paper's claim that
 // φ = ψ⁻¹ is a parameterization of Ω_T over Ω_D is argued in paper_notes/exchange.md; in short:
 //
 //   PARAM-2   finite numbers, indices in range                      (so the rest can index safely)
@@ -23,7 +23,7 @@
 // covered exactly winding-number = 1 times), and continuity glues the ψ_d along the interior edges
 // of D, whose sides PARAM-9 requires to be glued in T′ too.
 //
-// Surfaces with boundary and several components (issue 19) are judged by the same checks; the
+// Surfaces with boundary and several components are judged by the same checks; the
 // boundary adds PARAM-9's side rule and PARAM-11's boundary comparison, and the components make
 // PARAM-4 a matching (spec/param.md, "Boundary and components").
 //
@@ -229,8 +229,8 @@ private:
         Recorder rec("PARAM-3", title_3);
         domain_ = build(f_.domain_vertices, f_.domain_faces.size(), [&](std::size_t i) -> const Triangle& { return f_.domain_faces[i]; },
                         "domain D", rec);
-        // T′'s triangles straight from the file's faces (at 10⁶ faces a copy of them was 20 MB more at
-        // the run's peak, issue 18).
+        // T′'s triangles straight from the file's faces (at 10⁶ faces a copy of them would be 20 MB
+        // more at the run's peak).
         surface_ = build(f_.surface_vertices, f_.surface_faces.size(),
                          [&](std::size_t i) -> const Triangle& { return f_.surface_faces[i].v; }, "surface T'", rec);
         rec.examined(2);
@@ -786,7 +786,7 @@ CheckResult Verifier::check_geometry(std::optional<detail::InputSide>& t_side) c
     for (VertexId w : refined.vertices()) refined_bits.emplace_back(bits(refined.position(w)), w.idx());
     std::sort(refined_bits.begin(), refined_bits.end());
     // A vertex of T′ at a vertex of T (bitwise) is a point of T: its distance to T is exactly 0,
-    // and the search below is spared for it (issue 18: on the horse 48,485 of T′'s 84,206).
+    // and the search below is spared for it (on the horse 48,485 of T′'s 84,206).
     std::vector<std::uint8_t> at_t_vertex(refined.n_vertices(), 0);
     for (VertexId v : t.vertices()) {
         const Bits b = bits(t.position(v));

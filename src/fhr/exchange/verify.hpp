@@ -1,7 +1,7 @@
 // FHR exchange — the oracle: does a `fhr-param 1` file describe a valid parameterization in the
 // sense of the paper? It checks the invariants PARAM-2..11 of spec/param.md (PARAM-1, the
 // grammar, is parse_param's): the surfaces are manifolds of one topology, component by component
-// (§1, §2; closed as in the paper, or — beyond the paper, issue 19 — with boundary and several
+// (§1, §2; closed as in the paper, or — beyond the paper — with boundary and several
 // components: spec/param.md "Boundary and components"), every patch S_i is a disk (§3), ψ is
 // continuous across patch boundaries and maps ∂T′ onto ∂D (§4), one-to-one on each patch
 // (§4, Proposition 1: exact orientation of every image triangle, and the patch boundary mapped
@@ -105,7 +105,7 @@ struct InputSide;
 /// PARAM-11's side of an input mesh T alone — its tolerance, its area, and the grids over its
 /// faces and boundary edges — prepared once. It then serves every file verified against T, and
 /// can be made before a file exists (fhr run prepares it beside §2's decimation, which runs on one
-/// thread: issue 18). Read-only once made: concurrent verify calls may share it.
+/// thread). Read-only once made: concurrent verify calls may share it.
 class PreparedInput {
 public:
     /// \pre T is a valid mesh (as for verify), kept alive and unchanged while this object is used.

@@ -339,7 +339,7 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
                    const wavelet::WaveletResult* wavelets, const WrittenBeside& written) {
     const auto start = detail::Clock::now();
     const std::string base = folder(dir);
-    // Each file is written in parts on every thread (io::FileParts, issue 18).
+    // Each file is written in parts on every thread (io::FileParts).
     std::optional<exchange::ParamFile> file;
     std::vector<std::function<void()>> files;
     if (!written.parameterization) files = parameterization_files(base, p, file.emplace(to_param_file(p)), options.executor);

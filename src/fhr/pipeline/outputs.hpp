@@ -30,7 +30,7 @@ exchange::ParamFile to_param_file(const Parameterization& p);
 /// to_param_file(p) made from p's own arrays, which p lends it: its vertices are moved and its β
 /// freed (they are in the file's faces); take_back_param_file(p, file) returns both, bitwise. In
 /// between, p has no refined_positions and no face_beta. So the final T′ is not held twice while
-/// the oracle judges the file: at 10⁶ faces that phase set the peak memory (issue 18).
+/// the oracle judges the file: at 10⁶ faces that phase sets the peak memory.
 exchange::ParamFile lend_param_file(Parameterization& p);
 void take_back_param_file(Parameterization& p, exchange::ParamFile file);
 

@@ -76,7 +76,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     // patch by patch, each with the β of its corners.
     const TriMesh& M = P.network.mesh;
     out.refined_positions.assign(M.positions().begin(), M.positions().end());
-    std::size_t faces = 0;  // exactly: at 10⁶ faces, growing by doubling left a third of face_beta unused (issue 18)
+    std::size_t faces = 0;  // exactly: at 10⁶ faces, growing by doubling would leave a third of face_beta unused
     for (const param::Disk& disk : out.disks) faces += disk.triangles.size();
     out.refined_faces.reserve(faces);
     out.face_patch.reserve(faces);

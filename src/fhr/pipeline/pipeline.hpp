@@ -49,7 +49,7 @@ struct Options {
 /// The parameterization φ: Ω_D → Ω_T as computed, with everything the outputs need.
 struct Parameterization {
     /// D (final), paths, T′ before §4, patches (their faces and vertices; each patch's disk is moved
-    /// to `disks`, not copied: at 10⁶ faces 57 MB, issue 18)
+    /// to `disks`, not copied: at 10⁶ faces 57 MB)
     partition::Partition partition;
     FaceData<param::Disk> disks;                    ///< #F(D): each patch's disk after its dividing edges were split
     FaceData<param::PatchMap> maps;                 ///< #F(D): ψ_i at the disk's vertices

@@ -31,11 +31,11 @@ RunResult run(const TriMesh& T, RunOptions options) {
     };
     RunResult out;
     // §2: the domain. Its decimation runs on one thread; beside it, what the oracle and §5 need of
-    // T alone (issue 18: on the horse 45 and 42 ms of CPU off the busiest part of the run, where
+    // T alone (on the horse 45 and 42 ms of CPU off the busiest part of the run, where
     // the oracle, §5 and the writing share the cores). From prepare_beside_below faces of T on each
     // is left to its stage, as before: there the memory they would hold through §3 and §4 (the
     // oracle's grid of T, and §5's tree of T about 200 bytes per face) weighs more than the time
-    // (1 KB per triangle, issue 18).
+    // (the goal: 1 KB per triangle).
     Executor& executor = executor_or_default(method.executor);
     domain::Domain D;
     std::optional<exchange::PreparedInput> oracle_t;  // the oracle's side of T (PARAM-11)
@@ -75,8 +75,8 @@ RunResult run(const TriMesh& T, RunOptions options) {
     out.parameterization = parameterize(T, std::move(D), method);
     // The independent oracle (src/fhr/exchange) judges exactly what param.fhrp will hold; §5 reads
     // the patches' maps, which the oracle does not touch; the caller's task (fhr run: writing the
-    // files) reads both: the three run side by side on the executor (issue 18: most of the oracle
-    // runs on one thread, §5 and the writing fill the other).
+    // files) reads both: the three run side by side on the executor (most of the oracle runs on
+    // one thread, §5 and the writing fill the other).
     exchange::ParamFile lent = lend_param_file(out.parameterization);
     double verifying = 0, locating = 0;
     executor.for_each(3, 1, [&](std::size_t task) {
