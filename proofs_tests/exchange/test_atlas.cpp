@@ -256,19 +256,26 @@ TEST_CASE("ATLAS-1: the readers give texture coordinates; a missing one or a pol
         CHECK(a.faces.size() == 2);
         CHECK(a.face_texture == std::vector<std::uint32_t>{1, 2});
         CHECK(a.uv[a.face_uv[1][1]] == UV{1, 1});
-        CHECK(a.rounding == 0.5);  // only 0 and 1: as if one significant digit were printed
+        // Only 0 and 1: as if one significant digit were printed (0.5), and float32 (2⁻²⁴ · 1).
+        CHECK(a.rounding == 0.5 + 0x1p-24);
     }
     SECTION("rounding from the printed digits") {
         const std::string face = "vt 0 0\nf 1/1 2/1 3/1\n";
+        // Each writer below prints at most 8 significant digits, so it may have held float32 values:
+        // half a float32 ulp of the largest coordinate (2⁻²⁴ · 12, or · 1500) is added.
         // A fixed-point writer with 6 decimals: half a unit in the 6th.
         CHECK(fhr::exchange::parse_atlas("v 0.123457 0.000000 12.000000\nv 1.000000 0.500000 0.000000\n"
-                                         "v 0.000000 1.000000 0.000000\n" + face, "t.obj").rounding == Approx(5e-7).epsilon(1e-12));
+                                         "v 0.000000 1.000000 0.000000\n" + face, "t.obj").rounding ==
+              Approx(5e-7 + 12 * 0x1p-24).epsilon(1e-12));
         // %g: trailing zeros dropped, at most 6 significant digits: half a unit in the 6th of the largest, 12.
         CHECK(fhr::exchange::parse_atlas("v 0.123457 0 12\nv 1 0.5 0\nv 0 1 0\n" + face, "t.obj").rounding ==
-              Approx(5e-5).epsilon(1e-12));
+              Approx(5e-5 + 12 * 0x1p-24).epsilon(1e-12));
         // An exponent: 2 significant digits (1.5e3), the largest 1500: half a unit in the hundreds.
         CHECK(fhr::exchange::parse_atlas("v 1.5e3 0 0\nv 0 1.2 0\nv 0 1 0\n" + face, "t.obj").rounding ==
-              Approx(50).epsilon(1e-12));
+              Approx(50 + 1500 * 0x1p-24).epsilon(1e-12));
+        // Shortest round-trip doubles (17 significant digits): no float32 term.
+        CHECK(fhr::exchange::parse_atlas("v 0.12345678901234568 0 12\nv 1 0.5 0\nv 0 1 0\n" + face, "t.obj").rounding ==
+              Approx(0.5e-16 * 10).epsilon(1e-9));
     }
     SECTION("a corner without vt") {
         CHECK_THROWS_WITH(fhr::exchange::parse_atlas("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3\n", "t.obj"),

@@ -11,7 +11,6 @@ Run with Debian's interpreter: FHR_PEERS_BIN=build/peers /usr/bin/python3 -m pyt
 proofs_tests/peers/test_cgal.py. FHR_PEERS_BIN is the folder holding the compiled cgal_uv; the
 adapters are found relative to this file (the repository is two folders up)."""
 
-import json
 import math
 import os
 import random
@@ -20,6 +19,8 @@ import subprocess
 from pathlib import Path
 
 import pytest
+
+from oracle import fhr_verify
 
 ROOT = Path(__file__).resolve().parents[2]
 PEERS = ROOT / "peers"
@@ -295,14 +296,6 @@ def test_missing_program_is_a_usage_error(tmp_path):
 
 # --- judged by the oracle -----------------------------------------------------------------------
 
-def fhr_verify(*args):
-    """`fhr verify ... --json`: FHR names the built fhr (the meson test sets it)."""
-    program = os.environ.get("FHR")
-    if not program or not os.path.exists(program):
-        pytest.fail("FHR must name the built fhr program (the meson test sets it)")
-    proc = subprocess.run([program, "verify", *map(str, args), "--json"], capture_output=True, text=True)
-    assert proc.returncode in (0, 1), proc.stderr
-    return json.loads(proc.stdout)
 
 
 @pytest.mark.parametrize("adapter", sorted(ADAPTERS))

@@ -1,5 +1,5 @@
-// FHR io — atomic output files: no partial output is ever left behind (DEVELOPERS.md standards).
-// Large files are made of parts formatted at once on the executor's threads (issue 18: a
+// FHR io — atomic output files: no partial output is ever left behind (FMT-WRITE-1).
+// Large files are made of parts formatted at once on the executor's threads (a
 // 10⁶-triangle run writes about 800 MB; formatting each file whole into memory first cost as much
 // memory as the run's meshes, and one thread per file left param.fhrp, the largest, alone on one
 // core for two seconds after every other file was written).

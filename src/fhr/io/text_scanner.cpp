@@ -109,10 +109,13 @@ void PrintedDigits::add(std::string_view token, double value) {
 
 double PrintedDigits::rounding() const {
     if (!any_) return 0;
-    if (fixed_) return 0.5 * std::pow(10.0, -decimals_);
+    // A writer that prints at most 8 significant digits may have held its numbers in float32
+    // (MeshLab does): half a float32 ulp of the largest number is added to the printing's rounding.
+    const double float32 = significant_ <= 8 ? max_abs_ * 0x1p-24 : 0.0;
+    if (fixed_) return 0.5 * std::pow(10.0, -decimals_) + float32;
     if (max_abs_ == 0) return 0;
     const double place = std::floor(std::log10(max_abs_)) - std::max(significant_, 1) + 1;
-    return 0.5 * std::pow(10.0, std::max(place, -400.0));
+    return 0.5 * std::pow(10.0, std::max(place, -400.0)) + float32;
 }
 
 void check_point(const Vec3& p, const std::string& name, std::uint64_t line, Where where) {

@@ -31,7 +31,7 @@ inline void append_point(std::string& out, const Vec3& p) {
 
 /// Appends N doubles separated by single spaces, each as append_number writes it. A tuple whose
 /// bits came recently (a table of 4,096 tuples, placed by a hash of the bits) is copied from the
-/// text made then instead of formatted again: the same bytes (issue 18: a vertex's β in its patch,
+/// text made then instead of formatted again: the same bytes (a vertex's β in its patch,
 /// and its place in the atlas, are written once per face around it, six times on average:
 /// formatting the horse's param.fhrp 120 → 86–102 ms, the 10⁶ mesh's 1.04 → 0.71 s).
 template <std::size_t N>

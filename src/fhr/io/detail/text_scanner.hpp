@@ -37,7 +37,9 @@ NumberStatus parse_double(std::string_view token, double& out);
 /// no exponent, the same number d of decimals: `%.6f`) rounds by half a unit in the d-th decimal.
 /// Any other writer (`%g`, `%e`, shortest round-trip) drops trailing zeros, so a number's own digits
 /// understate its precision: it rounds by half a unit in the P-th significant digit, P the most
-/// significant digits of any number in the file (`%g`: 6; shortest round-trip: up to 17).
+/// significant digits of any number in the file (`%g`: 6; shortest round-trip: up to 17). A writer
+/// of at most 8 significant digits may have held float32 values: half a float32 ulp of the largest
+/// number is added.
 class PrintedDigits {
 public:
     /// One number as written. \pre parse_double(token) gave `value`.
