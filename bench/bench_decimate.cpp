@@ -1,7 +1,7 @@
 // FHR bench — §2 mesh reduction (the parameter domain D by half-edge-collapse decimation; the
 // paper's timing table row "mesh reduction"), measured in the same run against CGAL's
 // Surface_mesh_simplification::edge_collapse doing the same job. CGAL is used here, in a
-// benchmark-only program, and nowhere in src/ (design.md §2).
+// benchmark-only program, and nowhere in src/ (paper_notes/library.md).
 //
 // Usage: bench_decimate MESH FACES [RUNS]. MESH is loaded once with our strict reader and builder
 // (fhr::io::read_soup + fhr::build_trimesh); both decimations then start from that mesh in memory.

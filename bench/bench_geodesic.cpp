@@ -7,7 +7,7 @@
 // fhr::domain::decimate(T, FACES) (not timed). Timed, wall clock:
 //   fhr   ellipse_shortest_path for every edge of D, one after another on one Workspace (total,
 //         and per path; the workspace is made before the clock starts, its arrays on the first path);
-//   CGAL  one tree per edge of D, as the issue asks ("one tree per pair"). Building a tree costs
+//   CGAL  one tree per edge of D (one tree per pair of ends). Building a tree costs
 //         the same whichever of its vertices is the source, so the tree is built once per
 //         distinct source vertex, all of that source's targets are queried, and the time of
 //         "one tree per pair" is the mean tree time times the number of edges. With CGAL_SOURCES,

@@ -1,7 +1,7 @@
-// FHR bench — reading + validating a mesh (issue: foundation), the first stage every run pays.
+// FHR bench — reading + validating a mesh, the first stage every run pays.
 // Usage: bench_io MESH [RUNS]. Prints the median and minimum wall time of read_soup +
 // build_trimesh over RUNS runs (default 7), and the peak memory the first load added, per
-// triangle. Goals (issue 2): horse ≤ 60 ms, ≤ 300 bytes per triangle.
+// triangle. Goals: horse ≤ 60 ms, ≤ 300 bytes per triangle.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """FHR bench -- fhr.parameterize from Python, against pipeline::run from C++ (bench/bench_run.cpp;
-issue: the Python package: within 10 %). The arrays are read once, outside the timing; the call
+the goal: within 10 %). The arrays are read once, outside the timing; the call
 includes their validation, as every fhr call does.
 Usage: bench_python.py MESH FACES RUNS  (with the package on PYTHONPATH). Prints the median and
 minimum wall time of RUNS calls."""

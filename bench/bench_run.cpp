@@ -1,6 +1,6 @@
 // FHR bench — the whole method called from C++ (pipeline::run: §2 decimation, §3, §4, the oracle;
-// no §5), the reference for the Python package's fhr.parameterize (bench/bench_python.py; issue:
-// the Python package: within 10 %). The mesh is read and validated once, outside the timing.
+// no §5), the reference for the Python package's fhr.parameterize (bench/bench_python.py; the
+// goal: within 10 %). The mesh is read and validated once, outside the timing.
 // Usage: bench_run MESH FACES RUNS. Prints the median and minimum wall time of RUNS calls.
 #include <algorithm>
 #include <chrono>

@@ -1,7 +1,7 @@
 // FHR bench — §5 remeshing and wavelets (the paper's timing table rows "refinement",
 // "decomposition", "reconstruction", measured in §6 on the fandisk at J = 3: 1 s, 2 s, 1 s on a
 // 400 MHz SGI Octane). Our Hausdorff distance is checked in the same run against CGAL's
-// bounded-error Hausdorff distance (benchmark-only oracle; CGAL stays out of src/, design.md §2).
+// bounded-error Hausdorff distance (benchmark-only oracle; CGAL stays out of src/, paper_notes/library.md).
 //
 // Usage: bench_wavelet [--timing-only] MESH FACES RUNS LEVEL... (e.g. fandisk.off 114 5 3 5)
 //   not timed:  T <- MESH (strict reader); D <- decimate(T, FACES); φ <- pipeline::parameterize

@@ -1,4 +1,4 @@
-"""Campaigns of many independent runs, spread over machines (issue 17): what `./run corpus`
+"""Campaigns of many independent runs, spread over machines: what `./run corpus`
 (run_corpus.py) and `./run families` (run_families.py) share — the shards, the results files and
 their merge. The same scheme as `fhr oracle-fuzz --shard/--merge` (src/cli/oracle_table.hpp).
 

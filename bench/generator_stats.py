@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""How hard the generator's meshes are, beside real ones (issue 17; the table of
+"""How hard the generator's meshes are, beside real ones (the table of
 paper_notes/generator.md): for each family COUNT meshes (default 100) drawn as `./run families`
 draws them (family_recipes.py), and for each libcgal-demo mesh that is closed and valid, the
 smallest corner angle, the largest valence and the longest/shortest edge ratio (`fhr info --json`:
 fhr::shape_stats and the edge-length statistics). Prints a markdown table, one row per family and
 one for the real meshes: per figure the median over the meshes and the extremes (the least and the
-greatest of the per-mesh values). Then the issue's per-mesh guarantees with default knobs — every
+greatest of the per-mesh values). Then the generator's per-mesh guarantees with default knobs — every
 quality mesh's smallest angle ≤ 10⁻³°, every valence mesh's largest valence ≥ 50, every density
 mesh's ratio ≥ 10⁴ — each as `every mesh: yes`, or the meshes that miss it; the exit code is 1
 when one is missed.
@@ -28,7 +28,7 @@ parser.add_argument("--cgal", help="the libcgal-demo meshes folder (data/meshes)
 family_recipes.add_options(parser, family_recipes.EMBEDDED + ("immersed",))
 options = parser.parse_args()
 
-# The issue's guarantees with default knobs: (family, figure, test, what it means).
+# The generator's guarantees with default knobs (spec/generator.md): (family, figure, test, what it means).
 GUARANTEES = [("quality", "angle", lambda x: x <= 1e-3, "smallest angle <= 1e-3 deg"),
               ("valence", "valence", lambda x: x >= 50, "largest valence >= 50"),
               ("density", "ratio", lambda x: x >= 1e4, "edge-length ratio >= 1e4")]

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""`./run bench [scaling]`: the timings of the paper's pipeline against the goals of issues 9 and 18.
+"""`./run bench [scaling]`: the timings of the paper's pipeline against fhr's goals
+(README, "Benchmarks").
 
 Default mode, one table per mesh of MESHES (the paper's timing table of §6, rows "mesh reduction"
 (§2), "geodesic paths" (§3), "parameterization" (§4), "refinement", "decomposition",
@@ -25,9 +26,9 @@ generated genus-2 mesh of 640,000 faces (an atlas of about 10^6 faces) judged by
 without and with the input mesh (median of RUNS), against reading the same file (`fhr info`: read
 and validated as a mesh), as seconds per 10^6 atlas faces.
 
-Every goal is printed as `goal: NAME: measured X UNIT (goal <=|>= Y UNIT): met|NOT met`; issue 18's
-stretch goals as `goal: stretch: NAME: ...: met|gap Z UNIT` (the target of the next round, not
-a condition of the issue). Both are written with the tables to out/bench/results.json (generated,
+Every goal is printed as `goal: NAME: measured X UNIT (goal <=|>= Y UNIT): met|NOT met`; the
+stretch goals as `goal: stretch: NAME: ...: met|gap Z UNIT` (targets beyond the firm goals, not
+conditions of success). Both are written with the tables to out/bench/results.json (generated,
 never committed; out/ is git-ignored); a mode replaces only its own goals there.
 
 Usage: run_bench.py BUILD_DIR [scaling|oracle] [--runs N]"""
@@ -52,8 +53,8 @@ OUT = os.path.join(ROOT, "out/bench")
 # fandisk's 114 is the paper's (§6); 1000 for the larger meshes (horse and armadillo at 114 still
 # need a long §3 recovery). CGAL builds one shortest-path tree per source, about 0.8 s on the
 # fandisk (all its sources: every one of the 171 paths is compared) and 2-15 s on the larger
-# meshes (8 sources, evenly spread). horse.off is workplace-only (../shared/meshes): skipped when
-# absent. The whole mode takes about 10 minutes.
+# meshes (8 sources, evenly spread). horse.off is not distributed (../shared/meshes): skipped
+# when absent. The whole mode takes about 10 minutes.
 MESHES = [
     ("fandisk.off", CGAL_MESHES, 114, 1000),
     ("horse.off", SHARED_MESHES, 1000, 8),
@@ -69,8 +70,8 @@ STAGES = [("reading", "reading"), ("mesh_reduction", "mesh reduction"), ("geodes
           ("refinement", "refinement"), ("decomposition", "decomposition"),
           ("reconstruction", "reconstruction"), ("total", "total")]
 
-# Scaling series: (name, how each input is made, sizes). The generator makes any even count (the
-# issue's mesh: genus 2, seed 7, noise 0.1); midpoint subdivision multiplies the fandisk's 12,946
+# Scaling series: (name, how each input is made, sizes). The generator makes any even count (genus
+# 2, seed 7, noise 0.1); midpoint subdivision multiplies the fandisk's 12,946
 # faces by 4 per round (up to 828,544).
 SCALING = [
     ("genus-2 generated", "generate", [10_000, 100_000, 1_000_000]),
@@ -79,14 +80,14 @@ SCALING = [
 # n log n over 10^4..10^6 fits t ~ n^1.09 (1 + ln(ln 10^6 / ln 10^4) / ln 100); 0.06 more for
 # timing noise and for the working set outgrowing the caches, which no algorithm change removes.
 MAX_EXPONENT = 1.15
-# Issue 18 at 10^6 triangles: wall seconds (all outputs written) and peak bytes per input
+# The goals at 10^6 triangles: wall seconds (all outputs written) and peak bytes per input
 # triangle; the stretch budget per stage (seconds; "writing in wall" is the writing's share of the
 # wall time, "rest" the wall time outside the stages and that share: with_rest).
 MILLION_WALL, MILLION_BYTES_PER_FACE = 20.0, 1000.0
 STRETCH_WALL = 10.0
 STRETCH_STAGES = [("reading", 0.5), ("mesh_reduction", 2.5), ("geodesic_paths", 3.0), ("parameterization", 1.0),
                   ("verification", 1.0), ("writing_in_wall", 1.0), ("rest", 1.0)]
-DECIMATION_VS_CGAL = 5.0  # at 10^6 triangles (issue 18); 3x on the meshes of the default mode (issue 9)
+DECIMATION_VS_CGAL = 5.0  # at 10^6 triangles; 3x on the meshes of the default mode
 TEN_MILLION = 10_000_000
 MEMORY_LIMIT_GB = 24.0
 RUN_TIMEOUT = 1800.0  # seconds for one program run in the scaling series
@@ -218,7 +219,7 @@ def bench_meshes(build, runs, goals, results):
     if python_vs_cpp is not None:
         goal(goals, "horse: fhr.parameterize from Python / pipeline::run from C++ (1000 faces)", python_vs_cpp, "x", 1.10)
     if "fandisk.off" in ms:
-        # What the user waits for (issue 18): the whole process, every output written, no figures.
+        # What the user waits for: the whole process, every output written, no figures.
         for target, stretch in ((0.2, False), (0.1, True)):
             goal(goals, "fandisk paper run, wall of fhr run (114 faces, J = 3, 5 %/20 %, no figures)", ms["fandisk.off"]["wall"],
                  "s", target, stretch=stretch)
@@ -274,7 +275,7 @@ def with_rest(timings, wall):
 
 
 def million_goals(goals, series, m):
-    """Issue 18's goals at 10^6 triangles (median run m of the series' largest size)."""
+    """The goals at 10^6 triangles (median run m of the series' largest size)."""
     what = "%s, %d triangles to %d domain faces, all outputs written" % (series, m["faces"], m["domain"])
     goal(goals, "%s: wall of fhr run" % what, m["wall"], "s", MILLION_WALL)
     goal(goals, "%s: peak memory per input triangle" % what, m["peak_mb"] * 2 ** 20 / m["faces"], "B", MILLION_BYTES_PER_FACE)
@@ -333,7 +334,7 @@ def bench_scaling(build, runs, goals, results):
         if columns[-1][1]["faces"] >= 800_000:
             million_goals(goals, series, columns[-1][1])
 
-    # §2 against CGAL on the issue's 10^6 mesh, in the same run.
+    # §2 against CGAL on the generated 10^6 mesh, in the same run.
     mesh, n = scaling_input(build, "generate", 1_000_000)
     dec = tool(build, "bench_decimate", mesh, n // 100, runs)
     for line in dec:

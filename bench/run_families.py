@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""`./run families [COUNT]`: fhr's own pipeline on the generator's families (issue 17: meshes as
+"""`./run families [COUNT]`: fhr's own pipeline on the generator's families (meshes as
 hard as real ones). For each embedded family (block, smooth, quality, valence, density,
 degenerate: src/fhr/generate/random_mesh.hpp; `--families a,b` for some of them) COUNT random
 meshes (default 500), each run through `fhr run` at default settings and `fhr verify --mesh`

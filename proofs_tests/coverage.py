@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""`./run coverage`: line and branch coverage of src/ by the test suites, per folder (issue 20).
+"""`./run coverage`: line and branch coverage of src/ by the test suites, per folder
+(paper_notes/testing.md).
 
 Runs every suite of BUILD_DIR (a build with -Db_coverage=true, see ./run) through run_suites.py,
 after clearing the counters of any earlier run, with 4 times the usual time limits (the build is

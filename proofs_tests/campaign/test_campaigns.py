@@ -1,4 +1,4 @@
-"""Campaigns across machines (issue 17; spec/cli.md CLI-ORACLE-7..9, README "Campaigns across
+"""Campaigns across machines (spec/cli.md CLI-ORACLE-7..9, README "Campaigns across
 machines"): two shards run by GNU parallel (Debian's `parallel`) and merged give the table of one
 unsharded run — for `fhr oracle-fuzz` (byte for byte), for `./run corpus` (bench/run_corpus.py)
 and for `./run families` (bench/run_families.py) (the same rows, times aside) — and a merge of
@@ -209,7 +209,7 @@ def test_campaign_merge_errors(tmp_path):
 
 
 def test_families_every_embedded_family(tmp_path):
-    """Needs every family of the generator (issue 17): one mesh of each, all certified."""
+    """Needs every family of the generator: one mesh of each, all certified."""
     proc = run(script("run_families.py", FHR, tmp_path, "1", "-j", "2"))
     assert proc.returncode == 0, proc.stdout + proc.stderr
     for family in ("block", "smooth", "quality", "valence", "density", "degenerate"):

@@ -191,7 +191,7 @@ namespace {
 
 struct RealMesh {
     const char* name;
-    bool shared;  // ../shared/meshes (workplace only) rather than libcgal-demo's data
+    bool shared;  // ../shared/meshes (not distributed) rather than libcgal-demo's data
     long vertices, faces, genus;
 };
 

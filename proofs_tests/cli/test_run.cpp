@@ -218,13 +218,14 @@ TEST_CASE("CLI-RUN-1: --weights and --solver are honoured and still certified", 
     CHECK(json_true(report, "certified"));
 }
 
-TEST_CASE("CLI-RUN-1, MAP-7: BiCGSTAB converges on small patches of graded meshes (fuzz_pipeline findings, sessions 8 and 9)", "[cli][run]") {
+TEST_CASE("CLI-RUN-1, MAP-7: BiCGSTAB converges on small patches of graded meshes (fuzz_pipeline findings)",
+          "[cli][run]") {
     // Uniform weights on the density family's graded mesh: a patch of 8 unknowns stalled at a
     // relative residual of 5.4e-14 after Eigen's default 2n = 16 iterations (exit 4); now at least
     // bicgstab_min_iterations, and started from the preconditioner's solution (the second finding,
     // a NaN, is MAP-7's unit test in proofs_tests/param: its patch came from a domain §2 no longer
-    // makes). Certified, like SparseLU's. (86 domain faces until session 15, when ties of cost
-    // went to the shorter edge; 24 makes the same stalling patch.)
+    // makes). Certified, like SparseLU's. (86 domain faces when ties of cost went by index alone;
+    // with ties to the shorter edge, 24 makes the same stalling patch.)
     struct Case {
         std::vector<std::string> recipe;
         std::string faces;
@@ -247,7 +248,8 @@ TEST_CASE("CLI-RUN-1, MAP-7: BiCGSTAB converges on small patches of graded meshe
     }
 }
 
-TEST_CASE("CLI-RUN-1, MAP-4: a dividing edge's midpoint beside a needle is pulled off its side (./run families finding, session 15)", "[cli][run]") {
+TEST_CASE("CLI-RUN-1, MAP-4: a dividing edge's midpoint beside a needle is pulled off its side (./run families)",
+          "[cli][run]") {
     // Quality family, 56 domain faces: in patch 14 two dividing edges on one side were split, and
     // their midpoints' other neighbours all lie on that side, 7e-8 apart in space. With weights
     // from that geometry their images lay far closer to the side than 2^-53, one β rounded onto it

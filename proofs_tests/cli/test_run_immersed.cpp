@@ -1,5 +1,5 @@
 // `fhr run` on self-intersecting input (the generator's immersed family, spec/generator.md
-// GEN-14; issue 17): fhr's pipeline works on the surface's combinatorics and per-patch geometry,
+// GEN-14): fhr's pipeline works on the surface's combinatorics and per-patch geometry,
 // so an immersion must give a certified result that the independent oracle `fhr verify --mesh`
 // accepts, or a clear error with its documented exit code — never a crash or a wrong certificate.
 #include <catch2/catch.hpp>

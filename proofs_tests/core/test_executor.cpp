@@ -1,7 +1,7 @@
 // The thread pool (src/fhr/core/executor.hpp; spec/library.md LIB-3): every task exactly once,
 // whatever the number of threads and the grain; the exception of the lowest index rethrown to the
 // caller only after all tasks have run (what lets each stage keep its results and its errors
-// bit-identical on any executor); the same threads for every call (issue 18: none started per
+// bit-identical on any executor); the same threads for every call (none started per
 // call); several callers at once and calls from inside a task.
 #include <catch2/catch.hpp>
 

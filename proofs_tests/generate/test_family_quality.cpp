@@ -1,4 +1,4 @@
-// FHR tests — the generator's quality and degenerate families (issue 17, beyond the paper; the
+// FHR tests — the generator's quality and degenerate families (beyond the paper; the
 // construction is paper_notes/generator.md, "The quality family" and "The degenerate family"):
 // every recipe passes GEN-8 (the shared checks, embedded), quality meshes have their needles, caps
 // and slivers exactly as GEN-10 says, degenerate meshes their exact coincidences as GEN-13 says;
@@ -226,7 +226,7 @@ TEST_CASE("quality: every recipe is a valid embedded mesh with its thin faces (G
     });
 }
 
-TEST_CASE("quality: the default knobs reach 1e-3° and below in every mesh (issue 17), large meshes too", "[unit]") {
+TEST_CASE("quality: the default knobs reach 1e-3° and below in every mesh, large meshes too", "[unit]") {
     for (const RandomMeshOptions& o : {RandomMeshOptions{3, 60'000, 5, 0.0, 2, 2, Family::quality},
                                        RandomMeshOptions{0, 18, 1, 0.0, 0, 1, Family::quality}}) {
         INFO(fhr::generate::generate_command(o));

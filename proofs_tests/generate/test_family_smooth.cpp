@@ -1,4 +1,4 @@
-// FHR tests — the generator's smooth and immersed families (issue 17: meshes as hard as real ones;
+// FHR tests — the generator's smooth and immersed families (meshes as hard as real ones;
 // src/fhr/generate/families/smooth.cpp, immersed.cpp): spec/generator.md GEN-8 for both, GEN-9
 // (smooth: curved everywhere), GEN-14 (immersed: meets itself), GEN-15 (a golden hash each), their
 // knobs' ranges, GEN-7 through the CLI, and the fallback of the embedded move.

@@ -1,4 +1,4 @@
-// Tests of the generator's valence and density families (issue 17; spec/generator.md GEN-8,
+// Tests of the generator's valence and density families (spec/generator.md GEN-8,
 // GEN-11, GEN-12, GEN-15; construction in src/fhr/generate/families/{valence,density}.cpp and
 // paper_notes/generator.md): over random recipes of genus 0–3 with 0–3 holes in 1–2 components,
 // with default and random knobs, every mesh is a valid embedded mesh of its recipe (GEN-8) and

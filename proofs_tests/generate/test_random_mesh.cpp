@@ -1,6 +1,6 @@
 // FHR tests — the random mesh generator (src/fhr/generate) that feeds every property test with
 // input surfaces T of the paper (§1), and with surfaces with boundary loops and several
-// components (beyond the paper, issue 19): properties GEN-1..6 of spec/generator.md, its option
+// components (beyond the paper): properties GEN-1..6 of spec/generator.md, its option
 // errors and its geometric guarantees.
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
@@ -42,7 +42,7 @@ using namespace fhr::generate::checks;
 
 namespace {
 
-/// Holes in 0–5 and components in 1–3 (the ranges issue 19 asks the property tests for), total
+/// Holes in 0–5 and components in 1–3 (the ranges the property tests cover everywhere), total
 /// genus 0–2, with every noise level of gen_mesh_options.
 rc::Gen<fhr::testing::GeneratedMesh> gen_open_mesh(std::size_t max_faces) {
     return fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = max_faces, .max_holes = 5, .max_components = 3});
@@ -187,10 +187,10 @@ TEST_CASE("with holes and components too, the output does not depend on the comp
     CHECK(mesh_hash(random_mesh({2, 1000, 7, 0.1, 0, 2})) == 0x5b513c92f89ab845ull);
 }
 
-TEST_CASE("recipes without holes and with one component give the meshes they gave before holes and components existed",
+TEST_CASE("GEN-4: recipes without holes and with one component give the closed generator's pinned meshes",
           "[unit]") {
     // Recipes are stable across versions. These hashes (mesh_hash) were recorded from the
-    // generator of commit 181923c, before holes and components were added, by a separate program
+    // generator of commit 181923c, which had neither holes nor components, by a separate program
     // linked against that commit's libfhr_generate; the first four ones' recipes cover each genus
     // branch and noise level, the others larger and higher-genus blocks.
     struct Pinned {

@@ -1,6 +1,6 @@
 // §3 eq. (1): the structural check that a returned path Γ is a geodesic polyline (GEO-4 of
 // paper_notes/exact_geodesics.md), the paper's ellipse T_jk built from its definition, and the
-// pairs of vertices around holes (issue 19), shared by the geodesic suite's tests of the exact
+// pairs of vertices around holes, shared by the geodesic suite's tests of the exact
 // algorithm (test_exact.cpp, test_boundary.cpp) and of the ellipse search (test_ellipse.cpp).
 #pragma once
 
@@ -65,7 +65,7 @@ bool passes_a_vertex(const geodesic::GeodesicPath& p);
 /// The vertices of every boundary loop of m, in loop order.
 std::vector<std::vector<VertexId>> boundary_loop_vertices(const TriMesh& m);
 
-/// Pairs whose shortest path is likely to run along a hole (issue 19): on each boundary loop,
+/// Pairs whose shortest path is likely to run along a hole: on each boundary loop,
 /// the vertices k = 1, 2, 3 steps either side of its most reflex vertex (the largest angle sum:
 /// a path between them wraps around it, and on the generator's square holes runs along the
 /// boundary), and that vertex with the one half way round the loop.

@@ -1,5 +1,5 @@
-// §3 exact geodesics Γ(x_j, x_k) on surfaces with holes and several components (beyond the paper,
-// issue 19: the geodesics of D's interior edges are computed on T itself, holes and all). Checks
+// §3 exact geodesics Γ(x_j, x_k) on surfaces with holes and several components (beyond the paper:
+// the geodesics of D's interior edges are computed on T itself, holes and all). Checks
 // GEO-10..GEO-14 of paper_notes/exact_geodesics.md and, on the real meshes, GEO-E5 of
 // paper_notes/ellipse.md: distances equal CGAL's exact Surface_mesh_shortest_path on random meshes
 // with 1–5 holes and 1–3 components and on libcgal-demo meshes with boundary, from boundary

@@ -222,14 +222,14 @@ TEST_CASE("GEO-E2: bad requests are refused", "[unit][geodesic]") {
     CHECK_THROWS_AS(ellipse_shortest_path(m, VertexId(3), VertexId(3)), InvalidInput);
     CHECK_THROWS_WITH(ellipse_shortest_path(m, VertexId(3), VertexId(9999)), Catch::Contains("out of range"));
     CHECK_THROWS_WITH(ellipse_shortest_path(m, VertexId(3), VertexId(4), {1.0}), Catch::Contains("K must be greater than 1"));
-    // Issue 19: a target on another component (the first and last vertex of a 3-component mesh).
+    // A target on another component (the first and last vertex of a 3-component mesh).
     const TriMesh three = generate::random_mesh({1, 300, 7, 0.1, 3, 3});
     const VertexId last(static_cast<std::uint32_t>(three.n_vertices() - 1));
     CHECK_THROWS_WITH(ellipse_shortest_path(three, VertexId(0), last), Catch::Contains("not connected"));
     CHECK_THROWS_AS(ellipse_shortest_path(three, last, VertexId(0)), InvalidInput);
 }
 
-// Issue 19: T is a surface with holes and several components; the path may run along a hole.
+// T is a surface with holes and several components; the path may run along a hole.
 // The certificates' argument only needs that a path leaves T_jk through its artificial border
 // (paper_notes/ellipse.md), so every kind must still agree with the unrestricted length.
 TEST_CASE("GEO-E5: on meshes with holes and components the ellipse path is a shortest path of T", "[property][geodesic]") {

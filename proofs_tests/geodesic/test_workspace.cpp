@@ -1,4 +1,4 @@
-// §3's searches on the caller's Workspace (issue 18; geodesic/workspace.hpp). A workspace keeps
+// §3's searches on the caller's Workspace (geodesic/workspace.hpp). A workspace keeps
 // the searches' per-vertex arrays from one search to the next and gets them back clean, so its
 // history must never show in a result: GEO-15, one workspace reused across meshes of different
 // sizes (larger, then smaller, then larger again) and by searches alive at once gives bitwise the
@@ -181,7 +181,7 @@ TEST_CASE("GEO-16: a search that stops early, is abandoned or ends by an excepti
     }
 }
 
-// GEO-17 (issue 18): the fields of both foci, made once for all paths at a vertex (focus_field),
+// GEO-17: the fields of both foci, made once for all paths at a vertex (focus_field),
 // give the ellipse search bitwise the result of its own fast-marching runs, whether they reach
 // every ellipse, only the first (K grows past them), or none (too short: the call runs its own).
 TEST_CASE("GEO-17: focus fields give the ellipse search bitwise its own result, also when they fall short",

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""LIB-1 (issue: fhr as a C++ library): with -Dtests=false -Dbench=false, configuring fhr needs
+"""LIB-1 (spec/library.md): with -Dtests=false -Dbench=false, configuring fhr needs
 only the library's own dependencies. Configures SOURCE_DIR in a fresh temporary build folder and
 checks that `meson introspect --dependencies` names none of CGAL, Catch2, RapidCheck and
 GeographicLib, and that no test or benchmark is defined. Exit 0 when all hold.

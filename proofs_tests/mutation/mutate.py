@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""`./run mutate [N] [--seed S] [--files GLOB]...`: mutation testing of fhr (issue 20).
+"""`./run mutate [N] [--seed S] [--files GLOB]...`: mutation testing of fhr
+(paper_notes/testing.md).
 
 A mutant changes one operator or one constant on one line of src/. It is *caught* when a test
 fails on it (or crashes, or runs past its time limit), *survives* when every test that could see
@@ -45,8 +46,8 @@ inside template arguments (std::array<double, 3>) are skipped.
 Which suites see a mutant: a mutant of src/fhr/F is seen by F's suite and by the suites of every
 folder whose library depends on F (src/meson.build), the `fhr` command's (cli, reference-*) and the
 Python package's (python), which link everything. library-* (configure, install) and the Python
-package's PY-7 (pip install of a wheel) are packaging checks that rebuild fhr from a fresh copy:
-never run on mutants.
+package's PY-7 (pip install of a wheel) are packaging checks that rebuild fhr from a fresh copy,
+and lint-* reads the tree's text, not fhr's behaviour: never run on mutants.
 
 Usage: mutate.py [N] [--seed S] [--files GLOB]... [--list]
        mutate.py --at FILE:LINE...   every mutant of those lines (to look at one survivor)"""
@@ -358,7 +359,7 @@ def suites():
     found = []
     for t in introspect("--tests"):
         name = t["name"]
-        if name.startswith("library-"):
+        if name.startswith(("library-", "lint-")):
             continue
         cmd = list(t["cmd"])
         kind = "catch2" if os.path.basename(cmd[0]).startswith("test_") else \

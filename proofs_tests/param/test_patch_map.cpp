@@ -402,10 +402,10 @@ TEST_CASE("MAP-7: SparseLU and BiCGSTAB agree to 1e-10 and both certify", "[prop
     });
 }
 
-TEST_CASE("MAP-7: BiCGSTAB on a patch whose incomplete LU is exact (fuzz_pipeline finding, session 9)", "[unit][param]") {
+TEST_CASE("MAP-7: BiCGSTAB on a patch whose incomplete LU is exact (a fuzz_pipeline finding)", "[unit][param]") {
     // A patch of §4 on the density family's graded mesh (fhr generate --family density --genus 2
     // --holes 2 --components 3 --faces 970 --seed 6679101986355545382, 439 domain faces, as §2
-    // decimated until session 15), uniform weights: started from 0, BiCGSTAB's half step reached a
+    // decimates with ties of cost by index alone), uniform weights: started from 0, BiCGSTAB's half step reached a
     // residual of exactly 0 and its next step divided 0 by 0 (NaN after 2 iterations, exit 4). It
     // starts from the preconditioner's solution now, which already meets the tolerance.
     Disk d;

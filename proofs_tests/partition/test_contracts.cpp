@@ -514,7 +514,8 @@ TEST_CASE("PART-11: a given domain whose vertices §2 cannot reach is kept direc
     // θ = 1.2: the four corners lie nearly on one circle, so the tetrahedron over them is almost
     // flat; decimating the sphere down to them would turn faces over, and §2 stops above them.
     // The direct start needs no decimation: the crossing's later edge becomes a restricted path in
-    // the polygon the other five leave (before issue 18's lazy decimation, this domain was refused).
+    // the polygon the other five leave (the decimation, which could not reach q's corners, is never
+    // asked for).
     const Quadrilateral q = quadrilateral(1.2);
     const partition::Partition P = partition::partition(q.T, q.D);
     CHECK(P.retries == 0);

@@ -292,7 +292,7 @@ TEST_CASE("PART-9, PART-10: a domain made wrong by an edge flip is recovered by 
 TEST_CASE("PART-9: the elephant at 114 faces needs all three remedies and ends far from D = T", "[partition][recovery][real]") {
     // libcgal-demo's elephant (genus 3, 5,558 faces) over a 114-face domain: curves over corners
     // (flips), conflicts at new vertices (decimating again) and conflicts whose vertices would add
-    // too much (stepping back) all occur; before the step back existed this run ended at D = T.
+    // too much (stepping back) all occur; without stepping back this run would end at D = T.
     const TriMesh T = cgal_mesh("elephant.off");
     const domain::Domain D0 = domain::decimate(T, {.target_faces = 114});
     std::size_t flips = 0, keeps = 0, steps = 0;
@@ -414,7 +414,7 @@ TEST_CASE("PART-10: a restricted path through a saddle is snapped to it, leaving
     // rounding error of the exact path through it; the next curve touching it had no room to
     // separate (below min_separation), and the run fell back to changing D (42 -> 80 and 46 -> 86
     // faces). Γ*'s nodes are now snapped like every geodesic's, and D is kept. (The block mesh at
-    // 44 faces since session 15: with ties of cost to the shorter edge, §2 stops there.)
+    // 44 faces: with ties of cost to the shorter edge, §2 stops there.)
     struct Case {
         generate::RandomMeshOptions recipe;
         std::size_t faces;

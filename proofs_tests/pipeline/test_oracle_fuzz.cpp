@@ -100,7 +100,7 @@ TEST_CASE("CLI-ORACLE-4: a program that writes nothing, or not a fhr-param file,
     CHECK(r.out.find("FAILED: PARAM-1: ") != std::string::npos);
 }
 
-TEST_CASE("CLI-ORACLE-4: recipes in the ranges asked; block without holes and components those of earlier versions",
+TEST_CASE("CLI-ORACLE-4: recipes in the ranges asked; block without holes and components gives the pinned recipes",
           "[cli][oracle]") {
     // `true` writes nothing: every mesh fails at once ("no output"), so the lines come fast.
     const std::string keep = temp_path("oracle-keep-ranges");
@@ -110,7 +110,7 @@ TEST_CASE("CLI-ORACLE-4: recipes in the ranges asked; block without holes and co
     CHECK(count_of(r.out, "FAILED") == 8);
     CHECK(count_of(r.out, " --holes ") == 0);
     CHECK(count_of(r.out, " --components ") == 0);
-    // Mesh 0 of seed 1 as `fhr oracle-fuzz` drew it before --holes-max and --components-max existed.
+    // Mesh 0 of seed 1 with closed ranges: the recipe pinned for block meshes (no draw spent on holes or components).
     CHECK(r.out.find("mesh 0: fhr generate --genus 2 --faces 256 --seed 417422127403058876 --noise 0.05 --out mesh.off: ") == 0);
     r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "12", "--holes-max", "2", "--components-max", "2",
                  "--seed", "5", "--family", "block", "--keep", keep});
@@ -155,7 +155,7 @@ TEST_CASE("CLI-ORACLE-5: usage errors", "[cli][oracle]") {
     CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "1", "stray.tsv"}).exit_code == 2);
 }
 
-// The tests below need every family of the generator (issue 17).
+// The tests below need every family of the generator.
 
 TEST_CASE("CLI-ORACLE-6: fhr itself as the program, on meshes of every embedded family: no failures", "[cli][oracle]") {
     // Seed 116 draws each of the six embedded families once in its first 6 meshes (--family all, the default).

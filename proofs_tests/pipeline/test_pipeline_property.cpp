@@ -4,7 +4,7 @@
 // patch certified (Proposition 1) and the independent oracle accepting the exchange file
 // (spec/param.md PARAM-2..11 against T).
 //
-// Beyond the paper (issue 19): the same for surfaces with 1–5 boundary loops in 1–3 components,
+// Beyond the paper: the same for surfaces with 1–5 boundary loops in 1–3 components,
 // and for 2–3 closed components, of total genus 0–2 (with noise), through pipeline::run as
 // `fhr run --faces N [--paths geodesic]` calls it (PART-10 and PART-9) — and, beyond what the
 // oracle can see in the file (PARAM-4, PARAM-11), checked on the result itself: D has T's topology
@@ -249,7 +249,7 @@ TEST_CASE("pipeline: 2–3 closed components of genus 0–2 in all keep their to
 TEST_CASE("pipeline: meshes of every embedded generator family (genus 0–3, 0–2 holes, 1–2 components) are certified and "
           "verify-valid, keeping their topology",
           "[pipeline][property][families]") {
-    // Issue 17: the generator's hard families — curved, slivers and needles down to 10⁻⁴°, a
+    // The generator's hard families — curved, slivers and needles down to 10⁻⁴°, a
     // valence-64 fan, edge-length ratios of 10⁵, exactly coplanar and collinear neighbours.
     rc::prop("run(T of any embedded family, --faces N) is certified", [] {
         const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh(

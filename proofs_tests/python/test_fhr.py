@@ -1,4 +1,4 @@
-"""The Python package fhr (issue: the Python package; spec/library.md for the calls underneath).
+"""The Python package fhr (spec/python.md; spec/library.md for the calls underneath).
 
 Run by `./run test` with Debian's /usr/bin/python3 and the package staged in the build tree
 (PYTHONPATH=build/src/python); FHR is the `fhr` command of the same build, FHR_CGAL_MESHES the
@@ -300,7 +300,7 @@ def test_random_meshes_parameterize_and_verify(mesh):
     assert len(p.domain[1]) == domain_faces
 
 
-# PY-4, PY-6 with boundary loops and several components (issue 19): certified, accepted by the
+# PY-4, PY-6 with boundary loops and several components (beyond the paper): certified, accepted by the
 # oracle, D with T's components, boundary loops and genus; with boundary a component may stop
 # above its share of the faces asked, so D has at least as many.
 @settings(max_examples=30, derandomize=True, deadline=None, suppress_health_check=[HealthCheck.too_slow])

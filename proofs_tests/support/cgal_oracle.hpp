@@ -1,6 +1,7 @@
 // Test support: CGAL's exact shortest paths (Surface_mesh_shortest_path, Epick kernel) as an
 // independent oracle, behind a header without CGAL so that CGAL's headers stay in one translation
-// unit (design.md §2). Used by GEO-1 (src/fhr/geodesic) and PART-10 (restricted shortest paths).
+// unit (paper_notes/library.md: CGAL only in tests and benchmarks). Used by GEO-1 (src/fhr/geodesic)
+// and PART-10 (restricted shortest paths).
 #pragma once
 
 #include <cstdint>

@@ -26,7 +26,7 @@ std::string read_file(const std::string& path);
 /// folder named by $FHR_CGAL_MESHES), or nullopt when it is not there.
 std::optional<std::string> cgal_mesh(std::string_view name);
 
-/// Path of a workplace-only mesh in ../shared/meshes (or $FHR_SHARED_MESHES), or nullopt.
+/// Path of an optional mesh, not distributed, in ../shared/meshes (or $FHR_SHARED_MESHES), or nullopt.
 std::optional<std::string> shared_mesh(std::string_view name);
 
 /// The folder of committed test files, proofs_tests/data.

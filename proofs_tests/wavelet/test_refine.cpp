@@ -1,7 +1,7 @@
 // FHR §5 — dyadic refinement (Fig. 5) and where the vertices of D^J lie in D (spec/wavelet.md
 // WAV-1, WAV-2, WAV-11): counts and Euler characteristic, the numbering, exact dyadic coordinates,
 // and every vertex on an edge or vertex of D denoting one point from all its faces; on closed
-// domains and on domains with boundary and several components (issue 19).
+// domains and on domains with boundary and several components (beyond the paper).
 #include <catch2/catch.hpp>
 #include <rapidcheck/catch.h>
 

@@ -1,7 +1,7 @@
 // FHR §5 tests — what the wavelet suites share: closed meshes with a vertex of each valence 3..12
 // (bipyramids), open fans with a boundary vertex of t = 1..12 triangles, random closed domains
 // from src/fhr/generate, random domains with boundary and several components made from them
-// (issue 19: holes punched at disjoint vertex 1-rings, disjoint unions), and random functions in S^j.
+// (holes punched at disjoint vertex 1-rings, disjoint unions), and random functions in S^j.
 #pragma once
 
 #include <rapidcheck.h>

@@ -2,9 +2,9 @@
 // [--genus-max G] [--holes-max H] [--components-max C] [--seed S] [--keep DIR] [--timeout SECONDS]
 // [--shard K/N] [--table FILE]` and `fhr oracle-fuzz --merge FILE... [--table FILE]`: fuzzing
 // another implementation of the paper with fhr's oracle (spec/cli.md CLI-ORACLE-*). Random meshes
-// T (src/fhr/generate) go to the program: by default of every embedded family (issue 17: block,
+// T (src/fhr/generate) go to the program: by default of every embedded family (block,
 // smooth, quality, valence, density, degenerate; immersed only when named), surfaces with up to 5
-// boundary loops in up to 3 components (issue 19, what `fhr run` and the oracle accept), with
+// boundary loops in up to 3 components (what `fhr run` and the oracle accept), with
 // `--holes-max 0 --components-max 1` the closed connected surfaces of §1 only. Whatever the
 // program writes must be a `fhr-param 1` file that `fhr verify --mesh T` accepts (PARAM-1..11,
 // src/fhr/exchange). Each failure is kept with its reason and shrunk. A campaign too long for one
@@ -127,7 +127,7 @@ struct Ranges {
 /// embedded families drawn from a stream of its own, so that the other draws do not depend on it;
 /// genus, holes and components in their ranges (holes and components drawn only when their range
 /// has more than one value, so `--family block --holes-max 0 --components-max 1` draws the closed
-/// recipes of the versions before them), faces in [least_faces, least_faces + 600] (even without
+/// recipes with no draw spent on holes or components), faces in [least_faces, least_faces + 600] (even without
 /// holes), a seed that `fhr generate --seed` accepts (< 2^63), for block noise 0, 0.05, 0.1 or
 /// 0.25; the family's knobs at their defaults.
 Recipe draw_recipe(std::uint64_t seed, std::uint64_t i, const Ranges& ranges, const Family* family) {

@@ -1,5 +1,5 @@
 // FHR cli — the results table of `fhr oracle-fuzz` and the merge of a sharded campaign
-// (issue 17, spec/cli.md CLI-ORACLE-7..9). A campaign of many meshes is spread over machines by
+// (spec/cli.md CLI-ORACLE-7..9). A campaign of many meshes is spread over machines by
 // `--shard K/N`: shard K runs the meshes i with i mod N = K − 1, and since mesh i's recipe comes
 // from (seed, i) alone, the union of the shards' rows is exactly what one unsharded run finds.
 // Each run writes its rows as a table (`--table FILE`, tab-separated text), and

@@ -5,7 +5,7 @@
 // scheduler) passes its own Executor in the options; without one, fhr uses one ThreadPool shared
 // by the process, started on first use.
 //
-// Why a pool (issue 18): a run calls for_each dozens of times (every recovery round of §3, every
+// Why a pool: a run calls for_each dozens of times (every recovery round of §3, every
 // level of §5), many of them on a few milliseconds of work; starting and joining threads on every
 // call cost more than some of those calls' tasks. The pool's workers wait between calls.
 #pragma once

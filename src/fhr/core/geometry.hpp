@@ -35,8 +35,9 @@ struct EdgeLengthStats {
 };
 EdgeLengthStats edge_length_stats(const TriMesh& m);
 
-/// How hard a mesh is for numerical code (issue 17 compares generated meshes with real ones by
-/// these): the smallest and largest corner angle (radians, atan2 of |u × v| and u · v, accurate
+/// How hard a mesh is for numerical code (`fhr info` and bench/generator_stats.py compare
+/// generated meshes with real ones by these): the smallest and largest corner angle (radians,
+/// atan2 of |u × v| and u · v, accurate
 /// for needles and caps alike) and the smallest and largest vertex valence (boundary vertices
 /// count their edges too). All zero for a mesh without faces.
 struct ShapeStats {
@@ -46,8 +47,8 @@ struct ShapeStats {
 ShapeStats shape_stats(const TriMesh& m);
 
 /// The squared distance from p to the box [lo, hi] (0 inside), without branches: which side p is
-/// on is as good as random, and mispredicted branches were most of a Hausdorff query's time (issue
-/// 18). closest_point_on_triangle's rounded squared distance to p is never below its triangle's
+/// on is as good as random, and mispredicted branches were most of a Hausdorff query's time.
+/// closest_point_on_triangle's rounded squared distance to p is never below its triangle's
 /// box's: a search may skip boxes no nearer than its best so far (§5's tree, the oracle's PARAM-11).
 double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi);
 

@@ -1,4 +1,4 @@
-// FHR core — strong index types (design.md §2): a VertexId cannot be passed where a FaceId is meant,
+// FHR core — strong index types: a VertexId cannot be passed where a FaceId is meant,
 // and per-element data (IdVector) is indexed by its own id type only.
 #pragma once
 

@@ -1,4 +1,4 @@
-// FHR core — SurfacePoint: a point of Ω_T given combinatorially (design.md §2). The paper's
+// FHR core — SurfacePoint: a point of Ω_T given combinatorially. The paper's
 // geodesic Γ(x_j, x_k) (§3, eq. 1) is a polyline u_1 … u_r whose nodes lie on edges of T or at
 // its vertices, and a domain vertex may correspond to a point inside a face or on an edge (§3,
 // Fig. 4); a SurfacePoint names exactly such a location without rounding it to coordinates.

@@ -250,7 +250,7 @@ bool TriMesh::is_collapse_ok(HalfedgeId h) const {
     // Link condition: the common neighbours of v0 and v1 are exactly va and vb. v1's neighbours
     // are gathered once into a small contiguous buffer on the stack, then each neighbour of v0 is
     // looked up there. Valences are small; past the buffer's size (a vertex of valence > 64) each
-    // lookup walks v1's ring instead. No scratch outside the call (issue 18), so several readers
+    // lookup walks v1's ring instead. No scratch outside the call, so several readers
     // of one mesh stay safe (spec/library.md, "Thread safety").
     std::array<VertexId, 64> ring;
     std::size_t valence = 0;

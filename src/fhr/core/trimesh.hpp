@@ -1,5 +1,5 @@
 // FHR core — TriMesh, the index-based halfedge triangulation T of the paper (§1: a manifold
-// triangulation whose union Ω_T is an orientable 2-manifold). design.md §2.
+// triangulation whose union Ω_T is an orientable 2-manifold).
 //
 // Layout: edge e owns halfedges 2e and 2e+1, so twin(h) = h ^ 1 and edge(h) = h >> 1. Per
 // halfedge we store `to` (its head vertex), `next` (next halfedge of its face, or of its boundary

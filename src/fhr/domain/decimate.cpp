@@ -65,7 +65,7 @@ bool corners_at_least(const Vec3& a, const Vec3& b, const Vec3& c, double tan_mi
 // region every collapse costs 0 (exactly, once rounding clamps at 0): by index alone, collapses swept
 // along the numbering into one vertex whose star then refused collapse after collapse (the fandisk
 // subdivided to 828,544 faces popped 17 candidates per collapse); shortest first spreads them, as an
-// infinitesimal length term in the cost would (1.3 pops per collapse; issue 18). The squared length
+// infinitesimal length term in the cost would (1.3 pops per collapse). The squared length
 // is rounded to float so that a candidate stays 16 bytes; rounding is exact IEEE, the same on any
 // compiler.
 struct Candidate {
@@ -80,10 +80,10 @@ struct Candidate {
 static_assert(sizeof(Candidate) == 16);
 
 // The queue: at most one candidate per edge of D (one of its two directions), each edge's place
-// known, so that a new candidate for an edge replaces the old one where it stands (issue 18: a
+// known, so that a new candidate for an edge replaces the old one where it stands (a
 // queue that left superseded candidates in place to be skipped made the same collapses, but at 10⁶
 // faces popped 5 million for 495,000 collapses).
-// Two tiers (issue 18): a binary min-heap holds only the candidates at or below `bound_`, the others
+// Two tiers: a binary min-heap holds only the candidates at or below `bound_`, the others
 // wait unsorted in `rest_`. A heap of every candidate (1.5 million at 10⁶ faces, 24 MB) made each
 // pop a walk of twenty levels, the lower ones cache misses, and was a third of §2's loop; most
 // candidates are replaced or removed long before they are the least. When the heap runs out, the
@@ -269,7 +269,7 @@ public:
           rejected_(m_.n_halfedges(), false), rejection_(m_.n_halfedges()), real_(real_vertices), target_(std::move(targets)),
           queue_(m_.n_edges()) {
         // One pass over the vertices and one over the faces fill the records and the counts
-        // (issue 18: at 10⁶ faces each pass over the records is some 15 ms).
+        // (at 10⁶ faces each pass over the records is some 15 ms).
         std::vector<std::uint8_t> kept(std::max_element(start.t_vertex.begin(), start.t_vertex.end())->idx() + 1, 0);
         for (VertexId v : o.keep)
             if (v.idx() < kept.size()) kept[v.idx()] = 1;
@@ -432,7 +432,7 @@ private:
     // edges whose ends both lie in the cell, until a quarter of each component's vertices in the
     // cell are left (or no such collapse is valid). A collapse there reads and writes the stars of the cell's
     // vertices and of their neighbours: its data stays in cache. Only the cell's vertices are
-    // removed, so at its turn a cell has all its vertices. Why (issue 18): past some 10⁵ faces
+    // removed, so at its turn a cell has all its vertices. Why: past some 10⁵ faces
     // the data of T (some 300 bytes per face) outgrows the last-level cache, and the greedy loop
     // makes a collapse in 3.6 µs at 10⁶ faces against 1.3 µs at 10⁵. A vertex lies in the cell
     // of its first face (cells of 2^14 faces by default, some 8,000 vertices: 2^14 to 2^16
@@ -469,7 +469,7 @@ private:
     TriMesh m_;
     std::vector<Collapse> history_;   // the collapses that made `start` from T̂
     const DecimateOptions& options_;
-    // What the collapse loop reads of a vertex, in one record of two cache lines (issue 18): each
+    // What the collapse loop reads of a vertex, in one record of two cache lines: each
     // collapse reads it for every neighbour of the survivor, at random places in arrays of T's
     // size; in separate arrays (quadrics, positions, flags) that was three to five cache misses
     // per neighbour at 10⁶ faces, here two. The position is m_'s, which no collapse moves.
@@ -574,7 +574,7 @@ private:
     // collapse queues it again.
     // A neighbour's star is walked only when an edge at it may have a rejected direction
     // (`suspect`; queued again, no edge at it has one): the same edges are queued as by walking
-    // the two-ring of every collapse, at 10⁶ faces the most scattered reads of §2 (issue 18).
+    // the two-ring of every collapse, at 10⁶ faces the most scattered reads of §2.
     void refresh_around(VertexId v1) {
         m_.for_each_outgoing(v1, [&](HalfedgeId g) {
             push_edge(TriMesh::edge(g));
@@ -622,7 +622,7 @@ private:
     // A collapse found invalid by the rules that read only the stars of its two vertices (all but
     // the volume rule; the count rules only ever forbid more as faces go) stays invalid until one
     // of those stars changes, or while its witness still fails (still_witnessed): it is not
-    // checked again before (issue 18; DOM-22). On a flat CAD region, where every collapse costs
+    // checked again before (DOM-22). On a flat CAD region, where every collapse costs
     // 0, each collapse queues the rejected edges around it again and they come straight back to
     // the top: the subdivided fandisk popped 25 candidates per collapse, nearly all rejected as
     // before.
@@ -869,7 +869,7 @@ DecimateOptions with_corners(const TriMesh& T, const DecimateOptions& options) {
 
 // decimate, with or without the pass over the cells.
 Domain decimate_from_t(const TriMesh& T, const DecimateOptions& options, bool by_cells) {
-    // T's components, found once (issue 18: three searches of T were 6 % of §2 at 10⁶ faces).
+    // T's components, found once (three searches of T were 6 % of §2 at 10⁶ faces).
     const Components comps = connected_components(T);
     std::vector<std::size_t> targets = targets_of(T, comps, options.target_faces);
     if (T.is_closed())

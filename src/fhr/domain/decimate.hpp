@@ -16,7 +16,7 @@
 //       else queue the edge's other direction, unless it was found invalid too
 //   if the queue runs dry first: the target cannot be met under these rules (error)
 //
-// Beyond the paper (issue 18): when T has more than 2^17 faces and the target is at most a
+// Beyond the paper: when T has more than 2^17 faces and the target is at most a
 // quarter of them, the loop above is preceded by a pass over the cells — each vertex in the cell
 // of its first face, cells being blocks of 2^14 consecutive faces of T̂ — which runs the same
 // loop, cell after cell, over the edges whose ends both lie in the cell, until a quarter of the

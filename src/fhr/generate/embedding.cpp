@@ -1,4 +1,4 @@
-// FHR generate — the exact embedding check and guard (beyond the paper, issue 17); the argument is
+// FHR generate — the exact embedding check and guard (beyond the paper); the argument is
 // in embedding.hpp. Every sign comes from core/predicates.hpp (exact for all finite doubles), or is an
 // exact zero decided without arithmetic (points sharing a coordinate; below).
 #include <fhr/generate/embedding.hpp>

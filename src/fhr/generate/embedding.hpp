@@ -1,4 +1,4 @@
-// FHR generate — is a triangle mesh embedded? Beyond the paper (issue 17): the generator's
+// FHR generate — is a triangle mesh embedded? Beyond the paper: the generator's
 // families promise embedded surfaces ("no two non-adjacent triangles intersect") and the immersed
 // family promises the opposite, so both the whole-mesh check and an incremental guard that keeps
 // a mesh embedded edit by edit decide with the exact predicates of core/predicates.hpp. The

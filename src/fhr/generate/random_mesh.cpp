@@ -1,6 +1,6 @@
 // FHR generate — random orientable manifold meshes of genus g with an exact face count: closed
 // and connected ones are the input class T of the paper (§1); boundary loops (holes) and several
-// components are beyond the paper (issue 19). For the property tests, the fuzzers and
+// components are beyond the paper. For the property tests, the fuzzers and
 // `fhr generate`. The full argument is in paper_notes/generator.md; in short, per component:
 //
 //   1. Block: the solid (2g+1) x 3 x 1 unit cells with g unit holes in a row (a unit cube for g = 0),

@@ -1,7 +1,7 @@
 // FHR generate — random orientable manifold triangulations of any genus, with a chosen number of
 // boundary loops (holes) and connected components. With no holes and one component they are
 // exactly the meshes the paper (§1) takes as input T; surfaces with boundary and several
-// components are beyond the paper (issue 19: fhr's extension to them). Made on demand for the
+// components are beyond the paper (fhr's extension to them). Made on demand for the
 // property tests, the fuzzers, and users fuzzing their own code (`fhr generate`). The
 // construction and its guarantees are described in paper_notes/generator.md.
 #pragma once
@@ -14,7 +14,7 @@
 
 namespace fhr::generate {
 
-/// The kinds of mesh the generator makes (issue 17: meshes as hard as real ones). `block` is the
+/// The kinds of mesh the generator makes (meshes as hard as real ones). `block` is the
 /// generator's first kind, the re-triangulated perforated slab (paper_notes/generator.md); the
 /// others start from a block mesh of the same genus, holes and components and make it hard in one
 /// way each, keeping the exact face count. All but `immersed` are embedded, which their
@@ -39,7 +39,7 @@ Family parse_family(const std::string& name);
 inline constexpr Family embedded_families[] = {Family::block,   Family::smooth,  Family::quality,
                                                Family::valence, Family::density, Family::degenerate};
 
-/// Each family's own knobs; a family reads only its own. The defaults are the ones the issue's
+/// Each family's own knobs; a family reads only its own. The defaults are the ones the family's
 /// guarantees are stated for (spec/generator.md GEN-8..13).
 struct FamilyKnobs {
     // smooth
@@ -82,8 +82,8 @@ void set_knob(FamilyKnobs& knobs, Family family, const std::string& name, double
 
 /// A recipe. genus and holes are totals over the components, spread as evenly as possible:
 /// component c (0-based, of C) gets ⌊g/C⌋ handles, plus one if c < g mod C, and likewise
-/// ⌊b/C⌋ (+1 if c < b mod C) holes. Existing recipes (holes = 0, components = 1) give the
-/// same meshes as before these two options existed.
+/// ⌊b/C⌋ (+1 if c < b mod C) holes. Recipes with holes = 0 and components = 1 give the
+/// closed generator's meshes, pinned by GEN-4.
 struct RandomMeshOptions {
     int genus = 0;            ///< g >= 0: number of handles, in total
     std::size_t faces = 1000; ///< exact face count F >= min_faces(genus, holes, components); even when holes = 0
@@ -91,7 +91,7 @@ struct RandomMeshOptions {
     double noise = 0.0;       ///< in [0, 0.5): vertex jitter, as a fraction of the mean length of its edges
     int holes = 0;            ///< b in [0, max_holes]: number of boundary loops, in total
     int components = 1;       ///< C in [1, max_components]: number of connected components
-    Family family = Family::block;  ///< what kind of mesh; block recipes give the meshes of before families existed
+    Family family = Family::block;  ///< what kind of mesh; block recipes give the meshes pinned by GEN-4
     FamilyKnobs knobs{};            ///< the family's own options (ignored by block)
 };
 

@@ -37,7 +37,7 @@
 namespace fhr::geodesic {
 
 /// The fast-marching field of one focus, kept for all the paths that start or end there (beyond
-/// the paper, issue 18): a domain vertex has about six edges, and each of their ellipses needs d_a
+/// the paper): a domain vertex has about six edges, and each of their ellipses needs d_a
 /// from it; one run to the farthest of them replaces six runs over nearly the same disk.
 struct FocusField {
     VertexId source;
@@ -94,7 +94,7 @@ struct EllipsePath {
 };
 
 /// Γ(a, b) by the ellipse search. \pre mesh valid without garbage; holes and several components
-///      are allowed (issue 19): a hole of T is no part of T_jk's artificial border, a path may run
+///      are allowed: a hole of T is no part of T_jk's artificial border, a path may run
 ///      along it, and no path can leave T_jk through it (paper_notes/ellipse.md).
 /// \post path.length is the exact polyhedral distance on the whole mesh (up to the rounding of
 ///       the exact algorithm, paper_notes/exact_geodesics.md): the sub-mesh's path is returned

@@ -21,7 +21,7 @@
 //           when v3 is already closer by a path entering the face at x* of this edge, the rays
 //           between x* and v3's ray are dropped (Xin–Wang's "one angle, one split")
 //       relax d(u) with δ: if δ < d(u), d(u) <- δ, remember how; if u is a pseudo-source (an
-//           interior vertex with angle sum > 2π, or a boundary vertex: on a hole of T, issue 19,
+//           interior vertex with angle sum > 2π, or a boundary vertex: on a hole of T
 //           or on the border of the sub-mesh), push (u, δ)
 #pragma once
 

@@ -47,7 +47,7 @@ constexpr std::uint32_t no_link = std::numeric_limits<std::uint32_t>::max();
 constexpr std::uint32_t not_in_heap = std::numeric_limits<std::uint32_t>::max();
 
 // The narrow band: a binary heap of (d, v), smallest first (ties: lower v), with each vertex's
-// place in it, so that a lowered value moves its entry up instead of adding one (issue 18: with
+// place in it, so that a lowered value moves its entry up instead of adding one (with
 // entries added again, half of all pops on the horse's fields were stale ones; the fields 0.34 →
 // 0.28 s on one thread, the 10⁶ mesh's 2.8 → 2.2 s, every value the same bits).
 struct HeapEntry {

@@ -1,4 +1,4 @@
-// FHR §3 (beyond the paper, issue 18) — the caller's workspace and the pool of workspaces for
+// FHR §3 (beyond the paper) — the caller's workspace and the pool of workspaces for
 // parallel searches (see workspace.hpp; borrowing from a workspace: detail/scratch.hpp).
 #include <fhr/geodesic/workspace.hpp>
 

@@ -1,4 +1,4 @@
-// FHR §3 (beyond the paper, issue 18) — the caller's workspace for the geodesic searches.
+// FHR §3 (beyond the paper) — the caller's workspace for the geodesic searches.
 //
 // §3 computes one path Γ(x_j, x_k) per edge of D, each with searches (fast marching, exact window
 // propagation) that touch only the few hundred vertices of the "ellipse" T_jk. Their per-vertex

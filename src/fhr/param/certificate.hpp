@@ -1,5 +1,5 @@
 // FHR §4 Proposition 1 — a certificate that ψ_i is one-to-one, checked on the computed numbers
-// (design.md §3; the patch part of spec/param.md PARAM-8, PARAM-9).
+// (paper_notes/parameterization.md; the patch part of spec/param.md PARAM-8, PARAM-9).
 //
 // Theorem (degree argument): if ψ maps the boundary loop of a disk monotonically and
 // bijectively onto the boundary of the triangle, corners on corners, and every image triangle is

@@ -42,7 +42,8 @@ struct PatchMapOptions {
 /// κ(A) times that; A = I − Λ is a random-walk Laplacian whose condition number grows like the
 /// number of interior vertices n (≲ 10^4 in a patch of the paper's meshes), so the solutions
 /// agree with the direct solver's to about 1e-10 (MAP-7, tested). Looser tolerances leave
-/// folded triangles in practice (design.md §3: 236 flips at 1e-6 on an armadillo disk).
+/// folded triangles in practice (236 flips at 1e-6 on an armadillo disk, none at 1e-10;
+/// paper_notes/parameterization.md).
 inline constexpr double bicgstab_tolerance = 1e-14;
 
 /// BiCGSTAB may take max(2n, this) iterations on a system of n unknowns. Eigen's default, 2n,

@@ -237,8 +237,8 @@ private:
         }
     }
 
-    // The arrays of one face's triangulation, reused from face to face within a block (issue 18:
-    // allocated per face, a full embedding of the horse's network took 79–93 ms on one thread,
+    // The arrays of one face's triangulation, reused from face to face within a block
+    // (allocated per face, a full embedding of the horse's network took 79–93 ms on one thread,
     // 64–66 ms with them reused).
     struct FaceScratch {
         std::vector<VertexId> poly;  // the face's boundary polygon: corners and nodes in order
@@ -264,7 +264,7 @@ private:
         }
     }
 
-    // The faces in blocks, in parallel (issue 18): each block's triangles, their faces of T and
+    // The faces in blocks, in parallel: each block's triangles, their faces of T and
     // its crossings, joined in face order, so the result is the sequential one. Once (1) fails no
     // face is triangulated (the caller needs only the conflicts): the earlier conflicts stop every
     // block, a block's own stop it.

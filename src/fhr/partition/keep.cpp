@@ -157,7 +157,7 @@ struct Job {
 };
 
 // What runs the independent restricted searches of one keep_domain call: its executor, and a pool
-// of workspaces (issue 18) from which each job leases one, so that the threads reuse the searches'
+// of workspaces from which each job leases one, so that the threads reuse the searches'
 // arrays across jobs and rounds; keep_domain frees them when it returns.
 struct Searches {
     Executor& executor;
@@ -496,7 +496,7 @@ bool kept_plausible(const TriMesh& T, const TriMesh& m, const std::function<Vert
 // region of T each), or when anything on the way fails: the caller then steps back instead.
 // `check_kept`: embed every kept geodesic first, drop those in conflicts the geodesics' conflicts
 // did not name or out of D's order around a corner, and find every polygon's region of T in that
-// embedding. Without it (issue 18: at 10⁶ faces that embedding cost ~0.6 s for one removed edge
+// embedding. Without it (at 10⁶ faces that embedding cost ~0.6 s for one removed edge
 // among 15,000), the kept set is taken as it is and only the curves around polygons of more than
 // one face are embedded to find their regions; the faces of D kept whole get no touched faces
 // (the caller takes them from its check, which also decides whether the kept set was sound).
@@ -725,7 +725,7 @@ std::optional<Network_> direct(const TriMesh& T, std::size_t real_vertices, cons
     // The removed edges, in the kept order: first those from an inner vertex to the boundary (a
     // slit: the polygon stays whole, the vertex is on its boundary from then on), then diagonals,
     // whose restricted paths split their polygon and its faces of T in two. One after another,
-    // on one workspace (issue 18).
+    // on one workspace.
     geodesic::Workspace workspace;
     for (;;) {
         std::optional<Pair> next;

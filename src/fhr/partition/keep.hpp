@@ -81,7 +81,7 @@ struct KeptNetwork {
     std::size_t start_faces = 0;                ///< #F(D_i), the start, on T (D̂_i's cone faces not counted)
     /// embed(T, D, paths, unsnapped) and its patches when they were already computed (the direct
     /// start's check, its curves unchanged since), so that the caller need not embed the same
-    /// curves again nor cut the same patches (issue 18: at 10⁶ faces 0.8 s and 0.2 s).
+    /// curves again nor cut the same patches (at 10⁶ faces 0.8 s and 0.2 s).
     struct Embedded {
         Embedding embedding;
         Patches patches;  ///< extract_patches(D, embedding.network)

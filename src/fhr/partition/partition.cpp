@@ -17,7 +17,7 @@ namespace {
 // Γ(a, b) for every edge of D̂ (D closed by the cones of T̂, core/cones.hpp), reusing the paths of
 // edges whose ends are unchanged: the exact geodesic on T for an edge of D inside the surface, the
 // arc of T's boundary for a boundary edge of D, the edge itself for a cone edge. The searches run
-// in parallel, each on a workspace leased from the cache's pool (issue 18): the threads reuse
+// in parallel, each on a workspace leased from the cache's pool: the threads reuse
 // their arrays from path to path and round to round, and the partition call frees them.
 class PathCache {
 public:
@@ -33,7 +33,7 @@ public:
             const Key key = key_of(a, b);
             if (!fixed(D_hat, e) && !cache_.count(key) && std::find(missing.begin(), missing.end(), key) == missing.end()) missing.push_back(key);
         }
-        // One fast-marching field per end (issue 18), shared by its paths, then the paths.
+        // One fast-marching field per end, shared by its paths, then the paths.
         std::vector<VertexId::Index> foci;
         for (const Key& k : missing) foci.insert(foci.end(), {k.first, k.second});
         std::sort(foci.begin(), foci.end());

@@ -68,7 +68,7 @@ Patches extract_patches(const domain::Domain& D, const Network& net, Executor* e
         out.patch_of_face[f] = df;
         out.patch[df].faces.push_back(f);
     }
-    // Each patch's disk on its own (issue 18: one thread's 16 ms of the horse's 1,000 patches),
+    // Each patch's disk on its own (one thread's 16 ms of the horse's 1,000 patches),
     // `local` numbering its vertices (−1 elsewhere, restored after each patch).
     const auto make_disk = [&](FaceId df, std::vector<std::int32_t>& local) {
         Patch& p = out.patch[df];

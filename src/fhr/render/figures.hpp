@@ -5,7 +5,7 @@
 //           T′ with a checkerboard over each patch S_i through φ (per-corner uv of ψ_i)
 //   Fig. 8  the dyadic refinement D³ (left) and the approximation f³(Ω_D) of Ω_T (right)
 //   Fig. 9  wavelet reconstructions of f³ from 5 % (left) and 20 % (right) of the coefficients
-// Beyond the paper (issue 19): a surface with boundary shows its boundary in every panel, thick and
+// Beyond the paper: a surface with boundary shows its boundary in every panel, thick and
 // green (REN-15).
 // Data only: positions, triangles, index lists and uv arrays; no dependence on the pipeline.
 // One camera for both panels (and, when the caller passes the same one, for every figure), so

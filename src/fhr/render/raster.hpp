@@ -15,7 +15,7 @@
 //      depth w is strictly less than the buffer's, shade it and store colour and depth
 //   5. after all triangles: the outline edges of meshes with `outline`, then the boundary edges of
 //      meshes with `boundary` (edges of exactly one triangle: the boundary of a surface with
-//      holes, issue 19), then the polylines, as segments of constant width in pixels, each sample
+//      holes), then the polylines, as segments of constant width in pixels, each sample
 //      within half the width of the segment drawn when its depth is at most the buffer's depth
 //      plus Camera::depth_bias (lines never write depth). Lines with a hidden style (the
 //      boundary; polylines that ask) first get their parts behind the surface — the samples

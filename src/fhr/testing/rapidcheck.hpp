@@ -1,7 +1,7 @@
 // <fhr/testing/rapidcheck.hpp> — random meshes for RapidCheck properties (fhr/generate), for
 // users fuzzing their own code and for fhr's own property tests, which draw their input surfaces
 // T (paper §1: closed orientable manifold triangulations of any genus) from here; surfaces with
-// boundary loops and several components (beyond the paper, issue 19) on request.
+// boundary loops and several components (beyond the paper) on request.
 // Header-only: it needs RapidCheck (<rapidcheck.h>, Debian's librapidcheck-dev) and libfhr; fhr
 // itself never needs RapidCheck to build. A failing case shows the `fhr generate` command that
 // writes the same mesh to a file, and reading the file gives exactly the same TriMesh back
@@ -40,7 +40,7 @@ struct MeshRanges {
 
 /// Random options: a family of `families`, genus, holes and components in their ranges (family,
 /// holes and components are drawn only when their range has more than one value, so the default
-/// ranges draw what they drew before these knobs existed), a face count in [min_faces(options),
+/// ranges spend no draw on them), a face count in [min_faces(options),
 /// max_faces] (even when there are no holes), a seed the CLI accepts (< 2^63) and, for the block
 /// family, a noise of 0, 0.05, 0.1 or 0.25 (exact in decimal, so the shown command reproduces
 /// it). Shrinks towards the first family, the smallest genus, holes and components, the fewest

@@ -39,7 +39,7 @@ constexpr std::size_t affine_blocks = 8;
 // and the crossings of T′'s sides with the lines β_c = m/2^J (each side is met from both its
 // faces: its crossings are found twice). Blocks of T′'s faces with their own maxima, merged. The
 // maxima are of squared gaps, square-rooted at the end: √ rounds monotonically, so the largest
-// root is the root of the largest square, bit for bit (issue 18: 2·10⁶ square roots on the horse).
+// root is the root of the largest square, bit for bit (2·10⁶ square roots on the horse).
 AffineBounds affine_bounds(const Refinement& r, std::span<const Vec3> f_j, const AffinePieces& pieces, std::size_t t_faces,
                            double on_t, Executor* executor) {
     const int J = r.depth();
@@ -121,7 +121,7 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
 
     // The Hausdorff brackets of D^J's f^J and of each reconstruction; each directed search runs in
     // fixed blocks on the executor (core/executor.hpp; the same result on any number of threads).
-    // T's tree is built once for all of them, here or by the caller (issue 18). hausdorff() takes
+    // T's tree is built once for all of them, here or by the caller. hausdorff() takes
     // the distance from T first and searches the one to T only down to its lower bound (HausdorffOptions::known):
     // f^J's vertices lie on T, and resolving its distance to T to δ along the creases of a CAD
     // model was most of the brackets' time (the fandisk's f^J: 67 ms of 170). f^J's brackets need
@@ -155,8 +155,8 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     // distance to T is at most f^J's bound there plus the triangle's largest corner displacement,
     // and from a point of T at most f^J's distance plus the largest displacement of all (the
     // closest point of f^J moves by at most that). Raised by 10⁻¹² relative against rounding.
-    // Where the bound is settled no point is sampled (issue 18: with the D of session 15, f^J
-    // nearer to T, the fandisk's reconstructions' brackets took 42,000 samples each).
+    // Where the bound is settled no point is sampled (sampling it, the fandisk's
+    // reconstructions, whose f^J lies near T, took 42,000 samples per bracket).
     const auto kept_bracket = [&](KeptResult& k, const TriangleTree& tree) {
         const Hausdorff& f = out.remesh_hausdorff;
         std::vector<double> moved(k.positions.size());

@@ -1,7 +1,7 @@
 // FHR §5 — the filter bank (Floater, Quak & Reimers 2000, "Filter bank algorithms for piecewise
 // linear prewavelets on arbitrary triangulations", J. Comput. Appl. Math. 119; paper §5
 // reference [9]) for S^j = S^{j−1} ⊕ W^{j−1} (paper eq. 3), adapted to manifolds, closed (the
-// paper) or with boundary and several components (issue 19).
+// paper) or with boundary and several components (beyond the paper).
 //
 // Coefficients: f^j = Σ_w c^j_w φ^j_w (c^j a #V(D^j)×3 array: x, y, z together), its coarse part
 // Σ_v c^{j−1}_v φ^{j−1}_v and its detail Σ_u d^{j−1}_u ψ_u, one d per new vertex u of D^j. With

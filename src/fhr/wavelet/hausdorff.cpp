@@ -74,7 +74,7 @@ void TriangleTree::fit_leaves() {
 
 // A node's box is the union of its triangles' boxes (the same bounds as over their corners: min
 // and max are exact); its triangles are split at the median centroid along the box's longest
-// axis, ties by index. The split runs on packed (coordinate, index) keys (issue 18: reading each
+// axis, ties by index. The split runs on packed (coordinate, index) keys (reading each
 // comparison's centroids through order_ was most of the build's time).
 std::uint32_t TriangleTree::build(std::uint32_t first, std::uint32_t count, const std::vector<Extent>& extent,
                                   std::vector<std::pair<double, std::uint32_t>>& keys) {
@@ -208,7 +208,7 @@ double TriangleTree::fan_bound(const Vec3 (&x)[3], std::uint32_t v) const {
     constexpr double none = std::numeric_limits<double>::infinity();
     const std::uint32_t first = fan_start_[v], count = fan_start_[v + 1] - first;
     // The link: triangle (v, p, q) in its own orientation gives the link edge p -> q. Around an
-    // inner vertex the edges make one closed cycle; around a boundary vertex (issue 19) one open
+    // inner vertex the edges make one closed cycle; around a boundary vertex one open
     // path, walked from the neighbour that no link edge enters.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> link;
     link.reserve(count);
@@ -446,7 +446,7 @@ private:
 };
 
 // The blocks of A's triangles searched apart: a fixed count, whatever the threads, so that the
-// bracket is the same on any (issue 18: the fandisk's f^J → T, 37 ms on one thread, was the
+// bracket is the same on any (the fandisk's f^J → T, 37 ms on one thread, was the
 // long pole of §5 on two).
 constexpr std::uint32_t search_blocks = 8;
 

@@ -70,7 +70,7 @@ public:
     /// \pre every index < positions.size(). Keeps its own copy.
     TriangleTree(std::span<const Vec3> positions, std::span<const Triangle> triangles);
     /// The same triangles at other positions, in `other`'s hierarchy with its boxes refitted
-    /// (issue 18: a reconstruction of f^J moves its vertices a little, and refitting costs a pass
+    /// (a reconstruction of f^J moves its vertices a little, and refitting costs a pass
     /// where building sorts); `other` is taken over (pass a copy to keep it). Any hierarchy gives
     /// the same distances; one whose boxes fit loosely only prunes less.
     /// \pre positions.size() equals other's position count.
@@ -130,13 +130,13 @@ struct HausdorffOptions {
     /// A lower bound of the distance the caller reports, when that is the larger of this one and
     /// another already bracketed (the two-sided distance: the other direction's lower). A piece
     /// whose bound is at most `known` is not refined further: the result still brackets h(A, B),
-    /// but only max(upper, known) − max(lower, known) ≤ δ is sought (issue 18: the direction from a
-    /// remesh to T, whose vertices lie on T, was resolved down to δ far below the distance from T
-    /// to the remesh, which is what the two-sided distance reports).
+    /// but only max(upper, known) − max(lower, known) ≤ δ is sought (the direction from a
+    /// remesh to T, whose vertices lie on T, would be resolved down to δ far below the
+    /// distance from T to the remesh, which is what the two-sided distance reports).
     double known = 0;
     /// Per triangle of A, an upper bound of sup d(·, B) on it, or empty: a triangle whose prior is
     /// settled (≤ max(lower, known)) is done without a search, and the prior bounds its piece.
-    /// Issue 18: a reconstruction f′ of the same triangles as f^J, whose directed search found
+    /// A reconstruction f′ of the same triangles as f^J, whose directed search found
     /// per triangle an upper bound U of d(·, T) (DirectedHausdorff::triangle_upper), has on each
     /// triangle d(·, T) ≤ U + its corners' largest displacement |f′ − f^J| (1-Lipschitz, and the
     /// displacement is linear on the triangle).

@@ -3,7 +3,7 @@
 // triangulation of any valence, closed (the paper) or with boundary, for the paper's inner product
 //     ⟨f, g⟩ = Σ_{T ∈ D} 1/a(T) ∫_T f g.
 // A triangle τ of D^j inside T ∈ D has a(τ)/a(T) = 4^−j, so ⟨φ^j_a, φ^j_b⟩ = 4^−j/12 · Σ_{τ ∋ a,b}
-// (1 + δ_ab): every coefficient below is combinatorial (design.md §3).
+// (1 + δ_ab): every coefficient below is combinatorial (Floater–Quak).
 //
 // The construction, derived in paper_notes/wavelets.md. A coarse vertex v of D^{j−1} with n
 // neighbours v_0..v_{n−1} in cyclic order and u_l the new vertex of D^j on edge [v, v_l]:
@@ -13,10 +13,10 @@
 // σ_{v,u_k} is orthogonal to φ^{j−1}_{v_l} for every l ≠ k, and ⟨σ_{v,u_k}, φ^{j−1}_v⟩ =
 // −⟨σ_{v,u_k}, φ^{j−1}_{v_k}⟩ = −2s·4^−j/12 whatever n is, so for the new vertex u on [v1, v2]
 //   ψ_u = σ_{v1,u} + σ_{v2,u}
-// is orthogonal to every φ^{j−1}_w (WAV-3). Scale s = 2^{j−1} (design.md §3): ‖ψ_u‖ then depends
+// is orthogonal to every φ^{j−1}_w (WAV-3). Scale s = 2^{j−1} (paper_notes/wavelets.md): ‖ψ_u‖ then depends
 // on the valences of v1 and v2 only, not on the level.
 //
-// Boundary (issue 19, beyond the paper, which takes D closed; derived in paper_notes/wavelets.md).
+// Boundary (beyond the paper, which takes D closed; derived in paper_notes/wavelets.md).
 // A boundary vertex v of D^{j−1} with t coarse triangles has the t + 1 neighbours v_0..v_t in
 // fan order, v_0 and v_t on the boundary, and u_l on [v, v_l] (u_0, u_t of valence 4). In units of
 // 4^−j/12, ⟨σ, φ^{j−1}_v⟩ = 3tα + 10 Σ_l d_l β_l and ⟨σ, φ^{j−1}_{v_l}⟩ = d_l α + 2(T_t β)_l with

@@ -97,7 +97,7 @@ Refinement refine(const TriMesh& D, int J) {
 
 std::vector<Vec3> sample(const Refinement& r, const DomainMap& phi, Executor* executor) {
     // The vertices face by face of D (a counting sort): consecutive locations then fall in one
-    // patch of φ, whose data stays in cache (issue 18: at 10⁶ triangles, in vertex order, each
+    // patch of φ, whose data stays in cache (at 10⁶ triangles, in vertex order, each
     // block of samples touched patches all over T′). Each sample is phi's either way.
     std::vector<std::uint32_t> start(r.levels.front().n_faces() + 1, 0);
     for (const DomainPoint& p : r.location) ++start[p.face.idx() + 1];

@@ -12,7 +12,7 @@
 //       of two of them
 //   location(v) <- the corner coordinates of v in the first face of D^J (lowest id) that has v
 //
-// D may have boundary (any number of loops) and several components (issue 19, beyond the paper,
+// D may have boundary (any number of loops) and several components (beyond the paper,
 // which takes D closed): the split is face by face, so a boundary edge of D^{j−1} gives a boundary
 // vertex of valence 4 and two boundary edges of D^j, and each component refines on its own.
 //

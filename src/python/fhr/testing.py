@@ -66,8 +66,8 @@ class Mesh:
 @st.composite
 def recipes(draw, genus=(0, 4), faces=(12, 2000), holes=(0, 0), components=(1, 1), families=("block",)):
     """Recipes with genus, holes and components in the closed ranges given (holes and components are
-    drawn only when their range has more than one value, so the defaults draw what they drew before
-    these two knobs existed), a family among `families` (drawn only when there is more than one; its
+    drawn only when their range has more than one value, so the defaults spend no draw on
+    these two knobs), a family among `families` (drawn only when there is more than one; its
     knobs at their defaults) and a face count in `faces`, raised to the generator's minimum for what
     was drawn, even when there are no holes. Shrinks toward the first family, the lowest genus, the
     fewest holes and components, the fewest faces, seed 0 and no noise (noise only for block)."""

@@ -33,7 +33,7 @@ namespace fhr::detail {
 
 /// The first vertex (in index order) whose incident triangles do not form a single fan, i.e. a
 /// non-manifold ("bow-tie") vertex, or UINT32_MAX when there is none. Found on the mesh built from
-/// them, by walking around each vertex (issue 18: grouping the corners by vertex again for this
+/// them, by walking around each vertex (grouping the corners by vertex again for this
 /// check was a third of building a mesh, 0.065 of 0.19 s per 10⁶ faces; the walk takes 0.014 s).
 /// \pre mesh = TriMesh::from_triangles(positions, triangles, build_edge_table(…)): triangles
 ///      consistently oriented, every edge with at most two corners.

@@ -1,5 +1,5 @@
-// FHR generate — guarded local edits shared by the valence and density families (beyond the paper,
-// issue 17). Both start from a block mesh (embedded, proven) and only ever flip edges, split faces
+// FHR generate — guarded local edits shared by the valence and density families (beyond the paper).
+// Both start from a block mesh (embedded, proven) and only ever flip edges, split faces
 // and split interior edges; every edit is first offered to an EmbeddingGuard (exact predicates) and
 // applied only if accepted, so the mesh stays embedded edit by edit and never gets a degenerate
 // triangle. Each edit's effect on the face count is fixed (flip 0, split of a face or of an

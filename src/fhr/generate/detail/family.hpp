@@ -1,4 +1,4 @@
-// FHR generate — what the generator's families share (beyond the paper, issue 17): the
+// FHR generate — what the generator's families share (beyond the paper): the
 // deterministic random stream, geometry written out in a fixed evaluation order (bit-identical
 // results on every compiler: only correctly rounded +, −, ×, ÷, √), and one entry point per
 // family. Internal to libfhr_generate; the public API is random_mesh.hpp.

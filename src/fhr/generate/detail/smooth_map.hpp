@@ -1,4 +1,4 @@
-// FHR generate — the smooth family's maps (beyond the paper, issue 17), shared by the smooth and
+// FHR generate — the smooth family's maps (beyond the paper), shared by the smooth and
 // the immersed family: where a vertex of a block mesh goes on the rounded, deformed surface, and
 // how a mesh is moved to such targets without ever leaving the embedded meshes. The construction
 // and the argument are in families/smooth.cpp and paper_notes/generator.md ("The smooth family").

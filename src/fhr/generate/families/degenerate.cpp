@@ -1,4 +1,4 @@
-// FHR generate — the degenerate family (issue 17, beyond the paper): every coordinate on a coarse
+// FHR generate — the degenerate family (beyond the paper): every coordinate on a coarse
 // grid, so that many neighbouring triangles are exactly coplanar and many vertices lie exactly on
 // the lines of other triangles' edges — as in meshes of CAD models and quantized scans — yet no
 // triangle has zero area (that would be invalid input, spec/mesh.md). Such meshes are valid but

@@ -1,4 +1,4 @@
-// FHR generate — the density family (beyond the paper, issue 17): block meshes refined unevenly,
+// FHR generate — the density family (beyond the paper): block meshes refined unevenly,
 // as real meshes are (fine detail beside coarse flat parts, boundary layers of long thin
 // triangles), with a longest/shortest edge ratio of at least `edge_ratio` (10^5 by default) in
 // every component. Such meshes stress whatever depends on a length scale: §2's decimation

@@ -1,4 +1,4 @@
-// FHR generate — the immersed family (beyond the paper, issue 17): surfaces that are
+// FHR generate — the immersed family (beyond the paper): surfaces that are
 // combinatorially manifold and consistently, outwardly oriented, but meet themselves: for code
 // that must not assume an embedding. Drawn only when asked for by name. The argument
 // (paper_notes/generator.md, "The immersed family"), per component, from the block mesh of the

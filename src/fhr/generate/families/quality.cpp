@@ -1,4 +1,4 @@
-// FHR generate — the quality family (issue 17, beyond the paper): meshes with a chosen share of
+// FHR generate — the quality family (beyond the paper): meshes with a chosen share of
 // needles, caps and slivers, the thinnest one's smallest corner at a chosen angle (10⁻⁴° by
 // default, down to 10⁻⁹°). Real meshes (scans, CAD tessellations) have such triangles; the paper's
 // pipeline must survive them. The argument in full is paper_notes/generator.md, "The quality

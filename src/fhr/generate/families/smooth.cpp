@@ -1,4 +1,4 @@
-// FHR generate — the smooth family (beyond the paper, issue 17: meshes as hard as real ones):
+// FHR generate — the smooth family (beyond the paper: meshes as hard as real ones):
 // curved surfaces of any genus, with the recipe's holes and components, and no flat facet or
 // crease left. The block mesh of the recipe (embedded, proven: paper_notes/generator.md) keeps
 // its connectivity; each vertex gets a target on a smooth surface, and the vertices move there

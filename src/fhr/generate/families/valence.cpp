@@ -1,4 +1,4 @@
-// FHR generate — the valence family (beyond the paper, issue 17): block meshes with a vertex of
+// FHR generate — the valence family (beyond the paper): block meshes with a vertex of
 // very high valence in every component and a share of vertices of valence 3. Real meshes have
 // both (poles of revolved surfaces, fans of CAD tessellations; vertices left by face insertions),
 // and both stress the stages: a high-valence vertex has many thin wedges around it (§3's

@@ -1,4 +1,4 @@
-// FHR §3 (beyond the paper, issue 18) — borrowing clean scratch objects from the caller's
+// FHR §3 (beyond the paper) — borrowing clean scratch objects from the caller's
 // Workspace (an implementation detail of fast_marching.cpp, exact.cpp and ellipse.cpp). Why the
 // searches reuse their arrays, and why the caller owns them: geodesic/workspace.hpp.
 //

@@ -18,8 +18,8 @@ inline std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
 }
 
 /// The directed edge (a, b) → the triangle that traverses it: an open-addressing table (a power
-/// of two of at least twice as many slots as edges, linear probing) in two flat arrays. Issue 18:
-/// as a std::unordered_map (a node allocated per edge, a division per lookup), MAP-1's checks alone,
+/// of two of at least twice as many slots as edges, linear probing) in two flat arrays.
+/// As a std::unordered_map (a node allocated per edge, a division per lookup), MAP-1's checks alone,
 /// made twice per patch, were 5 % of the fandisk paper run.
 class DirectedEdges {
 public:
