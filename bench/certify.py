@@ -31,6 +31,15 @@ import time
 attempts = 4
 
 
+def info(fhr, path):
+    """`fhr info --json PATH` as a dict, or None when fhr cannot read it."""
+    proc = subprocess.run([fhr, "info", "--json", path], capture_output=True, text=True)
+    try:
+        return json.loads(proc.stdout)
+    except json.JSONDecodeError:
+        return None
+
+
 def min_closed_faces(genus):
     """domain::min_closed_faces: F = 2(V − χ), V from Heawood's bound (10 for genus 2)."""
     v = 10 if genus == 2 else math.ceil((7 + math.sqrt(1 + 48 * genus)) / 2)

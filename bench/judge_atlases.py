@@ -31,6 +31,7 @@ from shapely.geometry import Polygon
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "proofs_tests", "exchange"))
 import atlas_reference  # noqa: E402
+from certify import info  # noqa: E402
 
 # Programs and the meshes they take. MeshLab's filters: closed meshes, one component (the
 # iso-parameterization refuses holes and several components; the flat plane folds any closed
@@ -48,12 +49,6 @@ PROGRAMS = {
 }
 
 
-def info(fhr, path):
-    proc = subprocess.run([fhr, "info", "--json", path], capture_output=True, text=True)
-    try:
-        return json.loads(proc.stdout)
-    except json.JSONDecodeError:
-        return None
 
 
 def uv_rounding(path):

@@ -24,9 +24,7 @@ Usage: run_corpus.py FHR MESH_DIR OUT_DIR [--shared DIR] [--timeout SECONDS] [--
                      [--shard K/N] [-j J]
        run_corpus.py --merge RESULTS... [--results FILE]   (results files, or folders holding them)"""
 import argparse
-import json
 import os
-import subprocess
 
 import campaign
 import certify
@@ -40,12 +38,6 @@ campaign.add_options(parser)
 options = parser.parse_args()
 
 
-def info(fhr, path):
-    proc = subprocess.run([fhr, "info", "--json", path], capture_output=True, text=True)
-    try:
-        return json.loads(proc.stdout)
-    except json.JSONDecodeError:
-        return None
 
 
 def start():
@@ -62,7 +54,7 @@ def start():
 
     def work(i):
         path = candidates[i]
-        d = info(fhr, path)
+        d = certify.info(fhr, path)
         if not (d and d.get("valid")):
             return {"index": i, "mesh": os.path.basename(path), "valid": False}
         out = os.path.join(out_dir, os.path.basename(path))
