@@ -189,37 +189,31 @@ TEST_CASE("CLI-INFO-3: boundary loops and several components are valid input, re
 
 namespace {
 
-struct RealMesh {
-    const char* name;
-    bool shared;  // ../shared/meshes (not distributed) rather than libcgal-demo's data
-    long vertices, faces, genus;
-};
+/// CLI-INFO-3 on one real mesh: `fhr info --json` gives its counts and genus.
+void info_reports(const std::string& path, long vertices, long faces, long genus) {
+    const auto r = run_fhr({"info", "--json", path});
+    INFO(r.err);
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("\"genus\": " + std::to_string(genus)));
+    CHECK_THAT(r.out, Catch::Contains("\"vertices\": " + std::to_string(vertices)));
+    CHECK_THAT(r.out, Catch::Contains("\"faces\": " + std::to_string(faces)));
+}
 
 }  // namespace
 
 TEST_CASE("CLI-INFO-3: fhr info reports the right topology for the paper's and CGAL's meshes", "[cli][real]") {
-    const std::vector<RealMesh> meshes{
-        {"fandisk.off", false, 6475, 12946, 0},   // paper §6, Fig. 6
-        {"elephant.off", false, 2775, 5558, 3},   // counts from its OFF header; genus 3
-        {"horse.off", true, 48485, 96966, 0},     // paper §6
-        {"rocker.off", true, 9397, 18794, 1},
-    };
-    for (const RealMesh& m : meshes) {
-        DYNAMIC_SECTION(m.name) {
-            const auto path = m.shared ? fhr::test::shared_mesh(m.name) : fhr::test::cgal_mesh(m.name);
-            if (!path) {
-                WARN(std::string(m.name) + " is not present here: run ./run test (it extracts libcgal-demo's "
-                     "meshes) or provide ../shared/meshes; skipped");
-                continue;
-            }
-            const auto r = run_fhr({"info", "--json", *path});
-            INFO(r.err);
-            CHECK(r.exit_code == 0);
-            CHECK_THAT(r.out, Catch::Contains("\"genus\": " + std::to_string(m.genus)));
-            CHECK_THAT(r.out, Catch::Contains("\"vertices\": " + std::to_string(m.vertices)));
-            CHECK_THAT(r.out, Catch::Contains("\"faces\": " + std::to_string(m.faces)));
-        }
-    }
+    info_reports(fhr::test::cgal_mesh("fandisk.off"), 6475, 12946, 0);  // paper §6, Fig. 6
+    info_reports(fhr::test::cgal_mesh("elephant.off"), 2775, 5558, 3);  // counts from its OFF header
+}
+
+TEST_CASE("CLI-INFO-3: fhr info reports the horse's topology (paper §6)", "[cli][real][shared]") {
+    FHR_SHARED_MESH_OR_SKIP(path, "horse.off");
+    info_reports(path, 48485, 96966, 0);
+}
+
+TEST_CASE("CLI-INFO-3: fhr info reports the rocker's topology", "[cli][real][shared]") {
+    FHR_SHARED_MESH_OR_SKIP(path, "rocker.off");
+    info_reports(path, 9397, 18794, 1);
 }
 
 TEST_CASE("CLI-GEN-1: fhr generate writes meshes that fhr info accepts, with the requested genus", "[cli]") {

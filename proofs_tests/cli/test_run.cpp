@@ -28,9 +28,7 @@ namespace {
 const char* const outputs[] = {"domain.off", "geodesics.obj", "refined.ply", "param.fhrp", "textured.obj", "report.json", "timings.json"};
 
 std::string fandisk() {
-    const auto path = fhr::test::cgal_mesh("fandisk.off");
-    if (!path) throw std::runtime_error("fandisk.off is missing: run ./run demo to extract libcgal-demo's meshes");
-    return *path;
+    return fhr::test::cgal_mesh("fandisk.off");
 }
 
 // The integer value of "key": N in a JSON text (the first occurrence).

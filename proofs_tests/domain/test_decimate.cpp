@@ -137,12 +137,7 @@ TEST_CASE("DOM-1..8: decimation of random closed meshes of genus 0-4", "[propert
 }
 
 TEST_CASE("DOM-3: the paper's fandisk decimates to 114 faces, 171 edges, 59 vertices (paper §6)", "[real][domain]") {
-    const auto path = test::cgal_mesh("fandisk.off");
-    if (!path) {
-        WARN("fandisk.off is not present (./run extracts libcgal-demo's meshes into out/); skipped");
-        return;
-    }
-    const TriMesh T = test::load_mesh(*path);
+    const TriMesh T = test::load_mesh(test::cgal_mesh("fandisk.off"));
     DecimateOptions o;
     o.target_faces = 114;
     const Domain d = decimate(T, o);
@@ -153,24 +148,33 @@ TEST_CASE("DOM-3: the paper's fandisk decimates to 114 faces, 171 edges, 59 vert
     CHECK(undo_gives_back(T, d));
 }
 
-TEST_CASE("DOM-2: meshes of higher genus keep their genus (elephant g = 3, rocker g = 1, horse)", "[real][domain]") {
-    struct Case { std::optional<std::string> path; long genus; std::size_t faces; };
-    const std::vector<Case> cases{{test::cgal_mesh("elephant.off"), 3, 120},
-                                  {test::shared_mesh("rocker.off"), 1, 100},
-                                  {test::shared_mesh("horse.off"), 0, 200}};
-    for (const Case& c : cases) {
-        if (!c.path) {
-            WARN("a real mesh is not present here (libcgal-demo data or ../shared/meshes); skipped");
-            continue;
-        }
-        const TriMesh T = test::load_mesh(*c.path);
-        REQUIRE(genus(T) == c.genus);
-        DecimateOptions o;
-        o.target_faces = c.faces;
-        const Domain d = decimate(T, o);
-        CHECK(domain_violation(T, d, o) == "");
-        CHECK(genus(d.mesh) == c.genus);
-    }
+namespace {
+
+/// DOM-2 on one real mesh: decimated to `faces`, every rule holds and the genus is kept.
+void keeps_its_genus(const std::string& path, long g, std::size_t faces) {
+    const TriMesh T = test::load_mesh(path);
+    REQUIRE(genus(T) == g);
+    DecimateOptions o;
+    o.target_faces = faces;
+    const Domain d = decimate(T, o);
+    CHECK(domain_violation(T, d, o) == "");
+    CHECK(genus(d.mesh) == g);
+}
+
+}  // namespace
+
+TEST_CASE("DOM-2: a mesh of higher genus keeps its genus (the elephant, g = 3)", "[real][domain]") {
+    keeps_its_genus(test::cgal_mesh("elephant.off"), 3, 120);
+}
+
+TEST_CASE("DOM-2: the rocker (g = 1) keeps its genus", "[real][domain][shared]") {
+    FHR_SHARED_MESH_OR_SKIP(path, "rocker.off");
+    keeps_its_genus(path, 1, 100);
+}
+
+TEST_CASE("DOM-2: the horse (g = 0) keeps its genus", "[real][domain][shared]") {
+    FHR_SHARED_MESH_OR_SKIP(path, "horse.off");
+    keeps_its_genus(path, 0, 200);
 }
 
 TEST_CASE("DOM-16: decimating again from an earlier decimation keeps every rule and a consistent history", "[property][domain]") {
@@ -652,12 +656,7 @@ TEST_CASE("DOM-22: remembering rejected collapses gives the same D as checking e
 }
 
 TEST_CASE("DOM-22: on the fandisk's flat CAD regions, where every collapse costs 0, remembering rejections changes no decimation", "[real][domain]") {
-    const auto path = test::cgal_mesh("fandisk.off");
-    if (!path) {
-        WARN("fandisk.off is not present (./run extracts libcgal-demo's meshes into out/); skipped");
-        return;
-    }
-    const TriMesh T = test::load_mesh(*path);
+    const TriMesh T = test::load_mesh(test::cgal_mesh("fandisk.off"));
     for (std::size_t faces : {114, 1000, 4000}) {
         DecimateOptions o;
         o.target_faces = faces;

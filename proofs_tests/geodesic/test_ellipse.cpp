@@ -60,9 +60,8 @@ TEST_CASE("GEO-E1: the ellipse path is as short as the unrestricted one (random 
 }
 
 TEST_CASE("GEO-E1: the 171 fandisk domain edges (paper §6) by the ellipse search", "[real][geodesic]") {
-    const auto path = test::cgal_mesh("fandisk.off");
-    if (!path) FAIL("fandisk.off is missing: ./run extracts libcgal-demo's meshes into out/");
-    const TriMesh T = test::load_mesh(*path);
+    const std::string path = test::cgal_mesh("fandisk.off");
+    const TriMesh T = test::load_mesh(path);
     domain::DecimateOptions o;
     o.target_faces = 114;
     const domain::Domain D = domain::decimate(T, o);

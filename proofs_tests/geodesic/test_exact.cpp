@@ -167,46 +167,49 @@ TEST_CASE("GEO-1 and GEO-4: distances equal CGAL's and paths are geodesics on ra
     CHECK(through_vertex > 0);  // saddle vertices on the way were exercised
 }
 
-TEST_CASE("GEO-1 and GEO-4: the fandisk; the elephant (genus 3) and the rocker (genus 1) agree with CGAL",
-          "[geodesic][oracle][real]") {
-    struct Case { const char* name; std::optional<std::string> path; };
-    const Case cases[] = {{"fandisk.off", test::cgal_mesh("fandisk.off")},
-                          {"elephant.off", test::cgal_mesh("elephant.off")},
-                          {"rocker.off", test::shared_mesh("rocker.off")}};
-    for (const Case& c : cases) {
-        if (!c.path) {
-            WARN(std::string(c.name) + " is not present (./run extracts the meshes into out/, or ../shared/meshes); skipped");
-            continue;
-        }
-        const TriMesh m = test::load_mesh(*c.path);
-        // Sources of the highest and of the lowest valence.
-        VertexId high(0), low(0);
-        for (VertexId v : m.vertices()) {
-            if (m.valence(v) > m.valence(high)) high = v;
-            if (m.valence(v) < m.valence(low)) low = v;
-        }
-        for (VertexId s : {high, low}) {
-            ExactGeodesic g(m, s);
-            g.propagate();
-            const std::vector<double> oracle = *cgal_distances(m, s);
-            PairCount count;
-            std::size_t through_vertex = 0, checked_paths = 0;
-            for (VertexId t : m.vertices()) {
-                count.add(g.distance(t), oracle[t.idx()]);
-                if (t.idx() % 37 == 0 || m.find_halfedge(s, t).valid()) {  // a sample, and all neighbours
-                    const GeodesicPath p = g.path_to(t);
-                    INFO(c.name << " source " << s.idx() << " target " << t.idx());
-                    CHECK(path_violation(m, p, s, t) == "");
-                    through_vertex += passes_a_vertex(p);
-                    ++checked_paths;
-                }
-            }
-            const std::string max_dev = sci(count.max_dev);
-            CAPTURE(c.name, s.idx(), m.valence(s), count.pairs, max_dev, checked_paths, through_vertex);
-            CHECK(count.max_dev <= 1e-9);
-            CHECK(through_vertex > 0);
-        }
+namespace {
+
+/// GEO-1, GEO-4 on one real mesh: exact distances from the sources of the highest and the lowest
+/// valence against CGAL's, and paths that pass through vertices.
+void agrees_with_cgal(const char* name, const TriMesh& m) {
+    // Sources of the highest and of the lowest valence.
+    VertexId high(0), low(0);
+    for (VertexId v : m.vertices()) {
+        if (m.valence(v) > m.valence(high)) high = v;
+        if (m.valence(v) < m.valence(low)) low = v;
     }
+    for (VertexId s : {high, low}) {
+        ExactGeodesic g(m, s);
+        g.propagate();
+        const std::vector<double> oracle = *cgal_distances(m, s);
+        PairCount count;
+        std::size_t through_vertex = 0, checked_paths = 0;
+        for (VertexId t : m.vertices()) {
+            count.add(g.distance(t), oracle[t.idx()]);
+            if (t.idx() % 37 == 0 || m.find_halfedge(s, t).valid()) {  // a sample, and all neighbours
+                const GeodesicPath p = g.path_to(t);
+                INFO(name << " source " << s.idx() << " target " << t.idx());
+                CHECK(path_violation(m, p, s, t) == "");
+                through_vertex += passes_a_vertex(p);
+                ++checked_paths;
+            }
+        }
+        const std::string max_dev = sci(count.max_dev);
+        CAPTURE(name, s.idx(), m.valence(s), count.pairs, max_dev, checked_paths, through_vertex);
+        CHECK(count.max_dev <= 1e-9);
+        CHECK(through_vertex > 0);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("GEO-1 and GEO-4: the fandisk and the elephant (genus 3) agree with CGAL", "[geodesic][oracle][real]") {
+    for (const char* name : {"fandisk.off", "elephant.off"}) agrees_with_cgal(name, test::load_mesh(test::cgal_mesh(name)));
+}
+
+TEST_CASE("GEO-1 and GEO-4: the rocker (genus 1) agrees with CGAL", "[geodesic][oracle][real][shared]") {
+    FHR_SHARED_MESH_OR_SKIP(path, "rocker.off");
+    agrees_with_cgal("rocker.off", test::load_mesh(path));
 }
 
 /// Splits up to `count` random distinct edges of m at a fraction t ∈ {10⁻², 10⁻³, 10⁻⁴} of their
@@ -439,9 +442,8 @@ TEST_CASE("GEO-7: on icospheres the polyhedral distance converges to the geodesi
 }
 
 TEST_CASE("GEO-8: early stop gives the final distance on the fandisk's 171 domain paths", "[geodesic][oracle][real]") {
-    const auto path = test::cgal_mesh("fandisk.off");
-    if (!path) FAIL("fandisk.off is missing: ./run extracts libcgal-demo's meshes into out/");
-    const TriMesh m = test::load_mesh(*path);
+    const std::string path = test::cgal_mesh("fandisk.off");
+    const TriMesh m = test::load_mesh(path);
     domain::DecimateOptions o;
     o.target_faces = 114;
     const domain::Domain d = domain::decimate(m, o);

@@ -484,13 +484,9 @@ TEST_CASE("fast marching refuses bad sources and handles empty ones", "[unit][ge
     CHECK(at_source.distance[VertexId(0)] == 0);
 }
 
-TEST_CASE("horse: the full field is valid, and early stop finalizes exactly the vertices within the bound", "[real][geodesic]") {
-    const auto path = test::shared_mesh("horse.off");
-    if (!path) {
-        WARN("horse.off is not present (../shared/meshes); skipped");
-        return;
-    }
-    const TriMesh m = test::load_mesh(*path);
+TEST_CASE("horse: the full field is valid, and early stop finalizes exactly the vertices within the bound", "[real][geodesic][shared]") {
+    FHR_SHARED_MESH_OR_SKIP(path, "horse.off");
+    const TriMesh m = test::load_mesh(path);
     const std::vector<VertexId> source{VertexId(0)};
     // Its speed (about 22 ms for the horse) is a benchmark matter, not asserted here.
     const DistanceField f = fast_marching(m, source);

@@ -310,13 +310,9 @@ TEST_CASE("FMT-EXT-1: read_soup reads a real file and refuses unreadable or unkn
     CHECK(refusal([] { fhr::io::read_soup(fhr::test::write_temp("empty.off", "")); }).problem() == "empty file");
 }
 
-TEST_CASE("FMT-OFF: the horse (48,485 vertices, 96,966 faces) reads completely", "[unit][io]") {
-    const auto horse = fhr::test::shared_mesh("horse.off");
-    if (!horse) {
-        WARN("horse.off not available; skipped");
-        return;
-    }
-    const fhr::PolygonSoup soup = fhr::io::read_soup(*horse);
+TEST_CASE("FMT-OFF: the horse (48,485 vertices, 96,966 faces) reads completely", "[unit][io][shared]") {
+    FHR_SHARED_MESH_OR_SKIP(horse, "horse.off");
+    const fhr::PolygonSoup soup = fhr::io::read_soup(horse);
     CHECK(soup.points.size() == 48485);
     CHECK(soup.polygon_count() == 96966);
     CHECK(soup.indices.size() == 3 * 96966);

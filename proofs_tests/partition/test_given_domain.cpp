@@ -77,11 +77,8 @@ TEST_CASE("PART-11: given domains (decimations with random flips, no history) ar
         sum.refused += t.refused;
     };
     for (const auto& [name, faces, genus] : {std::tuple{"fandisk.off", 114, 0}, {"elephant.off", 200, 3}, {"knot1.off", 200, 1}}) {
-        const auto path = test::cgal_mesh(name);
-        // libcgal-demo's meshes are a Debian package that ./run installs and extracts: a missing one
-        // is a broken set-up, not a case to skip.
-        if (!path) FAIL(std::string(name) + " is missing: ./run extracts libcgal-demo's meshes into out/");
-        add(genus == 0 ? genus0 : higher, run_mesh(name, test::load_mesh(*path), static_cast<std::size_t>(faces)));
+        const std::string path = test::cgal_mesh(name);
+        add(genus == 0 ? genus0 : higher, run_mesh(name, test::load_mesh(path), static_cast<std::size_t>(faces)));
     }
     for (int genus = 0; genus <= 3; ++genus) {
         const TriMesh T = generate::random_closed_mesh({.genus = genus, .faces = 3000, .seed = 11u + static_cast<unsigned>(genus), .noise = 0.2});
@@ -99,9 +96,8 @@ TEST_CASE("PART-11, PART-12, DOM-21: given domains with boundary (decimations wi
         all.kept += t.kept;
         all.refused += t.refused;
     };
-    const auto path = test::cgal_mesh("lion-head.off");
-    if (!path) FAIL("lion-head.off is missing: ./run extracts libcgal-demo's meshes into out/");
-    add(run_mesh("lion-head.off", test::load_mesh(*path), 200));
+    const std::string path = test::cgal_mesh("lion-head.off");
+    add(run_mesh("lion-head.off", test::load_mesh(path), 200));
     for (int holes : {1, 3}) {
         const TriMesh T = generate::random_mesh({.genus = holes - 1, .faces = 3001, .seed = 5u + static_cast<unsigned>(holes), .noise = 0.2, .holes = holes});
         add(run_mesh("random, " + std::to_string(holes) + " holes", T, 80));

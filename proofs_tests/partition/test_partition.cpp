@@ -28,9 +28,7 @@ using partition::Conflict;
 namespace {
 
 TriMesh cgal_mesh(const char* name) {
-    const auto path = test::cgal_mesh(name);
-    if (!path) throw std::runtime_error(std::string(name) + " is missing: run ./run demo to extract libcgal-demo's meshes");
-    return test::load_mesh(*path);
+    return test::load_mesh(test::cgal_mesh(name));
 }
 
 TriMesh fandisk() { return cgal_mesh("fandisk.off"); }

@@ -49,9 +49,8 @@ struct Counting final : Executor {
 }  // namespace
 
 TEST_CASE("LIB-3: pipeline::run takes the fandisk through §2–§5 and reports each stage", "[pipeline][library]") {
-    const auto path = test::cgal_mesh("fandisk.off");
-    if (!path) FAIL("fandisk.off is missing: run ./run demo to extract libcgal-demo's meshes");
-    const TriMesh T = test::load_mesh(*path);
+    const std::string path = test::cgal_mesh("fandisk.off");
+    const TriMesh T = test::load_mesh(path);
     Recorder stages;
     std::vector<std::string> progress;
     pipeline::RunOptions options;
@@ -88,9 +87,8 @@ TEST_CASE("LIB-3: pipeline::run takes the fandisk through §2–§5 and reports 
 }
 
 TEST_CASE("LIB-3: the tasks run on the caller's executor, bit-identical on 1 and 3 threads", "[pipeline][library]") {
-    const auto path = test::cgal_mesh("fandisk.off");
-    if (!path) FAIL("fandisk.off is missing: run ./run demo to extract libcgal-demo's meshes");
-    const TriMesh T = test::load_mesh(*path);
+    const std::string path = test::cgal_mesh("fandisk.off");
+    const TriMesh T = test::load_mesh(path);
     pipeline::RunOptions options;
     options.faces = 114;
     options.levels = 2;

@@ -73,8 +73,13 @@ std::string read_file(const std::string& path) {
     return s.str();
 }
 
-std::optional<std::string> cgal_mesh(std::string_view name) {
-    return existing(env_or("FHR_CGAL_MESHES", source_root() / "out/cgal-data/data/meshes") / name);
+std::string cgal_mesh(std::string_view name) {
+    const fs::path folder = env_or("FHR_CGAL_MESHES", source_root() / "out/cgal-data/data/meshes");
+    const std::optional<std::string> path = existing(folder / name);
+    if (!path)
+        throw std::runtime_error(std::string(name) + " is missing from " + folder.string() +
+                                 ": ./run installs libcgal-demo and extracts its meshes there");
+    return *path;
 }
 
 std::optional<std::string> shared_mesh(std::string_view name) {
