@@ -746,11 +746,15 @@ double area_in_unit_square(const std::array<Vec2, 3>& t) {
     return std::fabs(a) / 2;
 }
 
-/// The area of the union of triangles (counter-clockwise) within x ∈ [x0, x1], y ∈ [y0, y1]: slabs
-/// between the x of every vertex, every crossing of two edges and every crossing of an edge with
-/// y0 or y1, in each of which the union's height is linear in x, so its value at the slab's middle
-/// times the width is exact (up to rounding).
-double union_area(const std::vector<std::array<Vec2, 3>>& ts, double x0, double x1, double y0, double y1) {
+/// The area of the union of triangles (counter-clockwise) within x ∈ [x0, x1], y ∈ [y0, y1]. In a
+/// vertical slab between two consecutive x of the events — every vertex, every crossing of an edge
+/// with y0 or y1, and every crossing of two edges of an overlapping pair (`pairs`, indices into
+/// ts: the union's height changes its slope only where two triangles' spans start or stop
+/// overlapping, which needs their edges to cross) — the union's height is linear in x, so its
+/// value at the slab's middle times the width is exact up to rounding. The triangles whose x-range
+/// holds the slab are kept in an active list as the slabs advance.
+double union_area(const std::vector<std::array<Vec2, 3>>& ts, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+                  double x0, double x1, double y0, double y1) {
     std::vector<double> xs{x0, x1};
     for (const auto& t : ts)
         for (int e = 0; e < 3; ++e) {
@@ -760,25 +764,35 @@ double union_area(const std::vector<std::array<Vec2, 3>>& ts, double x0, double 
                 if (std::isfinite(y) && (p[1] < y) != (q[1] < y))
                     xs.push_back(std::clamp(p[0] + (q[0] - p[0]) * ((y - p[1]) / (q[1] - p[1])), x0, x1));
         }
-    for (std::size_t i = 0; i < ts.size(); ++i)
-        for (std::size_t j = i + 1; j < ts.size(); ++j)
-            for (int a = 0; a < 3; ++a)
-                for (int b = 0; b < 3; ++b) {
-                    const Vec2 &p = ts[i][a], &r = ts[i][(a + 1) % 3] - p, &q = ts[j][b], &s = ts[j][(b + 1) % 3] - q;
-                    const double d = r[0] * s[1] - r[1] * s[0];
-                    if (d == 0) continue;
-                    const Vec2 w = q - p;
-                    const double u = (w[0] * s[1] - w[1] * s[0]) / d, v = (w[0] * r[1] - w[1] * r[0]) / d;
-                    if (u >= 0 && u <= 1 && v >= 0 && v <= 1) xs.push_back(std::clamp(p[0] + u * r[0], x0, x1));
-                }
+    for (const auto& [i, j] : pairs)
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) {
+                const Vec2 &p = ts[i][a], &r = ts[i][(a + 1) % 3] - p, &q = ts[j][b], &s = ts[j][(b + 1) % 3] - q;
+                const double d = r[0] * s[1] - r[1] * s[0];
+                if (d == 0) continue;
+                const Vec2 w = q - p;
+                const double u = (w[0] * s[1] - w[1] * s[0]) / d, v = (w[0] * r[1] - w[1] * r[0]) / d;
+                if (u >= 0 && u <= 1 && v >= 0 && v <= 1) xs.push_back(std::clamp(p[0] + u * r[0], x0, x1));
+            }
     std::sort(xs.begin(), xs.end());
     xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+    // Triangles by their smallest x; the active list holds those that may reach the current slab.
+    std::vector<std::uint32_t> by_start(ts.size());
+    std::iota(by_start.begin(), by_start.end(), std::uint32_t{0});
+    const auto min_x = [&](std::uint32_t i) { return std::min({ts[i][0][0], ts[i][1][0], ts[i][2][0]}); };
+    const auto max_x = [&](std::uint32_t i) { return std::max({ts[i][0][0], ts[i][1][0], ts[i][2][0]}); };
+    std::sort(by_start.begin(), by_start.end(), [&](std::uint32_t a, std::uint32_t b) { return min_x(a) < min_x(b); });
+    std::vector<std::uint32_t> active;
+    std::size_t next = 0;
     double area = 0;
     std::vector<std::pair<double, double>> spans;
     for (std::size_t k = 0; k + 1 < xs.size(); ++k) {
         const double x = (xs[k] + xs[k + 1]) / 2;
+        while (next < by_start.size() && min_x(by_start[next]) <= x) active.push_back(by_start[next++]);
+        std::erase_if(active, [&](std::uint32_t i) { return max_x(i) < x; });
         spans.clear();
-        for (const auto& t : ts) {
+        for (std::uint32_t i : active) {
+            const auto& t = ts[i];
             double lo = std::numeric_limits<double>::infinity(), hi = -lo;
             for (int e = 0; e < 3; ++e) {
                 const Vec2 &p = t[e], &q = t[(e + 1) % 3];
@@ -840,6 +854,12 @@ void AtlasVerifier::figures() {
         in_unit[x] += area_in_unit_square(t);
         total[x] += std::fabs(signed_area(f));
     }
+    // Each group's overlapping pairs, as indices into the group's list of faces.
+    std::vector<std::uint32_t> place(n(), 0);
+    for (std::uint32_t root = 0; root < n(); ++root)
+        for (std::uint32_t k = 0; k < members[root].size(); ++k) place[members[root][k]] = k;
+    std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> group_pairs(n());
+    for (const auto& [f, g] : report_.overlapping) group_pairs[groups.find(f)].emplace_back(place[f], place[g]);
     for (std::uint32_t root = 0; root < n(); ++root) {
         if (members[root].empty()) continue;
         const std::uint32_t x = a_.face_texture[root];
@@ -850,8 +870,8 @@ void AtlasVerifier::figures() {
             ts.push_back(t);
         }
         constexpr double inf = std::numeric_limits<double>::infinity();
-        in_unit[x] += union_area(ts, 0, 1, 0, 1);
-        total[x] += union_area(ts, lo[x][0], hi[x][0], -inf, inf);
+        in_unit[x] += union_area(ts, group_pairs[root], 0, 1, 0, 1);
+        total[x] += union_area(ts, group_pairs[root], lo[x][0], hi[x][0], -inf, inf);
     }
     double unit = 0, covered = 0, squares = 0;
     std::uint32_t used = 0;
