@@ -1,13 +1,15 @@
 // FHR cli — `fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--family NAME|all]
 // [--genus-max G] [--holes-max H] [--components-max C] [--seed S] [--keep DIR] [--timeout SECONDS]
-// [--shard K/N] [--table FILE]` and `fhr oracle-fuzz --merge FILE... [--table FILE]`: fuzzing
-// another implementation of the paper with fhr's oracle (spec/cli.md CLI-ORACLE-*). Random meshes
+// [--shard K/N] [--table FILE] [--topology closed|disk|any] [--kind param|atlas]` and
+// `fhr oracle-fuzz --merge FILE... [--table FILE]`: fuzzing another implementation of the paper,
+// or any program that writes a UV atlas, with fhr's oracle (spec/cli.md CLI-ORACLE-*). Random meshes
 // T (src/fhr/generate) go to the program: by default of every embedded family (block,
 // smooth, quality, valence, density, degenerate; immersed only when named), surfaces with up to 5
 // boundary loops in up to 3 components (what `fhr run` and the oracle accept), with
-// `--holes-max 0 --components-max 1` the closed connected surfaces of §1 only. Whatever the
-// program writes must be a `fhr-param 1` file that `fhr verify --mesh T` accepts (PARAM-1..11,
-// src/fhr/exchange). Each failure is kept with its reason and shrunk. A campaign too long for one
+// `--holes-max 0 --components-max 1` (or `--topology closed`) the closed connected surfaces of §1
+// only, `--topology disk` disks only (the meshes CGAL's methods take). Whatever the program writes
+// must be a `fhr-param 1` file that `fhr verify --mesh T` accepts (PARAM-1..11, src/fhr/exchange),
+// or with `--kind atlas` a UV atlas it accepts (ATLAS-1..8). Each failure is kept with its reason and shrunk. A campaign too long for one
 // machine is split into shards whose tables merge into the unsharded run's (oracle_table.hpp).
 //
 // Pseudocode:
@@ -67,6 +69,7 @@
 
 #include <fhr/core/errors.hpp>
 #include <fhr/exchange/fhr_param.hpp>
+#include <fhr/exchange/atlas.hpp>
 #include <fhr/exchange/verify.hpp>
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/io/atomic_file.hpp>
@@ -118,9 +121,31 @@ std::size_t least_faces(const Recipe& r) {
     return least + (r.holes == 0 ? least % 2 : 0);
 }
 
-/// The ranges recipes are drawn from: [0, genus], [0, holes], [1, components].
+/// The ranges recipes are drawn from: [0, genus], [holes_min, holes], [1, components].
 struct Ranges {
-    int genus = 2, holes = 5, components = 3;
+    int genus = 2, holes = 5, components = 3, holes_min = 0;
+};
+
+/// `--topology`: the surfaces the program accepts. closed: no hole, one component; disk: genus 0,
+/// one hole, one component (CGAL's methods); any: the ranges as given.
+enum class Topology { any, closed, disk };
+
+/// Whether `r` has the topology (shrinking keeps it).
+bool has_topology(const Recipe& r, Topology t) {
+    if (t == Topology::closed) return r.holes == 0 && r.components == 1;
+    if (t == Topology::disk) return r.genus == 0 && r.holes == 1 && r.components == 1;
+    return true;
+}
+
+/// How outputs are judged: the program, its time limit, what it writes (`--kind`: a `fhr-param 1`
+/// file, or a UV atlas judged by spec/atlas.md) and the topology every mesh keeps.
+struct Judging {
+    std::string cmd;
+    double timeout = 60;
+    bool atlas = false;
+    Topology topology = Topology::any;
+    /// The output's name in a run folder: the adapters of atlases write OBJ.
+    const char* out_name() const { return atlas ? "out.obj" : "out.fhrp"; }
 };
 
 /// Mesh i of the run with seed S: the family asked for, or (nullptr: `--family all`) one of the
@@ -137,7 +162,10 @@ Recipe draw_recipe(std::uint64_t seed, std::uint64_t i, const Ranges& ranges, co
     o.family = family ? *family
                       : generate::embedded_families[SplitMix(stream ^ 0x6A09E667F3BCC909ull).below(std::size(generate::embedded_families))];
     o.genus = static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.genus) + 1));
-    if (ranges.holes > 0) o.holes = static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.holes) + 1));
+    if (ranges.holes > ranges.holes_min)
+        o.holes = ranges.holes_min + static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.holes - ranges.holes_min) + 1));
+    else
+        o.holes = ranges.holes_min;
     if (ranges.components > 1) o.components = 1 + static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.components)));
     const std::uint64_t step = o.holes == 0 ? 2 : 1;  // F is even without holes
     o.faces = least_faces(o) + step * r.below(extra_faces_max / step + 1);
@@ -220,12 +248,13 @@ int run_shell(const std::string& command, const fs::path& dir, double timeout) {
 }
 
 /// Generates the recipe's mesh in `dir`, runs the program on it and judges its output.
-Outcome judge(const Recipe& recipe, const std::string& cmd, const fs::path& dir, double timeout) {
+Outcome judge(const Recipe& recipe, const Judging& how, const fs::path& dir) {
     fs::remove_all(dir);
     fs::create_directories(dir);
-    const fs::path mesh = dir / "mesh.off", out = dir / "out.fhrp";
+    const fs::path mesh = dir / "mesh.off", out = dir / how.out_name();
     save_mesh(mesh.string(), generate::random_mesh(recipe));
-    const int status = run_shell(substitute(cmd, mesh.string(), out.string()), dir, timeout);
+    const double timeout = how.timeout;
+    const int status = run_shell(substitute(how.cmd, mesh.string(), out.string()), dir, timeout);
     Outcome o;
     o.ok = false;
     const std::string err = tail_of(dir / "stderr");
@@ -250,17 +279,17 @@ Outcome judge(const Recipe& recipe, const std::string& cmd, const fs::path& dir,
         o.reason = "the program exited with code 0 but wrote no file at {out}" + err_lines;
         return o;
     }
-    exchange::ParamFile file;
+    const TriMesh T = load_mesh(mesh.string(), BuildOptions{});
+    std::vector<exchange::CheckResult> checks;
     try {
-        file = exchange::read_param(out.string());
+        if (how.atlas) checks = exchange::verify_atlas(exchange::read_atlas(out.string()), &T).checks;
+        else checks = exchange::verify(exchange::read_param(out.string()), &T).checks;
     } catch (const InvalidInput& e) {
-        o.kind = "PARAM-1";
-        o.reason = std::string("PARAM-1: ") + e.what();
+        o.kind = how.atlas ? "ATLAS-1" : "PARAM-1";
+        o.reason = o.kind + ": " + e.what();
         return o;
     }
-    const TriMesh T = load_mesh(mesh.string(), BuildOptions{});
-    const exchange::VerifyReport report = exchange::verify(file, &T);
-    if (const exchange::CheckResult* bad = report.first_failure()) {
+    if (const exchange::CheckResult* bad = exchange::first_judged_failure(checks)) {
         o.kind = bad->id;
         o.reason = bad->id + ": " + bad->first_failure;
         return o;
@@ -278,15 +307,15 @@ bool smaller(const Recipe& a, const Recipe& b) {
     return a.noise < b.noise;
 }
 
-/// The candidates tried from `r`, in order (see the file comment).
-std::vector<Recipe> shrink_candidates(const Recipe& r) {
+/// The candidates tried from `r`, in order (see the file comment), each of the topology.
+std::vector<Recipe> shrink_candidates(const Recipe& r, Topology topology) {
     std::vector<Recipe> c;
     // r with one of components, holes, genus lowered to v, when the generator can make it.
     const auto lowered = [&](int Recipe::*knob, int v) {
         Recipe x = r;
         x.*knob = v;
         if (x.holes == 0) x.faces -= x.faces % 2;
-        if (x.faces >= least_faces(x)) c.push_back(x);
+        if (x.faces >= least_faces(x) && has_topology(x, topology)) c.push_back(x);
     };
     for (int k = 1; k < r.components; ++k) lowered(&Recipe::components, k);
     for (int h = 0; h < r.holes; ++h) lowered(&Recipe::holes, h);
@@ -315,17 +344,17 @@ struct Shrunk {
     int runs = 0;
 };
 
-Shrunk shrink(const Recipe& failing, const Outcome& how, const std::string& cmd, const fs::path& dir, double timeout) {
-    Shrunk best{failing, how, 0};
+Shrunk shrink(const Recipe& failing, const Outcome& failure, const Judging& how, const fs::path& dir) {
+    Shrunk best{failing, failure, 0};
     bool progress = true;
     while (progress && best.runs < shrink_budget) {
         progress = false;
-        for (const Recipe& candidate : shrink_candidates(best.recipe)) {
+        for (const Recipe& candidate : shrink_candidates(best.recipe, how.topology)) {
             if (best.runs >= shrink_budget) break;
             if (!smaller(candidate, best.recipe)) continue;
             ++best.runs;
-            const Outcome o = judge(candidate, cmd, dir, timeout);
-            if (!o.ok && o.kind == how.kind) {
+            const Outcome o = judge(candidate, how, dir);
+            if (!o.ok && o.kind == failure.kind) {
                 best.recipe = candidate;
                 best.outcome = o;
                 progress = true;
@@ -336,15 +365,16 @@ Shrunk shrink(const Recipe& failing, const Outcome& how, const std::string& cmd,
     return best;
 }
 
-/// Keeps one failure: DIR/mesh-<i>/{mesh.off, out.fhrp (when written), reason.txt, smaller.off}.
+/// Keeps one failure: DIR/mesh-<i>/{mesh.off, out.fhrp or out.obj (when written), reason.txt, smaller.off}.
 void keep_failure(const fs::path& keep, std::uint64_t i, const Recipe& recipe, const Outcome& outcome,
-                  const fs::path& run_dir, const Shrunk& shrunk, const std::string& cmd) {
+                  const fs::path& run_dir, const Shrunk& shrunk, const Judging& how) {
+    const std::string& cmd = how.cmd;
     const fs::path dir = keep / ("mesh-" + std::to_string(i));
     fs::remove_all(dir);  // a folder of an earlier run with the same name
     fs::create_directories(dir);
     fs::copy_file(run_dir / "mesh.off", dir / "mesh.off", fs::copy_options::overwrite_existing);
-    if (fs::is_regular_file(run_dir / "out.fhrp"))
-        fs::copy_file(run_dir / "out.fhrp", dir / "out.fhrp", fs::copy_options::overwrite_existing);
+    if (fs::is_regular_file(run_dir / how.out_name()))
+        fs::copy_file(run_dir / how.out_name(), dir / how.out_name(), fs::copy_options::overwrite_existing);
     save_mesh((dir / "smaller.off").string(), generate::random_mesh(shrunk.recipe));
     std::string text = "command: " + cmd + "\n";
     text += "mesh.off: " + generate::generate_command(recipe) + " (" + size_of(recipe) + ")\n";
@@ -374,7 +404,8 @@ struct TempDir {
 /// `fhr oracle-fuzz --merge FILE... [--table OUT]`: the shards' tables as the unsharded run's
 /// (CLI-ORACLE-9); its failures and summary on stdout, the exit code of that run.
 int merge(const Args& args) {
-    for (const char* name : {"cmd", "count", "family", "genus-max", "holes-max", "components-max", "seed", "keep", "timeout", "shard"})
+    for (const char* name : {"cmd", "count", "family", "genus-max", "holes-max", "components-max", "seed", "keep", "timeout", "shard",
+                             "topology", "kind"})
         if (args.get(name)) usage_error(std::string("--merge takes table files and --table only (not --") + name + ")");
     const oracle::Table merged = oracle::merge_tables(args.positional());
     std::uint64_t failures = 0;
@@ -394,7 +425,7 @@ int merge(const Args& args) {
 
 int run_oracle_fuzz(const std::vector<std::string>& argv) {
     const Args args(argv, {"merge"}, {"cmd", "count", "family", "genus-max", "holes-max", "components-max", "seed", "keep", "timeout",
-                                      "shard", "table"});
+                                      "shard", "table", "topology", "kind"});
     if (args.flag("merge")) return merge(args);
     if (!args.positional().empty()) usage_error("fhr oracle-fuzz takes no positional arguments (but table files with --merge)");
     const std::string cmd = args.require("cmd");
@@ -405,16 +436,32 @@ int run_oracle_fuzz(const std::vector<std::string>& argv) {
     const std::string family_arg = args.get("family").value_or("all");
     const Family named = family_arg == "all" ? Family::block : generate::parse_family(family_arg);
     const Family* family = family_arg == "all" ? nullptr : &named;
-    const Ranges ranges{static_cast<int>(args.integer("genus-max", 2, 0, 20)), static_cast<int>(args.integer("holes-max", 5, 0, 100)),
-                        static_cast<int>(args.integer("components-max", 3, 1, 20))};
+    Ranges ranges{static_cast<int>(args.integer("genus-max", 2, 0, 20)), static_cast<int>(args.integer("holes-max", 5, 0, 100)),
+                  static_cast<int>(args.integer("components-max", 3, 1, 20))};
+    const std::string topology_arg = args.get("topology").value_or("any"), kind_arg = args.get("kind").value_or("param");
+    Judging how;
+    if (topology_arg == "closed") {
+        how.topology = Topology::closed;
+        ranges.holes = 0;
+        ranges.components = 1;
+    } else if (topology_arg == "disk") {
+        how.topology = Topology::disk;
+        ranges = Ranges{.genus = 0, .holes = 1, .components = 1, .holes_min = 1};
+    } else if (topology_arg != "any") {
+        usage_error("--topology must be closed, disk or any, not '" + topology_arg + "'");
+    }
+    if (kind_arg != "param" && kind_arg != "atlas") usage_error("--kind must be param or atlas, not '" + kind_arg + "'");
+    how.atlas = kind_arg == "atlas";
     const auto seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, INT64_MAX));
     const fs::path keep = args.get("keep").value_or("oracle-fuzz-failures");
     const double timeout = args.real("timeout", 60.0, 0.1, 86400.0);
+    how.cmd = cmd;
+    how.timeout = timeout;
     const oracle::Shard shard = args.get("shard") ? oracle::parse_shard(*args.get("shard")) : oracle::Shard{};
     std::string timeout_text;  // the shortest decimal that reads back as the timeout: 60 and 60.0 alike
     io::append_number(timeout_text, timeout);
     oracle::Table table{{cmd, std::to_string(count), std::to_string(seed), family_arg, std::to_string(ranges.genus),
-                         std::to_string(ranges.holes), std::to_string(ranges.components), timeout_text},
+                         std::to_string(ranges.holes), std::to_string(ranges.components), timeout_text, topology_arg, kind_arg},
                         shard,
                         {}};
 
@@ -423,15 +470,15 @@ int run_oracle_fuzz(const std::vector<std::string>& argv) {
     std::uint64_t failures = 0;
     for (std::uint64_t i = shard.k - 1; i < count; i += shard.n) {
         const Recipe recipe = draw_recipe(seed, i, ranges, family);
-        const Outcome outcome = judge(recipe, cmd, run_dir, timeout);
+        const Outcome outcome = judge(recipe, how, run_dir);
         oracle::TableRow row{i, generate::family_name(recipe.family), generate::generate_command(recipe), "", "", ""};
         std::printf("mesh %llu: %s: ", static_cast<unsigned long long>(i), row.recipe.c_str());
         if (outcome.ok) {
             std::printf("valid\n");
         } else {
             ++failures;
-            const Shrunk shrunk = shrink(recipe, outcome, cmd, shrink_dir, timeout);
-            keep_failure(keep, i, recipe, outcome, run_dir, shrunk, cmd);
+            const Shrunk shrunk = shrink(recipe, outcome, how, shrink_dir);
+            keep_failure(keep, i, recipe, outcome, run_dir, shrunk, how);
             row.check = outcome.kind;
             row.reason = first_line(outcome.reason);
             row.smaller = generate::generate_command(shrunk.recipe, "smaller.off");
