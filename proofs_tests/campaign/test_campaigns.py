@@ -21,7 +21,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 FHR = os.environ["FHR"]
 MESHES = Path(os.environ.get("FHR_CGAL_MESHES", ROOT / "out/cgal-data/data/meshes"))
-WRAPPER = ROOT / "proofs_tests/data/fhr_as_other_program.py"
+WRAPPER = ROOT / "peers/fhr-param"
 sys.path.insert(0, str(ROOT / "bench"))
 import campaign  # noqa: E402  (bench/campaign.py: TIMES)
 
@@ -52,7 +52,7 @@ def program(tmp_path_factory):
     meshes, exit code 3 on meshes with boundary, so that a table has passes, failures and shrinks."""
     script = tmp_path_factory.mktemp("program") / "program.sh"
     script.write_text("'%s' info --json \"$1\" | grep -q '\"boundary_loops\": 0' || exit 3\n"
-                      "exec python3 '%s' '%s' \"$1\" \"$2\"\n" % (FHR, WRAPPER, FHR))
+                      "FHR='%s' exec '%s' \"$1\" \"$2\"\n" % (FHR, FHR, WRAPPER))
     return "sh %s {mesh} {out}" % script
 
 

@@ -1,5 +1,5 @@
 // `fhr oracle-fuzz` (spec/cli.md CLI-ORACLE-*): fhr itself, posing as another implementation
-// (proofs_tests/data/fhr_as_other_program.py), passes on every mesh — with boundary loops and
+// (peers/fhr-param), passes on every mesh — with boundary loops and
 // several components too, which the defaults draw, and of every embedded family; the same wrapper
 // made to flip one triangle's image fails on every mesh, and each failure is kept with its reason
 // and a smaller mesh that fails the same way; a program failing only with boundary shrinks to the
@@ -14,7 +14,6 @@
 
 #include "support/test_support.hpp"
 
-using fhr::test::data_path;
 using fhr::test::read_file;
 using fhr::test::run_fhr;
 using fhr::test::temp_path;
@@ -22,8 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// fhr itself as another program (peers/fhr-param), with this build's fhr.
 std::string wrapper_command(const std::string& extra) {
-    return "python3 '" + data_path("fhr_as_other_program.py") + "' '" FHR_EXE "' {mesh} {out}" + extra;
+    return "FHR='" FHR_EXE "' '" + fhr::test::peer_path("fhr-param") + "' {mesh} {out}" + extra;
 }
 
 int count_of(const std::string& text, const std::string& what) {

@@ -49,7 +49,7 @@ fs::path env_or(const char* var, const fs::path& fallback) {
     return (v && *v) ? fs::path(v) : fallback;
 }
 
-const fs::path source_root() { return fs::path(FHR_TEST_DATA).parent_path().parent_path(); }
+const fs::path source_root() { return fs::path(FHR_SOURCE_ROOT); }
 
 }  // namespace
 
@@ -86,7 +86,7 @@ std::optional<std::string> shared_mesh(std::string_view name) {
     return existing(env_or("FHR_SHARED_MESHES", source_root().parent_path() / "shared/meshes") / name);
 }
 
-std::string data_path(std::string_view name) { return (fs::path(FHR_TEST_DATA) / name).string(); }
+std::string peer_path(std::string_view name) { return (source_root() / "peers" / name).string(); }
 
 RunResult run_fhr(const std::vector<std::string>& args) {
     const std::string out_path = temp_path("run.stdout"), err_path = temp_path("run.stderr");

@@ -45,8 +45,8 @@ inline constexpr const char* optional_data_absent = "optional data absent: ";
     }                                                                                                          \
     const std::string& path = *path##_found
 
-/// The folder of committed test files, proofs_tests/data.
-std::string data_path(std::string_view name);
+/// A program of peers/ (the adapters of other programs, and fhr's own: peers/fhr-param).
+std::string peer_path(std::string_view name);
 
 struct RunResult {
     int exit_code;       ///< the process's exit status, or 128+signal when it was killed
