@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <fhr/core/errors.hpp>
+#include <fhr/render/figures.hpp>
 #include <fhr/render/svg.hpp>
 #include "support/test_support.hpp"
 
@@ -183,4 +184,38 @@ TEST_CASE("REN-11, REN-12: writers are atomic and bad input is refused", "[unit]
     const std::vector<RatePoint> negative{{5, -1, 0}};
     CHECK_THROWS_AS(rate_distortion_svg(negative), InvalidInput);
     CHECK_THROWS_AS(write_patch_svg(fhr::test::temp_path("no/such/dir/p.svg"), equilateral, image), InvalidInput);
+}
+
+TEST_CASE("REN-16: the anisotropy colours: blue 1, green 10, yellow 100, red from 1000, grey when degenerate", "[unit][render]") {
+    using fhr::render::anisotropy_colour;
+    using fhr::render::Colour;
+    const auto near = [](const Colour& a, const Colour& b) { return (a - b).cwiseAbs().maxCoeff() < 1e-12; };
+    CHECK(near(anisotropy_colour(1), Colour(0.19, 0.35, 0.80)));
+    CHECK(near(anisotropy_colour(10), Colour(0.20, 0.72, 0.38)));
+    CHECK(near(anisotropy_colour(100), Colour(0.98, 0.80, 0.15)));
+    CHECK(near(anisotropy_colour(1000), Colour(0.80, 0.10, 0.10)));
+    CHECK(near(anisotropy_colour(1e9), anisotropy_colour(1000)));            // clamped above
+    CHECK(near(anisotropy_colour(1 - 1e-15), anisotropy_colour(1)));         // rounding below 1
+    CHECK(near(anisotropy_colour(std::sqrt(10.0)), (Colour(0.19, 0.35, 0.80) + Colour(0.20, 0.72, 0.38)) / 2));  // log-linear
+    for (const double bad : {0.0, -1.0, std::nan(""), HUGE_VAL}) CHECK(near(anisotropy_colour(bad), Colour(0.6, 0.6, 0.6)));
+}
+
+TEST_CASE("REN-16: the distortion legend is one colour bar with its ticks and the degenerate swatch", "[unit][render]") {
+    const std::string svg = fhr::render::anisotropy_legend_svg();
+    CHECK(svg.rfind("<?xml", 0) == 0);
+    CHECK(svg.find("</svg>") != std::string::npos);
+    const auto count = [&](const std::string& what) {
+        int n = 0;
+        for (std::size_t at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1)) ++n;
+        return n;
+    };
+    CHECK(count("<rect") == 1 + 60 + 1);  // background, the bar, the degenerate swatch
+    CHECK(count("<line") == 7);
+    for (const char* tick : {">1<", ">3<", ">10<", ">30<", ">100<", ">300<", ">≥ 1000<", ">degenerate<"})
+        CHECK(svg.find(tick) != std::string::npos);
+    // The first bar, at log10 ratio 0.025: blue + 0.025 (green − blue) = (0.19025, 0.35925, 0.7895) · 255.
+    CHECK(svg.find("fill=\"#315cc9\"") != std::string::npos);
+    const std::string path = fhr::test::temp_path("legend.svg");
+    fhr::render::write_anisotropy_legend_svg(path);
+    CHECK(fhr::test::read_file(path) == svg);
 }

@@ -110,12 +110,12 @@ struct PatchAnisotropy {
     std::uint64_t above_10;
 };
 
-/// The `count` patches whose worst face is the most anisotropic, worst first (ties: lower patch).
-std::vector<PatchAnisotropy> worst_patches(const Parameterization& p, std::size_t count) {
+/// σ₁/σ₂ of every face of the final T′ (DIST-1: its image in its domain triangle onto its 3D
+/// triangle, by the oracle's own code), 0 for a degenerate face.
+std::vector<double> face_anisotropy(const Parameterization& p) {
     const TriMesh& D = p.partition.domain.mesh;
     const std::vector<Triangle> domain_faces = D.triangles();  // the corner order of the β (param.fhrp)
-    std::vector<PatchAnisotropy> patches(D.n_faces());
-    for (std::uint32_t d = 0; d < patches.size(); ++d) patches[d] = {d, 0, 0};
+    std::vector<double> ratio(p.refined_faces.size(), 0);
     for (std::size_t f = 0; f < p.refined_faces.size(); ++f) {
         const Triangle& d = domain_faces[p.face_patch[f]];
         std::array<Vec3, 3> q;
@@ -125,10 +125,20 @@ std::vector<PatchAnisotropy> worst_patches(const Parameterization& p, std::size_
         const Triangle& t = p.refined_faces[f];
         const exchange::FaceStretch s = exchange::face_stretch(q[0], q[1], q[2], p.refined_positions[t[0]],
                                                                p.refined_positions[t[1]], p.refined_positions[t[2]]);
-        if (s.degenerate) continue;
+        if (!s.degenerate) ratio[f] = s.sigma1 / s.sigma2;
+    }
+    return ratio;
+}
+
+/// The `count` patches whose worst face is the most anisotropic, worst first (ties: lower patch).
+std::vector<PatchAnisotropy> worst_patches(const Parameterization& p, std::size_t count) {
+    std::vector<PatchAnisotropy> patches(p.partition.domain.mesh.n_faces());
+    for (std::uint32_t d = 0; d < patches.size(); ++d) patches[d] = {d, 0, 0};
+    const std::vector<double> ratio = face_anisotropy(p);
+    for (std::size_t f = 0; f < ratio.size(); ++f) {
         PatchAnisotropy& a = patches[p.face_patch[f]];
-        a.max = std::max(a.max, s.sigma1 / s.sigma2);
-        a.above_10 += s.sigma1 / s.sigma2 > 10;
+        a.max = std::max(a.max, ratio[f]);
+        a.above_10 += ratio[f] > 10;
     }
     const std::size_t kept = std::min(count, patches.size());
     std::partial_sort(patches.begin(), patches.begin() + static_cast<std::ptrdiff_t>(kept), patches.end(),
@@ -387,6 +397,12 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
     render::write_fig7(base + "fig7.png", camera, t, paths_of(partition::CurveKind::geodesic),
                        paths_of(partition::CurveKind::restricted), paths_of(partition::CurveKind::boundary),
                        {p.refined_positions, p.refined_faces}, uv, size);
+    // Beyond the paper: T′ coloured by each face's anisotropy (REN-16), with its legend.
+    std::vector<std::vector<std::uint32_t>> every_curve;
+    for (const auto& kind : lines) every_curve.insert(every_curve.end(), kind.begin(), kind.end());
+    render::write_distortion_figure(base + "distortion.png", camera, {p.refined_positions, p.refined_faces},
+                                    face_anisotropy(p), {P.network.mesh.positions(), every_curve}, size);
+    render::write_anisotropy_legend_svg(base + "distortion_legend.svg");
     if (wavelets) {
         // Fig. 8: D^J (the refined domain, flat) and f^J(Ω_D); Fig. 9: two compressed surfaces.
         const wavelet::Refinement r = wavelet::refine(P.domain.mesh, wavelets->levels);

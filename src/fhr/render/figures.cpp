@@ -1,5 +1,11 @@
-// FHR §6 — Figures 6–9 as two-panel PNGs (see figures.hpp and paper_notes/figures.md).
+// FHR §6 — Figures 6–9 as two-panel PNGs (see figures.hpp and paper_notes/figures.md), and beyond
+// the paper the distortion figure (REN-16).
 #include <fhr/render/figures.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
 
 #include <fhr/core/errors.hpp>
 #include <fhr/render/png.hpp>
@@ -89,6 +95,27 @@ void write_fig9(const std::string& path, const Camera& camera, const MeshData& l
                 const FigureSize& size) {
     write_two_panel_png(path, camera, panel_of(shaded(left, false)), panel_of(shaded(right, false)), size.width,
                         size.height);
+}
+
+Colour anisotropy_colour(double ratio) {
+    if (!(ratio > 0) || !std::isfinite(ratio)) return Colour(0.6, 0.6, 0.6);
+    const std::array<Colour, 4> stops{Colour(0.19, 0.35, 0.80), Colour(0.20, 0.72, 0.38), Colour(0.98, 0.80, 0.15),
+                                      Colour(0.80, 0.10, 0.10)};
+    // 0..3: one stop per factor of ten (a ratio a rounding below 1, as σ₁ = σ₂ may give, is 1)
+    const double t = std::clamp(std::log10(ratio), 0.0, 3.0);
+    const int k = std::min(static_cast<int>(t), 2);
+    return stops[k] + (t - k) * (stops[k + 1] - stops[k]);
+}
+
+void write_distortion_figure(const std::string& path, const Camera& camera, const MeshData& t_prime,
+                             std::span<const double> ratio, const PathData& curves, const FigureSize& size) {
+    std::vector<Colour> colours(ratio.size());
+    std::transform(ratio.begin(), ratio.end(), colours.begin(), anisotropy_colour);
+    MeshView coloured = shaded(t_prime, false);
+    coloured.face_colours = colours;
+    Panel right = panel_of(coloured);
+    right.polylines.push_back(lines_of(curves, Colour(0.1, 0.1, 0.1), 1.2));
+    write_two_panel_png(path, camera, panel_of(coloured), right, size.width, size.height);
 }
 
 }  // namespace fhr::render

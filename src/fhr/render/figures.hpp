@@ -79,6 +79,19 @@ void write_fig7(const std::string& path, const Camera& camera, const MeshData& t
 void write_fig8(const std::string& path, const Camera& camera, const MeshData& d3, const MeshData& f3,
                 const FigureSize& size = {});
 
+/// REN-16: the colour of a face whose map has anisotropy σ₁/σ₂ = `ratio` (spec/distortion.md
+/// DIST-7) on a log scale: log10(ratio)/3 through blue (1, the shape kept), green (10), yellow
+/// (100) to red (1000 and more), linear between them (a ratio rounded below 1 is 1); grey for a
+/// degenerate face (a ratio of 0, or not finite).
+Colour anisotropy_colour(double ratio);
+
+/// REN-16, the distortion figure (beyond the paper): T′ flat-shaded, each face in
+/// anisotropy_colour of its σ₁/σ₂ (left); the same with the network of curves drawn over it, to
+/// show where the stretched faces lie against the patches' sides (right).
+/// \pre ratio.size() is T′'s face count.
+void write_distortion_figure(const std::string& path, const Camera& camera, const MeshData& t_prime,
+                             std::span<const double> ratio, const PathData& curves, const FigureSize& size = {});
+
 /// Fig. 9: two reconstructions of f³ flat-shaded (left: 5 %, right: 20 % in the paper); boundaries drawn.
 void write_fig9(const std::string& path, const Camera& camera, const MeshData& left, const MeshData& right,
                 const FigureSize& size = {});

@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include <fhr/core/errors.hpp>
+#include <fhr/render/figures.hpp>
 #include <fhr/io/atomic_file.hpp>
 
 namespace fhr::render {
@@ -189,5 +191,36 @@ std::string rate_distortion_svg(std::span<const RatePoint> points, const RatePlo
 void write_rate_distortion_svg(const std::string& path, std::span<const RatePoint> points, const RatePlotLabels& labels) {
     io::write_file_atomically(path, rate_distortion_svg(points, labels));
 }
+
+std::string anisotropy_legend_svg() {
+    constexpr int width = 420, height = 90, bars = 60;
+    constexpr double left = 20, right = 380, top = 30, bottom = 50;
+    const auto hex = [](const Colour& c) {
+        char buffer[8];
+        std::snprintf(buffer, sizeof buffer, "#%02x%02x%02x", static_cast<int>(std::lround(255 * c[0])),
+                      static_cast<int>(std::lround(255 * c[1])), static_cast<int>(std::lround(255 * c[2])));
+        return std::string(buffer);
+    };
+    std::string out = header(width, height);
+    out += "<g font-family=\"sans-serif\" font-size=\"12\" fill=\"black\">\n";
+    out += text(left, 18, "start", "anisotropy σ₁/σ₂ of each face of T′ (log scale)");
+    for (int k = 0; k < bars; ++k) {  // bar k: log10 of the ratio at its middle
+        const double x0 = left + (right - left) * k / bars, x1 = left + (right - left) * (k + 1) / bars;
+        out += "<rect x=\"" + fixed(x0) + "\" y=\"" + fixed(top) + "\" width=\"" + fixed(x1 - x0 + 0.01) + "\" height=\"" +
+               fixed(bottom - top) + "\" fill=\"" + hex(anisotropy_colour(std::pow(10.0, 3.0 * (k + 0.5) / bars))) + "\"/>\n";
+    }
+    for (const double tick : {1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0}) {
+        const double x = left + (right - left) * std::log10(tick) / 3;
+        out += line(x, bottom, x, bottom + 5, "stroke=\"black\" stroke-width=\"1\"");
+        out += text(x, bottom + 18, "middle", tick == 1000.0 ? "≥ 1000" : label(tick));
+    }
+    out += "<rect x=\"392\" y=\"" + fixed(top) + "\" width=\"20\" height=\"" + fixed(bottom - top) + "\" fill=\"" +
+           hex(anisotropy_colour(0)) + "\"/>\n";
+    out += text(402, bottom + 18, "middle", "degenerate", " font-size=\"9\"");
+    out += "</g>\n</svg>\n";
+    return out;
+}
+
+void write_anisotropy_legend_svg(const std::string& path) { io::write_file_atomically(path, anisotropy_legend_svg()); }
 
 }  // namespace fhr::render

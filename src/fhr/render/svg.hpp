@@ -57,6 +57,14 @@ struct RatePlotLabels {
 /// \throws InvalidInput when `points` is empty or a value is negative or not finite.
 std::string rate_distortion_svg(std::span<const RatePoint> points, const RatePlotLabels& labels = {});
 
+/// REN-16: the legend of the distortion figure, 420 × 90: a colour bar of 60 `<rect>`s from
+/// σ₁/σ₂ = 1 to 1000 on a log scale in anisotropy_colour (figures.hpp), a tick `<line>` and
+/// `<text>` at 1, 3, 10, 30, 100, 300 and ≥ 1000, a grey square for degenerate faces, a title.
+std::string anisotropy_legend_svg();
+
+/// anisotropy_legend_svg() written atomically to `path`.
+void write_anisotropy_legend_svg(const std::string& path);
+
 /// rate_distortion_svg(...) written atomically to `path`.
 void write_rate_distortion_svg(const std::string& path, std::span<const RatePoint> points,
                                const RatePlotLabels& labels = {});
