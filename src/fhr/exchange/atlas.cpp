@@ -918,15 +918,11 @@ AtlasReport AtlasVerifier::run() {
     }
     if (input_) report_.checks.push_back(surface ? check_input() : skipped("ATLAS-8", title_8, "ATLAS-2 failed"));
     // Distortion: UV onto the surface triangle, face by face (DIST-1), whatever the verdict.
-    std::vector<FaceStretch> stretch(n());
-    for_each_block(executor_, n(), 16384, 4, [&](std::size_t first, std::size_t end) {
-        for (std::size_t f = first; f < end; ++f) {
-            const auto i = static_cast<std::uint32_t>(f);
-            const Vec3 q0(uv(i, 0)[0], uv(i, 0)[1], 0), q1(uv(i, 1)[0], uv(i, 1)[1], 0), q2(uv(i, 2)[0], uv(i, 2)[1], 0);
-            stretch[f] = face_stretch(q0, q1, q2, a_.points[a_.faces[f][0]], a_.points[a_.faces[f][1]], a_.points[a_.faces[f][2]]);
-        }
+    report_.distortion = summarize(n(), [&](std::size_t f) {
+        const auto i = static_cast<std::uint32_t>(f);
+        const Vec3 q0(uv(i, 0)[0], uv(i, 0)[1], 0), q1(uv(i, 1)[0], uv(i, 1)[1], 0), q2(uv(i, 2)[0], uv(i, 2)[1], 0);
+        return face_stretch(q0, q1, q2, a_.points[a_.faces[f][0]], a_.points[a_.faces[f][1]], a_.points[a_.faces[f][2]]);
     });
-    report_.distortion = summarize(stretch);
     return std::move(report_);
 }
 

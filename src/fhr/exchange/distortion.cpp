@@ -46,13 +46,11 @@ FaceStretch face_stretch(const Vec3& q0, const Vec3& q1, const Vec3& q2, const V
 
 namespace {
 
-/// DIST-9 for several p (ascending) with one sort.
-std::vector<double> weighted_percentiles(const std::vector<double>& values, const std::vector<double>& weights,
-                                         std::initializer_list<double> ps) {
-    std::vector<std::pair<double, double>> sorted(values.size());  // (value, weight)
-    for (std::size_t i = 0; i < values.size(); ++i) sorted[i] = {values[i], weights[i]};
+/// DIST-9 for several p (ascending) with one sort of (value, weight) pairs.
+std::vector<double> weighted_percentiles(std::vector<std::pair<double, double>> sorted, std::initializer_list<double> ps) {
     std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+    double total = 0;
+    for (const auto& [value, weight] : sorted) total += weight;
     std::vector<double> out;
     double below = 0;
     std::size_t i = 0;
@@ -66,14 +64,21 @@ std::vector<double> weighted_percentiles(const std::vector<double>& values, cons
 }  // namespace
 
 double weighted_percentile(const std::vector<double>& values, const std::vector<double>& weights, double p) {
-    return weighted_percentiles(values, weights, {p}).front();
+    std::vector<std::pair<double, double>> pairs(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) pairs[i] = {values[i], weights[i]};
+    return weighted_percentiles(std::move(pairs), {p}).front();
 }
 
 Distortion summarize(const std::vector<FaceStretch>& faces) {
+    return summarize(faces.size(), [&](std::size_t i) { return faces[i]; });
+}
+
+Distortion summarize(std::size_t faces, const std::function<FaceStretch(std::size_t)>& face) {
     Distortion d;
-    d.faces = faces.size();
+    d.faces = faces;
     double image = 0, surface = 0;
-    for (const FaceStretch& f : faces) {
+    for (std::size_t i = 0; i < faces; ++i) {
+        const FaceStretch f = face(i);
         if (f.degenerate) {
             ++d.degenerate;
             continue;
@@ -85,11 +90,11 @@ Distortion summarize(const std::vector<FaceStretch>& faces) {
     // DIST-3: images scaled by k = √(ΣA_P / ΣA_Q): σ′ = σ / k, weight A = k²·A_Q.
     const double k2 = surface / image, k = std::sqrt(k2);
     double weight = 0, l2 = 0, dirichlet = 0, linf = 0, aniso_max = 0, area_max = 0;
-    std::vector<double> weights, anisotropy, area;
-    weights.reserve(faces.size());
-    anisotropy.reserve(faces.size());
-    area.reserve(faces.size());
-    for (const FaceStretch& f : faces) {
+    std::vector<std::pair<double, double>> anisotropy, area;  // (value, weight) of each face
+    anisotropy.reserve(faces - d.degenerate);
+    area.reserve(faces - d.degenerate);
+    for (std::size_t i = 0; i < faces; ++i) {
+        const FaceStretch f = face(i);
         if (f.degenerate) continue;
         const double a = k2 * f.image_area, s1 = f.sigma1 / k, s2 = f.sigma2 / k;
         weight += a;
@@ -100,19 +105,18 @@ Distortion summarize(const std::vector<FaceStretch>& faces) {
         aniso_max = std::max(aniso_max, ratio);
         area_max = std::max(area_max, distortion);
         if (ratio > 10) ++d.anisotropy_above_10;
-        weights.push_back(a);
-        anisotropy.push_back(ratio);
-        area.push_back(distortion);
+        anisotropy.emplace_back(ratio, a);
+        area.emplace_back(distortion, a);
     }
     d.l2_stretch = std::sqrt(l2 / weight);
     d.linf_stretch = linf;
     d.symmetric_dirichlet = dirichlet / weight;
-    const std::vector<double> a = weighted_percentiles(anisotropy, weights, {0.5, 0.99, 0.999});
-    d.anisotropy_p50 = a[0];
-    d.anisotropy_p99 = a[1];
-    d.anisotropy_p999 = a[2];
+    const std::vector<double> p = weighted_percentiles(std::move(anisotropy), {0.5, 0.99, 0.999});
+    d.anisotropy_p50 = p[0];
+    d.anisotropy_p99 = p[1];
+    d.anisotropy_p999 = p[2];
     d.anisotropy_max = aniso_max;
-    d.area_distortion_p99 = weighted_percentiles(area, weights, {0.99}).front();
+    d.area_distortion_p99 = weighted_percentiles(std::move(area), {0.99}).front();
     d.area_distortion_max = area_max;
     return d;
 }

@@ -742,20 +742,16 @@ private:
 
     /// DIST-1..9 with each face's image in its domain triangle, laid out in that triangle's 3D plane.
     Distortion measure_distortion() const {
-        std::vector<FaceStretch> stretch(f_.surface_faces.size());
-        for_each_block(executor_, stretch.size(), 16384, 4, [&](std::size_t first, std::size_t end) {
-            for (std::size_t i = first; i < end; ++i) {
-                const ParamFace& face = f_.surface_faces[i];
-                const Triangle& d = f_.domain_faces[face.patch];
-                std::array<Vec3, 3> q;
-                for (int c = 0; c < 3; ++c)
-                    q[c] = face.beta[c][0] * f_.domain_vertices[d[0]] + face.beta[c][1] * f_.domain_vertices[d[1]] +
-                           face.beta[c][2] * f_.domain_vertices[d[2]];
-                stretch[i] = face_stretch(q[0], q[1], q[2], f_.surface_vertices[face.v[0]], f_.surface_vertices[face.v[1]],
-                                          f_.surface_vertices[face.v[2]]);
-            }
+        return summarize(f_.surface_faces.size(), [&](std::size_t i) {
+            const ParamFace& face = f_.surface_faces[i];
+            const Triangle& d = f_.domain_faces[face.patch];
+            std::array<Vec3, 3> q;
+            for (int c = 0; c < 3; ++c)
+                q[c] = face.beta[c][0] * f_.domain_vertices[d[0]] + face.beta[c][1] * f_.domain_vertices[d[1]] +
+                       face.beta[c][2] * f_.domain_vertices[d[2]];
+            return face_stretch(q[0], q[1], q[2], f_.surface_vertices[face.v[0]], f_.surface_vertices[face.v[1]],
+                                f_.surface_vertices[face.v[2]]);
         });
-        return summarize(stretch);
     }
 };
 
