@@ -90,10 +90,10 @@ constexpr const char* title_8 = "the atlas's surface is the input mesh's";
 
 std::string str(const UV& p) { return "(" + num(p[0]) + ", " + num(p[1]) + ")"; }
 
-/// Union–find over faces, for the charts.
-class Charts {
+/// Union–find over faces: the charts, and the groups of overlapping faces.
+class UnionFind {
 public:
-    explicit Charts(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), std::uint32_t{0}); }
+    explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), std::uint32_t{0}); }
     std::uint32_t find(std::uint32_t x) {
         while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
         return x;
@@ -284,7 +284,7 @@ void AtlasVerifier::find_edges_and_charts() {
         const Triangle& t = w_faces_[f];
         return static_cast<std::uint8_t>(t[0] == v ? 0 : t[1] == v ? 1 : 2);
     };
-    Charts charts(n());
+    UnionFind charts(n());
     for (HalfedgeId h : s.halfedges()) {
         const HalfedgeId o = TriMesh::twin(h);
         if (o.idx() < h.idx() || s.is_boundary(h) || s.is_boundary(o)) continue;
@@ -395,20 +395,15 @@ CheckResult AtlasVerifier::check_cracks() {
             std::array<std::uint64_t, 3> c;
             for (int k = 0; k < 3; ++k)
                 c[k] = static_cast<std::uint64_t>(std::clamp((p[k] - lo[k]) / cell, 0.0, 1048575.0));
-            return c[0] << 42 | c[1] << 21 | c[2];
+            return c;
         };
         std::vector<std::pair<std::uint64_t, std::uint32_t>> grid;  // (cell, boundary edge)
         for (std::uint32_t e = 0; e < boundary.size(); ++e) {
             const Vec3 &p = welded_[boundary[e].first], &q = welded_[boundary[e].second];
-            const Vec3 elo = p.cwiseMin(q), ehi = p.cwiseMax(q);
-            std::array<std::uint64_t, 3> c0, c1;
-            for (int k = 0; k < 3; ++k) {
-                c0[k] = static_cast<std::uint64_t>(std::clamp((elo[k] - lo[k]) / cell, 0.0, 1048575.0));
-                c1[k] = static_cast<std::uint64_t>(std::clamp((ehi[k] - lo[k]) / cell, 0.0, 1048575.0));
-            }
+            const auto c0 = cell_of(p.cwiseMin(q)), c1 = cell_of(p.cwiseMax(q));
             for (std::uint64_t x = c0[0]; x <= c1[0]; ++x)
                 for (std::uint64_t y = c0[1]; y <= c1[1]; ++y)
-                    for (std::uint64_t z = c0[2]; z <= c1[2]; ++z) grid.emplace_back(x << 42 | y << 21 | z, e);
+                    for (std::uint64_t z = c0[2]; z <= c1[2]; ++z) grid.emplace_back(cell_key(x, y, z), e);
         }
         std::sort(grid.begin(), grid.end());
         std::vector<std::uint32_t> vertices;  // ascending: the lowest T-vertex is named first
@@ -416,8 +411,10 @@ CheckResult AtlasVerifier::check_cracks() {
         std::sort(vertices.begin(), vertices.end());
         for (std::uint32_t v : vertices) {
             const Vec3& p = welded_[v];
-            auto it = std::lower_bound(grid.begin(), grid.end(), std::pair<std::uint64_t, std::uint32_t>(cell_of(p), 0));
-            for (; it != grid.end() && it->first == cell_of(p); ++it) {
+            const auto c = cell_of(p);
+            const std::uint64_t key = cell_key(c[0], c[1], c[2]);
+            auto it = std::lower_bound(grid.begin(), grid.end(), std::pair<std::uint64_t, std::uint32_t>(key, 0));
+            for (; it != grid.end() && it->first == key; ++it) {
                 const auto [a, b] = boundary[it->second];
                 if (a == v || b == v) continue;
                 const Vec3 &x = welded_[a], &y = welded_[b];
@@ -678,9 +675,8 @@ CheckResult AtlasVerifier::check_input() {
         const auto coord = [&](double x, int k) {
             return static_cast<std::int64_t>(std::floor(std::clamp((x - lo[k]) / cell, -1.0, 1048576.0)));
         };
-        const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-            return static_cast<std::uint64_t>(x + 1) << 42 | static_cast<std::uint64_t>(y + 1) << 21 |
-                   static_cast<std::uint64_t>(z + 1);
+        const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {  // cells from −1: shifted by one
+            return cell_key(static_cast<std::uint64_t>(x + 1), static_cast<std::uint64_t>(y + 1), static_cast<std::uint64_t>(z + 1));
         };
         std::vector<std::pair<std::uint64_t, std::uint32_t>> grid;
         grid.reserve(welded_.size());
@@ -832,7 +828,7 @@ void AtlasVerifier::figures() {
     // (connected by ATLAS-6's pairs) and each group's union computed by slabs.
     std::uint32_t textures = 0;
     for (std::uint32_t t : a_.face_texture) textures = std::max(textures, t + 1);
-    Charts groups(n());
+    UnionFind groups(n());
     for (const auto& [f, g] : report_.overlapping) groups.join(f, g);
     std::vector<std::uint32_t> group_size(n(), 0);
     for (const auto& [f, g] : report_.overlapping) ++group_size[groups.find(f)], ++group_size[groups.find(g)];

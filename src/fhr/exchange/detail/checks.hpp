@@ -143,6 +143,10 @@ inline Topology topology_of(const TriMesh& mesh) {
 /// "1 boundary loop", "2 boundary loops".
 inline std::string loops_text(std::uint64_t n) { return std::to_string(n) + (n == 1 ? " boundary loop" : " boundary loops"); }
 
+/// The key of grid cell (x, y, z), each coordinate in [0, 2²¹): the sparse grids below and in
+/// atlas.cpp list their simplices or points as sorted (key, index) pairs.
+inline std::uint64_t cell_key(std::uint64_t x, std::uint64_t y, std::uint64_t z) { return x << 42 | y << 21 | z; }
+
 using Bits = std::array<std::uint64_t, 3>;
 
 inline Bits bits(const Vec3& p) {
@@ -255,7 +259,7 @@ private:
     }
 
     static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
-        return static_cast<std::uint64_t>(x) << 42 | static_cast<std::uint64_t>(y) << 21 | static_cast<std::uint64_t>(z);
+        return cell_key(static_cast<std::uint64_t>(x), static_cast<std::uint64_t>(y), static_cast<std::uint64_t>(z));
     }
 };
 
