@@ -55,6 +55,9 @@ usage:
       with vt, PLY with u v or texcoord) against ATLAS-1..8 (spec/atlas.md), the kind decided by
       content; with the distortion figures (spec/distortion.md); --paper judges chord length (PARAM-10);
       exit 1 if invalid
+  fhr verify --vertex-map MAP --domain D --mesh T [--rule adjacent] [--format plain|corr|vtpm|ijv] [--json [--list]]
+      the oracle on a per-vertex map of T onto D (.vmap, .corr, .vtpm, .ijv), its edges and faces
+      mapped by the rule, against VMAP-1..9 (spec/vertex_map.md); exit 1 if invalid
   fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--family NAME|all] [--genus-max G]
                   [--holes-max H] [--components-max C] [--seed S] [--keep DIR] [--timeout SECONDS]
                   [--shard K/N'] [--table FILE] [--topology closed|disk|any] [--kind param|atlas]

@@ -42,12 +42,14 @@ namespace {
 
 /// The keys every kind shares (CLI-VERIFY-4) before `domain` and `surface`, which the caller writes.
 void write_head(io::JsonWriter& j, const std::string& path, const std::optional<std::string>& mesh, const char* kind,
-                const std::vector<CheckResult>& checks) {
+                const std::vector<CheckResult>& checks, const char* rule = nullptr) {
     const CheckResult* first = first_judged_failure(checks);
     j.begin_object().key("file").value(path).key("mesh");
     if (mesh) j.value(*mesh);
     else j.null();
-    j.key("kind").value(kind).key("rule").null();
+    j.key("kind").value(kind).key("rule");
+    if (rule) j.value(rule);
+    else j.null();
     j.key("readable").value(true).key("valid").value(first == nullptr).key("first_failure");
     if (first) j.value(first->id);
     else j.null();
@@ -130,6 +132,31 @@ std::string verdict_json(const std::string& path, const std::optional<std::strin
         j.end_array();
         pair_list(j, "overlapping_pair_list", report.overlapping);
         pair_list(j, "contact_list", report.contacts);
+    }
+    j.end_object();
+    return j.str();
+}
+
+std::string verdict_json(const std::string& path, const std::string& domain, const std::string& mesh, const VertexMapFile& map,
+                         const PolygonSoup& D, const PolygonSoup& T, const VertexMapReport& report, bool lists) {
+    io::JsonWriter j;
+    write_head(j, path, mesh, "vertex_map", report.checks, "adjacent");
+    j.key("format").value(to_string(map.format)).key("domain_file").value(domain);
+    j.key("domain").begin_object().key("vertices").value(D.points.size());
+    j.key("faces").value(D.polygon_count()).end_object();
+    j.key("surface").begin_object().key("vertices").value(T.points.size());
+    j.key("faces").value(T.polygon_count()).end_object();
+    write_checks(j, report.checks);
+    j.key("distortion").begin_object();
+    write_distortion_fields(j, report.distortion);
+    j.end_object();
+    j.key("edges_without_image").value(report.edges_without_image.size());
+    j.key("crossing_pairs").value(report.crossing_pairs).key("folded_faces").value(report.folded.size());
+    if (lists) {
+        j.key("folded_face_list").begin_array();
+        for (std::uint32_t f : report.folded) j.value(f);
+        j.end_array();
+        pair_list(j, "edges_without_image_list", report.edges_without_image);
     }
     j.end_object();
     return j.str();

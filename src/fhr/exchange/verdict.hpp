@@ -12,6 +12,7 @@
 #include <fhr/exchange/atlas.hpp>
 #include <fhr/exchange/fhr_param.hpp>
 #include <fhr/exchange/verify.hpp>
+#include <fhr/exchange/vertex_map.hpp>
 
 namespace fhr::io {
 class JsonWriter;
@@ -38,5 +39,10 @@ std::string verdict_json(const std::string& path, const std::optional<std::strin
 /// An atlas's verdict; with `lists`, also the folded faces, overlapping pairs and contacts.
 std::string verdict_json(const std::string& path, const std::optional<std::string>& mesh, const Atlas& atlas,
                          const AtlasReport& report, bool lists);
+
+/// A per-vertex map's verdict (spec/vertex_map.md): `kind` vertex_map, `rule`, `format`, the
+/// domain's file, the figures; with `lists`, the folded faces and the edges without an image.
+std::string verdict_json(const std::string& path, const std::string& domain, const std::string& mesh, const VertexMapFile& map,
+                         const PolygonSoup& D, const PolygonSoup& T, const VertexMapReport& report, bool lists);
 
 }  // namespace fhr::exchange

@@ -106,12 +106,6 @@ struct SideRun {
     std::size_t begin, end;
 };
 
-/// A mesh that passed PARAM-3, with its topology.
-struct Surface {
-    TriMesh mesh;
-    Topology topology;
-};
-
 class Verifier {
 public:
     Verifier(const ParamFile& file, const TriMesh* input, const detail::InputSide* prepared, Executor& executor, bool paper)
@@ -189,40 +183,15 @@ private:
     }
 
     // ---- PARAM-3 ---------------------------------------------------------------------------
-    /// build_trimesh with every rule of spec/mesh.md (boundary loops and several components are
-    /// allowed; every vertex, boundary ones included, must be manifold, which makes every boundary
-    /// loop a simple closed curve; no closed component is flat, INV-IN-13). A file must need no repair: no isolated vertex (a vertex of T′ in no
-    /// face has no ψ) and no face turned — each component consistently oriented, a closed one
-    /// with positive volume (the orientation is part of the contract: PARAM-8 reads it; a
-    /// component with boundary has no outside, so either of its two orientations is accepted).
-    /// `triangle(i)` gives triangle i of `count`.
-    std::optional<Surface> build(const std::vector<Vec3>& points, std::size_t count,
-                                 const std::function<const Triangle&(std::size_t)>& triangle, const char* what, Recorder& rec) const {
+    /// PARAM-3's build_surface of the file's points and `count` triangles, `triangle(i)` the i-th.
+    static std::optional<Surface> build(const std::vector<Vec3>& points, std::size_t count,
+                                        const std::function<const Triangle&(std::size_t)>& triangle, const char* what, Recorder& rec) {
         PolygonSoup soup;
         soup.points = points;
         soup.indices.reserve(3 * count);
         soup.offsets.reserve(count + 1);
         for (std::size_t i = 0; i < count; ++i) soup.add_polygon(triangle(i).data(), 3);
-        BuildLog log;
-        try {
-            TriMesh mesh = build_trimesh(soup, BuildOptions{.require_closed = false, .require_connected = false}, log);
-            if (log.dropped_vertices == 0 && log.reoriented_faces == 0) {
-                Topology topology = topology_of(mesh);
-                return Surface{std::move(mesh), std::move(topology)};
-            }
-            rec.fail([&] {
-                std::string warning = log.warnings.front();  // ": dropped …" or ": re-oriented …" (no file name)
-                if (warning.rfind(": ", 0) == 0) warning.erase(0, 2);
-                return std::string(what) + (log.dropped_vertices ? " has vertices in no face: "
-                                                                 : " is not oriented counter-clockwise seen from outside "
-                                                                   "(each component consistently, a closed one with "
-                                                                   "positive volume): ") +
-                       warning;
-            });
-        } catch (const InvalidInput& e) {
-            rec.fail([&] { return std::string(what) + ": " + e.problem(); });
-        }
-        return std::nullopt;
+        return build_surface(soup, what, rec);
     }
 
     CheckResult check_manifolds() {

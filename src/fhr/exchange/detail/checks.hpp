@@ -17,7 +17,10 @@
 #include <utility>
 #include <vector>
 
+#include <fhr/core/build.hpp>
+#include <fhr/core/errors.hpp>
 #include <fhr/core/geometry.hpp>
+#include <fhr/core/polygon_soup.hpp>
 #include <fhr/core/topology.hpp>
 #include <fhr/core/trimesh.hpp>
 #include <fhr/exchange/verify.hpp>
@@ -138,6 +141,43 @@ inline Topology topology_of(const TriMesh& mesh) {
     for (std::size_t c = 0; c < n; ++c)
         t.chi[c] = static_cast<long>(t.vertices[c]) - (3 * faces[c] + boundary_halfedges[c]) / 2 + faces[c];
     return t;
+}
+
+/// A mesh that passed PARAM-3 (VMAP-3), with its topology.
+struct Surface {
+    TriMesh mesh;
+    Topology topology;
+};
+
+/// build_trimesh with every rule of spec/mesh.md (boundary loops and several components are
+/// allowed; every vertex, boundary ones included, must be manifold, which makes every boundary
+/// loop a simple closed curve; no closed component is flat, INV-IN-13). A file must need no
+/// repair: no isolated vertex (a vertex in no face has no image) and no face turned — each
+/// component consistently oriented, a closed one with positive volume (the orientation is part of
+/// the contract: PARAM-8 and VMAP-7 read it; a component with boundary has no outside, so either of
+/// its two orientations is accepted). Then the mesh's vertices and faces are the soup's, in order.
+/// A failure is recorded in `rec`, naming the surface `what`.
+inline std::optional<Surface> build_surface(const PolygonSoup& soup, const char* what, Recorder& rec) {
+    BuildLog log;
+    try {
+        TriMesh mesh = build_trimesh(soup, BuildOptions{.require_closed = false, .require_connected = false}, log);
+        if (log.dropped_vertices == 0 && log.reoriented_faces == 0) {
+            Topology topology = topology_of(mesh);
+            return Surface{std::move(mesh), std::move(topology)};
+        }
+        rec.fail([&] {
+            std::string warning = log.warnings.front();  // ": dropped …" or ": re-oriented …" (no file name)
+            if (warning.rfind(": ", 0) == 0) warning.erase(0, 2);
+            return std::string(what) + (log.dropped_vertices ? " has vertices in no face: "
+                                                             : " is not oriented counter-clockwise seen from outside "
+                                                               "(each component consistently, a closed one with "
+                                                               "positive volume): ") +
+                   warning;
+        });
+    } catch (const InvalidInput& e) {
+        rec.fail([&] { return std::string(what) + ": " + e.problem(); });
+    }
+    return std::nullopt;
 }
 
 /// "1 boundary loop", "2 boundary loops".
