@@ -82,10 +82,16 @@ std::vector<Triangle> triangles_of(const py::array& F, std::size_t n) {
 }
 
 /// (V, F) through every input rule of spec/mesh.md, as a file would go through them.
-TriMesh mesh_of(const py::array& V, const py::array& F, const BuildOptions& options = {}) {
+/// (V, F) as a soup, in the arrays' numbering.
+PolygonSoup soup_of(const py::array& V, const py::array& F) {
     PolygonSoup soup;
     soup.points = points_of(V);
     for (const Triangle& t : triangles_of(F, soup.points.size())) soup.add_polygon(t.data(), 3);
+    return soup;
+}
+
+TriMesh mesh_of(const py::array& V, const py::array& F, const BuildOptions& options = {}) {
+    const PolygonSoup soup = soup_of(V, F);
     BuildLog log;
     return build_trimesh(soup, options, log);
 }
@@ -114,6 +120,7 @@ py::dict verdict_dict(const std::string& json) {
     py::dict d = py::module_::import("json").attr("loads")(json);
     d.attr("pop")("file");
     d.attr("pop")("mesh");
+    if (d.contains("domain_file")) d.attr("pop")("domain_file");
     return d;
 }
 
@@ -137,6 +144,16 @@ py::dict verdict(const exchange::Atlas& atlas, const TriMesh* mesh, const exchan
         report = exchange::verify_atlas(atlas, mesh, options);
     }
     return verdict_dict(exchange::verdict_json(atlas.source, std::nullopt, atlas, report, lists));
+}
+
+/// The verdict on a per-vertex map of T onto D (spec/vertex_map.md VMAP-2..9).
+py::dict verdict(const exchange::VertexMapFile& map, const PolygonSoup& T, const PolygonSoup& D, bool lists) {
+    exchange::VertexMapReport report;
+    {
+        py::gil_scoped_release unlocked;
+        report = exchange::verify_vertex_map(map, T, D);
+    }
+    return verdict_dict(exchange::verdict_json(map.source, "", "", map, D, T, report, lists));
 }
 
 /// UV as (k, 2) finite numbers.
@@ -564,4 +581,48 @@ PYBIND11_MODULE(_fhr, m) {
         "(k, 2) indexed per corner by FUV (m, 3), or per vertex like F when FUV is None (then k = n); textures (m,) a "
         "texture number per face. The dict of `fhr verify --json` without file names; with lists, the folded faces, "
         "overlapping pairs and contacts themselves.");
+    m.def(
+        "verify_vertex_map",
+        [](const py::array& V, const py::array& F, const py::array& DV, const py::array& DF, const py::array& faces,
+           const py::array& weights, bool lists) {
+            const PolygonSoup T = soup_of(V, F), D = soup_of(DV, DF);
+            const auto f = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(faces);
+            const auto w = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(weights);
+            const auto n = static_cast<py::ssize_t>(T.points.size());
+            if (!f || f.ndim() != 1 || f.shape(0) != n) throw InvalidInput("", 0, "faces must have shape (" + std::to_string(n) + ",)");
+            if (!w || w.ndim() != 2 || w.shape(0) != n || w.shape(1) != 3)
+                throw InvalidInput("", 0, "weights must have shape (" + std::to_string(n) + ", 3)");
+            exchange::VertexMapFile map;
+            map.source = "vertex map";
+            map.records.resize(static_cast<std::size_t>(n));
+            for (py::ssize_t i = 0; i < n; ++i) {
+                auto& r = map.records[static_cast<std::size_t>(i)];
+                if (f.at(i) >= 0) {
+                    r.ref = exchange::VertexImageRecord::Ref::face;
+                    r.a = f.at(i);
+                }
+                r.weights = {w.at(i, 0), w.at(i, 1), w.at(i, 2)};
+            }
+            return verdict(map, T, D, lists);
+        },
+        py::arg("V"), py::arg("F"), py::arg("DV"), py::arg("DF"), py::arg("faces"), py::arg("weights"), py::arg("lists") = false,
+        "verify_vertex_map(V, F, DV, DF, faces, weights, lists=False) -> dict: the per-vertex map oracle (spec/vertex_map.md, "
+        "rule adjacent) on arrays: T = (V, F), D = (DV, DF), and per vertex of T a face of D (faces (n,), -1 for none) "
+        "and the weights of its corners (weights (n, 3)). The dict of `fhr verify --vertex-map --json` without file "
+        "names; with lists, the folded faces and the edges without an image.");
+    m.def(
+        "verify_vertex_map",
+        [](const std::string& path, const std::pair<py::array, py::array>& mesh, const std::pair<py::array, py::array>& domain,
+           std::optional<std::string> format, bool lists) {
+            const PolygonSoup T = soup_of(mesh.first, mesh.second), D = soup_of(domain.first, domain.second);
+            std::optional<exchange::VertexMapFormat> f;
+            if (format) {
+                f = exchange::vertex_map_format_named(*format);
+                if (!f) throw InvalidInput(path, 0, "format must be plain, corr, vtpm or ijv, not '" + *format + "'");
+            }
+            return verdict(exchange::read_vertex_map(path, f, T.points.size(), D.points.size()), T, D, lists);
+        },
+        py::arg("path"), py::arg("mesh"), py::arg("domain"), py::arg("format") = py::none(), py::arg("lists") = false,
+        "verify_vertex_map(path, mesh, domain, format=None, lists=False) -> dict: the same on a map file (.vmap, .corr, "
+        ".vtpm, .ijv, or format=) of T = mesh (V, F) onto D = domain (DV, DF).");
 }

@@ -637,29 +637,41 @@ private:
     CheckResult check_embedding(VertexMapReport& report) const {
         Recorder rec("VMAP-6", title_6);
         const TriMesh& t = tm();
-        // Two vertices of T with one image: sorted by their vertex sets and first coordinate, the
-        // near neighbours compared exactly.
+        // Two vertices of T with one image: sorted by their vertex sets and normalized weights,
+        // each compared exactly with the groups of equal images whose keys lie within 1e-9 of its
+        // own (equal images have keys a few ulps apart); a group of c vertices is c(c-1)/2 pairs.
         std::vector<std::uint32_t> order(image_.size());
         std::iota(order.begin(), order.end(), 0u);
         auto key = [&](std::uint32_t u) {
             const Point& p = image_[u];
             const double s = p.w[0] + p.w[1] + p.w[2];
-            return std::make_tuple(p.v, p.w[0] / s, u);
+            return std::make_tuple(p.v, p.w[0] / s, p.w[1] / s, u);
         };
         std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+        auto equal = [&](const Point& p, const Point& q) {
+            for (int a = 0; a < 3; ++a)
+                for (int b = a + 1; b < 3; ++b)
+                    if (Q(p.w[a]) * Q(q.w[b]) != Q(p.w[b]) * Q(q.w[a])) return false;
+            return true;
+        };
         std::uint64_t coincident = 0;
-        for (std::size_t i = 0; i < order.size(); ++i)
-            for (std::size_t j = i + 1; j < order.size(); ++j) {
-                const Point &p = image_[order[i]], &q = image_[order[j]];
-                if (p.v != q.v || std::get<1>(key(order[j])) - std::get<1>(key(order[i])) > 1e-9) break;
-                bool same = true;
-                for (int a = 0; a < 3 && same; ++a)
-                    for (int b = a + 1; b < 3 && same; ++b) same = Q(p.w[a]) * Q(q.w[b]) == Q(p.w[b]) * Q(q.w[a]);
-                if (!same) continue;
-                ++coincident;
-                const std::uint32_t x = std::min(order[i], order[j]), y = std::max(order[i], order[j]);
-                rec.fail([&] { return "vertices " + std::to_string(x) + " and " + std::to_string(y) + " of T have one image"; }, -1, x, p.face);
+        std::vector<std::pair<std::uint32_t, std::uint64_t>> groups;  // (first vertex, size) of the window's groups
+        for (std::size_t i = 0; i < order.size(); ++i) {
+            const std::uint32_t u = order[i];
+            const Point& p = image_[u];
+            std::erase_if(groups, [&](const auto& g) {
+                return image_[g.first].v != p.v || std::get<1>(key(u)) - std::get<1>(key(g.first)) > 1e-9;
+            });
+            auto same = std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return equal(image_[g.first], p); });
+            if (same == groups.end()) {
+                groups.emplace_back(u, 1);
+                continue;
             }
+            const std::uint32_t x = std::min(same->first, u), y = std::max(same->first, u);
+            for (std::uint64_t k = 0; k < same->second; ++k)  // a pair with each vertex of the group
+                rec.fail([&] { return "vertices " + std::to_string(x) + " and " + std::to_string(y) + " of T have one image"; }, -1, x, p.face);
+            coincident += same->second++;
+        }
         // The pieces of each face of D in a grid over the face's affine chart [0,1]².
         const std::size_t md = ds_.polygon_count();
         std::vector<std::uint32_t> per_face(md, 0);
@@ -673,6 +685,8 @@ private:
         std::vector<std::pair<std::uint64_t, std::uint32_t>> cells;
         for (std::uint32_t i = 0; i < pieces_.size(); ++i) {
             const Piece& p = pieces_[i];
+            // A piece of length 0 joins two vertices of T with one image, counted above.
+            if (p.a.tvertex != none && p.b.tvertex != none && p.a.v == p.b.v && equal(p.a, p.b)) continue;
             const auto a = approx(coords(p.a, p.face)), b = approx(coords(p.b, p.face));
             const double n = side[p.face];
             auto cell = [&](double x) { return static_cast<std::uint64_t>(std::clamp(std::floor(x * n), 0.0, n - 1)); };

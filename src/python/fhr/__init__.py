@@ -50,10 +50,12 @@ geodesic = _fhr.geodesic
 parameterize = _fhr.parameterize
 verify = _fhr.verify
 verify_atlas = _fhr.verify_atlas
+verify_vertex_map = _fhr.verify_vertex_map
 Parameterization = _fhr.Parameterization
 
 __all__ = [
     "Error", "InvalidInput", "PartitionFailure", "NumericalFailure", "InternalError", "Parameterization",
     "read_mesh", "write_mesh", "info", "generate", "min_faces", "decimate", "geodesic", "parameterize", "verify",
     "verify_atlas",
+    "verify_vertex_map",
 ]
