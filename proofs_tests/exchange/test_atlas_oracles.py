@@ -8,23 +8,14 @@ FHR_CGAL_MESHES the libcgal-demo meshes."""
 import json
 import os
 import random
-import subprocess
 import sys
 
 import pytest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+from programs import fhr, mesh  # noqa: E402
 import atlas_reference  # noqa: E402
-
-FHR = os.environ.get("FHR")
-MESHES = os.environ.get("FHR_CGAL_MESHES")
-
-
-def fhr(*args, check=True):
-    if not FHR or not os.path.exists(FHR):
-        pytest.fail("FHR must name the built fhr program (the meson test sets it)")
-    return subprocess.run([FHR, *map(str, args)], capture_output=True, text=True, check=check)
 
 
 def oracle(path, *extra):
@@ -34,15 +25,6 @@ def oracle(path, *extra):
     assert verdict["kind"] == "atlas"
     assert (proc.returncode == 0) == verdict["valid"]
     return verdict
-
-
-def mesh(name):
-    if not MESHES:
-        pytest.fail("FHR_CGAL_MESHES must name libcgal-demo's meshes (./run extracts them)")
-    path = os.path.join(MESHES, name)
-    if not os.path.exists(path):
-        pytest.fail("%s is missing: ./run extracts libcgal-demo's data.tar.gz into out/cgal-data" % path)
-    return path
 
 
 def assert_same_figures(ours, theirs):

@@ -486,3 +486,36 @@ def test_verify_atlas_refuses_bad_arrays():
         fhr.verify_atlas(V, F, V[:, :2], FUV=np.array([[0, 1, 7]]))
     with pytest.raises(fhr.InvalidInput, match="textures"):
         fhr.verify_atlas(V, F, V[:, :2], textures=np.array([0, 1]))
+
+
+# PY-3, PY-4: a per-vertex map (spec/vertex_map.md) on arrays and from a file gives the command's
+# verdict; fhr's own map of T′ onto D, each vertex of T′ with the β of a face holding it.
+def test_verify_vertex_map_on_arrays_and_files(fandisk_run, tmp_path):
+    p, out = fandisk_run
+    DV, DF = p.domain
+    V, F = p.refined
+    faces = np.full(len(V), -1)
+    weights = np.zeros((len(V), 3))
+    for f, corners in enumerate(F):
+        for c in range(3):
+            faces[corners[c]] = p.face_patch[f]
+            weights[corners[c]] = p.face_beta[f][c]
+    ours = fhr.verify_vertex_map(V, F, DV, DF, faces, weights, lists=True)
+    assert ours["valid"] and ours["kind"] == "vertex_map" and ours["folded_face_list"] == []
+    fhr.write_mesh(str(tmp_path / "D.off"), DV, DF)
+    fhr.write_mesh(str(tmp_path / "T.off"), V, F)
+    lines = ["fhr-vertex-map 1", str(len(V))] + ["%d %r %r %r" % (d, *w) for d, w in zip(faces, weights.tolist())]
+    (tmp_path / "m.vmap").write_text("\n".join(lines) + "\n")
+    command = json.loads(cli("verify", "--vertex-map", tmp_path / "m.vmap", "--domain", tmp_path / "D.off",
+                             "--mesh", tmp_path / "T.off", "--json").stdout)
+    for key in ("file", "mesh", "domain_file"):
+        command.pop(key)
+    from_file = fhr.verify_vertex_map(str(tmp_path / "m.vmap"), mesh=(V, F), domain=(DV, DF))
+    assert from_file["checks"] == command["checks"]
+    assert from_file["distortion"] == command["distortion"]
+    # One vertex without an image: a ValueError-free verdict naming it (VMAP-2).
+    faces[5] = -1
+    broken = fhr.verify_vertex_map(V, F, DV, DF, faces, weights)
+    assert broken["first_failure"] == "VMAP-2" and broken["checks"][0]["vertex"] == 5
+    with pytest.raises(ValueError, match="weights must have shape"):
+        fhr.verify_vertex_map(V, F, DV, DF, faces, weights[:-1])

@@ -68,12 +68,17 @@ struct Point {
     int size() const { return v[2] != none ? 3 : v[1] != none ? 2 : 1; }
 };
 
-/// A point's weights on the corners of a face of D, in the face's order.
+/// A point's weights on the corners of a face of D, in the face's order: doubles (for a crossing
+/// the rationals rounded to nearest), and for a crossing pointers to its rationals, null for a
+/// corner of weight 0.
 struct Bary {
     bool exact = false;
     std::array<double, 3> d{};
-    std::array<Q, 3> q;
+    std::array<const mpq_class*, 3> q{};
 };
+
+/// The corners of a face in its own weights.
+const Bary corners[3] = {{false, {1, 0, 0}, {}}, {false, {0, 1, 0}, {}}, {false, {0, 0, 1}, {}}};
 
 struct Q2 {
     Q x, y;
@@ -192,20 +197,34 @@ private:
         for (int c = 0; c < 3; ++c)
             for (int k = 0; k < 3; ++k)
                 if (p.v[k] == t[c]) {
-                    if (b.exact) b.q[c] = exact_[p.exact][k];
-                    else b.d[c] = p.w[k];
+                    b.d[c] = p.w[k];
+                    if (b.exact) b.q[c] = &exact_[static_cast<std::size_t>(p.exact)][k];
                 }
         return b;
     }
 
-    static Q as_q(const Bary& b, int c) { return b.exact ? b.q[c] : Q(b.d[c]); }
+    static Q as_q(const Bary& b, int c) { return b.exact ? (b.q[c] ? *b.q[c] : Q(0)) : Q(b.d[c]); }
 
     /// Sign of det[a; b; c]: +1 when the three points turn counter-clockwise in the face (the
     /// weights are non-negative with positive sums, so this is the orientation of w/Σw).
     static int orient(const Bary& a, const Bary& b, const Bary& c) {
+        auto zero = [](const Bary& x, int k) { return x.exact ? !x.q[k] || sgn(*x.q[k]) == 0 : x.d[k] == 0; };
+        for (int k = 0; k < 3; ++k)  // three points of one edge of the face: a zero column
+            if (zero(a, k) && zero(b, k) && zero(c, k)) return 0;
         if (!a.exact && !b.exact && !c.exact)
             return fhr::orient3d(Vec3(a.d[0], a.d[1], a.d[2]), Vec3(b.d[0], b.d[1], b.d[2]), Vec3(c.d[0], c.d[1], c.d[2]),
                                  Vec3::Zero());
+        // A filter on the rounded weights: each is within u of its rational (relative), and the
+        // determinant's six products of three and their sum add at most 8u of the permanent; 1e-14
+        // of it (about 90u) decides, else the rationals do.
+        const auto& x = a.d;
+        const auto& y = b.d;
+        const auto& z = c.d;
+        const double det = x[0] * (y[1] * z[2] - y[2] * z[1]) - x[1] * (y[0] * z[2] - y[2] * z[0]) + x[2] * (y[0] * z[1] - y[1] * z[0]);
+        const double permanent = std::fabs(x[0]) * (std::fabs(y[1] * z[2]) + std::fabs(y[2] * z[1])) +
+                                 std::fabs(x[1]) * (std::fabs(y[0] * z[2]) + std::fabs(y[2] * z[0])) +
+                                 std::fabs(x[2]) * (std::fabs(y[0] * z[1]) + std::fabs(y[1] * z[0]));
+        if (std::fabs(det) > 1e-14 * permanent + 1e-300) return det > 0 ? 1 : -1;
         const Q a0 = as_q(a, 0), a1 = as_q(a, 1), a2 = as_q(a, 2), b0 = as_q(b, 0), b1 = as_q(b, 1), b2 = as_q(b, 2),
                 c0 = as_q(c, 0), c1 = as_q(c, 1), c2 = as_q(c, 2);
         return sign(a0 * (b1 * c2 - b2 * c1) - a1 * (b0 * c2 - b2 * c0) + a2 * (b0 * c1 - b1 * c0));
@@ -217,11 +236,23 @@ private:
         return {as_q(b, 1) / s, as_q(b, 2) / s};
     }
 
+    /// Whether weights w and x are proportional (one point), exactly: every w_a·x_b = w_b·x_a, each
+    /// product held as fl(ab) plus its exact rounding error (fma) — rationals below 2⁻⁴⁰⁰, where
+    /// that error could underflow.
+    static bool proportional(const std::array<double, 3>& w, const std::array<double, 3>& x) {
+        for (int a = 0; a < 3; ++a)
+            for (int b = a + 1; b < 3; ++b) {
+                const double p = w[a] * x[b], q = w[b] * x[a];
+                if ((p != 0 && std::fabs(p) < 0x1p-400) || (q != 0 && std::fabs(q) < 0x1p-400)) {
+                    if (Q(w[a]) * Q(x[b]) != Q(w[b]) * Q(x[a])) return false;
+                } else if (p != q || std::fma(w[a], x[b], -p) != std::fma(w[b], x[a], -q)) {
+                    return false;
+                }
+            }
+        return true;
+    }
+
     static std::array<double, 2> approx(const Bary& b) {
-        if (b.exact) {
-            const Q2 a = affine(b);
-            return {a.x.get_d(), a.y.get_d()};
-        }
         const double s = b.d[0] + b.d[1] + b.d[2];
         return {b.d[1] / s, b.d[2] / s};
     }
@@ -230,22 +261,37 @@ private:
         Vec3 x = Vec3::Zero();
         double s = 0;
         for (int k = 0; k < p.size(); ++k) {
-            const double w = p.exact >= 0 ? exact_[p.exact][k].get_d() : p.w[k];
+            const double w = p.w[k];
             x += w * dpos(p.v[k]);
             s += w;
         }
         return x / s;
     }
 
-    /// The faces of D holding p.
-    std::vector<std::uint32_t> faces_of(const Point& p) const {
-        if (p.size() == 3) return {p.face};
-        if (p.size() == 1) return rings_[p.v[0]].faces;
-        std::vector<std::uint32_t> faces;
-        for (HalfedgeId h : {dm().find_halfedge(VertexId(p.v[0]), VertexId(p.v[1])),
-                             dm().find_halfedge(VertexId(p.v[1]), VertexId(p.v[0]))})
-            if (h.valid() && !dm().is_boundary(h)) faces.push_back(dm().face(h).idx());
-        return faces;
+    /// The faces of D holding p: a vertex's ring, or one or two faces kept inline.
+    struct FaceList {
+        const std::uint32_t* first = nullptr;
+        std::size_t n = 0;
+        std::array<std::uint32_t, 2> own{};
+        const std::uint32_t* begin() const { return first ? first : own.data(); }
+        const std::uint32_t* end() const { return begin() + n; }
+        std::size_t size() const { return n; }
+    };
+
+    FaceList faces_of(const Point& p) const {
+        FaceList list;
+        if (p.size() == 3) {
+            list.own[list.n++] = p.face;
+        } else if (p.size() == 1) {
+            const std::vector<std::uint32_t>& ring = rings_[p.v[0]].faces;
+            list.first = ring.data();
+            list.n = ring.size();
+        } else {
+            for (HalfedgeId h : {dm().find_halfedge(VertexId(p.v[0]), VertexId(p.v[1])),
+                                 dm().find_halfedge(VertexId(p.v[1]), VertexId(p.v[0]))})
+                if (h.valid() && !dm().is_boundary(h)) list.own[list.n++] = dm().face(h).idx();
+        }
+        return list;
     }
 
     bool on_boundary(const Point& p) const {
@@ -584,6 +630,7 @@ private:
             c.exact = static_cast<std::int32_t>(exact_.size());
             c.face = ring.face(best.i + j);
             exact_.push_back(s_low ? std::array<Q, 3>{1 - lambda, lambda, 0} : std::array<Q, 3>{lambda, 1 - lambda, 0});
+            for (int k = 0; k < 2; ++k) c.w[k] = exact_.back()[k].get_d();
             x.push_back(c);
         }
         x.push_back(last);
@@ -596,13 +643,26 @@ private:
     }
 
     // ---- VMAP-6 -----------------------------------------------------------------------------
+    /// A corner of the face off the line through a and b (a ≠ b), so that orient(r, x, y) orders
+    /// the points x, y of that line: its sign is the same for every pair in the same order.
+    static const Bary& off_line(const Bary& a, const Bary& b) {
+        for (const Bary& c : corners)
+            if (orient(a, b, c) != 0) return c;
+        return corners[0];  // a = b: every order is 0
+    }
+
     /// Whether two collinear closed segments (a1, b1), (a2, b2) of one face share a point.
     static bool collinear_overlap(const Bary& a1, const Bary& b1, const Bary& a2, const Bary& b2) {
-        const Q2 p = affine(a1), q = affine(b1), r = affine(a2), s = affine(b2);
-        auto overlap = [](const Q& x1, const Q& y1, const Q& x2, const Q& y2) {
-            return std::max(std::min(x1, y1), std::min(x2, y2)) <= std::min(std::max(x1, y1), std::max(x2, y2));
-        };
-        return overlap(p.x, q.x, r.x, s.x) && overlap(p.y, q.y, r.y, s.y);
+        const bool first = orient(a1, b1, corners[0]) != 0 || orient(a1, b1, corners[1]) != 0;
+        const Bary& r = first ? off_line(a1, b1) : off_line(a2, b2);
+        if (!first && orient(a2, b2, r) == 0) {  // both of length 0: one point each
+            const Q2 p = affine(a1), q = affine(a2);
+            return p.x == q.x && p.y == q.y;
+        }
+        auto before = [&](const Bary& x, const Bary& y) { return orient(r, x, y) > 0; };
+        const Bary &lo1 = before(b1, a1) ? b1 : a1, &hi1 = &lo1 == &a1 ? b1 : a1;
+        const Bary &lo2 = before(b2, a2) ? b2 : a2, &hi2 = &lo2 == &a2 ? b2 : a2;
+        return !before(hi1, lo2) && !before(hi2, lo1);
     }
 
     /// Whether two pieces of different edges of T meet beyond a common end (VMAP-6), exactly.
@@ -621,9 +681,10 @@ private:
         if (shared_a) {
             const Bary o = coords(*shared_a, g), p = coords(*other_a, g), q = coords(*other_b, g);
             if (orient(o, p, q) != 0) return false;
-            const Q2 c = affine(o), x = sub(affine(p), c), y = sub(affine(q), c);
-            if (sign(x.x) == 0 && sign(x.y) == 0) return true;  // a piece of length 0
-            return sign(x.x) == sign(y.x) && sign(x.y) == sign(y.y);
+            // Collinear from o: they overlap when p and q lie on one side of o.
+            const Bary& r = off_line(o, p);
+            const int sp = orient(r, o, p), sq = orient(r, o, q);
+            return sp == 0 || sq == 0 || sp == sq;  // 0: a piece of length 0
         }
         const Bary a1 = coords(A.a, g), b1 = coords(A.b, g), a2 = coords(B.a, g), b2 = coords(B.b, g);
         const int o1 = orient(a1, b1, a2), o2 = orient(a1, b1, b2);
@@ -648,12 +709,7 @@ private:
             return std::make_tuple(p.v, p.w[0] / s, p.w[1] / s, u);
         };
         std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
-        auto equal = [&](const Point& p, const Point& q) {
-            for (int a = 0; a < 3; ++a)
-                for (int b = a + 1; b < 3; ++b)
-                    if (Q(p.w[a]) * Q(q.w[b]) != Q(p.w[b]) * Q(q.w[a])) return false;
-            return true;
-        };
+        auto equal = [&](const Point& p, const Point& q) { return proportional(p.w, q.w); };
         std::uint64_t coincident = 0;
         std::vector<std::pair<std::uint32_t, std::uint64_t>> groups;  // (first vertex, size) of the window's groups
         for (std::size_t i = 0; i < order.size(); ++i) {
@@ -753,24 +809,20 @@ private:
         if (p.size() == 2) {
             const auto [a, b, left, right] = edge_sides(p);
             if (q.size() <= 2 && (q.v[0] == a || q.v[0] == b) && (q.size() == 1 || q.v[1] == a || q.v[1] == b)) {
-                // Along the edge: toward b when q's share of b exceeds p's.
-                const Q pb = weight_on(p, b), qb = weight_on(q, b);
-                const Q ps = weight_on(p, a) + pb, qs = weight_on(q, a) + qb;
-                return qb * ps > pb * qs ? 0 : 2;
+                // Along the edge: toward b when q and b lie on one side of p (ordered from the
+                // third corner of face `left`).
+                const auto t = dtri(left);
+                const int ib = t[0] == b ? 0 : t[1] == b ? 1 : 2, ir = t[0] != a && t[0] != b ? 0 : t[1] != a && t[1] != b ? 1 : 2;
+                const Bary o = coords(p, left), y = coords(q, left);
+                return orient(corners[ir], o, y) == orient(corners[ir], o, corners[ib]) ? 0 : 2;
             }
             return x.face == left ? 1 : 3;
         }
-        const Bary o = coords(p, p.face), c0{false, {1, 0, 0}, {}}, c1{false, {0, 1, 0}, {}}, y = coords(q, p.face);
-        const int side = orient(o, c0, y);
+        const Bary o = coords(p, p.face), y = coords(q, p.face);
+        const int side = orient(o, corners[0], y);
         if (side > 0) return 0;
         if (side < 0) return 1;
-        return orient(o, c1, y) == orient(o, c1, c0) ? 0 : 1;  // on the line: toward the first corner or away
-    }
-
-    Q weight_on(const Point& p, std::uint32_t vertex) const {
-        for (int k = 0; k < p.size(); ++k)
-            if (p.v[k] == vertex) return weight_q(p, k);
-        return 0;
+        return orient(o, corners[1], y) == orient(o, corners[1], corners[0]) ? 0 : 1;  // on the line: toward the first corner or away
     }
 
     /// The edge (a, b) of D holding p, oriented so that face `left` has a → b; `right` the other face or none.
@@ -792,16 +844,16 @@ private:
     }
 
     /// The faces of D holding the first piece of tangent x (one, or two along an edge of D).
-    std::vector<std::uint32_t> piece_faces(const Point& p, const Tangent& x) const {
-        std::vector<std::uint32_t> faces;
+    FaceList piece_faces(const Point& p, const Tangent& x) const {
+        FaceList faces;
         for (std::uint32_t f : faces_of(x.q))
-            if (contains(f, p)) faces.push_back(f);
+            if (contains(f, p) && faces.n < 2) faces.own[faces.n++] = f;
         return faces;
     }
 
     /// VMAP-7 at one corner: tangent y turns counter-clockwise from x by an angle in (0, π).
     bool convex(const Point& p, const Tangent& x, const Tangent& y) const {
-        const std::vector<std::uint32_t> fx = piece_faces(p, x), fy = piece_faces(p, y);
+        const FaceList fx = piece_faces(p, x), fy = piece_faces(p, y);
         for (std::uint32_t g : fx)
             if (std::find(fy.begin(), fy.end(), g) != fy.end())
                 return orient(coords(p, g), coords(x.q, g), coords(y.q, g)) > 0;

@@ -75,3 +75,21 @@ def verify_atlas(
     strict: bool = ...,
     lists: bool = ...,
 ) -> dict[str, Any]: ...
+@overload
+def verify_vertex_map(
+    V: npt.ArrayLike,
+    F: npt.ArrayLike,
+    DV: npt.ArrayLike,
+    DF: npt.ArrayLike,
+    faces: npt.ArrayLike,
+    weights: npt.ArrayLike,
+    lists: bool = ...,
+) -> dict[str, Any]: ...
+@overload
+def verify_vertex_map(
+    path: str,
+    mesh: Tuple[npt.ArrayLike, npt.ArrayLike],
+    domain: Tuple[npt.ArrayLike, npt.ArrayLike],
+    format: Optional[str] = ...,
+    lists: bool = ...,
+) -> dict[str, Any]: ...
