@@ -24,7 +24,9 @@ its outputs).
 `oracle` mode: the oracle on other programs' kinds of map at scale: fhr's own textured.obj of a
 generated genus-2 mesh of 640,000 faces (an atlas of about 10^6 faces) judged by `fhr verify`
 without and with the input mesh (median of RUNS), against reading the same file (`fhr info`: read
-and validated as a mesh), as seconds per 10^6 atlas faces.
+and validated as a mesh), as seconds per 10^6 atlas faces; then the same run's map written per
+vertex (of T′, and of the input's own vertices) judged by `fhr verify --vertex-map`, as seconds
+per 10^6 vertices against reading T.
 
 Every goal is printed as `goal: NAME: measured X UNIT (goal <=|>= Y UNIT): met|NOT met`; the
 stretch goals as `goal: stretch: NAME: ...: met|gap Z UNIT` (targets beyond the firm goals, not
@@ -410,7 +412,48 @@ def bench_oracle(build, runs, goals, results):
     goal(goals, "atlas oracle without the mesh, seconds per 10^6 faces", m["verify"] * per_million, "s", ATLAS_SECONDS)
     goal(goals, "atlas oracle with the mesh, seconds per 10^6 faces", m["verify_with_mesh"] * per_million, "s",
          ATLAS_WITH_MESH_SECONDS)
+    bench_vertex_map(fhr, mesh, out, runs, goals, results)
     shutil.rmtree(out, ignore_errors=True)
+
+
+# The per-vertex map oracle (spec/vertex_map.md, rule adjacent): seconds per 10^6 vertices of T.
+VERTEX_MAP_SECONDS = 10.0
+
+
+def bench_vertex_map(fhr, mesh, run, runs, goals, results):
+    """The same run's map written per vertex (proofs_tests/exchange/vertex_map_fixtures.py): every
+    vertex of T′ with the β of a face holding it, and the map of the input's own vertices (edges
+    across the curves, the rule's fans), each judged by `fhr verify --vertex-map` against reading T."""
+    sys.path.insert(0, os.path.join(ROOT, "proofs_tests", "exchange"))
+    import vertex_map_fixtures
+    folder = os.path.join(OUT, "oracle", "vertex_map")
+    os.makedirs(folder, exist_ok=True)
+    t_off = os.path.join(folder, "input.off")
+    subprocess.run([fhr, "convert", mesh, "--out", t_off], check=True, stdout=subprocess.DEVNULL)
+    vertex_map_fixtures.write_fixtures(os.path.join(run, "param.fhrp"), folder, t_off)
+    d = os.path.join(folder, "D.off")
+    rows = {}
+    for name, map_path, surface in [("T'", "Tprime.vmap", "Tprime.off"), ("T only", "T_only.vmap", "T.off")]:
+        surface = os.path.join(folder, surface)
+        with open(surface) as f:
+            f.readline()
+            vertices = int(f.readline().split()[0])
+        reading, verify = [], []
+        for _ in range(runs):
+            reading.append(timed([fhr, "info", surface]))
+            start = time.monotonic()
+            subprocess.run([fhr, "verify", "--vertex-map", os.path.join(folder, map_path), "--domain", d, "--mesh", surface],
+                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)  # exit 1 for an invalid map
+            verify.append(time.monotonic() - start)
+        rows[name] = {"vertices": vertices, "reading": statistics.median(reading), "verify": statistics.median(verify)}
+    results["oracle"]["vertex_map"] = rows
+    print("== the per-vertex map oracle (rule adjacent) on the same run; median of %d" % runs)
+    for name, r in rows.items():
+        print("  %-7s %9d vertices: reading T %7.3f s, fhr verify --vertex-map %7.3f s (%.2fx reading), %.2f s per 10^6 vertices"
+              % (name, r["vertices"], r["reading"], r["verify"], r["verify"] / r["reading"], r["verify"] * 1e6 / r["vertices"]))
+    goal(goals, "per-vertex map oracle (T' map), seconds per 10^6 vertices", rows["T'"]["verify"] * 1e6 / rows["T'"]["vertices"],
+         "s", VERTEX_MAP_SECONDS)
+    shutil.rmtree(folder, ignore_errors=True)
 
 
 def main():

@@ -61,7 +61,8 @@ std::vector<double> edge_path_distances(const TriMesh& m, VertexId s) {
     d[s.idx()] = 0;
     q.push({0, s.idx()});
     while (!q.empty()) {
-        const auto [dv, v] = q.top();
+        const double dv = q.top().first;
+        const std::uint32_t v = q.top().second;
         q.pop();
         if (dv > d[v]) continue;
         m.for_each_outgoing(VertexId(v), [&](HalfedgeId h) {

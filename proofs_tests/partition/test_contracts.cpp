@@ -388,8 +388,9 @@ TEST_CASE("PART-10: a region refuses a curve that leaves the faces around it, an
     const geodesic::GeodesicPath through_face{{SurfacePoint::at_vertex(x0), SurfacePoint::in_face(at_x0, {0.2, 0.3, 0.5})}, 0};
     const std::vector<FaceId> at_corner{at_x0};
     using Case = std::pair<const geodesic::GeodesicPath*, const std::vector<FaceId>*>;
-    for (const auto& [curve, faces] : {Case{&leaves, &touched}, Case{&through_face, &at_corner}}) {
-        const std::vector<partition::RegionCurve> curves{{curve, false}};
+    for (const Case& c : {Case{&leaves, &touched}, Case{&through_face, &at_corner}}) {
+        const std::vector<FaceId>* faces = c.second;
+        const std::vector<partition::RegionCurve> curves{{c.first, false}};
         CHECK(refusal<std::logic_error>([&] { (void)partition::Region(f.T, *faces, curves); }) == "region: a curve leaves the faces around the region");
     }
     // A point of T_S inside a face has no place as a vertex or edge point of T.

@@ -415,7 +415,7 @@ CheckResult AtlasVerifier::check_cracks() {
             const std::uint64_t key = cell_key(c[0], c[1], c[2]);
             auto it = std::lower_bound(grid.begin(), grid.end(), std::pair<std::uint64_t, std::uint32_t>(key, 0));
             for (; it != grid.end() && it->first == key; ++it) {
-                const auto [a, b] = boundary[it->second];
+                const std::uint32_t a = boundary[it->second].first, b = boundary[it->second].second;
                 if (a == v || b == v) continue;
                 const Vec3 &x = welded_[a], &y = welded_[b];
                 const bool inside = (p.array() >= x.cwiseMin(y).array()).all() && (p.array() <= x.cwiseMax(y).array()).all();
@@ -608,14 +608,14 @@ void AtlasVerifier::find_pairs(Recorder& overlaps, Recorder& contacts) {
     }
     std::sort(found_overlap.begin(), found_overlap.end());
     std::sort(found_contact.begin(), found_contact.end());
-    for (const auto& [f, g] : found_overlap)
-        if (overlaps.fail([&] { return "faces " + std::to_string(f) + " (chart " + std::to_string(chart_of(f)) + ") and " +
+    for (const auto& pair : found_overlap)
+        if (const std::uint32_t f = pair.first, g = pair.second; overlaps.fail([&] { return "faces " + std::to_string(f) + " (chart " + std::to_string(chart_of(f)) + ") and " +
                                        std::to_string(g) + " (chart " + std::to_string(chart_of(g)) +
                                        ") overlap in UV"; },
                           f))
             overlaps.locate(chart_of(f), uv(f, 0));
-    for (const auto& [f, g] : found_contact)
-        if (contacts.fail([&] { return "faces " + std::to_string(f) + " (chart " + std::to_string(chart_of(f)) + ") and " +
+    for (const auto& pair : found_contact)
+        if (const std::uint32_t f = pair.first, g = pair.second; contacts.fail([&] { return "faces " + std::to_string(f) + " (chart " + std::to_string(chart_of(f)) + ") and " +
                                        std::to_string(g) + " (chart " + std::to_string(chart_of(g)) +
                                        ") touch in UV beyond their shared corners"; },
                           f))

@@ -877,7 +877,8 @@ private:
             return sign(cross(X, Y)) > 0;
         }
         // On an edge (a, b): the two faces unfolded as the fan of ring(a) around the spoke b.
-        const auto [a, b, left, right] = edge_sides(p);
+        const auto sides = edge_sides(p);
+        const std::uint32_t a = std::get<0>(sides), b = std::get<1>(sides), right = std::get<3>(sides);
         const Ring& ring = rings_[a];
         std::size_t t = 0;
         while (ring.spokes[t] != b) ++t;
