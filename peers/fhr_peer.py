@@ -1,7 +1,9 @@
-"""fhr itself as a peer (peers/fhr-param, peers/fhr-atlas): `fhr run` on MESH with a domain size
-chosen from the mesh, and its param.fhrp or its textured.obj copied to OUT, so that fhr is judged
-by the same rules and campaigns as the other programs. The fhr program is $FHR, else the
-repository's build/src/fhr.
+"""fhr itself as a peer (peers/fhr-param, peers/fhr-atlas, peers/fhr-vertex-map): `fhr run` on MESH
+with a domain size chosen from the mesh, and its param.fhrp or its textured.obj copied to OUT, or
+its map written per vertex of MESH into the folder OUT (map.vmap, with the domain D.off: each
+vertex of T with the β of a face of T′ holding it, by proofs_tests/exchange/vertex_map_fixtures.py),
+so that fhr is judged by the same rules and campaigns as the other programs. The fhr program is
+$FHR, else the repository's build/src/fhr.
 
 Domain size: N = min(F/4, 60) rounded down to even, at least 4 + 12·genus (above the fewest faces of
 a closed surface of that genus); when the decimation cannot reach N (exit 2) the next try doubles
@@ -11,14 +13,17 @@ With --flip it is a deliberately broken program: param.fhrp gets the β of the f
 its first face of T′ swapped (an image triangle turned over: PARAM-7, PARAM-8), textured.obj the vt of
 its first face's first corner reflected through the middle of the opposite side (the face turned
 over onto its neighbours: a fold, ATLAS-4, where the vt is shared with them, else an overlap,
-ATLAS-6)."""
+ATLAS-6), the per-vertex map the images of its first and last vertices exchanged."""
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "proofs_tests", "exchange"))
+import vertex_map_fixtures  # noqa: E402
 
 USAGE = """usage: %(name)s MESH OUT [--flip]
        %(name)s --help
@@ -50,11 +55,31 @@ def flip_atlas(text):
     return "\n".join(lines)
 
 
+def write_vertex_map(fhr, mesh, run, out, flip):
+    """The folder OUT: map.vmap (MESH's vertices, each with the β of a face of T′ holding it) and D.off."""
+    partial = "%s.tmp-%d" % (out, os.getpid())
+    os.makedirs(partial)
+    t_off = os.path.join(run, "T.off")
+    subprocess.run([fhr, "convert", mesh, "--out", t_off], check=True, capture_output=True)
+    param = vertex_map_fixtures.read_param(os.path.join(run, "param.fhrp"))
+    vmap = vertex_map_fixtures.restrict_to_mesh(vertex_map_fixtures.map_of_param(param), param["surface_vertices"],
+                                                vertex_map_fixtures.read_off(t_off)[0], mesh)
+    if flip:
+        vmap = vertex_map_fixtures.swap(vmap, 0, len(vmap) - 1)
+    vertex_map_fixtures.write_map(os.path.join(partial, "map.vmap"), vmap, param["domain_faces"], len(param["domain_vertices"]))
+    vertex_map_fixtures.write_off(os.path.join(partial, "D.off"), param["domain_vertices"], param["domain_faces"])
+    if os.path.isdir(out):
+        shutil.rmtree(out)
+    os.replace(partial, out)
+
+
 KINDS = {
     "fhr-param": ("param.fhrp", flip_param, "the `fhr-param 1` file param.fhrp (spec/param.md)",
                   "two corners' β swapped in the first face"),
     "fhr-atlas": ("textured.obj", flip_atlas, "the UV atlas textured.obj (spec/atlas.md)",
                   "a corner's vt of the first face reflected over the opposite side"),
+    "fhr-vertex-map": (None, None, "a folder with the per-vertex map map.vmap of MESH onto the domain D.off "
+                       "(spec/vertex_map.md)", "the images of the first and last vertices exchanged"),
 }
 
 
@@ -86,6 +111,9 @@ def main(name):
         if run.returncode != 0:
             sys.stderr.write(run.stderr)
             return run.returncode
+        if output is None:
+            write_vertex_map(fhr, mesh, tmp, out, len(args) == 3)
+            return 0
         with open(os.path.join(tmp, output)) as f:
             text = f.read()
     if len(args) == 3:

@@ -60,12 +60,12 @@ usage:
       mapped by the rule, against VMAP-1..9 (spec/vertex_map.md); exit 1 if invalid
   fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--family NAME|all] [--genus-max G]
                   [--holes-max H] [--components-max C] [--seed S] [--keep DIR] [--timeout SECONDS]
-                  [--shard K/N'] [--table FILE] [--topology closed|disk|any] [--kind param|atlas]
+                  [--shard K/N'] [--table FILE] [--topology closed|disk|any] [--kind param|atlas|vertex-map]
       fuzz another implementation: N random meshes (of every embedded family, or of NAME;
       genus 0-G, default 2; 0-H boundary loops, default 5; 1-C components, default 3; H = 0,
       C = 1 or --topology closed: closed and connected only; --topology disk: disks), each run
-      through PROGRAM and its output checked by the oracle (a fhr-param 1 file, or with --kind
-      atlas a UV atlas); failures kept in DIR with their reason and a smaller failing mesh of the
+      through PROGRAM and its output checked by the oracle (a fhr-param 1 file, with --kind
+      atlas a UV atlas, with --kind vertex-map a folder with map.vmap and D.off); failures kept in DIR with their reason and a smaller failing mesh of the
       same family. --shard K/N': only the meshes i with i mod N' = K-1; --table: the results as a
       table (tab-separated, no times)
   fhr oracle-fuzz --merge FILE... [--table FILE]

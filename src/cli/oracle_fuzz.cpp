@@ -1,6 +1,6 @@
 // FHR cli — `fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--family NAME|all]
 // [--genus-max G] [--holes-max H] [--components-max C] [--seed S] [--keep DIR] [--timeout SECONDS]
-// [--shard K/N] [--table FILE] [--topology closed|disk|any] [--kind param|atlas]` and
+// [--shard K/N] [--table FILE] [--topology closed|disk|any] [--kind param|atlas|vertex-map]` and
 // `fhr oracle-fuzz --merge FILE... [--table FILE]`: fuzzing another implementation of the paper,
 // or any program that writes a UV atlas, with fhr's oracle (spec/cli.md CLI-ORACLE-*). Random meshes
 // T (src/fhr/generate) go to the program: by default of every embedded family (block,
@@ -9,7 +9,9 @@
 // `--holes-max 0 --components-max 1` (or `--topology closed`) the closed connected surfaces of §1
 // only, `--topology disk` disks only (the meshes CGAL's methods take). Whatever the program writes
 // must be a `fhr-param 1` file that `fhr verify --mesh T` accepts (PARAM-1..11, src/fhr/exchange),
-// or with `--kind atlas` a UV atlas it accepts (ATLAS-1..8). Each failure is kept with its reason and shrunk. A campaign too long for one
+// or with `--kind atlas` a UV atlas it accepts (ATLAS-1..8), or with `--kind vertex-map` a folder
+// holding a per-vertex map `map.vmap` of T onto its base mesh `D.off` that it accepts (VMAP-1..9,
+// rule adjacent). Each failure is kept with its reason and shrunk. A campaign too long for one
 // machine is split into shards whose tables merge into the unsharded run's (oracle_table.hpp).
 //
 // Pseudocode:
@@ -70,6 +72,7 @@
 #include <fhr/core/errors.hpp>
 #include <fhr/exchange/fhr_param.hpp>
 #include <fhr/exchange/atlas.hpp>
+#include <fhr/exchange/vertex_map.hpp>
 #include <fhr/exchange/verify.hpp>
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/io/atomic_file.hpp>
@@ -137,15 +140,21 @@ bool has_topology(const Recipe& r, Topology t) {
     return true;
 }
 
-/// How outputs are judged: the program, its time limit, what it writes (`--kind`: a `fhr-param 1`
-/// file, or a UV atlas judged by spec/atlas.md) and the topology every mesh keeps.
+/// What a program writes (`--kind`): a `fhr-param 1` file (spec/param.md), a UV atlas
+/// (spec/atlas.md), or a folder with a per-vertex map and its base mesh (spec/vertex_map.md).
+enum class OutputKind { param, atlas, vertex_map };
+
+/// How outputs are judged: the program, its time limit, what it writes and the topology every
+/// mesh keeps.
 struct Judging {
     std::string cmd;
     double timeout = 60;
-    bool atlas = false;
+    OutputKind kind = OutputKind::param;
     Topology topology = Topology::any;
-    /// The output's name in a run folder: the adapters of atlases write OBJ.
-    const char* out_name() const { return atlas ? "out.obj" : "out.fhrp"; }
+    /// The output's name in a run folder: the adapters of atlases write OBJ, of per-vertex maps a folder.
+    const char* out_name() const {
+        return kind == OutputKind::atlas ? "out.obj" : kind == OutputKind::vertex_map ? "out" : "out.fhrp";
+    }
 };
 
 /// Mesh i of the run with seed S: the family asked for, or (nullptr: `--family all`) one of the
@@ -274,18 +283,29 @@ Outcome judge(const Recipe& recipe, const Judging& how, const fs::path& dir) {
         o.reason = "the program exited with code " + std::to_string(WEXITSTATUS(status)) + err_lines;
         return o;
     }
-    if (!fs::is_regular_file(out)) {
+    const bool folder = how.kind == OutputKind::vertex_map;
+    if (folder ? !fs::is_regular_file(out / "map.vmap") || !fs::is_regular_file(out / "D.off") : !fs::is_regular_file(out)) {
         o.kind = "no output";
-        o.reason = "the program exited with code 0 but wrote no file at {out}" + err_lines;
+        o.reason = std::string("the program exited with code 0 but wrote no ") +
+                   (folder ? "map.vmap and D.off in the folder {out}" : "file at {out}") + err_lines;
         return o;
     }
-    const TriMesh T = load_mesh(mesh.string(), BuildOptions{});
+    std::optional<TriMesh> T;
+    if (!folder) T = load_mesh(mesh.string(), BuildOptions{});
     std::vector<exchange::CheckResult> checks;
     try {
-        if (how.atlas) checks = exchange::verify_atlas(exchange::read_atlas(out.string()), &T).checks;
-        else checks = exchange::verify(exchange::read_param(out.string()), &T).checks;
+        if (how.kind == OutputKind::atlas) {
+            checks = exchange::verify_atlas(exchange::read_atlas(out.string()), &*T).checks;
+        } else if (how.kind == OutputKind::param) {
+            checks = exchange::verify(exchange::read_param(out.string()), &*T).checks;
+        } else {
+            const PolygonSoup t = io::read_soup(mesh.string()), d = io::read_soup((out / "D.off").string());
+            const exchange::VertexMapFile map =
+                exchange::read_vertex_map((out / "map.vmap").string(), std::nullopt, t.points.size(), d.points.size());
+            checks = exchange::verify_vertex_map(map, t, d).checks;
+        }
     } catch (const InvalidInput& e) {
-        o.kind = how.atlas ? "ATLAS-1" : "PARAM-1";
+        o.kind = how.kind == OutputKind::atlas ? "ATLAS-1" : how.kind == OutputKind::param ? "PARAM-1" : "VMAP-1";
         o.reason = o.kind + ": " + e.what();
         return o;
     }
@@ -365,7 +385,7 @@ Shrunk shrink(const Recipe& failing, const Outcome& failure, const Judging& how,
     return best;
 }
 
-/// Keeps one failure: DIR/mesh-<i>/{mesh.off, out.fhrp or out.obj (when written), reason.txt, smaller.off}.
+/// Keeps one failure: DIR/mesh-<i>/{mesh.off, out.fhrp, out.obj or the folder out (when written), reason.txt, smaller.off}.
 void keep_failure(const fs::path& keep, std::uint64_t i, const Recipe& recipe, const Outcome& outcome,
                   const fs::path& run_dir, const Shrunk& shrunk, const Judging& how) {
     const std::string& cmd = how.cmd;
@@ -373,8 +393,8 @@ void keep_failure(const fs::path& keep, std::uint64_t i, const Recipe& recipe, c
     fs::remove_all(dir);  // a folder of an earlier run with the same name
     fs::create_directories(dir);
     fs::copy_file(run_dir / "mesh.off", dir / "mesh.off", fs::copy_options::overwrite_existing);
-    if (fs::is_regular_file(run_dir / how.out_name()))
-        fs::copy_file(run_dir / how.out_name(), dir / how.out_name(), fs::copy_options::overwrite_existing);
+    if (fs::exists(run_dir / how.out_name()))
+        fs::copy(run_dir / how.out_name(), dir / how.out_name(), fs::copy_options::overwrite_existing | fs::copy_options::recursive);
     save_mesh((dir / "smaller.off").string(), generate::random_mesh(shrunk.recipe));
     std::string text = "command: " + cmd + "\n";
     text += "mesh.off: " + generate::generate_command(recipe) + " (" + size_of(recipe) + ")\n";
@@ -450,8 +470,9 @@ int run_oracle_fuzz(const std::vector<std::string>& argv) {
     } else if (topology_arg != "any") {
         usage_error("--topology must be closed, disk or any, not '" + topology_arg + "'");
     }
-    if (kind_arg != "param" && kind_arg != "atlas") usage_error("--kind must be param or atlas, not '" + kind_arg + "'");
-    how.atlas = kind_arg == "atlas";
+    if (kind_arg != "param" && kind_arg != "atlas" && kind_arg != "vertex-map")
+        usage_error("--kind must be param, atlas or vertex-map, not '" + kind_arg + "'");
+    how.kind = kind_arg == "atlas" ? OutputKind::atlas : kind_arg == "vertex-map" ? OutputKind::vertex_map : OutputKind::param;
     const auto seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, INT64_MAX));
     const fs::path keep = args.get("keep").value_or("oracle-fuzz-failures");
     const double timeout = args.real("timeout", 60.0, 0.1, 86400.0);
