@@ -117,7 +117,8 @@ def test_oracle_fuzz_merge_errors(tables, case, files, message):
     (tables / "lacking.tsv").write_text("".join(lines[:-1]))
     (tables / "moved.tsv").write_text("".join(lines[:-1]) + lines[-1].replace("3\t", "2\t", 1))
     for k in (4, 5, 6):  # 'valid' needs '-' in the check, reason and smaller fields (4, 5, 6)
-        fields = lines[-1].rstrip("\n").split("\t")[:3] + ["valid", "-", "-", "-"]
+        row = lines[-1].rstrip("\n").split("\t")
+        fields = row[:3] + ["valid", "-", "-", "-"] + row[7:]  # the distortion as written
         fields[k] = "x"
         (tables / ("valid%d.tsv" % k)).write_text("".join(lines[:-1]) + "\t".join(fields) + "\n")
     out = tables / ("merged-%s.tsv" % case.replace(" ", "-"))

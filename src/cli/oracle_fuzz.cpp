@@ -211,7 +211,16 @@ struct Outcome {
     bool ok = true;
     std::string kind;    ///< what "fails the same way" compares: "PARAM-8", "exit 3", "signal 11", "timeout", "no output"
     std::string reason;  ///< one line (the program's stderr tail follows on further lines)
+    std::string distortion = "-";  ///< the output's figures when the oracle read it (TableRow::distortion)
 };
+
+/// `l2 X p99 Y max Z` (DIST-4, DIST-7; %.6g), or "-" when every face was degenerate or nothing was measured.
+std::string distortion_text(const exchange::Distortion& d) {
+    if (!d.l2_stretch || !d.anisotropy_p99 || !d.anisotropy_max) return "-";
+    char text[96];
+    std::snprintf(text, sizeof text, "l2 %.6g p99 %.6g max %.6g", *d.l2_stretch, *d.anisotropy_p99, *d.anisotropy_max);
+    return text;
+}
 
 std::string tail_of(const fs::path& file) {
     std::string s;
@@ -295,14 +304,20 @@ Outcome judge(const Recipe& recipe, const Judging& how, const fs::path& dir) {
     std::vector<exchange::CheckResult> checks;
     try {
         if (how.kind == OutputKind::atlas) {
-            checks = exchange::verify_atlas(exchange::read_atlas(out.string()), &*T).checks;
+            exchange::AtlasReport r = exchange::verify_atlas(exchange::read_atlas(out.string()), &*T);
+            checks = std::move(r.checks);
+            o.distortion = distortion_text(r.distortion);
         } else if (how.kind == OutputKind::param) {
-            checks = exchange::verify(exchange::read_param(out.string()), &*T).checks;
+            exchange::VerifyReport r = exchange::verify(exchange::read_param(out.string()), &*T);
+            checks = std::move(r.checks);
+            o.distortion = distortion_text(r.distortion);
         } else {
             const PolygonSoup t = io::read_soup(mesh.string()), d = io::read_soup((out / "D.off").string());
             const exchange::VertexMapFile map =
                 exchange::read_vertex_map((out / "map.vmap").string(), std::nullopt, t.points.size(), d.points.size());
-            checks = exchange::verify_vertex_map(map, t, d).checks;
+            exchange::VertexMapReport r = exchange::verify_vertex_map(map, t, d);
+            checks = std::move(r.checks);
+            o.distortion = distortion_text(r.distortion);
         }
     } catch (const InvalidInput& e) {
         o.kind = how.kind == OutputKind::atlas ? "ATLAS-1" : how.kind == OutputKind::param ? "PARAM-1" : "VMAP-1";
@@ -492,7 +507,7 @@ int run_oracle_fuzz(const std::vector<std::string>& argv) {
     for (std::uint64_t i = shard.k - 1; i < count; i += shard.n) {
         const Recipe recipe = draw_recipe(seed, i, ranges, family);
         const Outcome outcome = judge(recipe, how, run_dir);
-        oracle::TableRow row{i, generate::family_name(recipe.family), generate::generate_command(recipe), "", "", ""};
+        oracle::TableRow row{i, generate::family_name(recipe.family), generate::generate_command(recipe), "", "", "", outcome.distortion};
         std::printf("mesh %llu: %s: ", static_cast<unsigned long long>(i), row.recipe.c_str());
         if (outcome.ok) {
             std::printf("valid\n");

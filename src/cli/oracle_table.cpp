@@ -16,7 +16,7 @@ namespace fhr::cli::oracle {
 namespace {
 
 constexpr const char* magic = "# fhr oracle-fuzz table 1";
-constexpr const char* columns = "index\tfamily\trecipe\toutcome\tcheck\treason\tsmaller";
+constexpr const char* columns = "index\tfamily\trecipe\toutcome\tcheck\treason\tsmaller\tdistortion";
 
 std::string escape(const std::string& s) {
     std::string e;
@@ -95,7 +95,7 @@ std::string table_text(const Table& table) {
     for (const TableRow& r : table.rows) {
         s += std::to_string(r.index) + "\t" + escape(r.family) + "\t" + escape(r.recipe) + "\t";
         s += r.failed() ? "FAILED\t" + escape(r.check) + "\t" + escape(r.reason) + "\t" + escape(r.smaller) : std::string("valid\t-\t-\t-");
-        s += "\n";
+        s += "\t" + escape(r.distortion) + "\n";
     }
     return s;
 }
@@ -134,7 +134,7 @@ Table read_table(const std::string& path) {
     std::uint64_t expected = t.shard.k - 1;  // the shard's meshes, in order
     for (std::size_t n = header; n < lines.size(); ++n, expected += t.shard.n) {
         const std::vector<std::string> f = split_tabs(lines[n]);
-        if (f.size() != 7) fail(n, "a row has 7 tab-separated fields (got " + std::to_string(f.size()) + ")");
+        if (f.size() != 8) fail(n, "a row has 8 tab-separated fields (got " + std::to_string(f.size()) + ")");
         TableRow r;
         if (!parse_count(f[0], r.index)) fail(n, "the index is not a number");
         if (r.index != expected)
@@ -149,6 +149,7 @@ Table read_table(const std::string& path) {
         } else {
             fail(n, "the outcome is 'valid' or 'FAILED' (got '" + f[3] + "')");
         }
+        ok = ok && unescape(f[7], r.distortion) && !r.distortion.empty();
         if (!ok) fail(n, "a malformed row (empty field, a bad escape, or '-' missing after 'valid')");
         t.rows.push_back(std::move(r));
     }

@@ -48,6 +48,8 @@ struct TableRow {
     std::string family, recipe;
     std::string check;  ///< empty when the mesh passed
     std::string reason, smaller;
+    /// DIST-4, DIST-7 of the output when the oracle read it (`l2 X p99 Y max Z`), else "-".
+    std::string distortion = "-";
     bool failed() const { return !check.empty(); }
 };
 
