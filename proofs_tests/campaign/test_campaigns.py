@@ -70,12 +70,12 @@ def test_oracle_fuzz_two_shards_by_parallel_merge_to_the_unsharded_table(program
                   "--table", tmp_path / "merged.tsv"])
     table = (tmp_path / "whole.tsv").read_text()
     assert (tmp_path / "merged.tsv").read_text() == table
-    rows = table.splitlines()[13:]
+    rows = table.splitlines()[14:]
     assert [r.split("\t")[0] for r in rows] == [str(i) for i in range(4)]
     assert any("\tvalid\t" in r for r in rows) and any("\tFAILED\texit 3\t" in r for r in rows), table
     # The shards ran their own meshes (i mod 2 = K - 1), and the merge reports what the whole run did.
     for k in (1, 2):
-        shard_rows = (tmp_path / ("shard-%d.tsv" % k)).read_text().splitlines()[13:]
+        shard_rows = (tmp_path / ("shard-%d.tsv" % k)).read_text().splitlines()[14:]
         assert shard_rows == rows[k - 1::2]
     failures = sum("\tFAILED\t" in r for r in rows)
     assert merged.returncode == whole.returncode == (1 if failures else 0)
@@ -105,9 +105,9 @@ def tables(tmp_path_factory):
     ("unreadable", ["a1", "absent"], "fhr: error: %(d)s/absent.tsv: cannot open"),
     ("cut short", ["a1", "cut"], "fhr: error: %(d)s/cut.tsv:"),
     ("a row missing", ["a1", "lacking"], "fhr: error: %(d)s/lacking.tsv: shard 2/2 lacks mesh 3"),
-    ("a row out of its shard", ["a1", "moved"], "fhr: error: %(d)s/moved.tsv:15: mesh 2 where shard 2/2 has mesh 3"),
+    ("a row out of its shard", ["a1", "moved"], "fhr: error: %(d)s/moved.tsv:16: mesh 2 where shard 2/2 has mesh 3"),
 ] + [("a valid row with field %d set" % k, ["a1", "valid%d" % k],
-      "fhr: error: %%(d)s/valid%d.tsv:15: a malformed row (empty field, a bad escape, or '-' missing after 'valid')" % k)
+      "fhr: error: %%(d)s/valid%d.tsv:16: a malformed row (empty field, a bad escape, or '-' missing after 'valid')" % k)
      for k in (4, 5, 6)])
 def test_oracle_fuzz_merge_errors(tables, case, files, message):
     """CLI-ORACLE-9: a merge of tables that are not one campaign's shards names the file and the mismatch."""

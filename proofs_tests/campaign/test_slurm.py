@@ -139,7 +139,7 @@ def test_a_slurm_job_array_gives_the_unsharded_table(cluster, tmp_path):
     merged = run([FHR, "oracle-fuzz", "--merge", *sorted(work.glob("shard-*.tsv")), "--table", work / "merged.tsv"])
     assert merged.returncode == whole.returncode, merged.stderr
     assert (work / "merged.tsv").read_bytes() == (work / "whole.tsv").read_bytes()
-    rows = (work / "whole.tsv").read_text().splitlines()[13:]
+    rows = (work / "whole.tsv").read_text().splitlines()[14:]
     assert len(rows) == 8 and all(row.split("\t")[7].startswith("l2 ") for row in rows)  # the maps' distortion
     assert merged.stdout.splitlines()[-1] == whole.stdout.splitlines()[-1] == "8 meshes, 0 failures"
 

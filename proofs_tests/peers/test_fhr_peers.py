@@ -79,10 +79,15 @@ def test_fhr_vertex_map_as_a_peer_is_judged(tmp_path):
 def test_oracle_fuzz_judges_per_vertex_maps(tmp_path):
     proc = subprocess.run([os.environ["FHR"], "oracle-fuzz", "--cmd", "%s {mesh} {out} --flip" % (PEERS / "fhr-vertex-map"),
                            "--kind", "vertex-map", "--topology", "closed", "--count", "2", "--keep", tmp_path / "kept",
-                           "--table", tmp_path / "table.tsv"], capture_output=True, text=True, cwd=tmp_path, timeout=600)
+                           "--table", tmp_path / "table.tsv", "--faces-min", "300"],
+                          capture_output=True, text=True, cwd=tmp_path, timeout=600)
     assert proc.returncode == 1, proc.stdout + proc.stderr
     assert proc.stdout.splitlines()[-1] == "2 meshes, 2 failures"
-    assert "# kind\tvertex-map\n" in (tmp_path / "table.tsv").read_text()
+    table = (tmp_path / "table.tsv").read_text()
+    assert "# kind\tvertex-map\n" in table and "# faces-min\t300\n" in table
+    # --faces-min: no mesh drawn or shrunk below 300 faces
+    sizes = [int(n) for n in re.findall(r"--faces (\d+)", table)]
+    assert len(sizes) == 4 and min(sizes) >= 300
     kept = tmp_path / "kept" / "mesh-0"
     assert {"mesh.off", "out", "smaller.off", "reason.txt"} <= {p.name for p in kept.iterdir()}
     assert (kept / "out" / "map.vmap").is_file()

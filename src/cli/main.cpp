@@ -61,6 +61,7 @@ usage:
   fhr oracle-fuzz --cmd 'PROGRAM {mesh} {out}' --count N [--family NAME|all] [--genus-max G]
                   [--holes-max H] [--components-max C] [--seed S] [--keep DIR] [--timeout SECONDS]
                   [--shard K/N'] [--table FILE] [--topology closed|disk|any] [--kind param|atlas|vertex-map]
+                  [--faces-min F]
       fuzz another implementation: N random meshes (of every embedded family, or of NAME;
       genus 0-G, default 2; 0-H boundary loops, default 5; 1-C components, default 3; H = 0,
       C = 1 or --topology closed: closed and connected only; --topology disk: disks), each run

@@ -117,10 +117,11 @@ private:
 using Recipe = generate::RandomMeshOptions;
 using generate::Family;
 
-/// The least face count of the recipe's family, genus, holes and components (its faces ignored):
-/// min_faces(recipe), made even without holes (a closed mesh has an even face count).
-std::size_t least_faces(const Recipe& r) {
-    const std::size_t least = generate::min_faces(r);
+/// The least face count of the recipe's family, genus, holes and components (its faces ignored),
+/// at least `faces_min` (`--faces-min`: the size the program works at): min_faces(recipe) or
+/// faces_min, made even without holes (a closed mesh has an even face count).
+std::size_t least_faces(const Recipe& r, std::size_t faces_min) {
+    const std::size_t least = std::max(generate::min_faces(r), faces_min);
     return least + (r.holes == 0 ? least % 2 : 0);
 }
 
@@ -151,6 +152,7 @@ struct Judging {
     double timeout = 60;
     OutputKind kind = OutputKind::param;
     Topology topology = Topology::any;
+    std::size_t faces_min = 0;  ///< `--faces-min`: no mesh drawn or shrunk below it
     /// The output's name in a run folder: the adapters of atlases write OBJ, of per-vertex maps a folder.
     const char* out_name() const {
         return kind == OutputKind::atlas ? "out.obj" : kind == OutputKind::vertex_map ? "out" : "out.fhrp";
@@ -164,7 +166,7 @@ struct Judging {
 /// recipes with no draw spent on holes or components), faces in [least_faces, least_faces + 600] (even without
 /// holes), a seed that `fhr generate --seed` accepts (< 2^63), for block noise 0, 0.05, 0.1 or
 /// 0.25; the family's knobs at their defaults.
-Recipe draw_recipe(std::uint64_t seed, std::uint64_t i, const Ranges& ranges, const Family* family) {
+Recipe draw_recipe(std::uint64_t seed, std::uint64_t i, const Ranges& ranges, const Family* family, std::size_t faces_min) {
     const std::uint64_t stream = SplitMix(seed).next() ^ (i * 0xD1B54A32D192ED03ull);
     SplitMix r(stream);
     Recipe o;
@@ -177,7 +179,7 @@ Recipe draw_recipe(std::uint64_t seed, std::uint64_t i, const Ranges& ranges, co
         o.holes = ranges.holes_min;
     if (ranges.components > 1) o.components = 1 + static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.components)));
     const std::uint64_t step = o.holes == 0 ? 2 : 1;  // F is even without holes
-    o.faces = least_faces(o) + step * r.below(extra_faces_max / step + 1);
+    o.faces = least_faces(o, faces_min) + step * r.below(extra_faces_max / step + 1);
     o.seed = r.next() >> 1;
     constexpr double noises[] = {0.0, 0.05, 0.1, 0.25};
     if (o.family == Family::block) o.noise = noises[r.below(4)];
@@ -343,19 +345,19 @@ bool smaller(const Recipe& a, const Recipe& b) {
 }
 
 /// The candidates tried from `r`, in order (see the file comment), each of the topology.
-std::vector<Recipe> shrink_candidates(const Recipe& r, Topology topology) {
+std::vector<Recipe> shrink_candidates(const Recipe& r, Topology topology, std::size_t faces_min) {
     std::vector<Recipe> c;
     // r with one of components, holes, genus lowered to v, when the generator can make it.
     const auto lowered = [&](int Recipe::*knob, int v) {
         Recipe x = r;
         x.*knob = v;
         if (x.holes == 0) x.faces -= x.faces % 2;
-        if (x.faces >= least_faces(x) && has_topology(x, topology)) c.push_back(x);
+        if (x.faces >= least_faces(x, faces_min) && has_topology(x, topology)) c.push_back(x);
     };
     for (int k = 1; k < r.components; ++k) lowered(&Recipe::components, k);
     for (int h = 0; h < r.holes; ++h) lowered(&Recipe::holes, h);
     for (int g = 0; g < r.genus; ++g) lowered(&Recipe::genus, g);
-    const std::size_t least = least_faces(r), excess = (r.faces - least) / 2;
+    const std::size_t least = least_faces(r, faces_min), excess = (r.faces - least) / 2;
     for (std::size_t faces : {least, least + 2 * (excess / 2), least + 2 * (excess * 3 / 4), r.faces - 2}) {
         if (faces >= r.faces || faces < least) continue;
         for (std::uint64_t k = 0; k < 3; ++k) {
@@ -384,7 +386,7 @@ Shrunk shrink(const Recipe& failing, const Outcome& failure, const Judging& how,
     bool progress = true;
     while (progress && best.runs < shrink_budget) {
         progress = false;
-        for (const Recipe& candidate : shrink_candidates(best.recipe, how.topology)) {
+        for (const Recipe& candidate : shrink_candidates(best.recipe, how.topology, how.faces_min)) {
             if (best.runs >= shrink_budget) break;
             if (!smaller(candidate, best.recipe)) continue;
             ++best.runs;
@@ -440,7 +442,7 @@ struct TempDir {
 /// (CLI-ORACLE-9); its failures and summary on stdout, the exit code of that run.
 int merge(const Args& args) {
     for (const char* name : {"cmd", "count", "family", "genus-max", "holes-max", "components-max", "seed", "keep", "timeout", "shard",
-                             "topology", "kind"})
+                             "topology", "kind", "faces-min"})
         if (args.get(name)) usage_error(std::string("--merge takes table files and --table only (not --") + name + ")");
     const oracle::Table merged = oracle::merge_tables(args.positional());
     std::uint64_t failures = 0;
@@ -460,7 +462,7 @@ int merge(const Args& args) {
 
 int run_oracle_fuzz(const std::vector<std::string>& argv) {
     const Args args(argv, {"merge"}, {"cmd", "count", "family", "genus-max", "holes-max", "components-max", "seed", "keep", "timeout",
-                                      "shard", "table", "topology", "kind"});
+                                      "shard", "table", "topology", "kind", "faces-min"});
     if (args.flag("merge")) return merge(args);
     if (!args.positional().empty()) usage_error("fhr oracle-fuzz takes no positional arguments (but table files with --merge)");
     const std::string cmd = args.require("cmd");
@@ -493,11 +495,13 @@ int run_oracle_fuzz(const std::vector<std::string>& argv) {
     const double timeout = args.real("timeout", 60.0, 0.1, 86400.0);
     how.cmd = cmd;
     how.timeout = timeout;
+    how.faces_min = static_cast<std::size_t>(args.integer("faces-min", 0, 0, 1'000'000));
     const oracle::Shard shard = args.get("shard") ? oracle::parse_shard(*args.get("shard")) : oracle::Shard{};
     std::string timeout_text;  // the shortest decimal that reads back as the timeout: 60 and 60.0 alike
     io::append_number(timeout_text, timeout);
     oracle::Table table{{cmd, std::to_string(count), std::to_string(seed), family_arg, std::to_string(ranges.genus),
-                         std::to_string(ranges.holes), std::to_string(ranges.components), timeout_text, topology_arg, kind_arg},
+                         std::to_string(ranges.holes), std::to_string(ranges.components), timeout_text, topology_arg, kind_arg,
+                         std::to_string(how.faces_min)},
                         shard,
                         {}};
 
@@ -505,7 +509,7 @@ int run_oracle_fuzz(const std::vector<std::string>& argv) {
     const fs::path run_dir = tmp.path / "run", shrink_dir = tmp.path / "shrink";
     std::uint64_t failures = 0;
     for (std::uint64_t i = shard.k - 1; i < count; i += shard.n) {
-        const Recipe recipe = draw_recipe(seed, i, ranges, family);
+        const Recipe recipe = draw_recipe(seed, i, ranges, family, how.faces_min);
         const Outcome outcome = judge(recipe, how, run_dir);
         oracle::TableRow row{i, generate::family_name(recipe.family), generate::generate_command(recipe), "", "", "", outcome.distortion};
         std::printf("mesh %llu: %s: ", static_cast<unsigned long long>(i), row.recipe.c_str());

@@ -40,8 +40,8 @@ Shard parse_shard(const std::string& text);
 
 /// The settings that decide the rows, in the table's order: the shards of one campaign have the
 /// same values (compared as written).
-inline constexpr const char* setting_keys[] = {"cmd",       "count",     "seed",           "family",  "genus-max",
-                                               "holes-max", "components-max", "timeout", "topology", "kind"};
+inline constexpr const char* setting_keys[] = {"cmd",       "count",          "seed",    "family",   "genus-max", "holes-max",
+                                               "components-max", "timeout", "topology", "kind", "faces-min"};
 
 struct TableRow {
     std::uint64_t index = 0;
