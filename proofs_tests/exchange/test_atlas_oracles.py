@@ -79,6 +79,19 @@ def test_fhr_textured_obj_of_a_genus_3_mesh_is_valid(tmp_path):
     assert_same_figures(ours, reference(path))
 
 
+# textured.obj lays each patch out in its domain triangle's own shape, all at one scale: each face
+# keeps the distortion it has in param.fhrp, and no two charts touch.
+def test_fhr_textured_obj_has_the_distortion_of_its_map(fandisk_run):
+    atlas = oracle(fandisk_run / "textured.obj")
+    param = json.loads(fhr("verify", fandisk_run / "param.fhrp", "--json").stdout)
+    for key in ("l2_stretch", "linf_stretch", "symmetric_dirichlet"):
+        assert atlas["distortion"][key] == pytest.approx(param["distortion"][key], rel=1e-9)
+    for key in ("p50", "p99", "p999", "max"):
+        assert atlas["distortion"]["anisotropy"][key] == pytest.approx(param["distortion"]["anisotropy"][key], rel=1e-6)
+    assert atlas["contacts"] == 0 and atlas["charts"] == param["domain"]["faces"]
+    assert 0 < atlas["packing_unit_square"] <= 1
+
+
 def planted(source, target, moves):
     """A copy of an OBJ atlas with some `vt` lines replaced: moves maps a 0-based vt to (u, v)."""
     lines, k = [], 0

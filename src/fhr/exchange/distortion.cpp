@@ -18,7 +18,6 @@ namespace {
 /// The Gram matrix [a·a, a·b; a·b, b·b] of a triangle's two edge vectors, as (E, F, G).
 struct Gram {
     double e, f, g;
-    double det() const { return e * g - f * f; }
 };
 
 Gram gram(const Vec3& a, const Vec3& b) { return {a.dot(a), a.dot(b), b.dot(b)}; }
@@ -26,7 +25,7 @@ Gram gram(const Vec3& a, const Vec3& b) { return {a.dot(a), a.dot(b), b.dot(b)};
 }  // namespace
 
 FaceStretch face_stretch(const Vec3& q0, const Vec3& q1, const Vec3& q2, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
-    // DIST-1: M = G_Q⁻¹ G_P; tr M = (g_Q e_P − 2 f_Q f_P + e_Q g_P) / det G_Q, det M = det G_P / det G_Q.
+    // DIST-1: M = G_Q⁻¹ G_P, its eigenvalues σ₁², σ₂².
     const Gram gq = gram(q1 - q0, q2 - q0), gp = gram(p1 - p0, p2 - p0);
     // Each area from the cross product: it keeps its accuracy where det G = |a|²|b|² − (a·b)² cancels.
     FaceStretch s;
@@ -34,11 +33,15 @@ FaceStretch face_stretch(const Vec3& q0, const Vec3& q1, const Vec3& q2, const V
     s.surface_area = 0.5 * (p1 - p0).cross(p2 - p0).norm();
     // DIST-2: exactly degenerate triangles (a rounded area can be 1e-16 for three collinear points).
     if (collinear(q0, q1, q2) || collinear(p0, p1, p2) || !(s.image_area > 0) || !(s.surface_area > 0)) return s;
-    const double det_q = 4 * s.image_area * s.image_area;
-    const double t = (gq.g * gp.e - 2 * gq.f * gp.f + gq.e * gp.g) / det_q;
+    // Each triangle in a frame of its own plane: edge a along x, edge b at (a·b/|a|, 2A/|a|). The
+    // map's matrix J = P Q⁻¹ is then upper triangular, and σ₁ = √(E² + H²) + √(F² + G²) with
+    // E, F = (j₁₁ ± j₂₂)/2, G = −H = j₁₂/2: a sum of two non-negative terms, accurate where σ₁ ≈ σ₂
+    // (where √(tr² − 4 det) of M = JᵀJ would lose half the digits to cancellation).
+    const double qa = std::sqrt(gq.e), qbx = gq.f / qa, qby = 2 * s.image_area / qa;
+    const double pa = std::sqrt(gp.e), pbx = gp.f / pa, pby = 2 * s.surface_area / pa;
+    const double j11 = pa / qa, j12 = (pbx - j11 * qbx) / qby, j22 = pby / qby;
     const double root_d = s.surface_area / s.image_area;  // σ₁σ₂ = √det M
-    const double disc = std::max(t * t - 4 * root_d * root_d, 0.0);
-    s.sigma1 = std::sqrt((t + std::sqrt(disc)) / 2);
+    s.sigma1 = std::hypot((j11 + j22) / 2, j12 / 2) + std::hypot((j11 - j22) / 2, j12 / 2);
     s.sigma2 = root_d / s.sigma1;
     s.degenerate = !(std::isfinite(s.sigma1) && std::isfinite(s.sigma2) && s.sigma2 > 0);
     return s;

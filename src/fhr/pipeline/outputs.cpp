@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <numeric>
 #include <optional>
 
 #include <fhr/core/detail/stopwatch.hpp>
@@ -59,25 +60,62 @@ void take_back_param_file(Parameterization& p, exchange::ParamFile f) {
 
 namespace {
 
-// The patches laid out as an atlas in [0, 1]²: patch i's triangle (equilateral, corners
-// e_0, e_1, e_2 at its lower left, lower right and top) in cell i of a G × G grid, with a margin;
-// the texture coordinate of corner c (3f + k) of T′.
+// The patches laid out as an atlas in [0, 1]²: patch i's domain triangle T_i laid flat in its own
+// 3D shape (side lengths kept), all at one scale, so that each face of T′ keeps in UV the
+// distortion it has in param.fhrp (spec/distortion.md: the same σ₁/σ₂, the same figures up to the
+// normalisation). The triangles' bounding boxes are packed in shelves (tallest first, each shelf
+// filled left to right up to the width of a square of their total area), with a gap of 2 % of the
+// tallest box between boxes, and the whole scaled into [0, 1]²: charts never touch. The texture
+// coordinate of corner c (3f + k) of T′ is β's point in its patch's laid-out triangle.
 class Atlas {
 public:
-    explicit Atlas(const exchange::ParamFile& file)
-        : file_(file), G_(static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(file.domain_faces.size()))))) {}
+    explicit Atlas(const exchange::ParamFile& file) : file_(file) {
+        const std::size_t m = file.domain_faces.size();
+        flat_.resize(m);
+        std::vector<double> width(m), height(m);
+        for (std::size_t d = 0; d < m; ++d) {
+            const Vec3 &a = file.domain_vertices[file.domain_faces[d][0]], &b = file.domain_vertices[file.domain_faces[d][1]],
+                       &c = file.domain_vertices[file.domain_faces[d][2]];
+            const double ab = (b - a).norm();
+            const double x = (c - a).dot(b - a) / ab, y = (b - a).cross(c - a).norm() / ab;
+            const double left = std::min(0.0, x);
+            flat_[d] = {io::Vec2(-left, 0), io::Vec2(ab - left, 0), io::Vec2(x - left, y)};
+            width[d] = std::max(ab, x) - left;
+            height[d] = y;
+        }
+        std::vector<std::size_t> order(m);
+        std::iota(order.begin(), order.end(), std::size_t{0});
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return height[i] > height[j]; });
+        const double gap = 0.02 * height[order.front()];
+        double area = 0;
+        for (std::size_t d = 0; d < m; ++d) area += (width[d] + gap) * (height[d] + gap);
+        const double shelf_width = std::max(std::sqrt(area), *std::max_element(width.begin(), width.end()) + gap);
+        origin_.resize(m);
+        double x = 0, y = 0, shelf_height = 0, extent = 0;
+        for (std::size_t d : order) {
+            if (x > 0 && x + width[d] > shelf_width) {
+                y += shelf_height + gap;
+                x = shelf_height = 0;
+            }
+            origin_[d] = io::Vec2(x, y);
+            x += width[d] + gap;
+            shelf_height = std::max(shelf_height, height[d]);
+            extent = std::max({extent, x, y + shelf_height});
+        }
+        scale_ = 1.0 / extent;
+    }
     io::Vec2 operator()(std::size_t c) const {
         const exchange::ParamFace& face = file_.surface_faces[c / 3];
         const auto& beta = face.beta[c % 3];
-        const double cell = 1.0 / static_cast<double>(G_), size = 0.9 * cell;
-        const io::Vec2 origin(static_cast<double>(face.patch % G_) * cell + 0.05 * cell, static_cast<double>(face.patch / G_) * cell + 0.05 * cell);
-        return origin + size * (beta[0] * corner_[0] + beta[1] * corner_[1] + beta[2] * corner_[2]);
+        const auto& t = flat_[face.patch];
+        return scale_ * (origin_[face.patch] + beta[0] * t[0] + beta[1] * t[1] + beta[2] * t[2]);
     }
 
 private:
     const exchange::ParamFile& file_;
-    std::size_t G_;
-    std::array<io::Vec2, 3> corner_{io::Vec2(0, 0), io::Vec2(1, 0), io::Vec2(0.5, std::sqrt(3.0) / 2)};
+    std::vector<std::array<io::Vec2, 3>> flat_;  // T_i laid flat, its box's lower left corner at 0
+    std::vector<io::Vec2> origin_;                // where that box goes, before scaling
+    double scale_ = 1;
 };
 
 // The percentage as a file-name part: 5 -> "5", 2.5 -> "2.5".
