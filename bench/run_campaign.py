@@ -80,6 +80,12 @@ def read_table(path):
     return rows
 
 
+def adapter_env():
+    """The adapters' own time limit ends them, and the programs they start in sessions of their own,
+    before oracle-fuzz's (which kills the adapter's process group only) would."""
+    return dict(os.environ, FHR_PEER_TIMEOUT=str(max(OPTIONS.timeout - 15, OPTIONS.timeout / 2)))
+
+
 def fuzz(program, kind, topology, family, folder, run):
     """One oracle-fuzz run of `program` over `family`; the program's own seconds summed in a log."""
     os.makedirs(folder, exist_ok=True)
@@ -92,7 +98,7 @@ def fuzz(program, kind, topology, family, folder, run):
     proc = subprocess.run([FHR, "oracle-fuzz", "--cmd", cmd, "--count", str(OPTIONS.count), "--seed", str(OPTIONS.seed),
                            "--family", family, "--topology", topology, "--kind", kind, "--timeout", str(OPTIONS.timeout),
                            "--keep", os.path.join(folder, "kept" if run == 1 else "kept-again"), "--table", table],
-                          capture_output=True, text=True, cwd=folder)
+                          capture_output=True, text=True, cwd=folder, env=adapter_env())
     wall = time.monotonic() - start
     if proc.returncode not in (0, 1):
         raise SystemExit("run_campaign: oracle-fuzz failed for %s/%s: %s" % (program, family, proc.stderr.strip()))
@@ -116,7 +122,7 @@ def rerun(program, kind, kept, failure_kind, times):
     os.chmod(os.path.join(kept, "rerun.sh"), 0o755)
     same = 0
     for _ in range(times):
-        proc = subprocess.run(["sh", os.path.join(kept, "rerun.sh")], capture_output=True, text=True, timeout=OPTIONS.timeout * 4)
+        proc = subprocess.run(["sh", os.path.join(kept, "rerun.sh")], capture_output=True, text=True, env=adapter_env())
         first = re.search(r"INVALID: ((PARAM|ATLAS|VMAP)-\d+)", proc.stdout)
         outcome = first.group(1) if first else ("exit %d" % proc.returncode if proc.returncode != 0 else "valid")
         same += outcome == failure_kind or (failure_kind.startswith("exit") and outcome == failure_kind)
@@ -193,7 +199,7 @@ def main():
     parser.add_argument("out")
     parser.add_argument("--count", type=int, default=3)
     parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--timeout", type=float, default=120)
+    parser.add_argument("--timeout", type=float, default=60)
     parser.add_argument("--programs", nargs="+")
     parser.add_argument("--families", nargs="+", default=FAMILIES)
     parser.add_argument("-j", type=int, default=os.cpu_count())
