@@ -84,10 +84,10 @@ void check_rate_distortion(const std::string& svg, const std::string& report) {
 }
 
 // CLI-RUN-1's textured.obj: T′ with one vt per face corner, the patches laid out as an atlas. Each
-// patch's corners (β = e_c exactly, MAP-5) lie at the lower left, lower right and top of an
-// equilateral triangle with a horizontal base, one size for all; every corner of a face of the
-// patch lies at its β in that triangle; and the n triangles lie in distinct cells of a
-// ⌈√n⌉ × ⌈√n⌉ grid of [0, 1]², each clear of its cell's borders.
+// patch's corners (β = e_c exactly, MAP-5) form its domain triangle in its own shape, at one scale
+// for all (side lengths in UV over side lengths in 3D: one number, to 1e-9), counter-clockwise;
+// every corner of a face of the patch lies at its β in that triangle; all of it in [0, 1]²; and no
+// two patches' triangles have intersecting bounding boxes (the charts never touch).
 void check_atlas(const std::string& obj, const fhr::exchange::ParamFile& param) {
     using UV = std::array<double, 2>;
     std::vector<UV> vt;
@@ -124,29 +124,32 @@ void check_atlas(const std::string& obj, const fhr::exchange::ParamFile& param) 
                     corners_seen[param.surface_faces[f].patch] |= 1 << k;
                 }
             }
-    const double side = corner[0][1][0] - corner[0][0][0];
-    const auto G = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(n))));
-    CHECK(side > 0);
-    CHECK(side <= 1.0 / static_cast<double>(G));
     auto near = [](double a, double b) { return std::abs(a - b) <= 1e-12; };
-    std::set<std::size_t> cells;
-    std::size_t bad_triangles = 0, bad_corners = 0;
+    auto length = [](const UV& a, const UV& b) { return std::hypot(b[0] - a[0], b[1] - a[1]); };
+    std::size_t bad_triangles = 0, bad_corners = 0, touching = 0;
+    const auto& dv = param.domain_vertices;
+    double scale = 0;
+    std::vector<std::array<double, 4>> box(n);  // x0, y0, x1, y1
     for (std::size_t i = 0; i < n; ++i) {
         const auto& q = corner[i];
-        bad_triangles += corners_seen[i] != 7 || !near(q[1][0] - q[0][0], side) || !near(q[1][1], q[0][1]) ||
-                         !near(q[2][0], q[0][0] + side / 2) || !near(q[2][1], q[0][1] + side * std::sqrt(3.0) / 2);
-        std::set<std::size_t> in;
+        const auto& d = param.domain_faces[i];
+        bad_triangles += corners_seen[i] != 7;
+        const double ccw = (q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0]);
+        bad_triangles += !(ccw > 0);
+        for (int e = 0; e < 3; ++e) {
+            const double ratio = length(q[e], q[(e + 1) % 3]) / (dv[d[(e + 1) % 3]] - dv[d[e]]).norm();
+            if (scale == 0) scale = ratio;
+            bad_triangles += std::abs(ratio / scale - 1) > 1e-9;
+        }
+        box[i] = {1, 1, 0, 0};
         for (const UV& p : q) {
             bad_triangles += !(p[0] >= 0 && p[0] <= 1 && p[1] >= 0 && p[1] <= 1);
-            const std::size_t x = std::min(G - 1, static_cast<std::size_t>(p[0] * G)), y = std::min(G - 1, static_cast<std::size_t>(p[1] * G));
-            in.insert(y * G + x);
-            // Clear of its cell's borders (charts that touch bleed into each other when rendered).
-            const double dx = p[0] * static_cast<double>(G) - static_cast<double>(x), dy = p[1] * static_cast<double>(G) - static_cast<double>(y);
-            bad_triangles += !(dx > 0.01 && dx < 0.99 && dy > 0.01 && dy < 0.99);
+            box[i] = {std::min(box[i][0], p[0]), std::min(box[i][1], p[1]), std::max(box[i][2], p[0]), std::max(box[i][3], p[1])};
         }
-        bad_triangles += in.size() != 1;
-        cells.insert(*in.begin());
     }
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n; ++j)
+            touching += box[i][0] <= box[j][2] && box[j][0] <= box[i][2] && box[i][1] <= box[j][3] && box[j][1] <= box[i][3];
     for (std::size_t f = 0; f < face_vt.size(); ++f) {
         const auto& q = corner[param.surface_faces[f].patch];
         for (int c = 0; c < 3; ++c) {
@@ -156,9 +159,10 @@ void check_atlas(const std::string& obj, const fhr::exchange::ParamFile& param) 
                 bad_corners += !near(uv[k], q[0][k] + beta[1] * (q[1][k] - q[0][k]) + beta[2] * (q[2][k] - q[0][k]));
         }
     }
+    CHECK(scale > 0);
     CHECK(bad_triangles == 0);
     CHECK(bad_corners == 0);
-    CHECK(cells.size() == n);
+    CHECK(touching == 0);
 }
 
 }  // namespace

@@ -54,6 +54,14 @@ struct Tally {
         seen.boundary_bends += p.boundary_bends;
         seen.boundary_edges += p.boundary_edges;
     }
+    void merge(const Tally& o) {
+        pairs += o.pairs;
+        unreachable += o.unreachable;
+        paths += o.paths;
+        max_dev = std::max(max_dev, o.max_dev);
+        if (violation.empty()) violation = o.violation;
+        add(o.seen);
+    }
 };
 
 /// GEO-10/GEO-4: the distances from s to all vertices against CGAL's, and the paths to the
@@ -64,7 +72,12 @@ std::vector<double> compare_with_cgal(const TriMesh& m, VertexId s, Tally& tally
     const std::vector<double> oracle = *cgal_distances(m, s);
     for (VertexId t : m.vertices()) {
         ++tally.pairs;
-        tally.max_dev = std::max(tally.max_dev, rel_dev(g.distance(t), oracle[t.idx()]));
+        double dev = rel_dev(g.distance(t), oracle[t.idx()]);
+        // CGAL 5.5 can report too short a distance from a source on the border (CGAL issue #6681;
+        // a mesh of genus 1 with 3 holes gave 3.2641 where fhr's path, and a Steiner graph of 16
+        // points per edge, give 3.3166): there d(s, t) is taken from t, CGAL's source off the border.
+        if (dev > 1e-9 && m.is_boundary(s) && !m.is_boundary(t)) dev = rel_dev(g.distance(t), (*cgal_distances(m, t))[s.idx()]);
+        tally.max_dev = std::max(tally.max_dev, dev);
         tally.unreachable += std::isinf(oracle[t.idx()]);
     }
     for (VertexId t : check) {
@@ -93,9 +106,12 @@ TEST_CASE("GEO-10 and GEO-4: exact distances equal CGAL's on random meshes with 
         const VertexId any(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(m.n_vertices())));
         std::vector<VertexId> all;
         for (VertexId v : m.vertices()) all.push_back(v);
-        for (VertexId s : {on_boundary, any}) compare_with_cgal(m, s, tally, all);
-        RC_ASSERT(tally.max_dev <= 1e-9);
-        RC_ASSERT(tally.violation == "");
+        // This mesh's own deviation (the tally keeps every case's, and would fail each shrink).
+        Tally mine;
+        for (VertexId s : {on_boundary, any}) compare_with_cgal(m, s, mine, all);
+        tally.merge(mine);
+        RC_ASSERT(mine.max_dev <= 1e-9);
+        RC_ASSERT(mine.violation == "");
     });
     const std::string max_dev = sci(tally.max_dev);
     CAPTURE(tally.pairs, tally.unreachable, tally.paths, max_dev, tally.seen.interior, tally.seen.boundary, tally.seen.boundary_bends,
