@@ -73,7 +73,7 @@ std::vector<double> compare_with_cgal(const TriMesh& m, VertexId s, Tally& tally
     for (VertexId t : m.vertices()) {
         ++tally.pairs;
         double dev = rel_dev(g.distance(t), oracle[t.idx()]);
-        // CGAL 5.5 can report too short a distance from a source on the border (CGAL issue #6681;
+        // CGAL 5.5 can report too short a distance from a source on the border (github.com/CGAL/cgal/issues/6681;
         // a mesh of genus 1 with 3 holes gave 3.2641 where fhr's path, and a Steiner graph of 16
         // points per edge, give 3.3166): there d(s, t) is taken from t, CGAL's source off the border.
         if (dev > 1e-9 && m.is_boundary(s) && !m.is_boundary(t)) dev = rel_dev(g.distance(t), (*cgal_distances(m, t))[s.idx()]);
