@@ -66,7 +66,8 @@ namespace {
 // normalisation). The triangles' bounding boxes are packed in shelves (tallest first, each shelf
 // filled left to right up to the width of a square of their total area), with a gap of 2 % of the
 // tallest box between boxes, and the whole scaled into [0, 1]²: charts never touch. The texture
-// coordinate of corner c (3f + k) of T′ is β's point in its patch's laid-out triangle.
+// coordinate of corner c (3f + k) of T′ is β's point in its patch's laid-out triangle, whose
+// longest side lies along x (its box then has twice its area).
 class Atlas {
 public:
     explicit Atlas(const exchange::ParamFile& file) : file_(file) {
@@ -74,13 +75,20 @@ public:
         flat_.resize(m);
         std::vector<double> width(m), height(m);
         for (std::size_t d = 0; d < m; ++d) {
-            const Vec3 &a = file.domain_vertices[file.domain_faces[d][0]], &b = file.domain_vertices[file.domain_faces[d][1]],
-                       &c = file.domain_vertices[file.domain_faces[d][2]];
+            // The longest side along x: the apex then lies over it, and the box is twice the area.
+            const auto& t = file.domain_faces[d];
+            int k = 0;
+            for (int e = 1; e < 3; ++e)
+                if ((file.domain_vertices[t[(e + 1) % 3]] - file.domain_vertices[t[e]]).squaredNorm() >
+                    (file.domain_vertices[t[(k + 1) % 3]] - file.domain_vertices[t[k]]).squaredNorm())
+                    k = e;
+            const Vec3 &a = file.domain_vertices[t[k]], &b = file.domain_vertices[t[(k + 1) % 3]], &c = file.domain_vertices[t[(k + 2) % 3]];
             const double ab = (b - a).norm();
             const double x = (c - a).dot(b - a) / ab, y = (b - a).cross(c - a).norm() / ab;
-            const double left = std::min(0.0, x);
-            flat_[d] = {io::Vec2(-left, 0), io::Vec2(ab - left, 0), io::Vec2(x - left, y)};
-            width[d] = std::max(ab, x) - left;
+            flat_[d][k] = io::Vec2(0, 0);
+            flat_[d][(k + 1) % 3] = io::Vec2(ab, 0);
+            flat_[d][(k + 2) % 3] = io::Vec2(std::clamp(x, 0.0, ab), y);  // over the base (x is there up to rounding)
+            width[d] = ab;
             height[d] = y;
         }
         std::vector<std::size_t> order(m);
