@@ -99,9 +99,9 @@ struct Ring {
     std::uint32_t face(std::size_t i) const { return faces[i % faces.size()]; }
 };
 
-/// The cyclic position of a tangent around a point of D: `sector` counts the faces and the edge
-/// directions between them counter-clockwise (spec/vertex_map.md VMAP-8); two tangents of one
-/// face sector are ordered by their orientation in that face.
+/// The direction in which an edge's image leaves the image of one of its ends: the first piece of
+/// the image, as a face of D holding it and its other end. Checker::sector gives its cyclic
+/// position around the point (VMAP-8), Checker::convex the turn between two of them (VMAP-7).
 struct Tangent {
     std::uint32_t face = none;  // a face of D holding the first piece
     Point q;                    // the first piece's other end
