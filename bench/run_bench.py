@@ -33,7 +33,10 @@ stretch goals as `goal: stretch: NAME: ...: met|gap Z UNIT` (targets beyond the 
 conditions of success). Both are written with the tables to out/bench/results.json (generated,
 never committed; out/ is git-ignored); a mode replaces only its own goals there.
 
-Usage: run_bench.py BUILD_DIR [scaling|oracle] [--runs N]"""
+`page` mode: the run's page (spec/page.md PAGE-8) of the fandisk and the horse in headless
+Chromium: size and first frame against the budgets.
+
+Usage: run_bench.py BUILD_DIR [scaling|oracle|page] [--runs N]"""
 import argparse
 import json
 import math
@@ -416,6 +419,37 @@ def bench_oracle(build, runs, goals, results):
     shutil.rmtree(out, ignore_errors=True)
 
 
+# The run's page (spec/page.md PAGE-8): its size, and the milliseconds from navigation start to
+# the first frame with T drawn in headless Chromium (web/test/bench_page.mjs), median of `runs`.
+PAGE_BUDGETS = {"fandisk": (5.0, 1.0), "horse": (25.0, 3.0)}  # MB, s
+
+
+def bench_page(build, runs, goals, results):
+    fhr = os.path.join(build, "src", "fhr")
+    horse = os.path.join(SHARED_MESHES, "horse.off")
+    if not os.path.isfile(horse):
+        raise SystemExit("bench page: %s is missing (the horse's page is one of PAGE-8's budgets)" % horse)
+    pages = {}
+    for name, mesh, faces, extra in [("fandisk", os.path.join(CGAL_MESHES, "fandisk.off"), 114, []),
+                                     ("horse", horse, 1000, ["--up", "z"])]:
+        out = os.path.join(OUT, "page", name)
+        subprocess.run([fhr, "run", mesh, "--faces", str(faces), "--levels", "3", "--keep", "5,20", "--html", *extra,
+                        "--out", out], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        pages[name] = os.path.join(out, "index.html")
+    r = subprocess.run(["node", os.path.join(ROOT, "web", "test", "bench_page.mjs"), str(runs), *pages.values()],
+                       check=True, capture_output=True, text=True)
+    times = json.loads(r.stdout.strip().splitlines()[-1])
+    print("== the run's page in headless Chromium (SwiftShader): size, and navigation start to T drawn; median of %d" % runs)
+    for name, page in pages.items():
+        megabytes = os.path.getsize(page) / 1e6
+        seconds = statistics.median(times[page]) / 1000
+        results["page"][name] = {"megabytes": megabytes, "first_frame_seconds": seconds, "runs": times[page]}
+        print("  %-8s %7.2f MB %7.3f s" % (name, megabytes, seconds))
+        size_goal, time_goal = PAGE_BUDGETS[name]
+        goal(goals, "%s page size" % name, megabytes, "MB", size_goal)
+        goal(goals, "%s page, navigation start to T drawn" % name, seconds, "s", time_goal)
+
+
 # The per-vertex map oracle (spec/vertex_map.md, rule adjacent): seconds per 10^6 vertices of T.
 VERTEX_MAP_SECONDS = 10.0
 
@@ -459,19 +493,19 @@ def bench_vertex_map(fhr, mesh, run, runs, goals, results):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("build")
-    parser.add_argument("mode", nargs="?", choices=["meshes", "scaling", "oracle"], default="meshes")
+    parser.add_argument("mode", nargs="?", choices=["meshes", "scaling", "oracle", "page"], default="meshes")
     parser.add_argument("--runs", type=int, help="fhr runs per mesh (default 5; scaling 3)")
     options = parser.parse_args()
     runs = options.runs or (5 if options.mode == "meshes" else 3)
     path = os.path.join(OUT, "results.json")
     os.makedirs(OUT, exist_ok=True)
-    results = {"goals": [], "meshes": {}, "scaling": {}, "oracle": {}}
+    results = {"goals": [], "meshes": {}, "scaling": {}, "oracle": {}, "page": {}}
     if os.path.isfile(path):
         with open(path) as f:
             results.update(json.load(f))
     goals = []
     results[options.mode] = {}
-    {"meshes": bench_meshes, "scaling": bench_scaling, "oracle": bench_oracle}[options.mode](options.build, runs, goals, results)
+    {"meshes": bench_meshes, "scaling": bench_scaling, "oracle": bench_oracle, "page": bench_page}[options.mode](options.build, runs, goals, results)
     names = {g["name"] for g in goals}
     results["goals"] = [g for g in results["goals"] if g["name"] not in names] + goals
     with open(path, "w") as f:

@@ -519,3 +519,32 @@ def test_verify_vertex_map_on_arrays_and_files(fandisk_run, tmp_path):
     assert broken["first_failure"] == "VMAP-2" and broken["checks"][0]["vertex"] == 5
     with pytest.raises(ValueError, match="weights must have shape"):
         fhr.verify_vertex_map(V, F, DV, DF, faces, weights[:-1])
+
+
+# PY-8
+def page_data(path):
+    """The JSON document a page embeds (spec/page.md PAGE-3)."""
+    html = Path(path).read_text(encoding="utf-8")
+    start = html.index('<script id="fhr-data" type="application/json">') + len('<script id="fhr-data" type="application/json">')
+    data = json.loads(html[start:html.index("</script>", start)])
+    del data["timings"]
+    del data["report"]["input"]["path"]
+    return data
+
+
+def test_write_html_is_the_page_of_fhr_run(fandisk, tmp_path):
+    if not fhr.page_available():
+        pytest.fail("this build holds no page: ./run configures it with -Dpage=enabled")
+    out = tmp_path / "cli"
+    cli("run", FANDISK, "--faces", 114, "--levels", 2, "--keep", 5, "--html", "--out", out)
+    V, F = fandisk
+    p = fhr.parameterize(V, F, faces=114, levels=2, keep=[5])
+    p.write_html(str(tmp_path / "fandisk.html"))
+    python, command = page_data(tmp_path / "fandisk.html"), page_data(out / "index.html")
+    assert python["format"] == "fhr-page 1" and python["title"] == "fandisk"
+    assert python == command
+    with pytest.raises(ValueError, match="up must be"):
+        p.write_html(str(tmp_path / "x.html"), up="w")
+    with pytest.raises(ValueError, match="at least 1000 faces"):
+        p.write_html(str(tmp_path / "x.html"), page_faces=10)
+    assert not (tmp_path / "x.html").exists()

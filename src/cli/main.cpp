@@ -43,13 +43,15 @@ usage:
       (K = 1.06, grown until the result is certified): length, points, K, windows
   fhr run MESH (--faces N | --domain D.off --correspondence FILE) --out DIR
           [--weights shape-preserving|mean-value|uniform] [--solver sparse-lu|bicgstab]
-          [--paths keep|geodesic] [--levels J [--keep P,Q,...]] [--figures [--up x|y|z]]
+          [--paths keep|geodesic] [--levels J [--keep P,Q,...]] [--figures] [--html [--page-faces N]] [--up x|y|z]
           [--corner-angle DEG] [--threads N]
       §2–§4 end to end (--paths keep, the default: D is kept, edges whose geodesics conflict
       get restricted shortest paths; geodesic: the paper's geodesics only, D changed where they conflict): writes DIR/domain.off, geodesics.obj, refined.ply, param.fhrp,
       textured.obj, report.json, timings.json; with --levels also §5's remesh_LJ.off and
       wavelet_keepP.off (the largest P % of the wavelet coefficients); with --figures DIR/figures/: the paper's
-      Figures 6-9 as PNG, patches and the rate-distortion plot as SVG; exit 3 if §3 cannot partition, 4 if not certified
+      Figures 6-9 as PNG, patches and the rate-distortion plot as SVG; with --html DIR/index.html: every
+      stage in one interactive page that opens from file:// (spec/page.md), T′ drawn as is up to N faces
+      (2,000,000), beyond that a display copy; exit 3 if §3 cannot partition, 4 if not certified
   fhr verify FILE [--mesh INPUT] [--json [--list]] [--kind param|atlas] [--paper] [--no-mirror] [--strict]
       the oracle: check a `fhr-param 1` file against PARAM-1..11 (spec/param.md), or a UV atlas (OBJ
       with vt, PLY with u v or texcoord) against ATLAS-1..8 (spec/atlas.md), the kind decided by

@@ -2,6 +2,7 @@
 // write its outputs and report (spec/cli.md CLI-RUN-*), print the summary; progress on stderr.
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <optional>
 
 #include <fhr/core/detail/stopwatch.hpp>
@@ -12,6 +13,7 @@
 #include <fhr/io/correspondence.hpp>
 #include <fhr/io/read.hpp>
 #include <fhr/pipeline/outputs.hpp>
+#include <fhr/pipeline/page.hpp>
 #include <fhr/pipeline/run.hpp>
 #include "cli/common.hpp"
 
@@ -19,7 +21,7 @@ namespace fhr::cli {
 
 int run_run(const std::vector<std::string>& argv) {
     // Parse.
-    const Args args(argv, {"figures"}, {"faces", "domain", "correspondence", "out", "weights", "solver", "up", "levels", "keep", "paths", "corner-angle", "threads"});
+    const Args args(argv, {"figures", "html"}, {"faces", "domain", "correspondence", "out", "weights", "solver", "up", "levels", "keep", "paths", "corner-angle", "threads", "page-faces"});
     const std::string& mesh_path = args.single_positional("MESH");
     const std::string out = args.require("out");
     const bool by_faces = args.get("faces").has_value(), by_domain = args.get("domain").has_value();
@@ -47,6 +49,10 @@ int run_run(const std::vector<std::string>& argv) {
             at = comma + 1;
         }
     }
+    if (args.get("page-faces") && !args.flag("html")) usage_error("--page-faces N needs --html");
+    if (args.flag("html") && !pipeline::page_available())
+        usage_error("--html: this fhr was built without its page; install web/'s npm packages (npm ci --prefix web, "
+                    "as ./run does) and reconfigure with -Dpage=enabled");
     const std::string up = args.get("up").value_or("y");
     if (up != "x" && up != "y" && up != "z") usage_error("--up must be x, y or z, not '" + up + "'");
     // --threads N: the pool that runs the independent tasks (0: as many as the hardware has); the
@@ -99,10 +105,18 @@ int run_run(const std::vector<std::string>& argv) {
     input.domain_faces_requested = result.domain_faces_requested;
 
     // Write.
-    pipeline::write_outputs(out, input, p, result.oracle, timings, method, wavelets, written);
+    const pipeline::RunTexts texts = pipeline::write_outputs(out, input, p, result.oracle, timings, method, wavelets, written);
+    std::vector<pipeline::RateStep> rate;  // §6's curve, for the figures and the page
+    if (wavelets && (args.flag("figures") || args.flag("html"))) rate = pipeline::rate_steps(T, p.partition.domain.mesh, *wavelets);
     if (args.flag("figures")) {
-        pipeline::write_figures(out, T, p, up[0] - 'x', wavelets);
+        pipeline::write_figures(out, T, p, up[0] - 'x', wavelets, rate);
         method.progress("figures: " + out + "/figures/");
+    }
+    if (args.flag("html")) {
+        const std::string name = std::filesystem::path(mesh_path).stem().string();
+        const auto display = static_cast<std::size_t>(args.integer("page-faces", pipeline::page_display_faces, 1000, INT64_MAX));
+        pipeline::write_page(out + "/index.html", T, p, {name, texts.report, texts.timings, up[0] - 'x', wavelets, std::move(rate), display});
+        method.progress("page: " + out + "/index.html");
     }
 
     // Print.

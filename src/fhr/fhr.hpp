@@ -45,6 +45,7 @@
 #include <fhr/partition/partition.hpp>
 #include <fhr/partition/patches.hpp>
 #include <fhr/pipeline/outputs.hpp>
+#include <fhr/pipeline/page.hpp>
 #include <fhr/pipeline/pipeline.hpp>
 #include <fhr/pipeline/run.hpp>
 #include <fhr/render/figures.hpp>

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -258,6 +259,13 @@ void translate(std::exception_ptr error) {
     }
 }
 
+// What report.json says of the input of a run made from arrays.
+pipeline::InputInfo input_info(const Result& r) {
+    return {.path = "(arrays)", .vertices = r.T().n_vertices(), .faces = r.T().n_faces(), .genus = genus(r.T()),
+            .boundary_loops = boundary_loops(r.T()).size(), .components = connected_components(r.T()).count,
+            .domain_faces_asked = r.run().domain_faces_asked, .domain_faces_requested = r.run().domain_faces_requested};
+}
+
 }  // namespace
 }  // namespace fhr::python
 
@@ -268,6 +276,8 @@ PYBIND11_MODULE(_fhr, m) {
     m.attr("__version__") = std::string(fhr::version);
     py::register_exception_translator(&translate);
 
+    m.def("page_available", &pipeline::page_available,
+          "page_available() -> bool: whether this build holds the run's page (Parameterization.write_html; meson option page).");
     m.def("read_mesh", [](const std::string& path) { return mesh_arrays(io::read_mesh(path)); }, py::arg("path"),
           "read_mesh(path) -> (V, F): a closed, connected triangle mesh (.off, .obj, .ply, .stl) through every "
           "input rule of spec/mesh.md. V: (n, 3) float64, F: (m, 3) int64.");
@@ -455,11 +465,7 @@ PYBIND11_MODULE(_fhr, m) {
         .def("write_param", [](const Result& r, const std::string& path) { exchange::write_param(path, r.file()); },
              py::arg("path"), "write_param(path): the `fhr-param 1` file (spec/param.md), as `fhr run` writes it.")
         .def("write", [](const Result& r, const std::string& dir, bool figures) {
-                const pipeline::InputInfo input{.path = "(arrays)", .vertices = r.T().n_vertices(), .faces = r.T().n_faces(),
-                                                .genus = genus(r.T()), .boundary_loops = boundary_loops(r.T()).size(),
-                                                .components = connected_components(r.T()).count,
-                                                .domain_faces_asked = r.run().domain_faces_asked,
-                                                .domain_faces_requested = r.run().domain_faces_requested};
+                const pipeline::InputInfo input = input_info(r);
                 const wavelet::WaveletResult* wavelets = r.run().wavelets ? &*r.run().wavelets : nullptr;
                 py::gil_scoped_release unlocked;
                 pipeline::write_outputs(dir, input, r.p(), r.run().oracle, r.timings, r.options, wavelets);
@@ -467,7 +473,22 @@ PYBIND11_MODULE(_fhr, m) {
             }, py::arg("dir"), py::arg("figures") = false,
             "write(dir, figures=False): all of `fhr run`'s outputs into dir (spec/cli.md CLI-RUN-*): domain.off, "
             "geodesics.obj, refined.ply, param.fhrp, textured.obj, report.json, timings.json, §5's meshes; with "
-            "figures, figures/ as `fhr run --figures` (z up).");
+            "figures, figures/ as `fhr run --figures` (z up).")
+        .def("write_html", [](const Result& r, const std::string& path, const std::string& up, std::size_t page_faces) {
+                if (up != "x" && up != "y" && up != "z") throw InvalidInput("", 0, "up must be 'x', 'y' or 'z', not '" + up + "'");
+                const pipeline::InputInfo input = input_info(r);
+                const wavelet::WaveletResult* wavelets = r.run().wavelets ? &*r.run().wavelets : nullptr;
+                py::gil_scoped_release unlocked;
+                pipeline::PageContent content{.title = std::filesystem::path(path).stem().string(),
+                                              .report_json = pipeline::report_json(input, r.p(), r.run().oracle, r.options, wavelets),
+                                              .timings_json = pipeline::timings_json(r.timings), .up_axis = up[0] - 'x',
+                                              .wavelets = wavelets, .rate = {}, .display_faces = page_faces};
+                if (wavelets) content.rate = pipeline::rate_steps(r.T(), r.p().partition.domain.mesh, *wavelets);
+                pipeline::write_page(path, r.T(), r.p(), content);
+            }, py::arg("path"), py::arg("up") = "y", py::arg("page_faces") = pipeline::page_display_faces,
+            "write_html(path, up='y', page_faces=2000000): the run's interactive page, as `fhr run --html` writes it "
+            "(spec/page.md), into the file path; T′ drawn as is up to page_faces faces, beyond a display copy. "
+            "ValueError when this build holds no page (meson option page).");
 
     m.def(
         "parameterize",

@@ -91,6 +91,12 @@ void JsonWriter::write_string(std::string_view s) {
     out_ += '"';
 }
 
+JsonWriter& JsonWriter::raw(std::string_view json) {
+    element_start();
+    out_ += json;
+    return *this;
+}
+
 JsonWriter& JsonWriter::value(double x) {
     if (!std::isfinite(x)) return null();
     element_start();

@@ -149,19 +149,12 @@ void write_wavelet_report(io::JsonWriter& j, const wavelet::WaveletResult& w) {
     j.end_array().end_object();
 }
 
-/// A patch and its faces' anisotropy σ₁/σ₂ (DIST-1, UV in its domain triangle onto T′).
-struct PatchAnisotropy {
-    std::uint32_t patch;
-    double max;
-    std::uint64_t above_10;
-};
+}  // namespace
 
-/// σ₁/σ₂ of every face of the final T′ (DIST-1: its image in its domain triangle onto its 3D
-/// triangle, by the oracle's own code), 0 for a degenerate face.
-std::vector<double> face_anisotropy(const Parameterization& p) {
+std::vector<exchange::FaceStretch> face_stretches(const Parameterization& p) {
     const TriMesh& D = p.partition.domain.mesh;
     const std::vector<Triangle> domain_faces = D.triangles();  // the corner order of the β (param.fhrp)
-    std::vector<double> ratio(p.refined_faces.size(), 0);
+    std::vector<exchange::FaceStretch> stretches(p.refined_faces.size());
     for (std::size_t f = 0; f < p.refined_faces.size(); ++f) {
         const Triangle& d = domain_faces[p.face_patch[f]];
         std::array<Vec3, 3> q;
@@ -169,10 +162,27 @@ std::vector<double> face_anisotropy(const Parameterization& p) {
             q[c] = p.face_beta[f][c][0] * D.position(VertexId(d[0])) + p.face_beta[f][c][1] * D.position(VertexId(d[1])) +
                    p.face_beta[f][c][2] * D.position(VertexId(d[2]));
         const Triangle& t = p.refined_faces[f];
-        const exchange::FaceStretch s = exchange::face_stretch(q[0], q[1], q[2], p.refined_positions[t[0]],
-                                                               p.refined_positions[t[1]], p.refined_positions[t[2]]);
-        if (!s.degenerate) ratio[f] = s.sigma1 / s.sigma2;
+        stretches[f] = exchange::face_stretch(q[0], q[1], q[2], p.refined_positions[t[0]], p.refined_positions[t[1]],
+                                              p.refined_positions[t[2]]);
     }
+    return stretches;
+}
+
+namespace {
+
+/// A patch and its faces' anisotropy σ₁/σ₂ (DIST-1, UV in its domain triangle onto T′).
+struct PatchAnisotropy {
+    std::uint32_t patch;
+    double max;
+    std::uint64_t above_10;
+};
+
+/// σ₁/σ₂ of every face of the final T′ (DIST-1), 0 for a degenerate face.
+std::vector<double> face_anisotropy(const Parameterization& p) {
+    const std::vector<exchange::FaceStretch> stretches = face_stretches(p);
+    std::vector<double> ratio(stretches.size(), 0);
+    for (std::size_t f = 0; f < stretches.size(); ++f)
+        if (!stretches[f].degenerate) ratio[f] = stretches[f].sigma1 / stretches[f].sigma2;
     return ratio;
 }
 
@@ -193,8 +203,10 @@ std::vector<PatchAnisotropy> worst_patches(const Parameterization& p, std::size_
     return patches;
 }
 
-void write_report(const std::string& path, const InputInfo& input, const Parameterization& p,
-                  const exchange::VerifyReport& oracle, const Options& options, const wavelet::WaveletResult* wavelets) {
+}  // namespace
+
+std::string report_json(const InputInfo& input, const Parameterization& p, const exchange::VerifyReport& oracle,
+                        const Options& options, const wavelet::WaveletResult* wavelets) {
     const partition::Partition& P = p.partition;
     const TriMesh& D = P.domain.mesh;
     io::JsonWriter j;
@@ -284,10 +296,10 @@ void write_report(const std::string& path, const InputInfo& input, const Paramet
     j.end_object();
     if (wavelets) write_wavelet_report(j, *wavelets);
     j.end_object();
-    io::write_file_atomically(path, j.str());
+    return j.str();
 }
 
-void write_timings(const std::string& path, const Timings& timings) {
+std::string timings_json(const Timings& timings) {
     io::JsonWriter j;
     j.begin_object();
     double total = 0;
@@ -298,33 +310,30 @@ void write_timings(const std::string& path, const Timings& timings) {
     j.key("total").value(total);
     for (const auto& [measure, seconds] : timings.after_total) j.key(measure).value(seconds);
     j.end_object();
-    io::write_file_atomically(path, j.str());
+    return j.str();
 }
 
-// §6's rate–distortion curve (REN-14): at each of 1, 2, 5, 10, 20, 50, 100 % and the requested
-// percentages (each once), the L2 and Hausdorff errors of the reconstruction from the largest
-// ⌊p·N/100⌋ coefficients. The requested points are analyse's own; the others are made the same
-// way (keep_largest, reconstruct, rms_distance, hausdorff at analyse's default resolution).
-std::vector<render::RatePoint> rate_curve(const wavelet::Refinement& r, const TriMesh& T, const wavelet::WaveletResult& w) {
-    std::vector<render::RatePoint> points;
-    const auto has = [&](double p) { return std::any_of(points.begin(), points.end(), [&](const auto& q) { return q.kept_percent == p; }); };
+std::vector<RateStep> rate_steps(const TriMesh& T, const TriMesh& D, const wavelet::WaveletResult& w) {
+    std::vector<RateStep> steps;
+    const auto has = [&](double p) { return std::any_of(steps.begin(), steps.end(), [&](const auto& q) { return q.percent == p; }); };
     for (const auto& k : w.kept)
-        if (!has(k.percent)) points.push_back({k.percent, k.l2_error, k.hausdorff.lower()});
-    const wavelet::FilterBank bank(r);
+        if (!has(k.percent)) steps.push_back({k.percent, k.count, k.l2_error, k.hausdorff.lower(), k.positions});
+    const wavelet::FilterBank bank(wavelet::refine(D, w.levels));
     const wavelet::Decomposition d = bank.decompose(w.remesh_positions);
     const std::vector<Triangle> t_faces = T.triangles();
     wavelet::HausdorffOptions ho;
     ho.resolution = 1e-4 * w.bbox_diagonal;
     for (const double p : {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0}) {
         if (has(p)) continue;
-        const std::vector<Vec3> f = bank.reconstruct(wavelet::keep_largest(bank, d, wavelet::kept_count(w.coefficients, p)));
-        points.push_back({p, wavelet::rms_distance(w.remesh_positions, f),
-                          wavelet::hausdorff(T.positions(), t_faces, f, w.remesh_faces, ho).lower()});
+        const std::size_t count = wavelet::kept_count(w.coefficients, p);
+        std::vector<Vec3> f = bank.reconstruct(wavelet::keep_largest(bank, d, count));
+        const double l2 = wavelet::rms_distance(w.remesh_positions, f);
+        const double h = wavelet::hausdorff(T.positions(), t_faces, f, w.remesh_faces, ho).lower();
+        steps.push_back({p, count, l2, h, std::move(f)});
     }
-    return points;
+    std::stable_sort(steps.begin(), steps.end(), [](const RateStep& x, const RateStep& y) { return x.percent < y.percent; });
+    return steps;
 }
-
-}  // namespace
 
 namespace {
 
@@ -390,9 +399,9 @@ void write_wavelets(const std::string& dir, const wavelet::WaveletResult& wavele
     for (const auto& write : wavelet_files(folder(dir), wavelets, executor)) write();
 }
 
-void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
-                   const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
-                   const wavelet::WaveletResult* wavelets, const WrittenBeside& written) {
+RunTexts write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
+                       const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
+                       const wavelet::WaveletResult* wavelets, const WrittenBeside& written) {
     const auto start = detail::Clock::now();
     const std::string base = folder(dir);
     // Each file is written in parts on every thread (io::FileParts).
@@ -402,18 +411,22 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
     if (wavelets && !written.wavelets)
         for (auto& f : wavelet_files(base, *wavelets, options.executor)) files.push_back(std::move(f));
     for (const auto& write : files) write();
-    write_report(base + "report.json", input, p, oracle, options, wavelets);
+    RunTexts texts;
+    texts.report = report_json(input, p, oracle, options, wavelets);
+    io::write_file_atomically(base + "report.json", texts.report);
     // "writing": every file above and the report, and those written beside the oracle;
     // timings.json itself is a few hundred bytes.
     const double beside = written.parameterization.value_or(0) + written.wavelets.value_or(0);
     Timings with_writing = timings;
     with_writing.stage("writing", detail::seconds_since(start) + beside, false);
     if (written.parameterization || written.wavelets) with_writing.stage("writing_beside_oracle", beside, false);
-    write_timings(base + "timings.json", with_writing);
+    texts.timings = timings_json(with_writing);
+    io::write_file_atomically(base + "timings.json", texts.timings);
+    return texts;
 }
 
 void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis,
-                   const wavelet::WaveletResult* wavelets) {
+                   const wavelet::WaveletResult* wavelets, const std::vector<RateStep>& rate) {
     const std::string base = dir + "/figures/";
     std::error_code ec;
     std::filesystem::create_directories(base, ec);
@@ -462,7 +475,10 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
         labels.title = "Rate–distortion: f^" + std::to_string(wavelets->levels) + " from the largest of " +
                        std::to_string(wavelets->coefficients) + " wavelet coefficients";
         labels.y = "error (L2: RMS over the vertices of D^J; Hausdorff: to T)";
-        render::write_rate_distortion_svg(base + "rate_distortion.svg", rate_curve(r, T, *wavelets), labels);
+        std::vector<render::RatePoint> points;
+        for (const RateStep& step : rate.empty() ? rate_steps(T, P.domain.mesh, *wavelets) : rate)
+            points.push_back({step.percent, step.l2, step.hausdorff});
+        render::write_rate_distortion_svg(base + "rate_distortion.svg", points, labels);
     }
     // ψ_i(S_i) inside an equilateral triangle for the first patch and the one with the most faces.
     const std::array<Eigen::Vector2d, 3> corners{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0.5, std::sqrt(3.0) / 2)};

@@ -6,8 +6,10 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <fhr/core/trimesh.hpp>
+#include <fhr/exchange/distortion.hpp>
 #include <fhr/exchange/verify.hpp>
 #include <fhr/pipeline/pipeline.hpp>
 #include <fhr/wavelet/analyse.hpp>
@@ -63,6 +65,19 @@ struct WrittenBeside {
     std::optional<double> wavelets;          ///< write_wavelets' meshes
 };
 
+/// report.json's text: the input, D, the partition, the parameterization with the oracle's verdict
+/// and distortion figures, and with §5's result its `remesh` and `wavelet` sections (spec/cli.md).
+std::string report_json(const InputInfo& input, const Parameterization& p, const exchange::VerifyReport& oracle,
+                        const Options& options, const wavelet::WaveletResult* wavelets);
+
+/// timings.json's text: each stage's seconds, their "total", then the measurements after it.
+std::string timings_json(const Timings& timings);
+
+/// The texts of report.json and timings.json as write_outputs wrote them.
+struct RunTexts {
+    std::string report, timings;
+};
+
 /// Writes DIR/{domain.off, geodesics.obj, refined.ply, param.fhrp, textured.obj, report.json,
 /// timings.json}; `oracle` is fhr verify's judgement of param.fhrp against T. With §5's result
 /// (`wavelets` not null) also remesh_L{J}.off, wavelet_keep{p}.off and the report's `remesh`
@@ -70,9 +85,28 @@ struct WrittenBeside {
 /// gets one more measurement after the total, "writing": the seconds spent on all the others.
 /// `written`: the groups the caller has written already (beside the oracle); they are not written
 /// again, "writing" adds their seconds, and "writing_beside_oracle" follows with them alone.
-void write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
-                   const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
-                   const wavelet::WaveletResult* wavelets, const WrittenBeside& written = {});
+RunTexts write_outputs(const std::string& dir, const InputInfo& input, const Parameterization& p,
+                       const exchange::VerifyReport& oracle, const Timings& timings, const Options& options,
+                       const wavelet::WaveletResult* wavelets, const WrittenBeside& written = {});
+
+/// DIST-1 of every face of the final T′: its image in its patch's domain triangle (D's own 3D
+/// shape) onto the face, by the oracle's code (spec/distortion.md).
+std::vector<exchange::FaceStretch> face_stretches(const Parameterization& p);
+
+/// One point of §6's rate–distortion curve: f^J reconstructed from its largest `count` wavelet
+/// coefficients (p percent of them), its L2 error (RMS over the vertices of D^J) and the lower end
+/// of its Hausdorff bracket to T.
+struct RateStep {
+    double percent = 0;
+    std::size_t count = 0;
+    double l2 = 0, hausdorff = 0;
+    std::vector<Vec3> positions;  ///< #V(D^J), on the faces of D^J
+};
+
+/// REN-14: the curve at 1, 2, 5, 10, 20, 50, 100 % and at the kept percentages (each once, by
+/// increasing percentage). The kept points are §5's own; the others are made the same way
+/// (keep_largest, reconstruct, rms_distance, hausdorff at analyse's default resolution).
+std::vector<RateStep> rate_steps(const TriMesh& T, const TriMesh& D, const wavelet::WaveletResult& wavelets);
 
 /// The paper's Figures 6 and 7 (fig6.png: T and D; fig7.png: the geodesic network on T, and T′
 /// with a checkerboard over every patch through ψ) and one SVG per chosen patch (ψ_i(S_i) in its
@@ -80,9 +114,9 @@ void write_outputs(const std::string& dir, const InputInfo& input, const Paramet
 /// with `up_axis` (0, 1, 2) up; with §5's result also fig8.png (D^J and f^J(Ω_D)) and, with two
 /// or more kept percentages, fig9.png (the first two reconstructions), and rate_distortion.svg
 /// (§6's compression: L2 and Hausdorff errors at 1, 2, 5, 10, 20, 50, 100 % and the kept
-/// percentages; REN-14). On a surface with boundary every figure draws it, and fig7.png's left
-/// panel draws D's boundary curves (REN-15). Deterministic bytes.
+/// percentages; REN-14: `rate`, or rate_steps when it is empty). On a surface with boundary every
+/// figure draws it, and fig7.png's left panel draws D's boundary curves (REN-15). Deterministic bytes.
 void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis,
-                   const wavelet::WaveletResult* wavelets);
+                   const wavelet::WaveletResult* wavelets, const std::vector<RateStep>& rate = {});
 
 }  // namespace fhr::pipeline

@@ -33,20 +33,6 @@ std::string label(double x) {
     return std::string(buffer, result.ptr);
 }
 
-std::string escaped(const std::string& text) {
-    std::string out;
-    for (const char c : text) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
-
 std::string header(int width, int height) {
     const std::string w = std::to_string(width), h = std::to_string(height);
     return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" +
@@ -61,7 +47,7 @@ std::string line(double x1, double y1, double x2, double y2, const std::string& 
 
 std::string text(double x, double y, const std::string& anchor, const std::string& content, const std::string& extra = "") {
     return "<text x=\"" + fixed(x) + "\" y=\"" + fixed(y) + "\" text-anchor=\"" + anchor + "\"" + extra + ">" +
-           escaped(content) + "</text>\n";
+           xml_escaped(content) + "</text>\n";
 }
 
 // REN-12: the axis step and the number of steps for data up to `max`.
@@ -86,6 +72,21 @@ Axis nice_axis(double max) {
 }
 
 }  // namespace
+
+std::string xml_escaped(std::string_view text) {
+    std::string out;
+    for (const char c : text) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
 
 std::string patch_svg(const std::array<Eigen::Vector2d, 3>& corners, std::span<const ImageTriangle> image, int size) {
     if (size < 16) refuse("canvas size " + std::to_string(size) + " < 16");

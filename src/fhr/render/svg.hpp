@@ -9,10 +9,14 @@
 #include <array>
 #include <span>
 #include <string>
+#include <string_view>
 
 #include <Eigen/Core>
 
 namespace fhr::render {
+
+/// `text` with &, <, > and " written as XML (and HTML) entities.
+std::string xml_escaped(std::string_view text);
 
 /// Barycentric coordinates (β0, β1, β2) of a point with respect to a domain triangle's corners,
 /// as in the `fhr-param 1` exchange file (spec/param.md).

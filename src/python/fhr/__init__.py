@@ -52,10 +52,11 @@ verify = _fhr.verify
 verify_atlas = _fhr.verify_atlas
 verify_vertex_map = _fhr.verify_vertex_map
 Parameterization = _fhr.Parameterization
+page_available = _fhr.page_available
 
 __all__ = [
     "Error", "InvalidInput", "PartitionFailure", "NumericalFailure", "InternalError", "Parameterization",
     "read_mesh", "write_mesh", "info", "generate", "min_faces", "decimate", "geodesic", "parameterize", "verify",
     "verify_atlas",
-    "verify_vertex_map",
+    "verify_vertex_map", "page_available",
 ]

@@ -27,6 +27,8 @@ public:
         else return unsigned_value(x);
     }
     JsonWriter& null();
+    /// A value written elsewhere as JSON text (such as report.json's document), put here as is.
+    JsonWriter& raw(std::string_view json);
     /// The document, pretty-printed with two-space indentation and a final newline.
     std::string str() const { return out_ + "\n"; }
 
