@@ -128,6 +128,15 @@ with tempfile.TemporaryDirectory() as tmp_name:
             if not (prefix / f).exists():
                 sys.exit("not installed: " + f)
         print("installed: %d public headers under fhr/ (no detail/), libfhr.a, fhr.pc, fhrConfig.cmake" % len(headers))
+        # CLI-RUN-8: the copy holds no web/node_modules, so this fhr has no page: --html exits 2 at
+        # once, saying how to build it, and writes nothing.
+        page_out = tmp / "page"
+        refused = subprocess.run([prefix / "bin/fhr", "run", fandisk, "--faces", "114", "--html", "--out", page_out],
+                                 capture_output=True, text=True)
+        if refused.returncode != 2 or "-Dpage=enabled" not in refused.stderr or page_out.exists():
+            sys.exit("fhr built without its page: `fhr run --html` gave exit %d, %r, and %s" % (
+                refused.returncode, refused.stderr.strip(), "wrote " + str(page_out) if page_out.exists() else "no output"))
+        print("without its page: fhr run --html exits 2:", refused.stderr.strip())
 
         env = dict(os.environ, PKG_CONFIG_PATH=str(prefix / "lib/pkgconfig"))
         flags = run(["pkg-config", "--define-prefix", "--cflags", "--libs", "fhr"], env=env).split()
