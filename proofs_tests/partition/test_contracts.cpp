@@ -371,13 +371,11 @@ TEST_CASE("PART-10: a region refuses a curve that leaves the faces around it, an
     std::optional<EdgeId> outside;
     for (FaceId t : f.T.faces()) {
         touched = {t};
-        const partition::Region region(f.T, touched, {});
+        const partition::Region region = partition::Region::cut_out(f.T, touched, {}).value();
         for (EdgeId E : f.T.edges()) {
             const HalfedgeId h = TriMesh::halfedge(E, 0);
-            try {
-                if (!region.sub().find_halfedge(region.in_sub(f.T.from(h)), region.in_sub(f.T.to(h))).valid()) outside = E;
-            } catch (const std::logic_error&) {  // an end outside T_S
-            }
+            const std::optional<VertexId> a = region.find_sub(f.T.from(h)), b = region.find_sub(f.T.to(h));
+            if (a && b && !region.sub().find_halfedge(*a, *b).valid()) outside = E;  // both ends in T_S, the edge not
             if (outside) break;
         }
         if (outside) break;
@@ -391,11 +389,13 @@ TEST_CASE("PART-10: a region refuses a curve that leaves the faces around it, an
     for (const Case& c : {Case{&leaves, &touched}, Case{&through_face, &at_corner}}) {
         const std::vector<FaceId>* faces = c.second;
         const std::vector<partition::RegionCurve> curves{{c.first, false}};
-        CHECK(refusal<std::logic_error>([&] { (void)partition::Region(f.T, *faces, curves); }) == "region: a curve leaves the faces around the region");
+        const Outcome<partition::Region> region = partition::Region::cut_out(f.T, *faces, curves);
+        REQUIRE_FALSE(region.ok());
+        CHECK(region.why() == "a curve leaves the faces around the region");
     }
-    // A point of T_S inside a face has no place as a vertex or edge point of T.
-    const partition::Region region(f.T, touched, {});
-    CHECK(refusal<std::logic_error>([&] { (void)region.in_t(SurfacePoint::in_face(FaceId(0), {0.2, 0.3, 0.5})); }) == "region: a point inside a face");
+    // A point of T_S inside a face has no place as a vertex or edge point of T: a caller's bug.
+    const partition::Region region = partition::Region::cut_out(f.T, touched, {}).value();
+    CHECK(refusal<InternalError>([&] { (void)region.in_t(SurfacePoint::in_face(FaceId(0), {0.2, 0.3, 0.5})); }) == "region: a point inside a face");
 }
 
 TEST_CASE("PART-10: a region whose curve runs along T's boundary has no side beyond it", "[partition][contract][keep][boundary]") {
@@ -417,10 +417,10 @@ TEST_CASE("PART-10: a region whose curve runs along T's boundary has no side bey
     const geodesic::GeodesicPath along{{SurfacePoint::at_vertex(a), SurfacePoint::at_vertex(b)}, 1};
     const std::vector<FaceId> touched{T.face(T.find_halfedge(b, a))};
     const std::vector<partition::RegionCurve> curves{{&along, true}};
-    const partition::Region region(T, touched, curves);
-    CHECK(refusal<std::logic_error>([&] { (void)region.side(0, true); }) == "region: a curve on the border of the faces around the region");
+    const partition::Region region = partition::Region::cut_out(T, touched, curves).value();
+    CHECK(region.side(0, true).why() == "a curve on the border of the faces around the region");
     // Its right side is T_S's faces, which one curve does not enclose.
-    CHECK(refusal<std::logic_error>([&] { (void)region.side(0, false); }) == "region: the curves do not enclose the region");
+    CHECK(region.side(0, false).why() == "the curves do not enclose the region");
 }
 
 TEST_CASE("PART-10: the restricted path refuses an end outside its region, naming both vertices of T", "[partition][contract][keep]") {
@@ -436,18 +436,19 @@ TEST_CASE("PART-10: the restricted path refuses an end outside its region, namin
     for (const auto& p : ring) curves.push_back({&p, true});
     std::vector<FaceId> all;
     for (FaceId t : f.T.faces()) all.push_back(t);
-    const partition::Region region(f.T, all, curves);
+    const partition::Region region = partition::Region::cut_out(f.T, all, curves).value();
+    const FaceData<std::uint8_t> inside = region.side(0, true).value();
     const VertexId from = ring[0].points.front().vertex, to = ring[0].points.back().vertex;
     const VertexId apart = VertexId(6 - from.idx() - to.idx() - ring[1].points.back().vertex.idx());  // the corner not on face 0
     // The control: between two corners of the patch, the restricted shortest length is the
     // tetrahedron's edge, which bounds the patch (the curve touches it and is separated from it).
-    const partition::RestrictedPath r = partition::restricted_path(region, 0, true, from, to);
+    const partition::RestrictedPath r = partition::restricted_path(region, inside, from, to).value();
     const double edge = (f.T.position(to) - f.T.position(from)).norm();
     CHECK(std::abs(r.shortest - edge) <= 1e-12 * edge);
     CHECK(r.path.points.front().vertex == from);
     CHECK(r.path.points.back().vertex == to);
     CHECK(r.path.length <= r.shortest + r.separation_bound + 1e-12 * edge);
-    CHECK(refusal<PartitionFailure>([&] { (void)partition::restricted_path(region, 0, true, from, apart); }) ==
+    CHECK(refusal<PartitionFailure>([&] { (void)partition::restricted_path(region, inside, from, apart); }) ==
           "restricted path: vertex " + std::to_string(apart.idx()) + " cannot be reached from vertex " + std::to_string(from.idx()) +
               " inside the region the other curves leave free");
 }

@@ -104,8 +104,8 @@ std::string restricted_oracle_violation(const TriMesh& T, const partition::Parti
             around.push_back(partition::RegionCurve{&curves[TriMesh::edge(s)], false});
         const bool left = (D.mesh.next(h).idx() & 1u) == 0;  // net.path runs along D's halfedge (e, 0)
         const VertexId a = D.t_vertex[D.mesh.from(h)], b = D.t_vertex[D.mesh.to(h)];
-        partition::Region region(T, touched, around);
-        const partition::RestrictedPath r = partition::restricted_path(region, 0, left, a, b);
+        partition::Region region = partition::Region::cut_out(T, touched, around).value();
+        const partition::RestrictedPath r = partition::restricted_path(region, region.side(0, left).value(), a, b).value();
         // CGAL's inexact constructions can trip its own assertions in the slivers next to the
         // curves; the distance is symmetric, so the other end as the source is the same oracle.
         std::optional<double> cgal;
@@ -130,13 +130,10 @@ std::string restricted_oracle_violation(const TriMesh& T, const partition::Parti
         if (r.path.length > r.shortest + r.separation_bound + 1e-12 * r.shortest) return why.str() + "the separation added more than its bound";
         if (r.shortest < P.curves[e].geodesic_length * (1 - 1e-12)) return why.str() + "shorter than the geodesic";
         if (L < P.curves[e].geodesic_length * (1 - 1e-12)) return why.str() + "the delivered curve is shorter than the geodesic";
-        try {
-            region.add(partition::RegionCurve{&r.path, false});
-            region.side(4, true);
-            region.side(4, false);
-        } catch (const std::logic_error& error) {
-            return why.str() + "the separated curve leaves the region (" + error.what() + ")";
-        }
+        const Outcome<std::monostate> added = region.add(partition::RegionCurve{&r.path, false});
+        for (const std::string& refused : {added ? std::string() : added.why(), added ? region.side(4, true).why() : "",
+                                           added ? region.side(4, false).why() : ""})
+            if (!refused.empty()) return why.str() + "the separated curve leaves the region (" + refused + ")";
     }
     return "";
 }

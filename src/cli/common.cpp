@@ -10,7 +10,7 @@
 
 namespace fhr::cli {
 
-void usage_error(const std::string& what) { throw InvalidInput("", 0, what + " (see `fhr help`)"); }
+void usage_error(const std::string& what) { throw InvalidInput(what + " (see `fhr help`)"); }
 
 int exit_code_of(const std::exception& e) {
     if (dynamic_cast<const InvalidInput*>(&e)) return 2;

@@ -182,7 +182,7 @@ Table merge_tables(const std::vector<std::string>& paths) {
     const std::uint64_t n = tables.front().shard.n, count = tables.front().count();
     for (std::uint64_t k = 1; k <= n && k - 1 < count; ++k)
         if (!by_k.count(k))
-            throw InvalidInput("", 0, "shard " + std::to_string(k) + "/" + std::to_string(n) + " is missing (mesh " + std::to_string(k - 1) +
+            throw InvalidInput("shard " + std::to_string(k) + "/" + std::to_string(n) + " is missing (mesh " + std::to_string(k - 1) +
                                           " is in none of the tables)");
     // Every table holds exactly its shard's rows in order (read_table), so row ⌊i/N⌋ of shard
     // (i mod N) + 1, for i = 0, 1, ..., gives every mesh once, by index.

@@ -32,7 +32,7 @@ void require_shape(const py::array& a, py::ssize_t cols, const char* what) {
     if (a.ndim() != 2 || a.shape(1) != cols) {
         std::string shape = "(";
         for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
-        throw InvalidInput("", 0, std::string(what) + " must have shape (n, " + std::to_string(cols) + "), not " + shape +
+        throw InvalidInput(std::string(what) + " must have shape (n, " + std::to_string(cols) + "), not " + shape +
                                       (a.ndim() == 1 ? ",)" : ")"));
     }
 }
@@ -41,17 +41,17 @@ void require_shape(const py::array& a, py::ssize_t cols, const char* what) {
 std::vector<Vec3> points_of(const py::array& V) {
     require_shape(V, 3, "V");
     const char kind = V.dtype().kind();
-    if (kind != 'f' && kind != 'i' && kind != 'u') throw InvalidInput("", 0, "V must hold numbers (its dtype is " + std::string(py::str(V.dtype())) + ")");
-    if (kind == 'f' && V.dtype().itemsize() > 8) throw InvalidInput("", 0, "V's dtype " + std::string(py::str(V.dtype())) + " does not fit float64 without loss");
+    if (kind != 'f' && kind != 'i' && kind != 'u') throw InvalidInput("V must hold numbers (its dtype is " + std::string(py::str(V.dtype())) + ")");
+    if (kind == 'f' && V.dtype().itemsize() > 8) throw InvalidInput("V's dtype " + std::string(py::str(V.dtype())) + " does not fit float64 without loss");
     const auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(V);
     const auto r = v.unchecked<2>();
     std::vector<Vec3> points(static_cast<std::size_t>(r.shape(0)));
     for (py::ssize_t i = 0; i < r.shape(0); ++i) {
         for (py::ssize_t k = 0; k < 3; ++k) {
             const double x = r(i, k);
-            if (!std::isfinite(x)) throw InvalidInput("", 0, "V[" + std::to_string(i) + "] is not finite (vertex " + std::to_string(i) + ")");
+            if (!std::isfinite(x)) throw InvalidInput("V[" + std::to_string(i) + "] is not finite (vertex " + std::to_string(i) + ")");
             if (kind != 'f' && std::abs(x) > 9007199254740992.0)
-                throw InvalidInput("", 0, "V[" + std::to_string(i) + "] does not fit float64 without loss");
+                throw InvalidInput("V[" + std::to_string(i) + "] does not fit float64 without loss");
         }
         points[static_cast<std::size_t>(i)] = Vec3(r(i, 0), r(i, 1), r(i, 2));
     }
@@ -62,7 +62,7 @@ std::vector<Vec3> points_of(const py::array& V) {
 std::vector<Triangle> triangles_of(const py::array& F, std::size_t n) {
     require_shape(F, 3, "F");
     const char kind = F.dtype().kind();
-    if (kind != 'i' && kind != 'u') throw InvalidInput("", 0, "F must hold integers (its dtype is " + std::string(py::str(F.dtype())) + ")");
+    if (kind != 'i' && kind != 'u') throw InvalidInput("F must hold integers (its dtype is " + std::string(py::str(F.dtype())) + ")");
     std::vector<Triangle> faces(static_cast<std::size_t>(F.shape(0)));
     auto fill = [&](auto typed) {
         const auto r = typed.template unchecked<2>();
@@ -70,7 +70,7 @@ std::vector<Triangle> triangles_of(const py::array& F, std::size_t n) {
             for (py::ssize_t k = 0; k < 3; ++k) {
                 const auto x = r(i, k);
                 if (x < 0 || static_cast<std::uint64_t>(x) >= n)
-                    throw InvalidInput("", 0, "face " + std::to_string(i) + " has vertex index " + std::to_string(x) +
+                    throw InvalidInput("face " + std::to_string(i) + " has vertex index " + std::to_string(x) +
                                                   ", outside [0, " + std::to_string(n) + ")");
                 faces[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(x);
             }
@@ -161,12 +161,12 @@ py::dict verdict(const exchange::VertexMapFile& map, const PolygonSoup& T, const
 std::vector<exchange::UV> uv_of(const py::array& UV) {
     require_shape(UV, 2, "UV");
     const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(UV);
-    if (!a) throw InvalidInput("", 0, "UV must hold numbers");
+    if (!a) throw InvalidInput("UV must hold numbers");
     std::vector<exchange::UV> uv(static_cast<std::size_t>(a.shape(0)));
     const auto r = a.unchecked<2>();
     for (py::ssize_t i = 0; i < r.shape(0); ++i) {
         if (!std::isfinite(r(i, 0)) || !std::isfinite(r(i, 1)))
-            throw InvalidInput("", 0, "UV row " + std::to_string(i) + " is not finite");
+            throw InvalidInput("UV row " + std::to_string(i) + " is not finite");
         uv[static_cast<std::size_t>(i)] = {r(i, 0), r(i, 1)};
     }
     return uv;
@@ -180,11 +180,11 @@ std::vector<std::pair<std::size_t, std::array<double, 3>>> points_in_faces(const
     const auto f = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(faces);
     const auto c = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(coords);
     if (!f || f.ndim() != 1 || !c || c.ndim() != 2 || c.shape(1) != 3 || c.shape(0) != f.shape(0))
-        throw InvalidInput("", 0, call + " needs faces of shape (k,) and " + coords_name + " of shape (k, 3)");
+        throw InvalidInput(call + " needs faces of shape (k,) and " + coords_name + " of shape (k, 3)");
     std::vector<std::pair<std::size_t, std::array<double, 3>>> points;
     for (py::ssize_t i = 0; i < f.shape(0); ++i) {
         if (f.at(i) < 0 || static_cast<std::size_t>(f.at(i)) >= n_faces)
-            throw InvalidInput("", 0, face_kind + " " + std::to_string(f.at(i)) + " is out of range");
+            throw InvalidInput(face_kind + " " + std::to_string(f.at(i)) + " is out of range");
         points.emplace_back(static_cast<std::size_t>(f.at(i)), std::array<double, 3>{c.at(i, 0), c.at(i, 1), c.at(i, 2)});
     }
     return points;
@@ -360,7 +360,7 @@ PYBIND11_MODULE(_fhr, m) {
             const TriMesh T = mesh_of(V, F);
             for (const std::int64_t v : {source, target})
                 if (v < 0 || static_cast<std::uint64_t>(v) >= T.n_vertices())
-                    throw InvalidInput("", 0, "vertex " + std::to_string(v) + " is out of range (the mesh has " + std::to_string(T.n_vertices()) + " vertices)");
+                    throw InvalidInput("vertex " + std::to_string(v) + " is out of range (the mesh has " + std::to_string(T.n_vertices()) + " vertices)");
             geodesic::EllipsePath path;
             {
                 py::gil_scoped_release unlocked;
@@ -475,7 +475,7 @@ PYBIND11_MODULE(_fhr, m) {
             "geodesics.obj, refined.ply, param.fhrp, textured.obj, report.json, timings.json, §5's meshes; with "
             "figures, figures/ as `fhr run --figures` (z up).")
         .def("write_html", [](const Result& r, const std::string& path, const std::string& up, std::size_t page_faces) {
-                if (up != "x" && up != "y" && up != "z") throw InvalidInput("", 0, "up must be 'x', 'y' or 'z', not '" + up + "'");
+                if (up != "x" && up != "y" && up != "z") throw InvalidInput("up must be 'x', 'y' or 'z', not '" + up + "'");
                 const pipeline::InputInfo input = input_info(r);
                 const wavelet::WaveletResult* wavelets = r.run().wavelets ? &*r.run().wavelets : nullptr;
                 py::gil_scoped_release unlocked;
@@ -498,17 +498,17 @@ PYBIND11_MODULE(_fhr, m) {
             Interruptible interruptible(std::move(progress));
             pipeline::RunOptions options;
             options.faces = faces;
-            if ((faces > 0) == domain.has_value()) throw InvalidInput("", 0, "give exactly one of faces and domain");
+            if ((faces > 0) == domain.has_value()) throw InvalidInput("give exactly one of faces and domain");
             if (domain) {  // (DV, DF, t_vertex): domain vertex j at vertex t_vertex[j] of T
-                if (domain->size() != 3) throw InvalidInput("", 0, "domain must be (DV, DF, t_vertex)");
+                if (domain->size() != 3) throw InvalidInput("domain must be (DV, DF, t_vertex)");
                 const py::array x = py::array::ensure((*domain)[2]);
                 if (!x || x.ndim() != 1 || (x.dtype().kind() != 'i' && x.dtype().kind() != 'u'))
-                    throw InvalidInput("", 0, "t_vertex must be a 1-D array of vertex indices of T");
+                    throw InvalidInput("t_vertex must be a 1-D array of vertex indices of T");
                 const auto xs = py::array_t<std::int64_t, py::array::forcecast>::ensure(x);
                 std::vector<io::CorrespondenceEntry> entries;
                 for (py::ssize_t j = 0; j < xs.shape(0); ++j) {
                     if (xs.at(j) < 0 || static_cast<std::uint64_t>(xs.at(j)) >= T.n_vertices())
-                        throw InvalidInput("", 0, "t_vertex[" + std::to_string(j) + "] = " + std::to_string(xs.at(j)) + " is not a vertex of T");
+                        throw InvalidInput("t_vertex[" + std::to_string(j) + "] = " + std::to_string(xs.at(j)) + " is not a vertex of T");
                     entries.push_back({SurfacePoint::at_vertex(VertexId(static_cast<VertexId::Index>(xs.at(j)))),
                                        static_cast<std::uint64_t>(j + 1)});
                 }
@@ -579,15 +579,15 @@ PYBIND11_MODULE(_fhr, m) {
             a.uv = uv_of(UV);
             a.face_uv = FUV ? triangles_of(*FUV, a.uv.size()) : triangles_of(F, a.uv.size());
             if (a.face_uv.size() != a.faces.size())
-                throw InvalidInput("", 0, "FUV has " + std::to_string(a.face_uv.size()) + " rows but F has " +
+                throw InvalidInput("FUV has " + std::to_string(a.face_uv.size()) + " rows but F has " +
                                               std::to_string(a.faces.size()));
             a.face_texture.assign(a.faces.size(), 0);
             if (textures) {
                 const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(*textures);
                 if (!t || t.ndim() != 1 || static_cast<std::size_t>(t.shape(0)) != a.faces.size())
-                    throw InvalidInput("", 0, "textures must have shape (" + std::to_string(a.faces.size()) + ",)");
+                    throw InvalidInput("textures must have shape (" + std::to_string(a.faces.size()) + ",)");
                 for (py::ssize_t i = 0; i < t.shape(0); ++i) {
-                    if (t.at(i) < 0 || t.at(i) > 0xffffffffLL) throw InvalidInput("", 0, "texture " + std::to_string(t.at(i)) + " is out of range");
+                    if (t.at(i) < 0 || t.at(i) > 0xffffffffLL) throw InvalidInput("texture " + std::to_string(t.at(i)) + " is out of range");
                     a.face_texture[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(t.at(i));
                 }
             }
@@ -610,9 +610,9 @@ PYBIND11_MODULE(_fhr, m) {
             const auto f = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(faces);
             const auto w = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(weights);
             const auto n = static_cast<py::ssize_t>(T.points.size());
-            if (!f || f.ndim() != 1 || f.shape(0) != n) throw InvalidInput("", 0, "faces must have shape (" + std::to_string(n) + ",)");
+            if (!f || f.ndim() != 1 || f.shape(0) != n) throw InvalidInput("faces must have shape (" + std::to_string(n) + ",)");
             if (!w || w.ndim() != 2 || w.shape(0) != n || w.shape(1) != 3)
-                throw InvalidInput("", 0, "weights must have shape (" + std::to_string(n) + ", 3)");
+                throw InvalidInput("weights must have shape (" + std::to_string(n) + ", 3)");
             exchange::VertexMapFile map;
             map.source = "vertex map";
             map.records.resize(static_cast<std::size_t>(n));

@@ -8,6 +8,9 @@
 //   NumericalFailure  a numerical step could not reach its stated tolerance
 //   InternalError     a broken invariant of fhr's own making (a bug), e.g. a patch §3 built that
 //                     §4 refuses
+// and, outside that family, ContractViolation: the caller broke a documented precondition.
+// Neither InternalError nor ContractViolation is ever caught inside the library: an expected
+// failure of a strategy is a return value (core/outcome.hpp), not an exception.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +35,8 @@ public:
     /// \param what  the problem, naming the element (e.g. "face 17 repeats vertex 4")
     InvalidInput(const std::string& file, std::uint64_t line, const std::string& what)
         : Error(compose(file, line, what)), file_(file), line_(line), problem_(what) {}
+    /// A request that is not about a file (arguments, arrays in memory): no file, no line.
+    explicit InvalidInput(const std::string& what) : InvalidInput(std::string(), 0, what) {}
 
     const std::string& file() const { return file_; }
     std::uint64_t line() const { return line_; }
@@ -66,6 +71,13 @@ public:
 class InternalError : public Error {
 public:
     using Error::Error;
+};
+
+/// The caller broke a documented precondition (`\pre`), as FHR_DCHECK and the mesh builder's
+/// own checks find it (spec/library.md LIB-2): a bug of the caller, before anything changed.
+class ContractViolation : public std::logic_error {
+public:
+    using std::logic_error::logic_error;
 };
 
 }  // namespace fhr

@@ -18,11 +18,12 @@
 #include <utility>
 
 #include <fhr/core/detail/edge_table.hpp>
+#include <fhr/core/errors.hpp>
 
 namespace fhr {
 namespace {
 
-[[noreturn]] void broken(const std::string& what) { throw std::logic_error(what); }
+[[noreturn]] void broken(const std::string& what) { throw ContractViolation(what); }
 
 std::string vname(VertexId v) { return "vertex " + std::to_string(v.idx()); }
 std::string hname(HalfedgeId h) { return "halfedge " + std::to_string(h.idx()); }

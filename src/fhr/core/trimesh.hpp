@@ -38,7 +38,7 @@ public:
     ///      < positions.size(); no triangle repeats a vertex; every undirected edge lies in at most
     ///      two triangles, which traverse it in opposite directions; every vertex is in one
     ///      triangle at least and its triangles form one fan.
-    /// \throws std::logic_error naming the violated precondition.
+    /// \throws ContractViolation naming the violated precondition.
     static TriMesh from_triangles(std::vector<Vec3> positions, std::span<const Triangle> triangles);
     /// The same, for a caller that has already checked that every index is in range, no triangle
     /// repeats a vertex and every vertex is manifold (build_trimesh), and built `table` =
@@ -64,7 +64,7 @@ public:
     /// The mesh with exactly these arrays, so `from_arrays(m.arrays())` has every id of m.
     /// Arrays from outside are checked like input: INV-MESH-1..8 hold or nothing is built, and the
     /// checks themselves read no reference before knowing it is in range.
-    /// \throws std::logic_error "INV-MESH-k: ..." as validate() does, naming the first broken invariant.
+    /// \throws ContractViolation "INV-MESH-k: ..." as validate() does, naming the first broken invariant.
     static TriMesh from_arrays(Arrays arrays);
 
     // --- sizes (including garbage slots, see has_garbage) ---------------------------------
@@ -162,7 +162,7 @@ public:
     /// Renumbers the surviving elements densely, keeping their relative order.
     void compact();
 
-    /// Checks INV-MESH-1..8 of spec/mesh.md. \throws std::logic_error "INV-MESH-k: ..." naming
+    /// Checks INV-MESH-1..8 of spec/mesh.md. \throws ContractViolation "INV-MESH-k: ..." naming
     /// the first broken invariant and the element where it breaks.
     void validate() const;
 

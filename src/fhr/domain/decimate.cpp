@@ -17,6 +17,7 @@
 
 #include <fhr/core/cones.hpp>
 #include <fhr/core/errors.hpp>
+#include <fhr/core/outcome.hpp>
 #include <fhr/core/geometry.hpp>
 #include <fhr/core/predicates.hpp>
 #include <fhr/core/topology.hpp>
@@ -346,7 +347,7 @@ public:
                 // The theorem behind the named request holds within one regime (reachable_request).
                 std::size_t reachable = reachable_request(T_, faces_, faces);
                 if (cells_first(T_, reachable, options_) != d.by_cells) reachable = 0;
-                throw InvalidInput("", 0, "decimation stopped at " + std::to_string(faces) + " faces (target " +
+                throw InvalidInput("decimation stopped at " + std::to_string(faces) + " faces (target " +
                                               std::to_string(options_.target_faces) +
                                               "): no further half-edge collapse keeps the domain valid under "
                                               "min angle " + fmt(options_.min_angle_deg) + "° and normal deviation " +
@@ -767,7 +768,7 @@ ComponentTargets shares_of(const ComponentMeasures& m, std::size_t faces) {
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return remainder[a] > remainder[b]; });
     const bool any_boundary = std::any_of(loops.begin(), loops.end(), [](long b) { return b > 0; });
     if (!any_boundary && faces % 2 != 0)
-        throw InvalidInput("", 0, "--faces " + std::to_string(faces) + " is odd: closed triangulations have an even number of faces");
+        throw InvalidInput("--faces " + std::to_string(faces) + " is odd: closed triangulations have an even number of faces");
     while (given < faces) {
         for (std::size_t c : order) {
             const std::size_t step = loops[c] ? 1 : 2;
@@ -791,7 +792,7 @@ ComponentTargets shares_of(const ComponentMeasures& m, std::size_t faces) {
 
 ComponentTargets component_targets(const TriMesh& T, std::size_t faces) {
     if (faces == 0 || faces > T.n_faces())
-        throw InvalidInput("", 0, "--faces " + std::to_string(faces) + " must be between 1 and the mesh's " + std::to_string(T.n_faces()));
+        throw InvalidInput("--faces " + std::to_string(faces) + " must be between 1 and the mesh's " + std::to_string(T.n_faces()));
     return shares_of(measure_components(T), faces);
 }
 
@@ -802,12 +803,12 @@ std::vector<std::size_t> targets_of(const TriMesh& T, const Components& comps, s
     if (T.is_closed() && comps.count == 1) {
         const long g = genus(T, comps);
         if (target % 2 != 0)
-            throw InvalidInput("", 0, "--faces " + std::to_string(target) + " is odd: a closed triangulation has an even number of faces");
+            throw InvalidInput("--faces " + std::to_string(target) + " is odd: a closed triangulation has an even number of faces");
         if (target > T.n_faces())
-            throw InvalidInput("", 0, "--faces " + std::to_string(target) + " is more than the mesh has (" +
+            throw InvalidInput("--faces " + std::to_string(target) + " is more than the mesh has (" +
                                           std::to_string(T.n_faces()) + ")");
         if (target < min_closed_faces(g))
-            throw InvalidInput("", 0, "--faces " + std::to_string(target) + " is fewer than a closed surface of genus " +
+            throw InvalidInput("--faces " + std::to_string(target) + " is fewer than a closed surface of genus " +
                                           std::to_string(g) + " needs (at least " + std::to_string(min_closed_faces(g)) + ")");
         return {target};
     }
@@ -935,9 +936,11 @@ Domain decimate_again(const TriMesh& T, const Domain& previous, const DecimateOp
     return T.is_closed() ? d : open_domain(std::move(d), C.real_vertices);
 }
 
-Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count) {
-    FHR_DCHECK(count <= d.history.size());
-    if (!T.is_closed()) return open_domain(undo_collapses(close_domain(d, T), add_cones(T).mesh, count), T.n_vertices());
+namespace {
+
+// undo_collapses on a closed T, or why the history does not describe d.mesh: a split whose two
+// neighbours are not neighbours of the kept vertex there (d.mesh changed after its decimation).
+Outcome<Domain> replay_collapses(const Domain& d, const TriMesh& T, std::size_t count) {
     Domain r;
     r.by_cells = d.by_cells;
     r.cell_collapses = std::min(d.cell_collapses, d.history.size() - count);
@@ -948,12 +951,23 @@ Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count) {
     for (VertexId j : r.t_vertex.ids()) current[r.t_vertex[j].idx()] = j;
     for (std::size_t i = d.history.size(); i-- > d.history.size() - count;) {
         const Collapse& c = d.history[i];
-        const VertexId v = r.mesh.split_vertex(current[c.kept.idx()], current[c.left.idx()], current[c.right.idx()],
-                                               T.position(c.removed));
-        current[c.removed.idx()] = v;
+        const VertexId kept = current[c.kept.idx()], left = current[c.left.idx()], right = current[c.right.idx()];
+        if (left == right || !r.mesh.find_halfedge(kept, left).valid() || !r.mesh.find_halfedge(kept, right).valid())
+            return Outcome<Domain>::failure("collapse " + std::to_string(i) + " cannot be undone: its neighbours are not there");
+        current[c.removed.idx()] = r.mesh.split_vertex(kept, left, right, T.position(c.removed));
         r.t_vertex.push_back(c.removed);
     }
     return r;
+}
+
+}  // namespace
+
+Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count) {
+    FHR_DCHECK(count <= d.history.size());
+    if (!T.is_closed()) return open_domain(undo_collapses(close_domain(d, T), add_cones(T).mesh, count), T.n_vertices());
+    Outcome<Domain> r = replay_collapses(d, T, count);
+    if (!r) throw ContractViolation("undo_collapses: the history does not describe the domain: " + r.why());
+    return std::move(r).value();
 }
 
 bool history_describes(const Domain& d, const TriMesh& T) {
@@ -964,12 +978,9 @@ bool history_describes(const Domain& d, const TriMesh& T) {
             return false;  // D's boundary does not follow T's
         }
     }
-    Domain back;
-    try {
-        back = undo_collapses(d, T, d.history.size());
-    } catch (const std::logic_error&) {
-        return false;  // a split whose neighbours are not there: D changed after its decimation
-    }
+    Outcome<Domain> replayed = replay_collapses(d, T, d.history.size());
+    if (!replayed) return false;  // D changed after its decimation
+    const Domain& back = *replayed;
     if (back.mesh.n_vertices() != T.n_vertices()) return false;
     // The same faces, each from its smallest vertex (orientation kept), in any order.
     auto canonical = [](std::vector<Triangle> faces) {
@@ -985,7 +996,7 @@ bool history_describes(const Domain& d, const TriMesh& T) {
 
 Domain close_domain(const Domain& D, const TriMesh& T) {
     if (T.is_closed()) {
-        if (!D.mesh.is_closed()) throw InvalidInput("", 0, "the domain has a boundary but the mesh has none");
+        if (!D.mesh.is_closed()) throw InvalidInput("the domain has a boundary but the mesh has none");
         return D;
     }
     // Each boundary vertex of T: its loop and its place along it.
@@ -1009,20 +1020,20 @@ Domain close_domain(const Domain& D, const TriMesh& T) {
             const VertexId a = D.mesh.from(g), b = D.mesh.to(g);
             for (VertexId v : {a, b})
                 if (loop_of[D.t_vertex[v].idx()] != loop)
-                    throw InvalidInput("", 0, vertex(v) + " is on the domain's boundary but " +
+                    throw InvalidInput(vertex(v) + " is on the domain's boundary but " +
                                                   (loop_of[D.t_vertex[v].idx()] == UINT32_MAX ? std::string("not on the mesh's boundary")
                                                                                               : "on another boundary loop of the mesh than its neighbour"));
             steps += (place[D.t_vertex[b].idx()] + length[loop] - place[D.t_vertex[a].idx()]) % length[loop];
         }
         if (steps != length[loop] || d_loop_of[loop].valid())
-            throw InvalidInput("", 0, "the domain's boundary loop through " + vertex(D.mesh.from(h)) +
+            throw InvalidInput("the domain's boundary loop through " + vertex(D.mesh.from(h)) +
                                           " does not go once around the mesh's boundary loop in the mesh's orientation");
         d_loop_of[loop] = h;
     }
     Domain out = D;
     for (std::uint32_t i = 0; i < t_loops.size(); ++i) {
         if (!d_loop_of[i].valid())
-            throw InvalidInput("", 0, "the mesh's boundary loop through mesh vertex " + std::to_string(T.from(t_loops[i]).idx()) +
+            throw InvalidInput("the mesh's boundary loop through mesh vertex " + std::to_string(T.from(t_loops[i]).idx()) +
                                           " has no boundary loop of the domain along it");
         out.mesh.fill_hole(d_loop_of[i], apexes[i]);
         out.t_vertex.emplace_back(static_cast<VertexId::Index>(T.n_vertices() + i));

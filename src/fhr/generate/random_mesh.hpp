@@ -32,7 +32,7 @@ enum class Family {
 
 /// The family's name as `fhr generate --family` spells it ("block", "smooth", ...).
 const char* family_name(Family family);
-/// The family of that name. \throws InvalidInput("", 0, ...) naming the families for another.
+/// The family of that name. \throws InvalidInput(...) naming the families for another.
 Family parse_family(const std::string& name);
 /// The embedded families (all but immersed), in the order of the enum: what fuzzers and
 /// property tests draw from.
@@ -75,7 +75,7 @@ inline constexpr KnobName knob_names[] = {
 
 /// Sets the knob of that name (as in knob_names; '_' may stand for '-') to value: the one place
 /// the CLI and the Python package turn a name into a knob. Integer knobs take an integral value.
-/// \throws InvalidInput("", 0, ...) for an unknown name, a knob of another family than `family`
+/// \throws InvalidInput(...) for an unknown name, a knob of another family than `family`
 ///         (it would be silently ignored) or a non-integral value for an integer knob. Ranges are
 ///         checked by min_faces(options) and random_mesh.
 void set_knob(FamilyKnobs& knobs, Family family, const std::string& name, double value);
@@ -100,7 +100,7 @@ struct RandomMeshOptions {
 /// component's block (paper_notes/generator.md). One closed component: 12 for g = 0 (a unit
 /// cube) and 36g + 28 for g >= 1. Always even; with holes > 0 every F >= min_faces is possible,
 /// without holes every even one.
-/// \throws InvalidInput("", 0, ...) when genus < 0, holes is not in [0, max_holes] or components
+/// \throws InvalidInput(...) when genus < 0, holes is not in [0, max_holes] or components
 ///         is not in [1, max_components].
 std::size_t min_faces(int genus, int holes = 0, int components = 1);
 
@@ -121,13 +121,13 @@ std::size_t min_faces(const RandomMeshOptions& options);
 ///       component c is numbered before component c + 1 (vertices, faces) and lies at x
 ///       coordinates at least 1 beyond the components before it; every corner angle is at least
 ///       20° (min_corner_angle_degrees); the output depends only on the options.
-/// \throws InvalidInput("", 0, ...) when an option is out of range: see min_faces, faces odd
+/// \throws InvalidInput(...) when an option is out of range: see min_faces, faces odd
 ///         while holes = 0, faces < min_faces(genus, holes, components), faces > max_faces, or
 ///         noise is not in [0, 0.5).
 TriMesh random_mesh(const RandomMeshOptions& options);
 
 /// random_mesh for a closed surface (the paper's input class, §1, when components = 1).
-/// \throws InvalidInput("", 0, ...) when options.holes != 0, or as random_mesh.
+/// \throws InvalidInput(...) when options.holes != 0, or as random_mesh.
 TriMesh random_closed_mesh(const RandomMeshOptions& options);
 
 /// The `fhr generate` command line that writes the mesh of these options to `out`, options at

@@ -162,10 +162,10 @@ FocusField focus_field(const TriMesh& mesh, VertexId source, std::span<const Ver
 EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, const EllipseOptions& options) {
     const std::size_t nv = mesh.n_vertices();
     if (a.idx() >= nv || b.idx() >= nv)
-        throw InvalidInput("", 0, "vertex " + std::to_string(std::max(a.idx(), b.idx())) + " is out of range (the mesh has " +
+        throw InvalidInput("vertex " + std::to_string(std::max(a.idx(), b.idx())) + " is out of range (the mesh has " +
                                       std::to_string(nv) + " vertices)");
-    if (a == b) throw InvalidInput("", 0, "the two vertices are the same (" + std::to_string(a.idx()) + ")");
-    if (!(options.K > 1)) throw InvalidInput("", 0, "K must be greater than 1");
+    if (a == b) throw InvalidInput("the two vertices are the same (" + std::to_string(a.idx()) + ")");
+    if (!(options.K > 1)) throw InvalidInput("K must be greater than 1");
     // Every search below borrows from one workspace: the caller's, or this call's own (declared
     // first, so that it outlives the searches).
     Workspace own;
@@ -173,7 +173,7 @@ EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, c
     // d_a(a, b), then d_a from both foci for each ellipse (the caller's fields, or runs of this call).
     Foci foci(mesh, a, b, options, workspace);
     const double d_ab = foci.d_ab();
-    if (!std::isfinite(d_ab)) throw InvalidInput("", 0, "the two vertices are not connected");
+    if (!std::isfinite(d_ab)) throw InvalidInput("the two vertices are not connected");
     const detail::Borrowed<MaskScratch> scratch = detail::borrow<MaskScratch>(workspace, mesh.n_faces());
     FaceData<std::uint8_t>& mask = scratch->mask;
     EllipsePath result;

@@ -318,7 +318,7 @@ namespace {
 void check_sources(const TriMesh& mesh, std::span<const VertexId> sources) {
     for (VertexId s : sources)
         if (!s.valid() || s.idx() >= mesh.n_vertices())
-            throw InvalidInput("", 0, "fast marching: source " + std::to_string(s.idx()) +
+            throw InvalidInput("fast marching: source " + std::to_string(s.idx()) +
                                           " is not a vertex of the mesh (" + std::to_string(mesh.n_vertices()) +
                                           " vertices)");
 }
@@ -334,7 +334,7 @@ FastMarching::FastMarching(const TriMesh& mesh, std::span<const VertexId> source
 FastMarching::~FastMarching() = default;
 
 void FastMarching::advance(double max_distance) {
-    if (std::isnan(max_distance)) throw InvalidInput("", 0, "fast marching: max_distance is NaN");
+    if (std::isnan(max_distance)) throw InvalidInput("fast marching: max_distance is NaN");
     state_->run(max_distance, VertexId());
 }
 
@@ -351,7 +351,7 @@ std::span<const VertexId> FastMarching::finalized() const { return state_->final
 
 DistanceField fast_marching(const TriMesh& mesh, std::span<const VertexId> sources,
                             const FastMarchingOptions& options) {
-    if (std::isnan(options.max_distance)) throw InvalidInput("", 0, "fast marching: max_distance is NaN");
+    if (std::isnan(options.max_distance)) throw InvalidInput("fast marching: max_distance is NaN");
     FastMarching run(mesh, sources, options.unfold, options.workspace);
     run.advance(options.max_distance);
     DistanceField field{VertexData<double>(mesh.n_vertices(), INFINITY), {}};

@@ -130,7 +130,7 @@ void write_ply(const std::string& path, std::span<const Vec3> points, std::span<
                std::span<const std::uint32_t> face_patch, Executor* executor) {
     check_indices(points.size(), triangles);
     if (!face_patch.empty() && face_patch.size() != triangles.size())
-        throw std::logic_error("write_ply: one patch id per face is needed");
+        throw ContractViolation("write_ply: one patch id per face is needed");
     std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by fhr\nelement vertex ";
     append_number(header, points.size());
     header += "\nproperty double x\nproperty double y\nproperty double z\nelement face ";

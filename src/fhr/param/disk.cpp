@@ -172,7 +172,7 @@ std::optional<Violation> disk_violation(const Disk& disk) {
 }
 
 void validate(const Disk& disk) {
-    if (const auto broken = disk_violation(disk)) throw InvalidInput("", 0, "patch: " + broken->describe());
+    if (const auto broken = disk_violation(disk)) throw InvalidInput("patch: " + broken->describe());
 }
 
 std::vector<unsigned> boundary_sides(const Disk& disk) {

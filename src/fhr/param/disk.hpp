@@ -39,7 +39,7 @@ struct Disk {
 /// 0 == corners[0] < corners[1] < corners[2] < boundary.size().
 std::optional<Violation> disk_violation(const Disk& disk);
 
-/// \throws InvalidInput("", 0, "patch: MAP-1: ...") when disk_violation(disk) finds one.
+/// \throws InvalidInput("patch: MAP-1: ...") when disk_violation(disk) finds one.
 void validate(const Disk& disk);
 
 /// Bit c (c = 0, 1, 2) of the result's entry for boundary position p is set when the boundary

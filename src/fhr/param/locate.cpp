@@ -146,7 +146,7 @@ PatchLocator::Location PatchLocator::locate(const std::array<double, 3>& beta) c
             s.precision(17);
             s << "φ: barycentric coordinates (" << beta[0] << ", " << beta[1] << ", " << beta[2]
               << ") are outside the domain triangle";
-            throw InvalidInput("", 0, s.str());
+            throw InvalidInput(s.str());
         }
         x = std::max(0.0, x);
     }

@@ -35,7 +35,7 @@ void place_side(const Disk& disk, unsigned c, std::vector<std::array<double, 3>>
     for (std::size_t p = 1; p < u.size(); ++p) L[p] = L[p - 1] + (disk.positions[u[p]] - disk.positions[u[p - 1]]).norm();
     const double total = L.back();
     if (!(total > 0) || !std::isfinite(total))
-        throw InvalidInput("", 0, "patch: MAP-1: side " + std::to_string(c) + " has chord length " + std::to_string(total));
+        throw InvalidInput("patch: MAP-1: side " + std::to_string(c) + " has chord length " + std::to_string(total));
     const unsigned at_E = forward ? c : (c + 1) % 3, at_F = forward ? (c + 1) % 3 : c;
     for (std::size_t p = 0; p < u.size(); ++p) {
         // τ = L_p / L_r on the 2^-53 grid; 1 − τ is then exact. τ = 0 and 1 at the ends exactly.
@@ -118,7 +118,7 @@ std::string_view name(Solver solver) { return solver == Solver::sparse_lu ? "spa
 Solver parse_solver(std::string_view text) {
     for (Solver s : {Solver::sparse_lu, Solver::bicgstab})
         if (text == name(s)) return s;
-    throw InvalidInput("", 0, "unknown solver '" + std::string(text) + "' (expected sparse-lu or bicgstab)");
+    throw InvalidInput("unknown solver '" + std::string(text) + "' (expected sparse-lu or bicgstab)");
 }
 
 PatchMap map_patch(const Disk& disk, const PatchMapOptions& options) {

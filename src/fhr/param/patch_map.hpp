@@ -30,7 +30,7 @@ enum class Solver { sparse_lu, bicgstab };
 /// "sparse-lu" or "bicgstab".
 std::string_view name(Solver solver);
 
-/// The inverse of name(). \throws InvalidInput("", 0, ...) naming the accepted names.
+/// The inverse of name(). \throws InvalidInput(...) naming the accepted names.
 Solver parse_solver(std::string_view text);
 
 struct PatchMapOptions {

@@ -99,13 +99,13 @@ std::string_view name(Weights kind) {
 Weights parse_weights(std::string_view text) {
     for (Weights w : {Weights::shape_preserving, Weights::mean_value, Weights::uniform})
         if (text == name(w)) return w;
-    throw InvalidInput("", 0, "unknown weights '" + std::string(text) + "' (expected shape-preserving, mean-value or uniform)");
+    throw InvalidInput("unknown weights '" + std::string(text) + "' (expected shape-preserving, mean-value or uniform)");
 }
 
 std::vector<double> one_ring_weights(Weights kind, const Vec3& p, std::span<const Vec3> ring, std::uint32_t vertex) {
     const std::size_t d = ring.size();
     if (d < 3)
-        throw InvalidInput("", 0, "patch: vertex " + std::to_string(vertex) + " is interior with " + std::to_string(d) +
+        throw InvalidInput("patch: vertex " + std::to_string(vertex) + " is interior with " + std::to_string(d) +
                                       " neighbours (an interior vertex of a triangulated disk has at least 3)");
     std::vector<double> w;
     switch (kind) {

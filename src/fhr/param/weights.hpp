@@ -30,7 +30,7 @@ enum class Weights { shape_preserving, mean_value, uniform };
 /// "shape-preserving", "mean-value" or "uniform".
 std::string_view name(Weights kind);
 
-/// The inverse of name(). \throws InvalidInput("", 0, ...) naming the accepted names.
+/// The inverse of name(). \throws InvalidInput(...) naming the accepted names.
 Weights parse_weights(std::string_view text);
 
 /// The weights λ_{p p_k} of an interior vertex p over its 1-ring p_1..p_d, in the ring's order

@@ -7,6 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <fhr/core/errors.hpp>
+
 namespace fhr::partition {
 namespace {
 
@@ -53,7 +55,7 @@ public:
             VertexId::Index corners = 0;
             for (const geodesic::GeodesicPath& p : paths) {
                 if (p.points.size() < 2 || p.points.front().kind != SurfacePoint::Kind::vertex || p.points.back().kind != SurfacePoint::Kind::vertex)
-                    throw std::logic_error("embed: a curve does not run between two vertices");
+                    throw ContractViolation("embed: a curve does not run between two vertices");
                 ends_.emplace_back(p.points.front().vertex, p.points.back().vertex);
                 for (VertexId x : {p.points.front().vertex, p.points.back().vertex})
                     if (!n.corner[x].valid()) n.corner[x] = VertexId(corners++);
@@ -67,7 +69,7 @@ public:
     }
 
     Embedding run() {
-        if (D_ && paths_.size() != D_->mesh.n_edges()) throw std::logic_error("embed: one path per edge of D is needed");
+        if (D_ && paths_.size() != D_->mesh.n_edges()) throw ContractViolation("embed: one path per edge of D is needed");
         for (std::uint32_t e = 0; e < paths_.size(); ++e) add_path(e);
         check_runs();
         std::vector<Triangle> triangles;
@@ -117,7 +119,7 @@ private:
     // The path's node as a vertex or an edge point of T (canonical edge direction), snapped.
     Node node_of(const SurfacePoint& p, bool snap) {
         if (p.kind == SurfacePoint::Kind::vertex) return Node{p.vertex, {}, 0};
-        if (p.kind != SurfacePoint::Kind::edge) throw std::logic_error("embed: a path node inside a face");
+        if (p.kind != SurfacePoint::Kind::edge) throw ContractViolation("embed: a path node inside a face");
         const EdgeId e = TriMesh::edge(p.halfedge);
         const double t = (p.halfedge.idx() & 1u) ? 1 - p.t : p.t;
         const HalfedgeId h = TriMesh::halfedge(e, 0);
@@ -164,7 +166,7 @@ private:
         const auto& points = paths_[e].points;
         if (points.size() < 2 || points.front().kind != SurfacePoint::Kind::vertex || points.front().vertex != xj ||
             points.back().kind != SurfacePoint::Kind::vertex || points.back().vertex != xk)
-            throw std::logic_error("embed: the path of D edge " + std::to_string(e) + " does not run from x_j to x_k");
+            throw ContractViolation("embed: the path of D edge " + std::to_string(e) + " does not run from x_j to x_k");
         std::vector<Node> nodes;
         for (const SurfacePoint& p : points) {
             const Node n = node_of(p, unsnapped_.empty() || !unsnapped_[e]);
@@ -206,7 +208,7 @@ private:
         };
         if (a.vertex.valid() && b.vertex.valid()) {
             const HalfedgeId h = T_.find_halfedge(a.vertex, b.vertex);
-            if (!h.valid()) throw std::logic_error("embed: consecutive path vertices are not adjacent (D edge " + std::to_string(e) + ")");
+            if (!h.valid()) throw ContractViolation("embed: consecutive path vertices are not adjacent (D edge " + std::to_string(e) + ")");
             const EdgeId edge = TriMesh::edge(h);
             return run(edge, end_parameter(edge, a.vertex), end_parameter(edge, b.vertex));
         }
@@ -221,7 +223,7 @@ private:
                                                 : (TriMesh::edge(h1) == q.edge || TriMesh::edge(h2) == q.edge);
             if (holds) return chords_.push_back(Chord{T_.face(h), va, vb, e});
         }
-        throw std::logic_error("embed: consecutive path nodes share no face (D edge " + std::to_string(e) + ")");
+        throw ContractViolation("embed: consecutive path nodes share no face (D edge " + std::to_string(e) + ")");
     }
 
     // (1) along edges: a path running along a piece of an edge of T must not contain another
@@ -327,7 +329,7 @@ private:
         cuts.clear();
         for (const Chord& c : chords) {
             std::size_t a = index_of(c.a), b = index_of(c.b);
-            if (a == poly.size() || b == poly.size()) throw std::logic_error("embed: a chord's end is not on its face");
+            if (a == poly.size() || b == poly.size()) throw InternalError("embed: a chord's end is not on its face");
             cuts.emplace_back(std::min(a, b), std::max(a, b));
         }
         // Theorem: two chords of a convex polygon cross iff their ends interleave along its boundary.
@@ -414,7 +416,7 @@ private:
             }
         // Theorem (paper_notes/partition.md): a convex piece always has a triangulation without
         // collinear triangles, so the optimum is positive.
-        if (!(best[m - 1] > 0)) throw std::logic_error("embed: a piece of a face has no proper triangulation");
+        if (!(best[m - 1] > 0)) throw InternalError("embed: a piece of a face has no proper triangulation");
         std::vector<std::pair<std::size_t, std::size_t>>& stack = x.stack;
         stack.assign(1, {0, m - 1});
         while (!stack.empty()) {
@@ -436,7 +438,7 @@ private:
             const auto& path = net.path[e];
             for (std::size_t i = 0; i + 1 < path.size(); ++i) {
                 const HalfedgeId h = net.mesh.find_halfedge(path[i], path[i + 1]);
-                if (!h.valid() || net.d_halfedge[h].valid()) throw std::logic_error("embed: a path segment is not an edge of T′");
+                if (!h.valid() || net.d_halfedge[h].valid()) throw InternalError("embed: a path segment is not an edge of T′");
                 net.d_halfedge[h] = TriMesh::halfedge(e, 0);
                 net.d_halfedge[TriMesh::twin(h)] = TriMesh::halfedge(e, 1);
             }
@@ -500,13 +502,13 @@ std::string Conflict::describe() const {
 
 Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths,
                 std::span<const std::uint8_t> unsnapped, Executor* executor) {
-    if (!unsnapped.empty() && unsnapped.size() != paths.size()) throw std::logic_error("embed: one unsnapped flag per path");
+    if (!unsnapped.empty() && unsnapped.size() != paths.size()) throw ContractViolation("embed: one unsnapped flag per path");
     return Embedder(T, &D, paths, unsnapped, executor_or_default(executor)).run();
 }
 
 Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath> curves, std::span<const std::uint8_t> unsnapped,
                        Executor* executor) {
-    if (!unsnapped.empty() && unsnapped.size() != curves.size()) throw std::logic_error("embed: one unsnapped flag per curve");
+    if (!unsnapped.empty() && unsnapped.size() != curves.size()) throw ContractViolation("embed: one unsnapped flag per curve");
     return Embedder(T, nullptr, curves, unsnapped, executor_or_default(executor)).run();
 }
 

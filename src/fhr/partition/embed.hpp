@@ -101,7 +101,7 @@ struct Embedding {
 /// `unsnapped` (empty, or one flag per path): a path flagged 1 is placed exactly as given, without
 /// snapping — a restricted path whose separation points lie closer to a vertex of T than
 /// snap_fraction on purpose (partition/restricted.hpp).
-/// \throws std::logic_error when a path breaks its contract (not a caller's input error).
+/// \throws ContractViolation when a path breaks its contract (not a caller's input error).
 /// The faces of T are cut and triangulated in parallel on `executor` (default_executor() when
 /// null): the result is the same on any number of threads.
 Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths,

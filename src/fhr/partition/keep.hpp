@@ -105,7 +105,7 @@ enum class Start : std::uint8_t {
 ///      those of their embedding; `geodesics_of` gives the curves of any domain of T (in its edge
 ///      order); the separations of one round run on `executor`, each restricted search on a
 ///      workspace leased from a pool this call owns and frees (geodesic/workspace.hpp).
-/// \throws std::logic_error when a separated curve breaks (1) or (2) (a bug);
+/// \throws InternalError when a separated curve breaks (1) or (2) (a bug);
 ///         PartitionFailure when a curve has no room to be separated, or when no flips lead from H
 ///         to D.
 KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D,

@@ -337,7 +337,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
                 embedding = embed(T_hat, D_hat, kept.paths.values(), unsnapped, &executor);
             }
             if (!embedding.conflicts.empty())
-                throw std::logic_error("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
+                throw InternalError("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
         }
         if (embedding.conflicts.empty()) {
             if (out.curves.empty())
@@ -354,7 +354,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
                 for (const auto& p : out.paths) open.push_back(p.path);
                 embedding = embed(T, D, open, unsnapped, &executor);
                 if (!embedding.conflicts.empty())
-                    throw std::logic_error("partition: the network breaks (1)/(2) without the cones: " + embedding.conflicts.front().describe());
+                    throw InternalError("partition: the network breaks (1)/(2) without the cones: " + embedding.conflicts.front().describe());
                 patches.reset();  // D̂'s on T̂
             }
             out.patches = patches ? std::move(*patches) : extract_patches(D, embedding.network, &executor);
@@ -413,7 +413,7 @@ Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& 
         // quarter more faces; at the end of the history D = T, whose paths are T's own edges, so
         // (1) and (2) hold and the loop ends.
         domain::Domain& last = last_decimation();
-        if (last.history.empty()) throw std::logic_error("partition: conflicts on D = T, whose paths are T's edges");
+        if (last.history.empty()) throw InternalError("partition: conflicts on D = T, whose paths are T's edges");
         const std::size_t undo = std::min(last.history.size(), std::max<std::size_t>(1, D.mesh.n_faces() / 8));
         base = domain::undo_collapses(last, T, undo);
         D = *base;

@@ -3,7 +3,8 @@
 
 #include <algorithm>
 #include <iterator>
-#include <stdexcept>
+
+#include <fhr/core/errors.hpp>
 
 namespace fhr::partition {
 namespace {
@@ -55,66 +56,84 @@ std::vector<FaceId> closed_faces(const TriMesh& T, std::span<const FaceId> touch
 
 }  // namespace
 
-Region::Region(const TriMesh& T, std::span<const FaceId> touched, std::span<const RegionCurve> curves) : T_(T) {
-    t_face_ = closed_faces(T, touched);
-    for (FaceId f : t_face_)
-        for (VertexId v : T.face_vertices(f)) sub_of_.emplace_back(v.idx(), 0);
-    std::sort(sub_of_.begin(), sub_of_.end());
-    sub_of_.erase(std::unique(sub_of_.begin(), sub_of_.end()), sub_of_.end());
+Outcome<Region> Region::cut_out(const TriMesh& T, std::span<const FaceId> touched, std::span<const RegionCurve> curves) {
+    Region r(T);
+    r.t_face_ = closed_faces(T, touched);
+    for (FaceId f : r.t_face_)
+        for (VertexId v : T.face_vertices(f)) r.sub_of_.emplace_back(v.idx(), 0);
+    std::sort(r.sub_of_.begin(), r.sub_of_.end());
+    r.sub_of_.erase(std::unique(r.sub_of_.begin(), r.sub_of_.end()), r.sub_of_.end());
     std::vector<Vec3> positions;
-    for (std::size_t i = 0; i < sub_of_.size(); ++i) {
-        sub_of_[i].second = static_cast<VertexId::Index>(i);
-        t_vertex_.emplace_back(sub_of_[i].first);
-        positions.push_back(T.position(t_vertex_.back()));
+    for (std::size_t i = 0; i < r.sub_of_.size(); ++i) {
+        r.sub_of_[i].second = static_cast<VertexId::Index>(i);
+        r.t_vertex_.emplace_back(r.sub_of_[i].first);
+        positions.push_back(T.position(r.t_vertex_.back()));
     }
     std::vector<Triangle> triangles;
-    for (FaceId f : t_face_) {
+    for (FaceId f : r.t_face_) {
         const auto v = T.face_vertices(f);
-        triangles.push_back({in_sub(v[0]).idx(), in_sub(v[1]).idx(), in_sub(v[2]).idx()});
+        triangles.push_back({r.in_sub(v[0]).idx(), r.in_sub(v[1]).idx(), r.in_sub(v[2]).idx()});
     }
-    sub_ = TriMesh::from_triangles(std::move(positions), triangles);
-    for (const RegionCurve& c : curves) convert(c);
-    recut();
+    r.sub_ = TriMesh::from_triangles(std::move(positions), triangles);
+    for (const RegionCurve& c : curves)
+        if (Outcome<std::monostate> converted = r.convert(c); !converted) return Outcome<Region>::failure(converted.why());
+    if (Outcome<std::monostate> cut = r.recut(); !cut) return Outcome<Region>::failure(cut.why());
+    return r;
 }
 
-void Region::add(const RegionCurve& curve) {
-    convert(curve);
-    recut();
+Outcome<std::monostate> Region::add(const RegionCurve& curve) {
+    if (Outcome<std::monostate> converted = convert(curve); !converted) return converted;
+    return recut();
 }
 
-void Region::convert(const RegionCurve& c) {
-    geodesic::GeodesicPath& p = curves_.emplace_back();
+Outcome<std::monostate> Region::convert(const RegionCurve& c) {
+    geodesic::GeodesicPath p;
     p.length = c.path->length;
     for (const SurfacePoint& q : c.path->points) {
         if (q.kind == SurfacePoint::Kind::vertex) {
-            p.points.push_back(SurfacePoint::at_vertex(in_sub(q.vertex)));
+            const std::optional<VertexId> v = find_sub(q.vertex);
+            if (!v) return Outcome<std::monostate>::failure("a curve passes a vertex of T outside the faces around the region");
+            p.points.push_back(SurfacePoint::at_vertex(*v));
             continue;
         }
-        const HalfedgeId h = q.kind == SurfacePoint::Kind::edge ? sub_.find_halfedge(in_sub(T_.from(q.halfedge)), in_sub(T_.to(q.halfedge))) : HalfedgeId{};
-        if (!h.valid()) throw std::logic_error("region: a curve leaves the faces around the region");
+        HalfedgeId h;
+        if (q.kind == SurfacePoint::Kind::edge) {
+            const std::optional<VertexId> a = find_sub(T_.from(q.halfedge)), b = find_sub(T_.to(q.halfedge));
+            if (a && b) h = sub_.find_halfedge(*a, *b);
+        }
+        if (!h.valid()) return Outcome<std::monostate>::failure("a curve leaves the faces around the region");
         p.points.push_back(SurfacePoint::on_edge(h, q.t));
     }
+    curves_.push_back(std::move(p));
     unsnapped_.push_back(!c.snapped);
+    return std::monostate{};
 }
 
-void Region::recut() {
+Outcome<std::monostate> Region::recut() {
     cut_ = embed_curves(sub_, curves_, unsnapped_);
-    if (!cut_.conflicts.empty()) throw std::logic_error("region: the curves around a region conflict: " + cut_.conflicts.front().describe());
+    if (!cut_.conflicts.empty()) return Outcome<std::monostate>::failure("the curves around a region conflict: " + cut_.conflicts.front().describe());
+    return std::monostate{};
+}
+
+std::optional<VertexId> Region::find_sub(VertexId v) const {
+    const auto it = std::lower_bound(sub_of_.begin(), sub_of_.end(), std::make_pair(v.idx(), VertexId::Index{0}));
+    if (it == sub_of_.end() || it->first != v.idx()) return std::nullopt;
+    return VertexId(it->second);
 }
 
 VertexId Region::in_sub(VertexId v) const {
-    const auto it = std::lower_bound(sub_of_.begin(), sub_of_.end(), std::make_pair(v.idx(), VertexId::Index{0}));
-    if (it == sub_of_.end() || it->first != v.idx()) throw std::logic_error("region: a vertex of T outside the faces around the region");
-    return VertexId(it->second);
+    const std::optional<VertexId> s = find_sub(v);
+    if (!s) throw InternalError("region: vertex " + std::to_string(v.idx()) + " of T is outside the faces around the region");
+    return *s;
 }
 
 SurfacePoint Region::in_t(const SurfacePoint& p) const {
     if (p.kind == SurfacePoint::Kind::vertex) return SurfacePoint::at_vertex(in_t(p.vertex));
-    if (p.kind != SurfacePoint::Kind::edge) throw std::logic_error("region: a point inside a face");
+    if (p.kind != SurfacePoint::Kind::edge) throw InternalError("region: a point inside a face");
     return SurfacePoint::on_edge(T_.find_halfedge(in_t(sub_.from(p.halfedge)), in_t(sub_.to(p.halfedge))), p.t);
 }
 
-FaceData<std::uint8_t> Region::side(std::size_t curve, bool left) const {
+Outcome<FaceData<std::uint8_t>> Region::side(std::size_t curve, bool left) const {
     const Network& net = cut_.network;
     const TriMesh& M = net.mesh;
     const auto& path = net.path.at(EdgeId(static_cast<EdgeId::Index>(curve)));
@@ -122,7 +141,7 @@ FaceData<std::uint8_t> Region::side(std::size_t curve, bool left) const {
     const FaceId seed = M.face(left ? h : TriMesh::twin(h));
     FaceData<std::uint8_t> mask(M.n_faces(), 0);
     std::vector<FaceId> stack{seed};
-    if (!seed.valid()) throw std::logic_error("region: a curve on the border of the faces around the region");
+    if (!seed.valid()) return Outcome<FaceData<std::uint8_t>>::failure("a curve on the border of the faces around the region");
     mask[seed] = 1;
     while (!stack.empty()) {
         const FaceId f = stack.back();
@@ -131,7 +150,7 @@ FaceData<std::uint8_t> Region::side(std::size_t curve, bool left) const {
         for (int i = 0; i < 3; ++i, g = M.next(g)) {
             if (net.d_halfedge[g].valid()) continue;
             const FaceId n = M.face(TriMesh::twin(g));
-            if (!n.valid()) throw std::logic_error("region: the curves do not enclose the region");
+            if (!n.valid()) return Outcome<FaceData<std::uint8_t>>::failure("the curves do not enclose the region");
             if (!mask[n]) {
                 mask[n] = 1;
                 stack.push_back(n);

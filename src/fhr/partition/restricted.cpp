@@ -15,6 +15,13 @@
 namespace fhr::partition {
 namespace {
 
+// The mask is not the region the precondition promises (a disk of T′_S whose boundary the path
+// may touch only where it runs along it): found deep inside the walk, thrown to restricted_path's
+// boundary only, and returned there as the reason (restricted.hpp).
+struct NotTheRegion {
+    std::string why;
+};
+
 class Restrictor {
 public:
     // Works on the piece T_S of T around the region and on T′_S (partition/region.hpp).
@@ -115,7 +122,7 @@ public:
                     out.separation_bound += separate(p.vertex, pts[i - 1], pts[i + 1], push);
                 }
             } else {
-                throw std::logic_error("restricted path: a node inside a face of T′");
+                throw NotTheRegion{"a node inside a face of T′"};
             }
         }
         nodes.front() = SurfacePoint::at_vertex(from);
@@ -171,10 +178,10 @@ private:
         auto edge_to = [&](VertexId w) -> long {
             for (std::size_t k = 0; k < fan.size(); ++k)
                 if (m.to(fan[k]) == w) return static_cast<long>(2 * k);
-            throw std::logic_error("restricted path: a neighbour point is not beside its vertex");
+            throw NotTheRegion{"a neighbour point is not beside its vertex"};
         };
         if (p.kind == SurfacePoint::Kind::vertex) return edge_to(p.vertex);
-        if (p.kind != SurfacePoint::Kind::edge) throw std::logic_error("restricted path: a node inside a face of T′");
+        if (p.kind != SurfacePoint::Kind::edge) throw NotTheRegion{"a node inside a face of T′"};
         const VertexId a = m.from(p.halfedge), b = m.to(p.halfedge);
         if (a == u) return edge_to(b);
         if (b == u) return edge_to(a);
@@ -182,7 +189,7 @@ private:
             const FaceId f = m.face(fan[k]);
             if (f == m.face(p.halfedge) || f == m.face(TriMesh::twin(p.halfedge))) return static_cast<long>(2 * k) - 1;
         }
-        throw std::logic_error("restricted path: a neighbour point is not in a face at its vertex");
+        throw NotTheRegion{"a neighbour point is not in a face at its vertex"};
     }
 
     // Replaces the touched vertex u, between the path's points `in` and `out`, by points on the
@@ -208,7 +215,7 @@ private:
         // The walk must stay in the region (it does for a path of the region: checked).
         for (long q = lo + 1; q < hi; q += 1)
             if (q % 2 == 1 && !masked(m.face(fan[static_cast<std::size_t>((q + 1) / 2) % n])))
-                throw std::logic_error("restricted path: the walk around a touched vertex leaves the region");
+                throw NotTheRegion{"the walk around a touched vertex leaves the region"};
         std::vector<SurfacePoint> points;
         double r = 0;
         for (long q = lo + 1; q < hi; ++q) {
@@ -242,12 +249,15 @@ private:
 
 }  // namespace
 
-RestrictedPath restricted_path(const Region& region, std::size_t curve, bool left, VertexId from, VertexId to,
-                               geodesic::Workspace* workspace) {
-    const FaceData<std::uint8_t> mask = region.side(curve, left);
-    RestrictedPath r = Restrictor(region, mask, workspace).run(region.in_sub(from), region.in_sub(to));
-    for (SurfacePoint& p : r.path.points) p = region.in_t(p);
-    return r;
+Outcome<RestrictedPath> restricted_path(const Region& region, const FaceData<std::uint8_t>& mask, VertexId from, VertexId to,
+                                        geodesic::Workspace* workspace) {
+    try {
+        RestrictedPath r = Restrictor(region, mask, workspace).run(region.in_sub(from), region.in_sub(to));
+        for (SurfacePoint& p : r.path.points) p = region.in_t(p);
+        return r;
+    } catch (const NotTheRegion& refused) {  // thrown only by the Restrictor above, never escapes
+        return Outcome<RestrictedPath>::failure("restricted path: " + refused.why);
+    }
 }
 
 }  // namespace fhr::partition

@@ -17,11 +17,11 @@ constexpr std::size_t prepare_beside_below = std::size_t{1} << 18;
 }  // namespace
 
 RunResult run(const TriMesh& T, RunOptions options) {
-    if ((options.faces > 0) == options.domain.has_value()) throw std::logic_error("run: give exactly one of faces and domain");
-    if (options.levels < 0 || options.levels > 8) throw InvalidInput("", 0, "levels must be in 0..8, not " + std::to_string(options.levels));
+    if ((options.faces > 0) == options.domain.has_value()) throw ContractViolation("run: give exactly one of faces and domain");
+    if (options.levels < 0 || options.levels > 8) throw InvalidInput("levels must be in 0..8, not " + std::to_string(options.levels));
     for (double k : options.keep)
-        if (!(k > 0 && k <= 100)) throw InvalidInput("", 0, "kept percentages must be in (0, 100], not " + std::to_string(k));
-    if (!options.keep.empty() && options.levels == 0) throw InvalidInput("", 0, "kept percentages need levels >= 1");
+        if (!(k > 0 && k <= 100)) throw InvalidInput("kept percentages must be in (0, 100], not " + std::to_string(k));
+    if (!options.keep.empty() && options.levels == 0) throw InvalidInput("kept percentages need levels >= 1");
     const Options& method = options.method;
     auto say = [&](const std::string& line) {
         if (method.progress) method.progress(line);

@@ -48,7 +48,7 @@ Panel panel_of(const MeshView& mesh) { return Panel{{mesh}, {}}; }
 
 Image render_two_panels(const Camera& camera, const Panel& left, const Panel& right, int width, int height,
                         const RenderStyle& style) {
-    if (width < 2) throw InvalidInput("", 0, "render: a two-panel figure needs a width ≥ 2");
+    if (width < 2) throw InvalidInput("render: a two-panel figure needs a width ≥ 2");
     const int left_width = width / 2, right_width = width - left_width;
     const Image a = render_panel(left, camera, left_width, height, style);
     const Image b = render_panel(right, camera, right_width, height, style);

@@ -229,10 +229,10 @@ std::string zlib_compress(std::span<const std::uint8_t> bytes) {
 
 std::string encode_png(const Image& image) {
     if (image.width < 1 || image.height < 1)  // PNG §11.2.2: 1 ≤ width, height ≤ 2^31 − 1 (an int)
-        throw InvalidInput("", 0, "png: image size " + std::to_string(image.width) + "×" + std::to_string(image.height) +
+        throw InvalidInput("png: image size " + std::to_string(image.width) + "×" + std::to_string(image.height) +
                                       " is not at least 1×1");
     if (image.rgb.size() != 3 * std::size_t(image.width) * std::size_t(image.height))
-        throw InvalidInput("", 0, "png: pixel buffer has " + std::to_string(image.rgb.size()) + " bytes, expected 3·" +
+        throw InvalidInput("png: pixel buffer has " + std::to_string(image.rgb.size()) + " bytes, expected 3·" +
                                       std::to_string(image.width) + "·" + std::to_string(image.height));
     std::string out = "\x89PNG\r\n\x1a\n";
     std::string header;

@@ -16,7 +16,7 @@ namespace {
 
 constexpr double degrees = std::numbers::pi / 180;
 
-[[noreturn]] void refuse(const std::string& what) { throw InvalidInput("", 0, "render: " + what); }
+[[noreturn]] void refuse(const std::string& what) { throw InvalidInput("render: " + what); }
 
 bool finite(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
 

@@ -15,7 +15,7 @@
 namespace fhr::render {
 namespace {
 
-[[noreturn]] void refuse(const std::string& what) { throw InvalidInput("", 0, "svg: " + what); }
+[[noreturn]] void refuse(const std::string& what) { throw InvalidInput("svg: " + what); }
 
 // x with two decimals, locale-free; −0.00 printed as 0.00.
 std::string fixed(double x) {

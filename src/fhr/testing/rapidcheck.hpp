@@ -61,7 +61,7 @@ inline rc::Gen<generate::RandomMeshOptions> gen_mesh_options(const MeshRanges& r
         o.components = draw_if_varies(r.min_components, r.max_components);
         const std::size_t least = generate::min_faces(o);
         if (least > r.max_faces)
-            throw InvalidInput("", 0, "gen_mesh_options: " + generate_command(o) + " needs at least " +
+            throw InvalidInput("gen_mesh_options: " + generate_command(o) + " needs at least " +
                                           std::to_string(least) + " faces, more than max_faces = " +
                                           std::to_string(r.max_faces));
         const std::size_t step = o.holes == 0 ? 2 : 1;  // F is even without holes

@@ -13,7 +13,7 @@ namespace fhr::wavelet {
 
 std::size_t kept_count(std::size_t total, double percent) {
     if (!(percent >= 0 && percent <= 100))
-        throw InvalidInput("", 0, "compression: the kept percentage " + std::to_string(percent) + " is not in [0, 100]");
+        throw InvalidInput("compression: the kept percentage " + std::to_string(percent) + " is not in [0, 100]");
     // percent·total is exact for total < 2^53 / 100 and an integer percent; 100·total/100 = total.
     return std::min(total, static_cast<std::size_t>(std::floor(percent * static_cast<double>(total) / 100.0)));
 }

@@ -53,7 +53,7 @@ TriMesh split_once(const TriMesh& coarse, const std::vector<std::array<Beta, 3>>
         const auto v = fine.face_vertices(g);
         const Triangle& t = triangles[g.idx()];
         if (v[0].idx() != t[0] || v[1].idx() != t[1] || v[2].idx() != t[2])
-            throw std::logic_error("wavelet::refine: from_triangles changed the corner order of face " +
+            throw InternalError("wavelet::refine: from_triangles changed the corner order of face " +
                                    std::to_string(g.idx()));
     }
     return fine;
@@ -62,14 +62,14 @@ TriMesh split_once(const TriMesh& coarse, const std::vector<std::array<Beta, 3>>
 }  // namespace
 
 Refinement refine(const TriMesh& D, int J) {
-    if (J < 0) throw InvalidInput("", 0, "dyadic refinement: the level J = " + std::to_string(J) + " is negative");
+    if (J < 0) throw InvalidInput("dyadic refinement: the level J = " + std::to_string(J) + " is negative");
     if (D.has_garbage() || D.n_faces() == 0)
-        throw InvalidInput("", 0, "dyadic refinement: the domain D must be a triangulation with a face and without garbage");
+        throw InvalidInput("dyadic refinement: the domain D must be a triangulation with a face and without garbage");
     std::size_t faces = D.n_faces();
     for (int j = 0; j < J; ++j) {
         faces *= 4;
         if (faces > max_refined_faces)
-            throw InvalidInput("", 0, "dyadic refinement: D^" + std::to_string(J) + " would have more than " +
+            throw InvalidInput("dyadic refinement: D^" + std::to_string(J) + " would have more than " +
                                           std::to_string(max_refined_faces) + " faces");
     }
     Refinement r;

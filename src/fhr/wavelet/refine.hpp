@@ -66,7 +66,7 @@ inline constexpr std::size_t max_refined_faces = std::size_t{1} << 26;
 ///       #E(D^j) = 2 #E(D^{j−1}) + 3 #F(D^{j−1}) (so χ is kept), each boundary edge of D^{j−1}
 ///       split into two boundary edges of D^j; numbering as in the file header (WAV-1, WAV-11);
 ///       every location and corner coordinate is exact (WAV-2).
-/// \throws InvalidInput("", 0, ...) when D has no face or has garbage, J < 0, or
+/// \throws InvalidInput(...) when D has no face or has garbage, J < 0, or
 ///         #F(D)·4^J > max_refined_faces.
 Refinement refine(const TriMesh& D, int J);
 

@@ -15,7 +15,7 @@
 
 namespace fhr::generate::detail {
 
-[[noreturn]] inline void invalid(const std::string& what) { throw InvalidInput("", 0, what); }
+[[noreturn]] inline void invalid(const std::string& what) { throw InvalidInput(what); }
 
 /// std::mt19937_64 (fully specified by the standard) with our own uniform mappings (the
 /// std::uniform_*_distribution outputs differ between standard libraries).

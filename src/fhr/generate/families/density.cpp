@@ -39,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include <fhr/core/errors.hpp>
 #include <fhr/generate/detail/editor.hpp>
 #include <fhr/generate/detail/family.hpp>
 
@@ -117,7 +118,7 @@ public:
         for (std::size_t c = 0; c < C; ++c) {
             const Chain chain = choose_chain(creases[c]);
             if (chain.v.empty())
-                throw std::logic_error("density family: no crease chain in component " + std::to_string(c) + " (" +
+                throw InternalError("density family: no crease chain in component " + std::to_string(c) + " (" +
                                        generate_command(o_) + ")");
             for (VertexId v : chain.v) on_chain_[v.idx()] = 1;
             used[c] += refine_band(chain);
@@ -137,7 +138,7 @@ public:
         for (std::size_t c = 0; c < C; ++c) {
             double shortest_c = shortest_edge[c];
             const VertexId focus = insert_focus(c, shortest_c);
-            if (!focus.valid()) throw std::logic_error("density family: no face for the focus (" + generate_command(o_) + ")");
+            if (!focus.valid()) throw InternalError("density family: no face for the focus (" + generate_command(o_) + ")");
             used[c] += 2;
             while (longest[c] / shortest_c < target) {
                 if (graded_round(focus, shortest_c) != 3)
@@ -260,7 +261,7 @@ private:
         std::vector<std::array<VertexId, 2>> edges;
         for (int round = 0; band_aspect(chain) < target; ++round) {
             if (round == band_rounds(o_.knobs))
-                throw std::logic_error("density family: the band did not reach its aspect (" + generate_command(o_) + ")");
+                throw InternalError("density family: the band did not reach its aspect (" + generate_command(o_) + ")");
             // The edges to split, gathered before any is split, along the chain one way in even
             // rounds and the other way in odd ones (the apexes zigzag rather than drift).
             edges.clear();
@@ -362,7 +363,7 @@ private:
         }
         while (faces >= 2) {
             if (!insert_focus(c, ignored).valid())
-                throw std::logic_error("density family: no face left to split (" + generate_command(o_) + ")");
+                throw InternalError("density family: no face left to split (" + generate_command(o_) + ")");
             faces -= 2;
         }
     }

@@ -33,6 +33,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include <fhr/core/errors.hpp>
 #include <fhr/core/topology.hpp>
 #include <fhr/generate/embedding.hpp>
 
@@ -166,7 +167,7 @@ public:
                 if (try_insert(kind, f, aim, first)) return;
             }
             if (kind != Kind::sliver)
-                throw std::logic_error("quality family: no face takes a " + std::string(kind == Kind::cap ? "cap" : "needle") +
+                throw InternalError("quality family: no face takes a " + std::string(kind == Kind::cap ? "cap" : "needle") +
                                        " of " + shortest(aim) + "° (a bug: see paper_notes/generator.md)");
             kind = Kind::needle;
         }

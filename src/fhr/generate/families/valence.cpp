@@ -39,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include <fhr/core/errors.hpp>
 #include <fhr/generate/detail/editor.hpp>
 #include <fhr/generate/detail/family.hpp>
 
@@ -246,7 +247,7 @@ private:
                 }
             }
             if (!added.valid())
-                throw std::logic_error("valence family: no wedge of hub vertex " + std::to_string(v.idx()) +
+                throw InternalError("valence family: no wedge of hub vertex " + std::to_string(v.idx()) +
                                        " could be split (" + generate_command(o_) + ")");
             ++splits;
         }
@@ -333,7 +334,7 @@ private:
                     done = eligible(f, pass == 1) && insert(f);
                 }
             if (!done)
-                throw std::logic_error("valence family: no face left for a valence-3 vertex (" + generate_command(o_) + ")");
+                throw InternalError("valence family: no face left for a valence-3 vertex (" + generate_command(o_) + ")");
         }
     }
 };

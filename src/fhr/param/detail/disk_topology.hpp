@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include <fhr/core/errors.hpp>
 #include <fhr/param/disk.hpp>
 
 namespace fhr::param::detail {
@@ -32,10 +33,10 @@ public:
     void assign(std::uint64_t key, std::uint32_t t);
     /// No triangle traverses `key` any more.
     void erase(std::uint64_t key);
-    /// The triangle that traverses `key`. \throws std::logic_error when none does.
+    /// The triangle that traverses `key`. \throws InternalError when none does.
     std::uint32_t at(std::uint64_t key) const {
         const std::uint32_t t = find(key);
-        if (t == none) throw std::logic_error("DirectedEdges::at: no triangle traverses the edge");
+        if (t == none) throw InternalError("DirectedEdges::at: no triangle traverses the edge");
         return t;
     }
     /// The triangle that traverses `key`, or none.

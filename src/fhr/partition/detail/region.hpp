@@ -15,13 +15,18 @@
 //   a side of a curve: the faces of T′_S reached from the face on that side of its first segment
 //       without crossing a curve (the region when the curves enclose it: checked, the fill never
 //       reaches the border of T_S)
+// Curves the caller took as given (the kept geodesics of the direct start) may not enclose what
+// they promised: each step that can find so returns why (core/outcome.hpp) rather than a region.
 // Decisions and their reasons: paper_notes/partition.md, "Keeping the domain".
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
+#include <variant>
 #include <vector>
 
+#include <fhr/core/outcome.hpp>
 #include <fhr/core/trimesh.hpp>
 #include <fhr/geodesic/exact.hpp>
 #include <fhr/partition/embed.hpp>
@@ -36,24 +41,25 @@ struct RegionCurve {
 
 class Region {
 public:
-    /// \pre `touched` are the faces of T that the region meets; `curves` include every curve on
-    ///      the region's boundary, lie in those faces and do not cross one another.
-    /// \throws std::logic_error when the curves cross (not a caller's input error).
-    Region(const TriMesh& T, std::span<const FaceId> touched, std::span<const RegionCurve> curves);
+    /// The region of `touched`, the faces of T that it meets, cut along `curves`, which include
+    /// every curve on its boundary; or why not: a curve leaves those faces, or two curves cross.
+    static Outcome<Region> cut_out(const TriMesh& T, std::span<const FaceId> touched, std::span<const RegionCurve> curves);
 
-    /// Adds a curve inside the region (the new curve of a flip or a tightening) and cuts again.
-    void add(const RegionCurve& curve);
+    /// Adds a curve inside the region (the new curve of a flip or a tightening) and cuts again;
+    /// or why not (as cut_out).
+    Outcome<std::monostate> add(const RegionCurve& curve);
 
     const TriMesh& sub() const { return sub_; }            ///< T_S
     const Network& cut() const { return cut_.network; }    ///< T′_S; curve i labels halfedges 2i, 2i + 1
 
-    /// The faces of T′_S on the left (or right) of curve i, as a mask over T′_S's faces.
-    /// \throws std::logic_error when the curves do not enclose that side.
-    FaceData<std::uint8_t> side(std::size_t curve, bool left) const;
+    /// The faces of T′_S on the left (or right) of curve i, as a mask over T′_S's faces; or why
+    /// not: the curves do not enclose that side.
+    Outcome<FaceData<std::uint8_t>> side(std::size_t curve, bool left) const;
     /// The faces of T holding the masked faces of T′_S, in increasing order.
     std::vector<FaceId> t_faces(const FaceData<std::uint8_t>& mask) const;
 
-    VertexId in_sub(VertexId v) const;             ///< the vertex of T_S at vertex v of T
+    std::optional<VertexId> find_sub(VertexId v) const;  ///< the vertex of T_S at vertex v of T, if any
+    VertexId in_sub(VertexId v) const;  ///< the vertex of T_S at vertex v of T; InternalError when there is none
     VertexId in_t(VertexId v) const { return t_vertex_[v.idx()]; }
     SurfacePoint in_t(const SurfacePoint& p) const;  ///< a vertex or edge point of T_S, on T
 
@@ -67,8 +73,9 @@ private:
     std::vector<std::uint8_t> unsnapped_;
     Embedding cut_;
 
-    void convert(const RegionCurve& curve);
-    void recut();
+    explicit Region(const TriMesh& T) : T_(T) {}
+    Outcome<std::monostate> convert(const RegionCurve& curve);
+    Outcome<std::monostate> recut();
 };
 
 }  // namespace fhr::partition

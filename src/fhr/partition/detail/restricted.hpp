@@ -53,16 +53,19 @@ struct RestrictedPath {
     std::size_t touches = 0;      ///< nodes of the shortest curve on the region's boundary
 };
 
-/// The restricted shortest path from x `from` to x `to` inside a region: the side `left` (or
-/// right) of curve `curve` of `region`, separated from the region's boundary.
-/// \pre the region's curves enclose that side, a disk of T′ with `from` and `to` (vertices of T)
-///      on its boundary; no other curve of the network enters it.
+/// The restricted shortest path from x `from` to x `to` inside a region: the faces of `region`'s
+/// T′_S in `mask` (one side of one of its curves, Region::side), separated from the region's boundary.
+/// \pre the mask is a disk of T′_S with `from` and `to` (vertices of T) on its boundary; no other
+///      curve of the network enters it.
 /// \post path runs from `from` to `to` on T, with consecutive nodes in a common face of T; inside
 ///       the region; touching its boundary only at the ends; path.length ≤ shortest + separation_bound.
 /// The exact search borrows its arrays from `workspace` (geodesic/workspace.hpp; nullptr: its own).
+/// When the mask is found not to be such a region (a path node inside a face of T′, the walk around
+/// a touched vertex leaving it), why not: the network's own regions always are (a failure there is
+/// a bug: the caller's value() throws InternalError), the direct start's may not be.
 /// \throws PartitionFailure when `to` cannot be reached inside the region, or when a touched node
 ///         has no room for the separation (less than min_separation of an edge).
-RestrictedPath restricted_path(const Region& region, std::size_t curve, bool left, VertexId from, VertexId to,
-                               geodesic::Workspace* workspace = nullptr);
+Outcome<RestrictedPath> restricted_path(const Region& region, const FaceData<std::uint8_t>& mask, VertexId from, VertexId to,
+                                        geodesic::Workspace* workspace = nullptr);
 
 }  // namespace fhr::partition
