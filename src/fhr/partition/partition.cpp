@@ -244,185 +244,229 @@ std::optional<domain::Domain> decimation_to_vertices(const TriMesh& T, const dom
     return std::nullopt;
 }
 
-}  // namespace
+// §3 with its recovery, one method per step: the geodesics of D embedded; where they conflict,
+// keeping D (keep.hpp) first; else, for a decimated D, one of three named strategies a round —
+// flip the domain edges that run over a corner, decimate again keeping the vertices at the
+// conflicts (local), or step back along the decimation (global) — until (1) and (2) hold.
+class Partitioner {
+public:
+    Partitioner(const TriMesh& T, domain::Domain D, const PartitionOptions& options)
+        : T_(T), options_(options), D0_(D), D_(std::move(D)), decimated_(!D0_.history.empty()),
+          vertices0_(D0_.mesh.n_vertices()), kept_(T.n_vertices(), 0), executor_(executor_or_default(options.executor)),
+          cones_(T.is_closed() ? std::nullopt : std::optional<Coned>(add_cones(T))), T_hat_(cones_ ? cones_->mesh : T),
+          cache_(T, T_hat_, options.ellipse, executor_) {}
 
-Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& options) {
-    const domain::Domain D0 = D;
-    const bool decimated = !D.history.empty();
-    const std::size_t vertices0 = D.mesh.n_vertices();
-    std::vector<VertexId> keep;
-    std::vector<std::uint8_t> kept(T.n_vertices(), 0);
-    Flips flipped;                 // edges made by flips
+    Partition run() {
+        for (;;) {
+            const domain::Domain D_hat = domain::close_domain(D_, T_);
+            out_.paths = EdgeData<geodesic::EllipsePath>(cache_.all(D_hat));
+            std::vector<geodesic::GeodesicPath> paths;
+            paths.reserve(out_.paths.size());
+            for (const auto& p : out_.paths) paths.push_back(p.path);
+            Embedding embedding = embed(T_hat_, D_hat, paths, {}, &executor_);
+            std::string keep_failure;  // why D could not be kept, for the message of a given domain
+            std::optional<KeptNetwork> attempt;
+            if (!embedding.conflicts.empty() && options_.keep_domain && out_.retries == 0) attempt = keeping(D_hat, embedding, keep_failure);
+            std::vector<std::uint8_t> unsnapped;
+            std::optional<Patches> patches;  // the kept network's, cut already with its embedding
+            if (!embedding.conflicts.empty() && attempt) take_kept(D_hat, *attempt, embedding, unsnapped, patches);
+            if (embedding.conflicts.empty()) return finish(D_hat, embedding, unsnapped, patches);
+            if (!decimated_) refuse_given(embedding, keep_failure);
+            recover(embedding);
+        }
+    }
+
+private:
+    const TriMesh& T_;
+    const PartitionOptions& options_;
+    const domain::Domain D0_;
+    domain::Domain D_;
+    bool decimated_;
+    std::size_t vertices0_;
+    std::vector<VertexId> keep_;       // vertices of T the decimation must keep (local recovery)
+    std::vector<std::uint8_t> kept_;   // per vertex of T: in keep_ (or tried)
+    Flips flipped_;                    // edges made by flips
     // The last decimation, from which the recovery decimates again or steps back: D itself when
     // its history describes it, else (D changed after its decimation) T decimated afresh to D's
     // size when first needed.
-    std::optional<domain::Domain> base;
-    auto last_decimation = [&]() -> domain::Domain& {
-        if (!base) {
-            if (domain::history_describes(D0, T)) {
-                base = D0;
-            } else {
-                domain::DecimateOptions o;
-                o.target_faces = D0.mesh.n_faces();
-                o.best_effort = true;
-                base = domain::decimate(T, o);
-            }
-        }
-        return *base;
-    };
-    Executor& executor = executor_or_default(options.executor);
+    std::optional<domain::Domain> base_;
+    Executor& executor_;
     // With boundary, §3 works on T̂ and D̂, closed by cones (core/cones.hpp); D's own vertices,
     // edges and faces are the first of D̂'s, so conflicts, paths and flips name them alike.
-    std::optional<Coned> cones;
-    if (!T.is_closed()) cones = add_cones(T);
-    const TriMesh& T_hat = cones ? cones->mesh : T;
-    PathCache cache(T, T_hat, options.ellipse, executor);
-    Partition out;
-    for (;;) {
-        const domain::Domain D_hat = domain::close_domain(D, T);
-        out.paths = EdgeData<geodesic::EllipsePath>(cache.all(D_hat));
-        std::vector<geodesic::GeodesicPath> paths;
-        paths.reserve(out.paths.size());
-        for (const auto& p : out.paths) paths.push_back(p.path);
-        Embedding embedding = embed(T_hat, D_hat, paths, {}, &executor);
-        std::optional<KeptNetwork> attempt;
-        std::string keep_failure;  // why D could not be kept, for the message of a given domain
-        if (!embedding.conflicts.empty() && options.keep_domain && out.retries == 0) {
-            // Keeping D (partition/keep.hpp): restricted shortest paths where the geodesics conflict,
-            // directly on D, else from D's own decimation, or for a domain given by the user from a
-            // decimation of T to its vertices (H, made or proved only when first needed). Redoing
-            // many collapses can crowd curves around one point until there is no room to separate
-            // them: then again from the nearest valid level; failing that, a decimated D is changed
-            // as the paper-only mode does and a given one is refused.
-            std::optional<domain::Domain> H;
-            std::string no_base;  // why there is no H, once found
-            auto base = [&]() -> const domain::Domain& {
-                if (!H && no_base.empty()) {
-                    if (decimated && domain::history_describes(D, T)) H = D_hat;
-                    else if (decimated) no_base = "D's history does not describe it";
-                    else if (const std::optional<domain::Domain> h = decimation_to_vertices(T, D, no_base)) H = domain::close_domain(*h, T);
-                }
-                if (!H) throw PartitionFailure(no_base);
-                return *H;
-            };
-            for (const Start start : {Start::fast, Start::gradual}) {
-                if (!no_base.empty()) break;
-                try {
-                    attempt = keep_domain(T_hat, T.n_vertices(), D_hat, base, out.paths.values(), embedding.conflicts,
-                                          [&](const domain::Domain& d) { return cache.all(d); }, options.progress, executor, start);
-                    break;
-                } catch (const PartitionFailure& e) {
-                    keep_failure = e.what();
-                    if (options.progress)
-                        options.progress("keeping the domain failed (" + keep_failure +
-                                         (start == Start::fast && no_base.empty() ? "); again from the nearest valid level"
-                                          : decimated          ? "); changing D instead"
-                                                               : "); the given domain is refused"));
-                }
-            }
-        }
-        std::vector<std::uint8_t> unsnapped;
-        std::optional<Patches> patches;  // the kept network's, cut already with its embedding
-        if (!embedding.conflicts.empty() && attempt) {
-            KeptNetwork& kept = *attempt;
-            for (EdgeId e : kept.paths.ids()) out.paths[e].path = kept.paths[e];
-            out.curves = kept.info;
-            out.keep_start_faces = kept.start_faces;
-            out.resolved = embedding.conflicts;
-            unsnapped = kept.unsnapped.values();
-            if (kept.embedded) {
-                embedding = std::move(kept.embedded->embedding);
-                patches = std::move(kept.embedded->patches);
+    std::optional<Coned> cones_;
+    const TriMesh& T_hat_;
+    PathCache cache_;
+    Partition out_;
+
+    void progress(const std::string& line) const {
+        if (options_.progress) options_.progress(line);
+    }
+
+    domain::Domain& last_decimation() {
+        if (!base_) {
+            if (domain::history_describes(D0_, T_)) {
+                base_ = D0_;
             } else {
-                embedding = embed(T_hat, D_hat, kept.paths.values(), unsnapped, &executor);
+                domain::DecimateOptions o;
+                o.target_faces = D0_.mesh.n_faces();
+                o.best_effort = true;
+                base_ = domain::decimate(T_, o);
             }
+        }
+        return *base_;
+    }
+
+    // Keeping D (partition/keep.hpp): restricted shortest paths where the geodesics conflict,
+    // directly on D, else from D's own decimation, or for a domain given by the user from a
+    // decimation of T to its vertices (H, made or proved only when first needed). Redoing many
+    // collapses can crowd curves around one point until there is no room to separate them: then
+    // again from the nearest valid level; failing that, a decimated D is changed as the paper-only
+    // mode does and a given one is refused (`keep_failure` says why).
+    std::optional<KeptNetwork> keeping(const domain::Domain& D_hat, const Embedding& embedding, std::string& keep_failure) {
+        std::optional<domain::Domain> H;
+        std::string no_base;  // why there is no H, once found
+        auto base = [&]() -> const domain::Domain& {
+            if (!H && no_base.empty()) {
+                if (decimated_ && domain::history_describes(D_, T_)) H = D_hat;
+                else if (decimated_) no_base = "D's history does not describe it";
+                else if (const std::optional<domain::Domain> h = decimation_to_vertices(T_, D_, no_base)) H = domain::close_domain(*h, T_);
+            }
+            if (!H) throw PartitionFailure(no_base);
+            return *H;
+        };
+        for (const Start start : {Start::fast, Start::gradual}) {
+            if (!no_base.empty()) break;
+            try {
+                return keep_domain(T_hat_, T_.n_vertices(), D_hat, base, out_.paths.values(), embedding.conflicts,
+                                   [&](const domain::Domain& d) { return cache_.all(d); }, options_.progress, executor_, start);
+            } catch (const PartitionFailure& e) {
+                keep_failure = e.what();
+                progress("keeping the domain failed (" + keep_failure +
+                         (start == Start::fast && no_base.empty() ? "); again from the nearest valid level"
+                          : decimated_                         ? "); changing D instead"
+                                                               : "); the given domain is refused"));
+            }
+        }
+        return std::nullopt;
+    }
+
+    // The kept network in place of the geodesics: its curves, and their embedding (the direct
+    // start's when its curves stayed as they were, else made now).
+    void take_kept(const domain::Domain& D_hat, KeptNetwork& kept, Embedding& embedding, std::vector<std::uint8_t>& unsnapped,
+                   std::optional<Patches>& patches) {
+        for (EdgeId e : kept.paths.ids()) out_.paths[e].path = kept.paths[e];
+        out_.curves = kept.info;
+        out_.keep_start_faces = kept.start_faces;
+        out_.resolved = embedding.conflicts;
+        unsnapped = kept.unsnapped.values();
+        if (kept.embedded) {
+            embedding = std::move(kept.embedded->embedding);
+            patches = std::move(kept.embedded->patches);
+        } else {
+            embedding = embed(T_hat_, D_hat, kept.paths.values(), unsnapped, &executor_);
+        }
+        if (!embedding.conflicts.empty())
+            throw InternalError("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
+    }
+
+    // The partition of a network that satisfies (1) and (2); with boundary, the cones taken off.
+    Partition finish(const domain::Domain& D_hat, Embedding& embedding, std::vector<std::uint8_t>& unsnapped, std::optional<Patches>& patches) {
+        if (out_.curves.empty())
+            for (EdgeId e : out_.paths.ids())
+                out_.curves.push_back(CurveInfo{cache_.fixed(D_hat, e) ? CurveKind::boundary : CurveKind::geodesic, out_.paths[e].path.length, 0, 0, {}});
+        if (cones_) {
+            // The cones off: D's edges are D̂'s first ones; T′ is embedded on T itself, where the
+            // network must again satisfy (1) and (2) (the cones only closed the loops).
+            const std::size_t ne = D_.mesh.n_edges();
+            out_.paths.resize(ne);
+            out_.curves.resize(ne);
+            if (!unsnapped.empty()) unsnapped.resize(ne);
+            std::vector<geodesic::GeodesicPath> open;
+            for (const auto& p : out_.paths) open.push_back(p.path);
+            embedding = embed(T_, D_, open, unsnapped, &executor_);
             if (!embedding.conflicts.empty())
-                throw InternalError("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
+                throw InternalError("partition: the network breaks (1)/(2) without the cones: " + embedding.conflicts.front().describe());
+            patches.reset();  // D̂'s on T̂
         }
-        if (embedding.conflicts.empty()) {
-            if (out.curves.empty())
-                for (EdgeId e : out.paths.ids())
-                    out.curves.push_back(CurveInfo{cache.fixed(D_hat, e) ? CurveKind::boundary : CurveKind::geodesic, out.paths[e].path.length, 0, 0, {}});
-            if (cones) {
-                // The cones off: D's edges are D̂'s first ones; T′ is embedded on T itself, where
-                // the network must again satisfy (1) and (2) (the cones only closed the loops).
-                const std::size_t ne = D.mesh.n_edges();
-                out.paths.resize(ne);
-                out.curves.resize(ne);
-                if (!unsnapped.empty()) unsnapped.resize(ne);
-                std::vector<geodesic::GeodesicPath> open;
-                for (const auto& p : out.paths) open.push_back(p.path);
-                embedding = embed(T, D, open, unsnapped, &executor);
-                if (!embedding.conflicts.empty())
-                    throw InternalError("partition: the network breaks (1)/(2) without the cones: " + embedding.conflicts.front().describe());
-                patches.reset();  // D̂'s on T̂
-            }
-            out.patches = patches ? std::move(*patches) : extract_patches(D, embedding.network, &executor);
-            out.network = std::move(embedding.network);
-            out.vertices_added = D.mesh.n_vertices() - vertices0;
-            out.kept = std::move(keep);
-            out.domain = std::move(D);
-            return out;
+        out_.patches = patches ? std::move(*patches) : extract_patches(D_, embedding.network, &executor_);
+        out_.network = std::move(embedding.network);
+        out_.vertices_added = D_.mesh.n_vertices() - vertices0_;
+        out_.kept = std::move(keep_);
+        out_.domain = std::move(D_);
+        return std::move(out_);
+    }
+
+    // A domain given by the user is never changed: its conflicts, each pair of domain edges once
+    // (a crossing is found in every face where it happens) and each problem of one edge at one
+    // domain vertex once, and why it could not be kept.
+    [[noreturn]] static void refuse_given(const Embedding& embedding, const std::string& keep_failure) {
+        std::vector<const Conflict*> pairs;
+        for (const Conflict& c : embedding.conflicts)
+            if (std::none_of(pairs.begin(), pairs.end(), [&](const Conflict* p) {
+                    return p->d_edge_a == c.d_edge_a && p->d_edge_b == c.d_edge_b &&
+                           (c.d_edge_a != c.d_edge_b || (p->kind == c.kind && p->d_vertex == c.d_vertex));
+                }))
+                pairs.push_back(&c);
+        std::string what = "conditions (1)/(2) of §3 fail for the given domain:";
+        for (std::size_t i = 0; i < std::min<std::size_t>(pairs.size(), 4); ++i) what += (i ? "; " : " ") + pairs[i]->describe();
+        if (pairs.size() > 4) what += "; and " + std::to_string(pairs.size() - 4) + " more";
+        if (!keep_failure.empty()) what += "; and the domain cannot be kept: " + keep_failure;
+        throw PartitionFailure(what);
+    }
+
+    // One round of the recovery of a decimated D: the first strategy that applies.
+    void recover(const Embedding& embedding) {
+        const std::string conflicts = std::to_string(embedding.conflicts.size()) + " conflicts (" + embedding.conflicts.front().describe() + ")";
+        out_.resolved.insert(out_.resolved.end(), embedding.conflicts.begin(), embedding.conflicts.end());
+        ++out_.retries;
+        if (const std::size_t flips = flip_over_corners(D_, embedding.conflicts, flipped_)) {
+            progress("partition: " + conflicts + "; flipped " + std::to_string(flips) + " domain edges that ran over a corner");
+            return;
         }
-        if (!decimated) {
-            // Each pair of domain edges once (a crossing is found in every face where it happens),
-            // and each problem of one edge at one domain vertex once.
-            std::vector<const Conflict*> pairs;
-            for (const Conflict& c : embedding.conflicts)
-                if (std::none_of(pairs.begin(), pairs.end(), [&](const Conflict* p) {
-                        return p->d_edge_a == c.d_edge_a && p->d_edge_b == c.d_edge_b &&
-                               (c.d_edge_a != c.d_edge_b || (p->kind == c.kind && p->d_vertex == c.d_vertex));
-                    }))
-                    pairs.push_back(&c);
-            std::string what = "conditions (1)/(2) of §3 fail for the given domain:";
-            for (std::size_t i = 0; i < std::min<std::size_t>(pairs.size(), 4); ++i) what += (i ? "; " : " ") + pairs[i]->describe();
-            if (pairs.size() > 4) what += "; and " + std::to_string(pairs.size() - 4) + " more";
-            if (!keep_failure.empty()) what += "; and the domain cannot be kept: " + keep_failure;
-            throw PartitionFailure(what);
+        if (decimate_again(embedding, conflicts)) return;
+        step_back(conflicts);
+    }
+
+    // Local: decimate T again to two more faces per new vertex to keep, keeping the vertices at the
+    // conflicts — when they are few: at most an eighth of D's faces (a quarter more faces).
+    bool decimate_again(const Embedding& embedding, const std::string& conflicts) {
+        const std::vector<VertexId> more = new_keep(T_, D_, embedding, kept_);
+        if (more.empty() || 8 * more.size() > D_.mesh.n_faces()) {
+            for (VertexId v : more) kept_[v.idx()] = 0;  // not kept after all: candidates again later
+            return false;
         }
-        const std::size_t conflicts = embedding.conflicts.size();
-        const std::string first = embedding.conflicts.front().describe();
-        out.resolved.insert(out.resolved.end(), embedding.conflicts.begin(), embedding.conflicts.end());
-        ++out.retries;
-        if (const std::size_t flips = flip_over_corners(D, embedding.conflicts, flipped)) {
-            if (options.progress)
-                options.progress("partition: " + std::to_string(conflicts) + " conflicts (" + first + "); flipped " +
-                                 std::to_string(flips) + " domain edges that ran over a corner");
-            continue;
-        }
-        // Local: decimate T again to two more faces per new vertex to keep, keeping the vertices at
-        // the conflicts — when they are few: at most an eighth of D's faces (a quarter more faces).
-        const std::vector<VertexId> more = new_keep(T, D, embedding, kept);
-        if (!more.empty() && 8 * more.size() <= D.mesh.n_faces()) {
-            keep.insert(keep.end(), more.begin(), more.end());
-            domain::DecimateOptions o;
-            o.target_faces = std::min(T.n_faces(), D.mesh.n_faces() + 2 * more.size());
-            o.keep = keep;
-            o.best_effort = true;
-            base = domain::decimate_again(T, last_decimation(), o);
-            D = *base;
-            const std::size_t again = reapply_flips(D, flipped);
-            if (options.progress)
-                options.progress("partition: " + std::to_string(conflicts) + " conflicts (" + first +
-                                 "); decimating again keeping " + std::to_string(keep.size()) + " vertices: " +
-                                 std::to_string(D.mesh.n_faces()) + " faces, " + std::to_string(again) + " earlier flips made again");
-            continue;
-        }
-        for (VertexId v : more) kept[v.idx()] = 0;  // not kept after all: candidates again later
-        // Global: step back along the last decimation, undoing its last collapses until D has a
-        // quarter more faces; at the end of the history D = T, whose paths are T's own edges, so
-        // (1) and (2) hold and the loop ends.
+        keep_.insert(keep_.end(), more.begin(), more.end());
+        domain::DecimateOptions o;
+        o.target_faces = std::min(T_.n_faces(), D_.mesh.n_faces() + 2 * more.size());
+        o.keep = keep_;
+        o.best_effort = true;
+        base_ = domain::decimate_again(T_, last_decimation(), o);
+        D_ = *base_;
+        const std::size_t again = reapply_flips(D_, flipped_);
+        progress("partition: " + conflicts + "; decimating again keeping " + std::to_string(keep_.size()) + " vertices: " +
+                 std::to_string(D_.mesh.n_faces()) + " faces, " + std::to_string(again) + " earlier flips made again");
+        return true;
+    }
+
+    // Global: step back along the last decimation, undoing its last collapses until D has a
+    // quarter more faces; at the end of the history D = T, whose paths are T's own edges, so (1)
+    // and (2) hold and the loop ends.
+    void step_back(const std::string& conflicts) {
         domain::Domain& last = last_decimation();
         if (last.history.empty()) throw InternalError("partition: conflicts on D = T, whose paths are T's edges");
-        const std::size_t undo = std::min(last.history.size(), std::max<std::size_t>(1, D.mesh.n_faces() / 8));
-        base = domain::undo_collapses(last, T, undo);
-        D = *base;
-        const std::size_t again = reapply_flips(D, flipped);
-        if (options.progress)
-            options.progress("partition: " + std::to_string(conflicts) + " conflicts (" + first + "); stepping back " +
-                             std::to_string(undo) + " collapses of the decimation: " + std::to_string(D.mesh.n_faces()) +
-                             " faces, " + std::to_string(again) + " earlier flips made again");
+        const std::size_t undo = std::min(last.history.size(), std::max<std::size_t>(1, D_.mesh.n_faces() / 8));
+        base_ = domain::undo_collapses(last, T_, undo);
+        D_ = *base_;
+        const std::size_t again = reapply_flips(D_, flipped_);
+        progress("partition: " + conflicts + "; stepping back " + std::to_string(undo) + " collapses of the decimation: " +
+                 std::to_string(D_.mesh.n_faces()) + " faces, " + std::to_string(again) + " earlier flips made again");
     }
+};
+
+}  // namespace
+
+Partition partition(const TriMesh& T, domain::Domain D, const PartitionOptions& options) {
+    return Partitioner(T, std::move(D), options).run();
 }
 
 }  // namespace fhr::partition
