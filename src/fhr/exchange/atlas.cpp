@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 
 #include <gmpxx.h>
@@ -152,6 +153,10 @@ private:
     CheckResult check_folds();
     CheckResult check_cracks();
     void find_pairs(Recorder& overlaps, Recorder& contacts);
+    using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+    void find_pairs_in(const std::vector<std::uint32_t>& faces, Pairs& found_overlap, Pairs& found_contact);
+    std::array<Vec2, 3> ccw(std::uint32_t f) const;  // face f's UV triangle, counter-clockwise
+    void judge_pair(std::uint32_t f, std::uint32_t g, Pairs& found_overlap, Pairs& found_contact) const;
     CheckResult check_input();
     void figures();
 };
@@ -498,127 +503,138 @@ bool in_cone(const Vec2& p, const Vec2& x, const Vec2& y, const Vec2& c) {
     return orient2d(p, x, c) >= 0 && orient2d(p, c, y) >= 0;
 }
 
+// The faces of one texture on a grid of cells as wide as the faces' boxes are on average (so a
+// face is listed in a few cells and a cell lists a few faces, however much of the texture is
+// empty), at most 2^20 per axis and about as many cells as faces; the faces of each cell by a
+// counting sort on the cell (row-major, nx columns).
+class UvGrid {
+public:
+    UvGrid(const std::vector<std::uint32_t>& faces, const std::function<Vec2(std::uint32_t, int)>& uv2) : box(faces.size()) {
+        Vec2 lo_ = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo_;
+        for (std::size_t i = 0; i < faces.size(); ++i) {
+            box[i] = {uv2(faces[i], 0).cwiseMin(uv2(faces[i], 1)).cwiseMin(uv2(faces[i], 2)),
+                      uv2(faces[i], 0).cwiseMax(uv2(faces[i], 1)).cwiseMax(uv2(faces[i], 2))};
+            lo_ = lo_.cwiseMin(box[i][0]);
+            hi = hi.cwiseMax(box[i][1]);
+        }
+        lo = lo_;
+        const Vec2 extent = (hi - lo).cwiseMax(Vec2::Constant(std::numeric_limits<double>::min()));
+        double mean_box = 0;
+        for (const auto& b : box) mean_box += (b[1] - b[0]).maxCoeff();
+        mean_box /= static_cast<double>(faces.size());
+        side = std::max({mean_box, std::sqrt(extent[0] * extent[1] / static_cast<double>(faces.size())) / 4,
+                         extent.maxCoeff() / (1 << 20), std::numeric_limits<double>::min()});
+        nx = cell(hi)[0] + 1;
+        start.assign(nx * (cell(hi)[1] + 1) + 1, 0);
+        for (std::uint32_t i = 0; i < faces.size(); ++i) for_cells(i, [&](std::uint64_t c) { ++start[c + 1]; });
+        std::partial_sum(start.begin(), start.end(), start.begin());
+        listed.resize(start.back());
+        std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+        for (std::uint32_t i = 0; i < faces.size(); ++i) for_cells(i, [&](std::uint64_t c) { listed[next[c]++] = i; });
+    }
+    std::array<std::uint64_t, 2> cell(const Vec2& p) const {
+        return {static_cast<std::uint64_t>(std::clamp((p[0] - lo[0]) / side, 0.0, 1048575.0)),
+                static_cast<std::uint64_t>(std::clamp((p[1] - lo[1]) / side, 0.0, 1048575.0))};
+    }
+    template <class Visit>
+    void for_cells(std::uint32_t i, const Visit& visit) const {
+        const auto c0 = cell(box[i][0]), c1 = cell(box[i][1]);
+        for (std::uint64_t y = c0[1]; y <= c1[1]; ++y)
+            for (std::uint64_t x = c0[0]; x <= c1[0]; ++x) visit(y * nx + x);
+    }
+    std::vector<std::array<Vec2, 2>> box;  // per face (its index in `faces`): lower left, upper right
+    Vec2 lo;
+    double side = 0;
+    std::uint64_t nx = 0;
+    std::vector<std::uint32_t> start, listed;  // cell c lists listed[start[c] .. start[c + 1])
+};
+
+std::array<Vec2, 3> AtlasVerifier::ccw(std::uint32_t f) const {
+    std::array<Vec2, 3> t{uv2(f, 0), uv2(f, 1), uv2(f, 2)};
+    if (sign_[f] < 0) std::swap(t[1], t[2]);
+    return t;
+}
+
+// Faces f < g whose boxes meet: an overlap, or a contact beyond their shared corners, or neither.
+void AtlasVerifier::judge_pair(std::uint32_t f, std::uint32_t g, Pairs& found_overlap, Pairs& found_contact) const {
+    const std::array<Vec2, 3> tf = ccw(f), tg = ccw(g);
+    const Meeting m = meeting(tf, tg);
+    if (m == Meeting::apart) return;
+    if (m == Meeting::overlap) {
+        found_overlap.emplace_back(f, g);
+        return;
+    }
+    // Touching: legitimate only in shared corners (same vertex, same UV point).
+    int shared = 0, sf = -1;
+    for (int p = 0; p < 3; ++p)
+        for (int q = 0; q < 3; ++q)
+            if (w_faces_[f][p] == w_faces_[g][q] && uv(f, p) == uv(g, q)) {
+                ++shared;
+                sf = p;
+            }
+    bool contact = shared == 0;
+    if (shared == 1) {
+        // The two faces meet beyond their shared corner iff one's cone there holds a side of the
+        // other's (both cones are below π).
+        const Vec2 pf = uv2(f, sf);
+        const auto others = [&](const std::array<Vec2, 3>& t) {
+            int k = 0;
+            while (t[k] != pf) ++k;
+            return std::pair<Vec2, Vec2>(t[(k + 1) % 3], t[(k + 2) % 3]);
+        };
+        const auto [fx, fy] = others(tf);
+        const auto [gx, gy] = others(tg);
+        contact = in_cone(pf, fx, fy, gx) || in_cone(pf, fx, fy, gy) || in_cone(pf, gx, gy, fx) || in_cone(pf, gx, gy, fy);
+    }
+    if (contact) found_contact.emplace_back(f, g);
+}
+
+// The pairs among one texture's faces: each pair of faces listed in a cell is tested once, in the
+// cell of their boxes' common lower-left corner; the cells in blocks on the executor, each
+// block's pairs apart (sorted by the caller: the same result on any number of threads).
+void AtlasVerifier::find_pairs_in(const std::vector<std::uint32_t>& faces, Pairs& found_overlap, Pairs& found_contact) {
+    const UvGrid grid(faces, [&](std::uint32_t f, int k) { return uv2(f, k); });
+    const std::size_t cells = grid.start.size() - 1, block = 4096;
+    std::vector<Pairs> block_overlap((cells + block - 1) / block), block_contact((cells + block - 1) / block);
+    for_each_block(executor_, cells, block, 1, [&](std::size_t first_cell, std::size_t end_cell) {
+        for (std::uint64_t c = first_cell; c < end_cell; ++c)
+            for (std::size_t x = grid.start[c]; x < grid.start[c + 1]; ++x)
+                for (std::size_t y = x + 1; y < grid.start[c + 1]; ++y) {
+                    const std::uint32_t i = grid.listed[x], j = grid.listed[y];
+                    const Vec2 blo = grid.box[i][0].cwiseMax(grid.box[j][0]), bhi = grid.box[i][1].cwiseMin(grid.box[j][1]);
+                    if ((blo.array() > bhi.array()).any()) continue;  // boxes apart
+                    const auto corner_cell = grid.cell(blo);
+                    if (corner_cell[1] * grid.nx + corner_cell[0] != c) continue;
+                    judge_pair(std::min(faces[i], faces[j]), std::max(faces[i], faces[j]), block_overlap[first_cell / block],
+                               block_contact[first_cell / block]);
+                }
+    });
+    for (auto& v : block_overlap) found_overlap.insert(found_overlap.end(), v.begin(), v.end());
+    for (auto& v : block_contact) found_contact.insert(found_contact.end(), v.begin(), v.end());
+}
+
 void AtlasVerifier::find_pairs(Recorder& overlaps, Recorder& contacts) {
     // Faces by texture, non-degenerate only (ATLAS-3 passed, so all).
     std::uint32_t textures = 0;
     for (std::uint32_t t : a_.face_texture) textures = std::max(textures, t + 1);
     std::vector<std::vector<std::uint32_t>> by_texture(textures);
     for (std::uint32_t f = 0; f < n(); ++f) by_texture[a_.face_texture[f]].push_back(f);
-    // Each face's UV triangle, counter-clockwise.
-    const auto ccw = [&](std::uint32_t f) {
-        std::array<Vec2, 3> t{uv2(f, 0), uv2(f, 1), uv2(f, 2)};
-        if (sign_[f] < 0) std::swap(t[1], t[2]);
-        return t;
-    };
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> found_overlap, found_contact;
+    Pairs found_overlap, found_contact;
     for (const std::vector<std::uint32_t>& faces : by_texture) {
         if (faces.size() < 2) continue;
         ++report_.textures;
-        Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-        std::vector<std::array<Vec2, 2>> box(faces.size());
-        for (std::size_t i = 0; i < faces.size(); ++i) {
-            box[i] = {uv2(faces[i], 0).cwiseMin(uv2(faces[i], 1)).cwiseMin(uv2(faces[i], 2)),
-                      uv2(faces[i], 0).cwiseMax(uv2(faces[i], 1)).cwiseMax(uv2(faces[i], 2))};
-            lo = lo.cwiseMin(box[i][0]);
-            hi = hi.cwiseMax(box[i][1]);
-        }
-        // Cells as wide as the faces' boxes are on average (so a face is listed in a few cells and
-        // a cell lists a few faces, however much of the texture is empty), at most 2^20 per axis
-        // and about as many cells as faces.
-        const Vec2 extent = (hi - lo).cwiseMax(Vec2::Constant(std::numeric_limits<double>::min()));
-        double mean_box = 0;
-        for (const auto& b : box) mean_box += (b[1] - b[0]).maxCoeff();
-        mean_box /= static_cast<double>(faces.size());
-        const double side = std::max({mean_box, std::sqrt(extent[0] * extent[1] / static_cast<double>(faces.size())) / 4,
-                                      extent.maxCoeff() / (1 << 20), std::numeric_limits<double>::min()});
-        const auto cell = [&](const Vec2& p) {
-            return std::array<std::uint64_t, 2>{
-                static_cast<std::uint64_t>(std::clamp((p[0] - lo[0]) / side, 0.0, 1048575.0)),
-                static_cast<std::uint64_t>(std::clamp((p[1] - lo[1]) / side, 0.0, 1048575.0))};
-        };
-        // The faces of each cell, by a counting sort on the cell (row-major, nx columns).
-        const std::uint64_t nx = cell(hi)[0] + 1, ny = cell(hi)[1] + 1;
-        std::vector<std::uint32_t> start(nx * ny + 1, 0), listed;
-        const auto for_cells = [&](std::uint32_t i, const auto& visit) {
-            const auto c0 = cell(box[i][0]), c1 = cell(box[i][1]);
-            for (std::uint64_t y = c0[1]; y <= c1[1]; ++y)
-                for (std::uint64_t x = c0[0]; x <= c1[0]; ++x) visit(y * nx + x);
-        };
-        for (std::uint32_t i = 0; i < faces.size(); ++i) for_cells(i, [&](std::uint64_t c) { ++start[c + 1]; });
-        std::partial_sum(start.begin(), start.end(), start.begin());
-        listed.resize(start.back());
-        {
-            std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-            for (std::uint32_t i = 0; i < faces.size(); ++i) for_cells(i, [&](std::uint64_t c) { listed[next[c]++] = i; });
-        }
-        // The cells in blocks on the executor, each block's pairs apart (sorted below: the same
-        // result on any number of threads).
-        const std::size_t cells = start.size() - 1, block = 4096;
-        std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> block_overlap((cells + block - 1) / block),
-            block_contact((cells + block - 1) / block);
-        for_each_block(executor_, cells, block, 1, [&](std::size_t first_cell, std::size_t end_cell) {
-          auto& found_overlap = block_overlap[first_cell / block];
-          auto& found_contact = block_contact[first_cell / block];
-          for (std::uint64_t c = first_cell; c < end_cell; ++c) {
-            const std::size_t begin = start[c], end = start[c + 1];
-            for (std::size_t x = begin; x < end; ++x)
-                for (std::size_t y = x + 1; y < end; ++y) {
-                    const std::uint32_t i = listed[x], j = listed[y];
-                    const Vec2 blo = box[i][0].cwiseMax(box[j][0]), bhi = box[i][1].cwiseMin(box[j][1]);
-                    if ((blo.array() > bhi.array()).any()) continue;  // boxes apart
-                    const auto corner_cell = cell(blo);
-                    if (corner_cell[1] * nx + corner_cell[0] != c) continue;  // tested in the cell of the boxes' common lower-left corner
-                    const std::uint32_t f = std::min(faces[i], faces[j]), g = std::max(faces[i], faces[j]);
-                    const std::array<Vec2, 3> tf = ccw(f), tg = ccw(g);
-                    const Meeting m = meeting(tf, tg);
-                    if (m == Meeting::apart) continue;
-                    if (m == Meeting::overlap) {
-                        found_overlap.emplace_back(f, g);
-                        continue;
-                    }
-                    // Touching: legitimate only in shared corners (same vertex, same UV point).
-                    int shared = 0, sf = -1;
-                    for (int p = 0; p < 3; ++p)
-                        for (int q = 0; q < 3; ++q)
-                            if (w_faces_[f][p] == w_faces_[g][q] && uv(f, p) == uv(g, q)) {
-                                ++shared;
-                                sf = p;
-                            }
-                    bool contact = shared == 0;
-                    if (shared == 1) {
-                        // The two faces meet beyond their shared corner iff one's cone there holds
-                        // a side of the other's (both cones are below π).
-                        const Vec2 pf = uv2(f, sf);
-                        const auto others = [&](const std::array<Vec2, 3>& t) {
-                            int k = 0;
-                            while (t[k] != pf) ++k;
-                            return std::pair<Vec2, Vec2>(t[(k + 1) % 3], t[(k + 2) % 3]);
-                        };
-                        const auto [fx, fy] = others(tf);
-                        const auto [gx, gy] = others(tg);
-                        contact = in_cone(pf, fx, fy, gx) || in_cone(pf, fx, fy, gy) || in_cone(pf, gx, gy, fx) ||
-                                  in_cone(pf, gx, gy, fy);
-                    }
-                    if (contact) found_contact.emplace_back(f, g);
-                }
-          }
-        });
-        for (auto& v : block_overlap) found_overlap.insert(found_overlap.end(), v.begin(), v.end());
-        for (auto& v : block_contact) found_contact.insert(found_contact.end(), v.begin(), v.end());
+        find_pairs_in(faces, found_overlap, found_contact);
     }
     std::sort(found_overlap.begin(), found_overlap.end());
     std::sort(found_contact.begin(), found_contact.end());
-    for (const auto& pair : found_overlap)
-        if (const std::uint32_t f = pair.first, g = pair.second; overlaps.fail([&] { return "faces " + std::to_string(f) + " (chart " + std::to_string(chart_of(f)) + ") and " +
-                                       std::to_string(g) + " (chart " + std::to_string(chart_of(g)) +
-                                       ") overlap in UV"; },
-                          f))
-            overlaps.locate(chart_of(f), uv(f, 0));
-    for (const auto& pair : found_contact)
-        if (const std::uint32_t f = pair.first, g = pair.second; contacts.fail([&] { return "faces " + std::to_string(f) + " (chart " + std::to_string(chart_of(f)) + ") and " +
-                                       std::to_string(g) + " (chart " + std::to_string(chart_of(g)) +
-                                       ") touch in UV beyond their shared corners"; },
-                          f))
+    const auto pair_text = [&](std::uint32_t f, std::uint32_t g) {
+        return "faces " + std::to_string(f) + " (chart " + std::to_string(chart_of(f)) + ") and " + std::to_string(g) + " (chart " +
+               std::to_string(chart_of(g)) + ")";
+    };
+    for (const auto& [f, g] : found_overlap)
+        if (overlaps.fail([&, f = f, g = g] { return pair_text(f, g) + " overlap in UV"; }, f)) overlaps.locate(chart_of(f), uv(f, 0));
+    for (const auto& [f, g] : found_contact)
+        if (contacts.fail([&, f = f, g = g] { return pair_text(f, g) + " touch in UV beyond their shared corners"; }, f))
             contacts.locate(chart_of(f), uv(f, 0));
     overlaps.examined(n());
     contacts.examined(n());

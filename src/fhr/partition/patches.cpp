@@ -13,20 +13,22 @@ namespace {
     throw PartitionFailure("the patch of domain face " + std::to_string(d_face.idx()) + " " + what);
 }
 
-}  // namespace
+// The regions of T′: faces joined across edges without a path; `region` per face of T′, and per
+// region the face of D on the left of its curves (each region must see one).
+struct Regions {
+    std::vector<std::int32_t> region;
+    std::vector<FaceId> region_face;
+};
 
-Patches extract_patches(const domain::Domain& D, const Network& net, Executor* executor) {
+Regions regions(const domain::Domain& D, const Network& net) {
     const TriMesh& M = net.mesh;
-    Patches out;
-    // Regions: faces of T′ joined across edges without a path.
-    std::vector<std::int32_t> region(M.n_faces(), -1);
-    std::vector<FaceId> region_face;  // the D face each region belongs to
+    Regions out{std::vector<std::int32_t>(M.n_faces(), -1), {}};
     std::vector<FaceId> stack;
     for (FaceId f : M.faces()) {
-        if (region[f.idx()] >= 0) continue;
-        const std::int32_t r = static_cast<std::int32_t>(region_face.size());
-        region_face.emplace_back();
-        region[f.idx()] = r;
+        if (out.region[f.idx()] >= 0) continue;
+        const std::int32_t r = static_cast<std::int32_t>(out.region_face.size());
+        out.region_face.emplace_back();
+        out.region[f.idx()] = r;
         stack.push_back(f);
         while (!stack.empty()) {
             const FaceId g = stack.back();
@@ -37,92 +39,103 @@ Patches extract_patches(const domain::Domain& D, const Network& net, Executor* e
                 if (dh.valid()) {
                     // R lies on the left of h, and D's face on the left of the D halfedge is T_i.
                     const FaceId df = D.mesh.face(dh);
-                    FaceId& known = region_face[static_cast<std::size_t>(r)];
+                    FaceId& known = out.region_face[static_cast<std::size_t>(r)];
                     if (!known.valid()) known = df;
                     else if (known != df) fail(df, "runs into the patch of domain face " + std::to_string(known.idx()));
                     continue;
                 }
                 const FaceId n = M.face(TriMesh::twin(h));
-                if (region[n.idx()] < 0) {
-                    region[n.idx()] = r;
+                if (out.region[n.idx()] < 0) {
+                    out.region[n.idx()] = r;
                     stack.push_back(n);
                 }
             }
         }
     }
+    return out;
+}
+
+// Patch df's disk on its own, `local` numbering its vertices (−1 elsewhere, restored after).
+void make_disk(const domain::Domain& D, const Network& net, const Regions& regions, FaceId df, Patch& p, std::vector<std::int32_t>& local) {
+    const TriMesh& M = net.mesh;
+    auto local_of = [&](VertexId v) {
+        if (local[v.idx()] < 0) {
+            local[v.idx()] = static_cast<std::int32_t>(p.vertices.size());
+            p.vertices.push_back(v);
+            p.disk.positions.push_back(M.position(v));
+        }
+        return static_cast<std::uint32_t>(local[v.idx()]);
+    };
+    std::size_t boundary_halfedges = 0;
+    for (FaceId f : p.faces) {
+        HalfedgeId h = M.halfedge(f);
+        std::array<std::uint32_t, 3> tri{};
+        for (int i = 0; i < 3; ++i, h = M.next(h)) {
+            tri[static_cast<std::size_t>(i)] = local_of(M.from(h));
+            if (net.d_halfedge[h].valid()) ++boundary_halfedges;
+        }
+        p.disk.triangles.push_back(tri);
+    }
+    // The boundary: the curves of D's halfedges around T_i = (v_j, v_k, v_l), from x_j.
+    HalfedgeId dh = D.mesh.halfedge(df);
+    std::vector<VertexId> loop;
+    for (std::size_t c = 0; c < 3; ++c, dh = D.mesh.next(dh)) {
+        p.disk.corners[c] = loop.size();
+        std::vector<VertexId> curve = net.path[TriMesh::edge(dh)];
+        if (dh.idx() & 1u) std::reverse(curve.begin(), curve.end());
+        loop.insert(loop.end(), curve.begin(), curve.end() - 1);
+    }
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+        const HalfedgeId h = M.find_halfedge(loop[i], loop[(i + 1) % loop.size()]);
+        if (!h.valid() || regions.region_face[static_cast<std::size_t>(regions.region[M.face(h).idx()])] != df)
+            fail(df, "is not on the left of its curves");
+        if (local[loop[i].idx()] < 0) fail(df, "has a corner or curve vertex outside it");
+        p.disk.boundary.push_back(static_cast<std::uint32_t>(local[loop[i].idx()]));
+    }
+    // Theorem (Euler): a connected triangulated surface with one boundary loop of L edges,
+    // V vertices and F faces is a disk iff V − (3F + L)/2 + F = 1.
+    std::vector<std::uint32_t> sorted = p.disk.boundary;
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) fail(df, "touches itself on its boundary");
+    if (boundary_halfedges != loop.size()) fail(df, "has a second boundary loop");
+    const long V = static_cast<long>(p.vertices.size()), F = static_cast<long>(p.faces.size()), L = static_cast<long>(loop.size());
+    if (2 * V - (3 * F + L) + 2 * F != 2) fail(df, "is not a topological disk");
+    for (VertexId v : p.vertices) local[v.idx()] = -1;
+}
+
+}  // namespace
+
+Patches extract_patches(const domain::Domain& D, const Network& net, Executor* executor) {
+    const TriMesh& M = net.mesh;
+    const Regions r = regions(D, net);
     // Each D face has exactly one region.
     std::vector<std::int32_t> region_of_d(D.mesh.n_faces(), -1);
-    for (std::size_t r = 0; r < region_face.size(); ++r) {
-        const FaceId df = region_face[r];
+    for (std::size_t i = 0; i < r.region_face.size(); ++i) {
+        const FaceId df = r.region_face[i];
         if (!df.valid()) throw PartitionFailure("a part of the surface is bounded by no geodesic path");
         if (region_of_d[df.idx()] >= 0) fail(df, "falls apart into several pieces");
-        region_of_d[df.idx()] = static_cast<std::int32_t>(r);
+        region_of_d[df.idx()] = static_cast<std::int32_t>(i);
     }
     for (FaceId df : D.mesh.faces())
         if (region_of_d[df.idx()] < 0) fail(df, "is empty");
-
+    Patches out;
     out.patch.resize(D.mesh.n_faces());
     out.patch_of_face.resize(M.n_faces());
     for (FaceId f : M.faces()) {
-        const FaceId df = region_face[static_cast<std::size_t>(region[f.idx()])];
+        const FaceId df = r.region_face[static_cast<std::size_t>(r.region[f.idx()])];
         out.patch_of_face[f] = df;
         out.patch[df].faces.push_back(f);
     }
-    // Each patch's disk on its own (one thread's 16 ms of the horse's 1,000 patches),
-    // `local` numbering its vertices (−1 elsewhere, restored after each patch).
-    const auto make_disk = [&](FaceId df, std::vector<std::int32_t>& local) {
-        Patch& p = out.patch[df];
-        auto local_of = [&](VertexId v) {
-            if (local[v.idx()] < 0) {
-                local[v.idx()] = static_cast<std::int32_t>(p.vertices.size());
-                p.vertices.push_back(v);
-                p.disk.positions.push_back(M.position(v));
-            }
-            return static_cast<std::uint32_t>(local[v.idx()]);
-        };
-        std::size_t boundary_halfedges = 0;
-        for (FaceId f : p.faces) {
-            HalfedgeId h = M.halfedge(f);
-            std::array<std::uint32_t, 3> tri{};
-            for (int i = 0; i < 3; ++i, h = M.next(h)) {
-                tri[static_cast<std::size_t>(i)] = local_of(M.from(h));
-                if (net.d_halfedge[h].valid()) ++boundary_halfedges;
-            }
-            p.disk.triangles.push_back(tri);
-        }
-        // The boundary: the curves of D's halfedges around T_i = (v_j, v_k, v_l), from x_j.
-        HalfedgeId dh = D.mesh.halfedge(df);
-        std::vector<VertexId> loop;
-        for (std::size_t c = 0; c < 3; ++c, dh = D.mesh.next(dh)) {
-            p.disk.corners[c] = loop.size();
-            std::vector<VertexId> curve = net.path[TriMesh::edge(dh)];
-            if (dh.idx() & 1u) std::reverse(curve.begin(), curve.end());
-            loop.insert(loop.end(), curve.begin(), curve.end() - 1);
-        }
-        for (std::size_t i = 0; i < loop.size(); ++i) {
-            const HalfedgeId h = M.find_halfedge(loop[i], loop[(i + 1) % loop.size()]);
-            if (!h.valid() || region_face[static_cast<std::size_t>(region[M.face(h).idx()])] != df)
-                fail(df, "is not on the left of its curves");
-            if (local[loop[i].idx()] < 0) fail(df, "has a corner or curve vertex outside it");
-            p.disk.boundary.push_back(static_cast<std::uint32_t>(local[loop[i].idx()]));
-        }
-        // Theorem (Euler): a connected triangulated surface with one boundary loop of L edges,
-        // V vertices and F faces is a disk iff V − (3F + L)/2 + F = 1.
-        std::vector<std::uint32_t> sorted = p.disk.boundary;
-        std::sort(sorted.begin(), sorted.end());
-        if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) fail(df, "touches itself on its boundary");
-        if (boundary_halfedges != loop.size()) fail(df, "has a second boundary loop");
-        const long V = static_cast<long>(p.vertices.size()), F = static_cast<long>(p.faces.size()),
-                   L = static_cast<long>(loop.size());
-        if (2 * V - (3 * F + L) + 2 * F != 2) fail(df, "is not a topological disk");
-        for (VertexId v : p.vertices) local[v.idx()] = -1;
-    };
-    // In a few blocks of D's faces, each with its own scratch; a failure is thrown from the lowest
-    // block at its first patch, as one pass in order would.
+    // Each patch's disk on its own (one thread's 16 ms of the horse's 1,000 patches), in a few
+    // blocks of D's faces, each with its own scratch; a failure is thrown from the lowest block at
+    // its first patch, as one pass in order would.
     const std::size_t n = D.mesh.n_faces(), block = std::max<std::size_t>(1, (n + 15) / 16);
     for_each_block(executor_or_default(executor), n, block, 1, [&](std::size_t first, std::size_t end) {
         std::vector<std::int32_t> local(M.n_vertices(), -1);
-        for (std::size_t d = first; d < end; ++d) make_disk(FaceId(static_cast<FaceId::Index>(d)), local);
+        for (std::size_t d = first; d < end; ++d) {
+            const FaceId df(static_cast<FaceId::Index>(d));
+            make_disk(D, net, r, df, out.patch[df], local);
+        }
     });
     return out;
 }

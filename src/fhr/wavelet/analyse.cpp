@@ -105,6 +105,79 @@ AffineBounds affine_bounds(const Refinement& r, std::span<const Vec3> f_j, const
     return out;
 }
 
+namespace {
+
+// Task 1 of analyse: the filter bank, the decomposition, the round trip and each kept percentage's
+// reconstruction, with their seconds.
+void decompose_and_compress(WaveletResult& out, const Refinement& r, std::span<const double> keep_percent, Executor* executor) {
+    auto begin = detail::Clock::now();
+    const FilterBank bank(r, executor);
+    const Decomposition d = bank.decompose(out.remesh_positions, executor);
+    out.decomposition_seconds = detail::seconds_since(begin);
+
+    begin = detail::Clock::now();
+    const std::vector<Vec3> round_trip = bank.reconstruct(d, executor);
+    out.reconstruction_seconds = detail::seconds_since(begin);
+
+    for (std::size_t v = 0; v < round_trip.size(); ++v) {
+        out.reconstruction_max_error = std::max(out.reconstruction_max_error, (round_trip[v] - out.remesh_positions[v]).cwiseAbs().maxCoeff());
+        out.max_abs_coordinate = std::max(out.max_abs_coordinate, out.remesh_positions[v].cwiseAbs().maxCoeff());
+    }
+    for (const LevelSolve& s : d.solves) out.cg_iterations.push_back(s.iterations);
+    out.coefficients = d.coefficient_count();
+
+    for (double p : keep_percent) {
+        KeptResult k;
+        k.percent = p;
+        k.count = kept_count(out.coefficients, p);
+        begin = detail::Clock::now();
+        k.positions = bank.reconstruct(keep_largest(bank, d, k.count), executor);
+        out.reconstruction_seconds += detail::seconds_since(begin);
+        k.l2_error = rms_distance(out.remesh_positions, k.positions);
+        out.kept.push_back(std::move(k));
+    }
+}
+
+// A reconstruction's priors from f^J's brackets (HausdorffOptions::prior): on a triangle of D^J
+// its distance to T is at most f^J's bound there plus the triangle's largest corner displacement,
+// and from a point of T at most f^J's distance plus the largest displacement of all (the closest
+// point of f^J moves by at most that). Raised by 10⁻¹² relative against rounding. Where the bound
+// is settled no point is sampled (sampling it, the fandisk's reconstructions, whose f^J lies near
+// T, took 42,000 samples per bracket).
+struct KeptPriors {
+    std::vector<double> from_t, to_t;  // per face of T, per face of D^J (HausdorffOptions::prior, prior_back)
+};
+
+KeptPriors kept_priors(const WaveletResult& out, const KeptResult& k, std::size_t t_faces) {
+    const Hausdorff& f = out.remesh_hausdorff;
+    std::vector<double> moved(k.positions.size());
+    double most = 0;
+    for (std::size_t v = 0; v < moved.size(); ++v) most = std::max(most, moved[v] = (k.positions[v] - out.remesh_positions[v]).norm());
+    constexpr double up = 1 + 1e-12;
+    std::vector<double> from_t(t_faces), to_t(out.remesh_faces.size());
+    for (std::size_t i = 0; i < from_t.size(); ++i) from_t[i] = (f.a_to_b.triangle_upper[i] + most) * up;
+    for (std::size_t i = 0; i < to_t.size(); ++i) {
+        const Triangle& t = out.remesh_faces[i];
+        to_t[i] = (f.b_to_a.triangle_upper[i] + std::max({moved[t[0]], moved[t[1]], moved[t[2]]})) * up;
+    }
+    return {std::move(from_t), std::move(to_t)};
+}
+
+// WAV-15: with φ's faces, per face of D^J a bound of its distance to T from |f^J − φ|, and per
+// face of T one of its distance to f^J: f^J's priors both ways; through f^J's per-triangle bounds
+// (DirectedHausdorff::triangle_upper) they sharpen the reconstructions' priors too. T′ lies on T
+// within PARAM-11's tolerance (1e−9 of the diagonal plus 64u·|x|max), the points' rounding within
+// as much again. Without φ's faces, none.
+AffineBounds f_priors(const Refinement& r, const WaveletResult& out, const TriMesh& T, const AffinePieces* pieces, Executor* executor) {
+    if (!pieces) return {};
+    double max_abs = 0;
+    for (const Vec3& x : T.positions()) max_abs = std::max(max_abs, x.cwiseAbs().maxCoeff());
+    const double on_t = 1e-9 * out.bbox_diagonal + 128 * std::numeric_limits<double>::epsilon() / 2 * max_abs;
+    return affine_bounds(r, out.remesh_positions, *pieces, T.n_faces(), on_t, executor);
+}
+
+}  // namespace
+
 WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::span<const double> keep_percent,
                       const TriMesh& T, const HausdorffOptions& hausdorff_options, Executor* executor,
                       const AffinePieces* pieces, const TriangleTree* t_tree_given) {
@@ -126,7 +199,7 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     // f^J's vertices lie on T, and resolving its distance to T to δ along the creases of a CAD
     // model was most of the brackets' time (the fandisk's f^J: 67 ms of 170). f^J's brackets need
     // no wavelets: they run beside the decomposition and reconstructions; the reconstructions'
-    // run after them, from f^J's per-triangle bounds (kept_bracket).
+    // run after them, from f^J's per-triangle bounds (kept_priors).
     const auto bracketing = detail::Clock::now();
     const std::vector<Triangle> t_faces = T.triangles();
     out.bbox_diagonal = bounding_box(T).diagonal();
@@ -134,80 +207,18 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     if (ho.resolution <= 0) ho.resolution = 1e-4 * out.bbox_diagonal;
     std::optional<TriangleTree> t_tree_own;
     const TriangleTree& t_tree = t_tree_given ? *t_tree_given : t_tree_own.emplace(T.positions(), t_faces);
-    // WAV-15: with φ's faces, per face of D^J a bound of its distance to T from |f^J − φ|, and per
-    // face of T one of its distance to f^J: f^J's priors both ways; through f^J's per-triangle
-    // bounds (DirectedHausdorff::triangle_upper) they sharpen the reconstructions' priors too. T′
-    // lies on T within PARAM-11's tolerance (1e−9 of the diagonal plus 64u·|x|max), the points'
-    // rounding within as much again.
-    AffineBounds affine;
-    if (pieces) {
-        double max_abs = 0;
-        for (const Vec3& x : T.positions()) max_abs = std::max(max_abs, x.cwiseAbs().maxCoeff());
-        const double on_t = 1e-9 * out.bbox_diagonal + 128 * std::numeric_limits<double>::epsilon() / 2 * max_abs;
-        affine = affine_bounds(r, out.remesh_positions, *pieces, T.n_faces(), on_t, executor);
-    }
+    const AffineBounds affine = f_priors(r, out, T, pieces, executor);
     // f^J's tree, built in its bracket's task; each reconstruction's is it refitted to its positions.
     std::optional<TriangleTree> f_tree;
     const auto bracket = [&](const std::vector<Vec3>& positions, const TriangleTree& tree, Hausdorff& h, const HausdorffOptions& o) {
         h = hausdorff(T.positions(), t_faces, t_tree, positions, out.remesh_faces, tree, o, executor);
     };
-    // A reconstruction's brackets from f^J's (HausdorffOptions::prior): on a triangle of D^J its
-    // distance to T is at most f^J's bound there plus the triangle's largest corner displacement,
-    // and from a point of T at most f^J's distance plus the largest displacement of all (the
-    // closest point of f^J moves by at most that). Raised by 10⁻¹² relative against rounding.
-    // Where the bound is settled no point is sampled (sampling it, the fandisk's
-    // reconstructions, whose f^J lies near T, took 42,000 samples per bracket).
-    const auto kept_bracket = [&](KeptResult& k, const TriangleTree& tree) {
-        const Hausdorff& f = out.remesh_hausdorff;
-        std::vector<double> moved(k.positions.size());
-        double most = 0;
-        for (std::size_t v = 0; v < moved.size(); ++v) most = std::max(most, moved[v] = (k.positions[v] - out.remesh_positions[v]).norm());
-        constexpr double up = 1 + 1e-12;
-        std::vector<double> from_t(t_faces.size()), to_t(out.remesh_faces.size());
-        for (std::size_t i = 0; i < from_t.size(); ++i) from_t[i] = (f.a_to_b.triangle_upper[i] + most) * up;
-        for (std::size_t i = 0; i < to_t.size(); ++i) {
-            const Triangle& t = out.remesh_faces[i];
-            to_t[i] = (f.b_to_a.triangle_upper[i] + std::max({moved[t[0]], moved[t[1]], moved[t[2]]})) * up;
-        }
-        HausdorffOptions o = ho;
-        o.prior = from_t;
-        o.prior_back = to_t;
-        bracket(k.positions, tree, k.hausdorff, o);
-    };
     executor_or_default(executor).for_each(2, 1, [&](std::size_t task) {
-        if (task == 0) {
-            HausdorffOptions o = ho;
-            o.prior = affine.t;
-            o.prior_back = affine.remesh;
-            return bracket(out.remesh_positions, f_tree.emplace(out.remesh_positions, out.remesh_faces), out.remesh_hausdorff, o);
-        }
-        auto begin = detail::Clock::now();
-        const FilterBank bank(r, executor);
-        const Decomposition d = bank.decompose(out.remesh_positions, executor);
-        out.decomposition_seconds = detail::seconds_since(begin);
-
-        begin = detail::Clock::now();
-        const std::vector<Vec3> round_trip = bank.reconstruct(d, executor);
-        out.reconstruction_seconds = detail::seconds_since(begin);
-
-        for (std::size_t v = 0; v < round_trip.size(); ++v) {
-            out.reconstruction_max_error =
-                std::max(out.reconstruction_max_error, (round_trip[v] - out.remesh_positions[v]).cwiseAbs().maxCoeff());
-            out.max_abs_coordinate = std::max(out.max_abs_coordinate, out.remesh_positions[v].cwiseAbs().maxCoeff());
-        }
-        for (const LevelSolve& s : d.solves) out.cg_iterations.push_back(s.iterations);
-        out.coefficients = d.coefficient_count();
-
-        for (double p : keep_percent) {
-            KeptResult k;
-            k.percent = p;
-            k.count = kept_count(out.coefficients, p);
-            begin = detail::Clock::now();
-            k.positions = bank.reconstruct(keep_largest(bank, d, k.count), executor);
-            out.reconstruction_seconds += detail::seconds_since(begin);
-            k.l2_error = rms_distance(out.remesh_positions, k.positions);
-            out.kept.push_back(std::move(k));
-        }
+        if (task == 1) return decompose_and_compress(out, r, keep_percent, executor);
+        HausdorffOptions o = ho;
+        o.prior = affine.t;
+        o.prior_back = affine.remesh;
+        bracket(out.remesh_positions, f_tree.emplace(out.remesh_positions, out.remesh_faces), out.remesh_hausdorff, o);
     });
     // Their trees first, the last one f^J's own (no more trees alive than when each was built).
     std::vector<TriangleTree> kept_trees;
@@ -215,7 +226,13 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     for (std::size_t i = 0; i < out.kept.size(); ++i)
         kept_trees.emplace_back(i + 1 < out.kept.size() ? *f_tree : std::move(*f_tree), out.kept[i].positions);
     f_tree.reset();
-    executor_or_default(executor).for_each(out.kept.size(), 1, [&](std::size_t i) { kept_bracket(out.kept[i], kept_trees[i]); });
+    executor_or_default(executor).for_each(out.kept.size(), 1, [&](std::size_t i) {
+        const KeptPriors priors = kept_priors(out, out.kept[i], t_faces.size());
+        HausdorffOptions o = ho;
+        o.prior = priors.from_t;
+        o.prior_back = priors.to_t;
+        bracket(out.kept[i].positions, kept_trees[i], out.kept[i].hausdorff, o);
+    });
     // Wall time from T's tree to the last bracket, which overlaps the decomposition and reconstructions.
     out.hausdorff_seconds = detail::seconds_since(bracketing);
     out.hausdorff_relative = out.remesh_hausdorff.lower() / out.bbox_diagonal;
