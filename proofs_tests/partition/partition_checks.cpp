@@ -13,6 +13,7 @@
 #include <fhr/core/geometry.hpp>
 #include <fhr/core/topology.hpp>
 #include <fhr/geodesic/ellipse.hpp>
+#include <fhr/param/disk.hpp>
 
 namespace fhr::test {
 

@@ -10,7 +10,7 @@
 //                     §4 refuses
 // and, outside that family, ContractViolation: the caller broke a documented precondition.
 // Neither InternalError nor ContractViolation is ever caught inside the library: an expected
-// failure of a strategy is a return value (core/outcome.hpp), not an exception.
+// failure of a strategy is a return value (core/detail/outcome.hpp), not an exception.
 #pragma once
 
 #include <cstdint>

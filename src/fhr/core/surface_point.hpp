@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 
 #include <fhr/core/trimesh.hpp>
 
@@ -38,6 +39,14 @@ struct SurfacePoint {
         p.bary = bary;
         return p;
     }
+};
+
+/// A point of a surface as an input named it: the point, and the 1-based line of the text file
+/// that gave it (0 when it came from memory). What §2 attaches a user's domain with
+/// (domain::attach_domain) and the correspondence file holds (io/correspondence.hpp).
+struct NamedSurfacePoint {
+    SurfacePoint point;      ///< Kind::vertex or Kind::face, as written
+    std::uint64_t line = 0;  ///< 1-based line in the file; 0: not from a file
 };
 
 /// The point's coordinates in R^3.

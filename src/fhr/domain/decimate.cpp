@@ -17,7 +17,7 @@
 
 #include <fhr/core/cones.hpp>
 #include <fhr/core/errors.hpp>
-#include <fhr/core/outcome.hpp>
+#include <fhr/core/detail/outcome.hpp>
 #include <fhr/core/geometry.hpp>
 #include <fhr/core/predicates.hpp>
 #include <fhr/core/topology.hpp>

@@ -26,7 +26,7 @@ constexpr double snap_to_edge = 1e-12;
 // Within a face already split, coordinates this small come from rounding in the location solve.
 constexpr double snap_in_piece = 1e-14;
 
-std::string entry_name(std::size_t j, const io::CorrespondenceEntry& e) {
+std::string entry_name(std::size_t j, const NamedSurfacePoint& e) {
     return "entry " + std::to_string(j) + " (line " + std::to_string(e.line) + ")";
 }
 
@@ -104,7 +104,7 @@ private:
 
 }  // namespace
 
-Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<io::CorrespondenceEntry>& x,
+Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<NamedSurfacePoint>& x,
                      const DomainSources& sources) {
     if (x.size() != D.n_vertices())
         throw InvalidInput(sources.correspondence_file, 0,

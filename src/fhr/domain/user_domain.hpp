@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <fhr/core/surface_point.hpp>
 #include <fhr/domain/decimate.hpp>
-#include <fhr/io/correspondence.hpp>
 
 namespace fhr::domain {
 
@@ -26,7 +26,7 @@ struct DomainSources {
 ///         count; D's Euler characteristic, boundary loops or components differ from T's; two
 ///         entries name the same point (or points closer than 1e−12 in barycentric terms within a
 ///         face); D's boundary does not follow T's (close_domain).
-Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<io::CorrespondenceEntry>& x,
+Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<NamedSurfacePoint>& x,
                      const DomainSources& sources);
 
 }  // namespace fhr::domain

@@ -12,10 +12,8 @@
 
 namespace fhr::io {
 
-struct CorrespondenceEntry {
-    SurfacePoint point;   ///< Kind::vertex or Kind::face, as written
-    std::uint64_t line;   ///< 1-based line in the file
-};
+/// One entry of the file: a vertex of T or a point in a face of T, with its line.
+using CorrespondenceEntry = NamedSurfacePoint;
 
 /// Parses a correspondence file against a mesh with `n_vertices` vertices and `n_faces` faces.
 /// Lines: `V` (a vertex index of T) or `f F b0 b1 b2` (face F of T, barycentric coordinates with

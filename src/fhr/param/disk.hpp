@@ -17,19 +17,13 @@
 #include <string>
 #include <vector>
 
-#include <fhr/core/polygon_soup.hpp>
+#include <fhr/core/disk.hpp>
 #include <fhr/core/violation.hpp>
 
 namespace fhr::param {
 
-/// One patch S_i of T′ (paper §3/§4): a triangulated topological disk.
-struct Disk {
-    std::vector<Vec3> positions;                          ///< 3-D positions of the disk's vertices (#V)
-    std::vector<std::array<std::uint32_t, 3>> triangles;  ///< counter-clockwise seen from outside the surface
-    std::vector<std::uint32_t> boundary;                  ///< the boundary loop, in the orientation induced by the triangles, starting at corner 0
-    std::array<std::size_t, 3> corners;                   ///< positions IN `boundary` of the corners x_j, x_k, x_l; corners[0] == 0, increasing
-    std::size_t midpoints = 0;                            ///< the last `midpoints` vertices are split_dividing_edges' (MAP-4), not T′'s
-};
+/// The patch as §3 hands it over (core/disk.hpp).
+using Disk = fhr::Disk;
 
 /// The first broken rule of MAP-1 (spec/patch_map.md) for `disk` — which element, which one, what
 /// is wrong — or nullopt when it is a valid patch: indices in range, no triangle repeating a vertex, every vertex in a triangle, each

@@ -14,7 +14,7 @@
 #include <fhr/core/cones.hpp>
 #include <fhr/core/errors.hpp>
 #include <fhr/core/executor.hpp>
-#include <fhr/core/outcome.hpp>
+#include <fhr/core/detail/outcome.hpp>
 #include <fhr/partition/detail/restricted.hpp>
 #include <fhr/partition/patches.hpp>
 

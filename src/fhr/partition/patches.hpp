@@ -17,7 +17,7 @@
 
 #include <fhr/core/executor.hpp>
 #include <fhr/domain/decimate.hpp>
-#include <fhr/param/disk.hpp>
+#include <fhr/core/disk.hpp>
 #include <fhr/partition/embed.hpp>
 
 namespace fhr::partition {
@@ -26,7 +26,7 @@ namespace fhr::partition {
 struct Patch {
     std::vector<FaceId> faces;       ///< faces of T′, in increasing order
     std::vector<VertexId> vertices;  ///< disk vertex -> vertex of T′
-    param::Disk disk;                ///< local triangles, boundary from corner x_j of D's face (j, k, l)
+    Disk disk;                ///< local triangles, boundary from corner x_j of D's face (j, k, l)
 };
 
 /// The patches, indexed by D's faces, and the patch of every face of T′.

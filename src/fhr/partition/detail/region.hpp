@@ -16,7 +16,7 @@
 //       without crossing a curve (the region when the curves enclose it: checked, the fill never
 //       reaches the border of T_S)
 // Curves the caller took as given (the kept geodesics of the direct start) may not enclose what
-// they promised: each step that can find so returns why (core/outcome.hpp) rather than a region.
+// they promised: each step that can find so returns why (core/detail/outcome.hpp) rather than a region.
 // Decisions and their reasons: paper_notes/partition.md, "Keeping the domain".
 #pragma once
 
@@ -26,7 +26,7 @@
 #include <variant>
 #include <vector>
 
-#include <fhr/core/outcome.hpp>
+#include <fhr/core/detail/outcome.hpp>
 #include <fhr/core/trimesh.hpp>
 #include <fhr/geodesic/exact.hpp>
 #include <fhr/partition/embed.hpp>
