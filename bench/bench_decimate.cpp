@@ -71,8 +71,8 @@ namespace {
 namespace SMS = CGAL::Surface_mesh_simplification;
 namespace PMP = CGAL::Polygon_mesh_processing;
 using fhr::bench::Kernel;
-using fhr::bench::Mesh;
 using fhr::bench::median;
+using fhr::bench::Mesh;
 using fhr::bench::min_of;
 using fhr::bench::to_cgal;
 using GH = SMS::GarlandHeckbert_plane_policies<Mesh, Kernel>;
@@ -110,8 +110,7 @@ double cgal_decimate(Mesh& sm, std::size_t faces) {
     const Half_edge_placement placement(gh);
     const SMS::Bounded_normal_change_filter<> filter;
     const SMS::Count_stop_predicate<Mesh> stop(3 * faces / 2 + 1);
-    SMS::edge_collapse(sm, stop,
-                       CGAL::parameters::get_cost(gh.get_cost()).get_placement(placement).filter(filter));
+    SMS::edge_collapse(sm, stop, CGAL::parameters::get_cost(gh.get_cost()).get_placement(placement).filter(filter));
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     sm.collect_garbage();
     return ms;
@@ -157,7 +156,8 @@ int main(int argc, char** argv) {
         const bool fhr_ok = ok && D.mesh.n_faces() == target && D.mesh.is_closed() && !D.mesh.has_garbage() &&
                             fhr::euler_characteristic(D.mesh) == chi;
         const bool cgal_ok = C.is_valid(false) && CGAL::is_valid_polygon_mesh(C) && CGAL::is_closed(C) &&
-                             CGAL::is_triangle_mesh(C) && C.number_of_faces() == target && euler_characteristic(C) == chi;
+                             CGAL::is_triangle_mesh(C) && C.number_of_faces() == target &&
+                             euler_characteristic(C) == chi;
 
         // Quality: two-sided Hausdorff distance to T, relative to T's bounding-box diagonal.
         const auto box = PMP::bbox(T_cgal);
@@ -165,17 +165,19 @@ int main(int argc, char** argv) {
                                       std::pow(box.zmax() - box.zmin(), 2));
         const double bound = 1e-5 * diag;
         const Mesh D_cgal = to_cgal(D.mesh);
-        const double h_fhr = PMP::bounded_error_symmetric_Hausdorff_distance<CGAL::Sequential_tag>(T_cgal, D_cgal, bound);
+        const double h_fhr =
+            PMP::bounded_error_symmetric_Hausdorff_distance<CGAL::Sequential_tag>(T_cgal, D_cgal, bound);
         const double h_cgal = PMP::bounded_error_symmetric_Hausdorff_distance<CGAL::Sequential_tag>(T_cgal, C, bound);
 
         const double fm = median(fhr_ms), cm = median(cgal_ms), ratio = cm / fm;
-        std::printf("%-22s T %7zu faces -> %5zu  fhr median %9.2f ms (min %9.2f, %zu faces%s)  "
-                    "CGAL median %9.2f ms (min %9.2f, %zu faces%s)  runs %d  CGAL/fhr %6.2fx  "
-                    "Hausdorff/diag fhr %.5f CGAL %.5f\n",
-                    name.c_str(), T.n_faces(), target, fm, min_of(fhr_ms), D.mesh.n_faces(),
-                    fhr_ok ? ", closed manifold" : ", INVALID", cm, min_of(cgal_ms),
-                    static_cast<std::size_t>(C.number_of_faces()), cgal_ok ? ", closed manifold" : ", INVALID", runs,
-                    ratio, h_fhr / diag, h_cgal / diag);
+        std::printf(
+            "%-22s T %7zu faces -> %5zu  fhr median %9.2f ms (min %9.2f, %zu faces%s)  "
+            "CGAL median %9.2f ms (min %9.2f, %zu faces%s)  runs %d  CGAL/fhr %6.2fx  "
+            "Hausdorff/diag fhr %.5f CGAL %.5f\n",
+            name.c_str(), T.n_faces(), target, fm, min_of(fhr_ms), D.mesh.n_faces(),
+            fhr_ok ? ", closed manifold" : ", INVALID", cm, min_of(cgal_ms),
+            static_cast<std::size_t>(C.number_of_faces()), cgal_ok ? ", closed manifold" : ", INVALID", runs, ratio,
+            h_fhr / diag, h_cgal / diag);
         std::printf("goal: decimation >= 3x faster than CGAL on %s -> %zu: measured %.2fx: %s\n", name.c_str(), target,
                     ratio, ratio >= 3.0 ? "met" : "NOT met");
         return fhr_ok && cgal_ok ? 0 : 1;

@@ -57,7 +57,10 @@ int main(int argc, char** argv) {
         fhr::domain::DecimateOptions options;
         options.target_faces = static_cast<std::size_t>(std::strtoull(argv[2], nullptr, 10));
         const fhr::domain::Domain D = fhr::domain::decimate(T, options);
-        struct Pair { fhr::VertexId a, b; double ours = 0; };
+        struct Pair {
+            fhr::VertexId a, b;
+            double ours = 0;
+        };
         std::vector<Pair> pairs;
         for (const auto& [a, b] : fhr::domain::edge_endpoints(D)) pairs.push_back({a, b});
         using Certificate = fhr::geodesic::EllipsePath::Certificate;
@@ -66,7 +69,8 @@ int main(int argc, char** argv) {
         results.reserve(pairs.size());
         fhr::geodesic::Workspace workspace;
         const auto t0 = Clock::now();
-        for (Pair& p : pairs) results.push_back(fhr::geodesic::ellipse_shortest_path(T, p.a, p.b, {.workspace = &workspace}));
+        for (Pair& p : pairs)
+            results.push_back(fhr::geodesic::ellipse_shortest_path(T, p.a, p.b, {.workspace = &workspace}));
         const double ours_ms = ms_since(t0);
         for (std::size_t i = 0; i < pairs.size(); ++i) {
             const auto& r = results[i];
@@ -102,13 +106,14 @@ int main(int argc, char** argv) {
         }
         const double cgal_ms = tree_ms / static_cast<double>(trees) * static_cast<double>(pairs.size());
         const double ratio = cgal_ms / ours_ms;
-        std::printf("%-22s T %7zu faces, D %4zu faces: %zu paths  fhr %9.2f ms (%.3f ms/path, %.0f windows/path, "
-                    "%zu needed K > 1.06; certified by the border %zu, by the search %zu, replaced %zu, whole mesh %zu)  "
-                    "CGAL one tree per path %10.1f ms (%.1f ms/tree)  CGAL/fhr %7.1fx  "
-                    "max relative length deviation %.2e over %zu compared paths\n",
-                    name.c_str(), T.n_faces(), D.mesh.n_faces(), pairs.size(), ours_ms, ours_ms / pairs.size(),
-                    static_cast<double>(windows) / pairs.size(), grown, by_border, by_search, replaced, whole, cgal_ms,
-                    tree_ms / static_cast<double>(trees), ratio, worst, compared);
+        std::printf(
+            "%-22s T %7zu faces, D %4zu faces: %zu paths  fhr %9.2f ms (%.3f ms/path, %.0f windows/path, "
+            "%zu needed K > 1.06; certified by the border %zu, by the search %zu, replaced %zu, whole mesh %zu)  "
+            "CGAL one tree per path %10.1f ms (%.1f ms/tree)  CGAL/fhr %7.1fx  "
+            "max relative length deviation %.2e over %zu compared paths\n",
+            name.c_str(), T.n_faces(), D.mesh.n_faces(), pairs.size(), ours_ms, ours_ms / pairs.size(),
+            static_cast<double>(windows) / pairs.size(), grown, by_border, by_search, replaced, whole, cgal_ms,
+            tree_ms / static_cast<double>(trees), ratio, worst, compared);
         std::printf("goal: geodesic paths >= 300x faster than CGAL on %s: measured %.1fx: %s\n", name.c_str(), ratio,
                     ratio >= 300 ? "met" : "NOT met");
         std::printf("goal: every length equals CGAL's to 1e-9 on %s: measured %.2e: %s\n", name.c_str(), worst,

@@ -51,8 +51,8 @@ int main(int argc, char** argv) {
         }
         std::sort(ms.begin(), ms.end());
         std::printf("%-24s %9zu faces  read+validate median %8.2f ms  min %8.2f ms  peak +%6.1f MB (%.0f B/face)\n",
-                    path.substr(path.find_last_of('/') + 1).c_str(), faces, ms[ms.size() / 2], ms.front(),
-                    added / 1e6, static_cast<double>(added) / static_cast<double>(faces));
+                    path.substr(path.find_last_of('/') + 1).c_str(), faces, ms[ms.size() / 2], ms.front(), added / 1e6,
+                    static_cast<double>(added) / static_cast<double>(faces));
         return 0;
     } catch (const fhr::Error& e) {
         std::fprintf(stderr, "fhr: error: %s\n", e.what());

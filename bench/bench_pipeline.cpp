@@ -59,10 +59,11 @@ int main(int argc, char** argv) {
         certified = static_cast<std::size_t>(std::count_if(c.begin(), c.end(), [](const auto& x) { return x.passed; }));
     }
     const std::string name = path.substr(path.find_last_of('/') + 1);
-    std::printf("%s -> %zu faces (%zu retries): T' %zu faces, %zu patches (%zu certified); embedding + patches median %.1f ms, "
-                "parameterization median %.1f ms (%d runs)\n",
-                name.c_str(), P.domain.mesh.n_faces(), P.retries, P.network.mesh.n_faces(), P.patches.patch.size(), certified,
-                1e3 * median(embed_s), 1e3 * median(param_s), runs);
+    std::printf(
+        "%s -> %zu faces (%zu retries): T' %zu faces, %zu patches (%zu certified); embedding + patches median %.1f ms, "
+        "parameterization median %.1f ms (%d runs)\n",
+        name.c_str(), P.domain.mesh.n_faces(), P.retries, P.network.mesh.n_faces(), P.patches.patch.size(), certified,
+        1e3 * median(embed_s), 1e3 * median(param_s), runs);
     if (name == "fandisk.off" && faces == 114)
         std::printf("goal: fandisk parameterization <= 30 ms: measured %.1f ms: %s\n", 1e3 * median(param_s),
                     1e3 * median(param_s) <= 30 ? "met" : "NOT met");

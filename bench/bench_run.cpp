@@ -29,8 +29,8 @@ int main(int argc, char** argv) {
             ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         }
         std::sort(ms.begin(), ms.end());
-        std::printf("pipeline::run median %.1f ms, min %.1f ms (%zu runs, %s)\n", ms[ms.size() / 2], ms.front(), ms.size(),
-                    certified ? "certified" : "NOT certified");
+        std::printf("pipeline::run median %.1f ms, min %.1f ms (%zu runs, %s)\n", ms[ms.size() / 2], ms.front(),
+                    ms.size(), certified ? "certified" : "NOT certified");
         return certified ? 0 : 1;
     } catch (const fhr::Error& e) {
         std::fprintf(stderr, "bench_run: %s\n", e.what());

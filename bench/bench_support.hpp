@@ -27,7 +27,8 @@ inline Mesh to_cgal(const TriMesh& m) {
                static_cast<Mesh::size_type>(m.n_faces()));
     for (const Vec3& p : m.positions()) sm.add_vertex(Point(p.x(), p.y(), p.z()));
     for (const Triangle& t : m.triangles()) {
-        const Mesh::Face_index f = sm.add_face(Mesh::Vertex_index(t[0]), Mesh::Vertex_index(t[1]), Mesh::Vertex_index(t[2]));
+        const Mesh::Face_index f =
+            sm.add_face(Mesh::Vertex_index(t[0]), Mesh::Vertex_index(t[1]), Mesh::Vertex_index(t[2]));
         if (f == Mesh::null_face()) throw std::runtime_error("CGAL::Surface_mesh refused a face of T");
     }
     return sm;

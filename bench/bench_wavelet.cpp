@@ -73,9 +73,10 @@ int main(int argc, char** argv) try {
     const wavelet::DomainMap phi = [&](FaceId f, const std::array<double, 3>& b) { return global.phi(f, b); };
     const TriMesh& D = p.partition.domain.mesh;
     const double diag = bounding_box(T).diagonal();
-    std::printf("%s: T %zu faces, D %zu vertices / %zu faces; paper (400 MHz R12000, J = 3): refinement 1 s, "
-                "decomposition 2 s, reconstruction 1 s\n",
-                name.c_str(), T.n_faces(), D.n_vertices(), D.n_faces());
+    std::printf(
+        "%s: T %zu faces, D %zu vertices / %zu faces; paper (400 MHz R12000, J = 3): refinement 1 s, "
+        "decomposition 2 s, reconstruction 1 s\n",
+        name.c_str(), T.n_faces(), D.n_vertices(), D.n_faces());
 
     bool ok = true;
     for (int a = 4; a < argc; ++a) {
@@ -110,12 +111,13 @@ int main(int argc, char** argv) try {
             if (!cg.empty()) cg += ',';
             cg += std::to_string(s.iterations);
         }
-        std::printf("%-12s J=%d  V %8zu  F %8zu  coefficients %8zu  refinement median %8.4f s (min %8.4f)  "
-                    "decomposition median %8.4f s (min %8.4f)  reconstruction median %8.4f s (min %8.4f)  "
-                    "round trip %.2e (|f| %.3g)  CG steps per level %s  runs %d\n",
-                    name.c_str(), J, r.finest().n_vertices(), r.finest().n_faces(), d.coefficient_count(),
-                    bench::median(refine_s), bench::min_of(refine_s), bench::median(decompose_s), bench::min_of(decompose_s),
-                    bench::median(reconstruct_s), bench::min_of(reconstruct_s), err, size, cg.c_str(), runs);
+        std::printf(
+            "%-12s J=%d  V %8zu  F %8zu  coefficients %8zu  refinement median %8.4f s (min %8.4f)  "
+            "decomposition median %8.4f s (min %8.4f)  reconstruction median %8.4f s (min %8.4f)  "
+            "round trip %.2e (|f| %.3g)  CG steps per level %s  runs %d\n",
+            name.c_str(), J, r.finest().n_vertices(), r.finest().n_faces(), d.coefficient_count(),
+            bench::median(refine_s), bench::min_of(refine_s), bench::median(decompose_s), bench::min_of(decompose_s),
+            bench::median(reconstruct_s), bench::min_of(reconstruct_s), err, size, cg.c_str(), runs);
         ok = ok && err <= 1e-12 * size;
         if (J > 4 || timing_only) continue;
 
@@ -134,10 +136,12 @@ int main(int argc, char** argv) try {
             const double cgal_s = seconds_since(start);
             const bool agree = cgal >= h.lower() - bound && cgal <= h.upper() + bound;
             ok = ok && agree;
-            std::printf("%-12s J=%d  %-6s L2/diag %.3e  Hausdorff/diag fhr [%.5f, %.5f] (%zu samples, %.2f s)  "
-                        "CGAL %.5f ±%.0e (%.2f s): %s\n",
-                        name.c_str(), J, what, l2 / diag, h.lower() / diag, h.upper() / diag, h.a_to_b.samples + h.b_to_a.samples,
-                        ours_s, cgal / diag, bound / diag, cgal_s, agree ? "agree" : "DISAGREE");
+            std::printf(
+                "%-12s J=%d  %-6s L2/diag %.3e  Hausdorff/diag fhr [%.5f, %.5f] (%zu samples, %.2f s)  "
+                "CGAL %.5f ±%.0e (%.2f s): %s\n",
+                name.c_str(), J, what, l2 / diag, h.lower() / diag, h.upper() / diag,
+                h.a_to_b.samples + h.b_to_a.samples, ours_s, cgal / diag, bound / diag, cgal_s,
+                agree ? "agree" : "DISAGREE");
         };
         compare("D^J", f, 0.0);
         for (double percent : {5.0, 20.0}) {

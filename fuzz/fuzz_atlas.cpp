@@ -16,7 +16,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const fhr::exchange::AtlasReport report = fhr::exchange::verify_atlas(atlas, nullptr);
         // ATLAS-1..7, one result each; ATLAS-6's failures are the overlapping pairs found.
         if (report.checks.size() != 7) __builtin_trap();
-        if (report.checks[5].status == fhr::exchange::CheckStatus::fail && report.checks[5].failures != report.overlapping.size())
+        if (report.checks[5].status == fhr::exchange::CheckStatus::fail &&
+            report.checks[5].failures != report.overlapping.size())
             __builtin_trap();
     } catch (const fhr::InvalidInput&) {
         // the expected refusal

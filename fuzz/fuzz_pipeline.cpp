@@ -31,9 +31,11 @@ using namespace fhr;
 
 [[noreturn]] void finding(const generate::RandomMeshOptions& o, std::size_t target, const pipeline::Options& options,
                           const std::string& what) {
-    std::fprintf(stderr, "fuzz_pipeline finding: %s\nreproduce: %s && fhr run mesh.off --faces %zu --weights %s --solver %s --out run\n",
-                 what.c_str(), generate::generate_command(o).c_str(), target, std::string(param::name(options.map.weights)).c_str(),
-                 std::string(param::name(options.map.solver)).c_str());
+    std::fprintf(
+        stderr,
+        "fuzz_pipeline finding: %s\nreproduce: %s && fhr run mesh.off --faces %zu --weights %s --solver %s --out run\n",
+        what.c_str(), generate::generate_command(o).c_str(), target,
+        std::string(param::name(options.map.weights)).c_str(), std::string(param::name(options.map.solver)).c_str());
     __builtin_trap();
 }
 
@@ -48,7 +50,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     o.components = bytes.ConsumeIntegralInRange(1, 3);
     const std::size_t step = o.holes == 0 ? 2 : 1;  // F is even without holes
     o.faces = generate::min_faces(o) + step * bytes.ConsumeIntegralInRange<std::size_t>(0, 300 / step);
-    o.seed = bytes.ConsumeIntegral<std::uint64_t>() >> 1;  // `fhr generate --seed` takes < 2^63
+    o.seed = bytes.ConsumeIntegral<std::uint64_t>() >> 1;   // `fhr generate --seed` takes < 2^63
     const int noise = bytes.ConsumeIntegralInRange(0, 45);  // the generator accepts [0, 0.5), for block only
     if (o.family == generate::Family::block) o.noise = noise / 100.0;
     // The domain size: even and from Heawood's bound for a closed connected T (DOM-9); otherwise
@@ -56,8 +58,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::size_t lowest = o.holes == 0 && o.components == 1 ? domain::min_closed_faces(o.genus) : step;
     const std::size_t target = lowest + step * bytes.ConsumeIntegralInRange<std::size_t>(0, (o.faces - lowest) / step);
     pipeline::Options options;
-    options.map.weights = bytes.PickValueInArray({param::Weights::shape_preserving, param::Weights::mean_value,
-                                                  param::Weights::uniform});
+    options.map.weights =
+        bytes.PickValueInArray({param::Weights::shape_preserving, param::Weights::mean_value, param::Weights::uniform});
     options.map.solver = bytes.PickValueInArray({param::Solver::sparse_lu, param::Solver::bicgstab});
 
     const TriMesh T = generate::random_mesh(o);

@@ -15,7 +15,8 @@ namespace {
 fhr::PolygonSoup octahedron() {
     fhr::PolygonSoup s;
     s.points = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    const std::uint32_t faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    const std::uint32_t faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                       {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
     for (const auto& f : faces) s.add_polygon(f, 3);
     return s;
 }
@@ -32,9 +33,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const fhr::exchange::VertexMapReport report = fhr::exchange::verify_vertex_map(map, mesh, mesh);
         // VMAP-2..9, one result each; VMAP-5's failures are the edges without an image.
         if (report.checks.size() != 8) __builtin_trap();
-        if (report.checks[3].status == fhr::exchange::CheckStatus::fail && report.checks[3].failures != report.edges_without_image.size())
+        if (report.checks[3].status == fhr::exchange::CheckStatus::fail &&
+            report.checks[3].failures != report.edges_without_image.size())
             __builtin_trap();
-        if (report.checks[5].status == fhr::exchange::CheckStatus::fail && report.checks[5].failures != report.folded.size())
+        if (report.checks[5].status == fhr::exchange::CheckStatus::fail &&
+            report.checks[5].failures != report.folded.size())
             __builtin_trap();
     } catch (const fhr::InvalidInput&) {
         // the expected refusal

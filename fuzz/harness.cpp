@@ -20,7 +20,8 @@ void check_postconditions(const PolygonSoup& soup) {
     for (const Vec3& p : soup.points) require(p.allFinite() && p.cwiseAbs().maxCoeff() <= 1e150);
     require(!soup.offsets.empty() && soup.offsets.front() == 0 && soup.offsets.back() == soup.indices.size());
     require(soup.polygon_count() > 0);
-    for (std::size_t f = 0; f < soup.polygon_count(); ++f) require(soup.polygon_size(f) >= 3 && soup.offsets[f] < soup.offsets[f + 1]);
+    for (std::size_t f = 0; f < soup.polygon_count(); ++f)
+        require(soup.polygon_size(f) >= 3 && soup.offsets[f] < soup.offsets[f + 1]);
     for (std::uint32_t i : soup.indices) require(i < soup.points.size());
     require(soup.point_line.empty() || soup.point_line.size() == soup.points.size());
     require(soup.polygon_line.empty() || soup.polygon_line.size() == soup.polygon_count());

@@ -20,9 +20,10 @@ int main(int argc, char** argv) {
         std::cerr << "usage: fuzz_replay <fuzz source dir>\n";
         return 2;
     }
-    const std::pair<const char*, fhr::io::Format> readers[] = {
-        {"off", fhr::io::Format::off}, {"obj", fhr::io::Format::obj},
-        {"ply", fhr::io::Format::ply}, {"stl", fhr::io::Format::stl}};
+    const std::pair<const char*, fhr::io::Format> readers[] = {{"off", fhr::io::Format::off},
+                                                               {"obj", fhr::io::Format::obj},
+                                                               {"ply", fhr::io::Format::ply},
+                                                               {"stl", fhr::io::Format::stl}};
     int runs = 0, failures = 0;
     for (const auto& [reader, format] : readers) {
         for (const char* kind : {"crashers", "corpus"}) {

@@ -55,17 +55,19 @@ using UvMap = SurfaceMesh::Property_map<vertex_descriptor, Point_2>;
 
 // Returns the index of the first face CGAL refuses to add, or -1 when every face is added.
 inline long build_surface_mesh(const TriangleSoup& soup, SurfaceMesh& sm) {
-  // A disk has E = V + F − 1 edges.
-  sm.reserve(static_cast<SurfaceMesh::size_type>(soup.vertex_count()),
-             static_cast<SurfaceMesh::size_type>(soup.vertex_count() + soup.face_count()),
-             static_cast<SurfaceMesh::size_type>(soup.face_count()));
-  for (std::size_t i = 0; i < soup.vertex_count(); ++i)
-    sm.add_vertex(Point_3(soup.xyz[3 * i], soup.xyz[3 * i + 1], soup.xyz[3 * i + 2]));
-  for (std::size_t f = 0; f < soup.face_count(); ++f) {
-    const auto corner = [&](int k) { return vertex_descriptor(static_cast<SurfaceMesh::size_type>(soup.tri[3 * f + k])); };
-    if (sm.add_face(corner(0), corner(1), corner(2)) == SurfaceMesh::null_face()) return static_cast<long>(f);
-  }
-  return -1;
+    // A disk has E = V + F − 1 edges.
+    sm.reserve(static_cast<SurfaceMesh::size_type>(soup.vertex_count()),
+               static_cast<SurfaceMesh::size_type>(soup.vertex_count() + soup.face_count()),
+               static_cast<SurfaceMesh::size_type>(soup.face_count()));
+    for (std::size_t i = 0; i < soup.vertex_count(); ++i)
+        sm.add_vertex(Point_3(soup.xyz[3 * i], soup.xyz[3 * i + 1], soup.xyz[3 * i + 2]));
+    for (std::size_t f = 0; f < soup.face_count(); ++f) {
+        const auto corner = [&](int k) {
+            return vertex_descriptor(static_cast<SurfaceMesh::size_type>(soup.tri[3 * f + k]));
+        };
+        if (sm.add_face(corner(0), corner(1), corner(2)) == SurfaceMesh::null_face()) return static_cast<long>(f);
+    }
+    return -1;
 }
 
 // The name and meaning of CGAL's error code, from the Error_code enumeration's documentation.
@@ -73,97 +75,115 @@ inline long build_surface_mesh(const TriangleSoup& soup, SurfaceMesh& sm) {
 // on it gives the text of the next code (ERROR_BORDER_TOO_SHORT reads "requires a convex
 // border"); cgal_uv names the codes itself.
 inline std::string error_text(SMP::Error_code code) {
-  const char* text = "unknown error code";
-  switch (code) {
-    case SMP::OK: text = "OK: success"; break;
-    case SMP::ERROR_EMPTY_MESH: text = "ERROR_EMPTY_MESH: input mesh is empty"; break;
-    case SMP::ERROR_NON_TRIANGULAR_MESH: text = "ERROR_NON_TRIANGULAR_MESH: input mesh is not triangular"; break;
-    case SMP::ERROR_NO_TOPOLOGICAL_DISC: text = "ERROR_NO_TOPOLOGICAL_DISC: input mesh is not a topological disc"; break;
-    case SMP::ERROR_NO_TOPOLOGICAL_BALL: text = "ERROR_NO_TOPOLOGICAL_BALL: input mesh is not a topological ball"; break;
-    case SMP::ERROR_BORDER_TOO_SHORT: text = "ERROR_BORDER_TOO_SHORT: this border parameterization requires a longer border"; break;
-    case SMP::ERROR_NON_CONVEX_BORDER: text = "ERROR_NON_CONVEX_BORDER: this parameterization method requires a convex border"; break;
-    case SMP::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM: text = "ERROR_CANNOT_SOLVE_LINEAR_SYSTEM: cannot solve linear system"; break;
-    case SMP::ERROR_NO_1_TO_1_MAPPING: text = "ERROR_NO_1_TO_1_MAPPING: parameterization failed: no one-to-one mapping"; break;
-    case SMP::ERROR_WRONG_PARAMETER: text = "ERROR_WRONG_PARAMETER: a method received an unexpected parameter"; break;
-  }
-  return std::string("CGAL error ") + std::to_string(static_cast<int>(code)) + " " + text;
+    const char* text = "unknown error code";
+    switch (code) {
+        case SMP::OK: text = "OK: success"; break;
+        case SMP::ERROR_EMPTY_MESH: text = "ERROR_EMPTY_MESH: input mesh is empty"; break;
+        case SMP::ERROR_NON_TRIANGULAR_MESH: text = "ERROR_NON_TRIANGULAR_MESH: input mesh is not triangular"; break;
+        case SMP::ERROR_NO_TOPOLOGICAL_DISC:
+            text = "ERROR_NO_TOPOLOGICAL_DISC: input mesh is not a topological disc";
+            break;
+        case SMP::ERROR_NO_TOPOLOGICAL_BALL:
+            text = "ERROR_NO_TOPOLOGICAL_BALL: input mesh is not a topological ball";
+            break;
+        case SMP::ERROR_BORDER_TOO_SHORT:
+            text = "ERROR_BORDER_TOO_SHORT: this border parameterization requires a longer border";
+            break;
+        case SMP::ERROR_NON_CONVEX_BORDER:
+            text = "ERROR_NON_CONVEX_BORDER: this parameterization method requires a convex border";
+            break;
+        case SMP::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM:
+            text = "ERROR_CANNOT_SOLVE_LINEAR_SYSTEM: cannot solve linear system";
+            break;
+        case SMP::ERROR_NO_1_TO_1_MAPPING:
+            text = "ERROR_NO_1_TO_1_MAPPING: parameterization failed: no one-to-one mapping";
+            break;
+        case SMP::ERROR_WRONG_PARAMETER:
+            text = "ERROR_WRONG_PARAMETER: a method received an unexpected parameter";
+            break;
+    }
+    return std::string("CGAL error ") + std::to_string(static_cast<int>(code)) + " " + text;
 }
 
 // CGAL's exception text spans several lines (kind, expression, file, line, explanation); the
 // adapters report one line.
 inline std::string one_line(std::string text) {
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-  std::string out;
-  for (char c : text) {
-    if (c == '\n') out += "; ";
-    else out += c;
-  }
-  return out;
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+    std::string out;
+    for (char c : text) {
+        if (c == '\n')
+            out += "; ";
+        else
+            out += c;
+    }
+    return out;
 }
 
 // While alive, keeps what CGAL writes to std::cerr (ARAP_parameterizer_3 prints "Could not solve
 // linear system" before returning its error), so that the adapter's stderr stays one line.
 class CerrCapture {
- public:
-  CerrCapture() : old_(std::cerr.rdbuf(buffer_.rdbuf())) {}
-  ~CerrCapture() { std::cerr.rdbuf(old_); }
-  CerrCapture(const CerrCapture&) = delete;
-  CerrCapture& operator=(const CerrCapture&) = delete;
-  std::string text() const { return one_line(buffer_.str()); }
+public:
+    CerrCapture() : old_(std::cerr.rdbuf(buffer_.rdbuf())) {}
+    ~CerrCapture() { std::cerr.rdbuf(old_); }
+    CerrCapture(const CerrCapture&) = delete;
+    CerrCapture& operator=(const CerrCapture&) = delete;
+    std::string text() const { return one_line(buffer_.str()); }
 
- private:
-  std::ostringstream buffer_;
-  std::streambuf* old_;
+private:
+    std::ostringstream buffer_;
+    std::streambuf* old_;
 };
 
 // Appends what CGAL printed, if anything, to an outcome's message.
 inline Outcome with_printed(Outcome outcome, const CerrCapture& capture) {
-  const std::string printed = capture.text();
-  if (!printed.empty()) {
-    if (outcome.code == 0) outcome.note = "CGAL printed: " + printed;
-    else outcome.message += " (CGAL printed: " + printed + ")";
-  }
-  return outcome;
+    const std::string printed = capture.text();
+    if (!printed.empty()) {
+        if (outcome.code == 0)
+            outcome.note = "CGAL printed: " + printed;
+        else
+            outcome.message += " (CGAL printed: " + printed + ")";
+    }
+    return outcome;
 }
 
 // Copies CGAL's UV map into uv (2 per vertex); code 4 when a UV is not finite.
 inline Outcome copy_uv(const SurfaceMesh& sm, const UvMap& uvmap, std::vector<double>& uv) {
-  uv.assign(2 * sm.number_of_vertices(), 0.0);
-  std::size_t bad = 0, first_bad = 0;
-  for (vertex_descriptor v : sm.vertices()) {
-    const Point_2& p = uvmap[v];
-    const std::size_t i = static_cast<std::size_t>(v.idx());
-    uv[2 * i] = p.x();
-    uv[2 * i + 1] = p.y();
-    if (!std::isfinite(p.x()) || !std::isfinite(p.y())) {
-      if (bad++ == 0) first_bad = i;
+    uv.assign(2 * sm.number_of_vertices(), 0.0);
+    std::size_t bad = 0, first_bad = 0;
+    for (vertex_descriptor v : sm.vertices()) {
+        const Point_2& p = uvmap[v];
+        const std::size_t i = static_cast<std::size_t>(v.idx());
+        uv[2 * i] = p.x();
+        uv[2 * i + 1] = p.y();
+        if (!std::isfinite(p.x()) || !std::isfinite(p.y())) {
+            if (bad++ == 0) first_bad = i;
+        }
     }
-  }
-  if (bad != 0)
-    return {4, "CGAL returned OK but " + std::to_string(bad) + " of " + std::to_string(sm.number_of_vertices()) +
-                   " vertices have a UV that is not finite (the first: vertex " + std::to_string(first_bad) + ")"};
-  return {};
+    if (bad != 0)
+        return {4, "CGAL returned OK but " + std::to_string(bad) + " of " + std::to_string(sm.number_of_vertices()) +
+                       " vertices have a UV that is not finite (the first: vertex " + std::to_string(first_bad) + ")"};
+    return {};
 }
 
 // Builds the mesh, gives `solve(sm, border_halfedge, uvmap)` a NaN-initialised UV map, and turns
 // its Error_code (or a CGAL exception) into an outcome; on code 0, uv holds the map.
 template <class Solve>
 Outcome run_on_mesh(const TriangleSoup& soup, std::vector<double>& uv, Solve&& solve) {
-  const CerrCapture capture;
-  try {
-    SurfaceMesh sm;
-    if (const long f = build_surface_mesh(soup, sm); f >= 0)
-      return {3, "not an oriented 2-manifold: CGAL's Surface_mesh refuses face " + std::to_string(f), {}};
-    const halfedge_descriptor bhd = CGAL::Polygon_mesh_processing::longest_border(sm).first;
-    if (bhd == SurfaceMesh::null_halfedge()) return {3, "not a disk: the mesh has no border", {}};
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    UvMap uvmap = sm.add_property_map<vertex_descriptor, Point_2>("v:uv", Point_2(nan, nan)).first;
-    const SMP::Error_code status = solve(sm, bhd, uvmap);
-    if (status != SMP::OK) return with_printed({4, error_text(status), {}}, capture);
-    return with_printed(copy_uv(sm, uvmap, uv), capture);
-  } catch (const CGAL::Failure_exception& e) {
-    return with_printed({4, one_line(e.what()), {}}, capture);
-  }
+    const CerrCapture capture;
+    try {
+        SurfaceMesh sm;
+        if (const long f = build_surface_mesh(soup, sm); f >= 0)
+            return {3, "not an oriented 2-manifold: CGAL's Surface_mesh refuses face " + std::to_string(f), {}};
+        const halfedge_descriptor bhd = CGAL::Polygon_mesh_processing::longest_border(sm).first;
+        if (bhd == SurfaceMesh::null_halfedge()) return {3, "not a disk: the mesh has no border", {}};
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        UvMap uvmap = sm.add_property_map<vertex_descriptor, Point_2>("v:uv", Point_2(nan, nan)).first;
+        const SMP::Error_code status = solve(sm, bhd, uvmap);
+        if (status != SMP::OK) return with_printed({4, error_text(status), {}}, capture);
+        return with_printed(copy_uv(sm, uvmap, uv), capture);
+    } catch (const CGAL::Failure_exception& e) {
+        return with_printed({4, one_line(e.what()), {}}, capture);
+    }
 }
 
 }  // namespace cgal_uv

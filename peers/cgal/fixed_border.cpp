@@ -34,32 +34,32 @@ namespace {
 
 template <class Parameterizer>
 Outcome run(const TriangleSoup& soup, std::vector<double>& uv) {
-  return run_on_mesh(soup, uv, [](SurfaceMesh& sm, halfedge_descriptor bhd, UvMap uvmap) {
-    return SMP::parameterize(sm, Parameterizer(), bhd, uvmap);
-  });
+    return run_on_mesh(soup, uv, [](SurfaceMesh& sm, halfedge_descriptor bhd, UvMap uvmap) {
+        return SMP::parameterize(sm, Parameterizer(), bhd, uvmap);
+    });
 }
 
 template <class BorderParameterizer>
 Outcome run_with_border(FixedWeights weights, const TriangleSoup& soup, std::vector<double>& uv) {
-  switch (weights) {
-    case FixedWeights::tutte:
-      return run<SMP::Barycentric_mapping_parameterizer_3<SurfaceMesh, BorderParameterizer>>(soup, uv);
-    case FixedWeights::conformal:
-      return run<SMP::Discrete_conformal_map_parameterizer_3<SurfaceMesh, BorderParameterizer>>(soup, uv);
-    case FixedWeights::authalic:
-      return run<SMP::Discrete_authalic_parameterizer_3<SurfaceMesh, BorderParameterizer>>(soup, uv);
-    case FixedWeights::mean_value:
-      return run<SMP::Mean_value_coordinates_parameterizer_3<SurfaceMesh, BorderParameterizer>>(soup, uv);
-  }
-  return {4, "unknown fixed-border method"};
+    switch (weights) {
+        case FixedWeights::tutte:
+            return run<SMP::Barycentric_mapping_parameterizer_3<SurfaceMesh, BorderParameterizer>>(soup, uv);
+        case FixedWeights::conformal:
+            return run<SMP::Discrete_conformal_map_parameterizer_3<SurfaceMesh, BorderParameterizer>>(soup, uv);
+        case FixedWeights::authalic:
+            return run<SMP::Discrete_authalic_parameterizer_3<SurfaceMesh, BorderParameterizer>>(soup, uv);
+        case FixedWeights::mean_value:
+            return run<SMP::Mean_value_coordinates_parameterizer_3<SurfaceMesh, BorderParameterizer>>(soup, uv);
+    }
+    return {4, "unknown fixed-border method"};
 }
 
 }  // namespace
 
 Outcome run_fixed_border(FixedWeights weights, Border border, const TriangleSoup& soup, std::vector<double>& uv) {
-  if (border == Border::circle)
-    return run_with_border<SMP::Circular_border_arc_length_parameterizer_3<SurfaceMesh>>(weights, soup, uv);
-  return run_with_border<SMP::Square_border_arc_length_parameterizer_3<SurfaceMesh>>(weights, soup, uv);
+    if (border == Border::circle)
+        return run_with_border<SMP::Circular_border_arc_length_parameterizer_3<SurfaceMesh>>(weights, soup, uv);
+    return run_with_border<SMP::Square_border_arc_length_parameterizer_3<SurfaceMesh>>(weights, soup, uv);
 }
 
 }  // namespace cgal_uv

@@ -23,13 +23,13 @@
 namespace cgal_uv {
 
 Outcome run_free_border(FreeMethod method, const TriangleSoup& soup, std::vector<double>& uv) {
-  if (method == FreeMethod::lscm)
+    if (method == FreeMethod::lscm)
+        return run_on_mesh(soup, uv, [](SurfaceMesh& sm, halfedge_descriptor bhd, UvMap uvmap) {
+            return SMP::parameterize(sm, SMP::LSCM_parameterizer_3<SurfaceMesh>(), bhd, uvmap);
+        });
     return run_on_mesh(soup, uv, [](SurfaceMesh& sm, halfedge_descriptor bhd, UvMap uvmap) {
-      return SMP::parameterize(sm, SMP::LSCM_parameterizer_3<SurfaceMesh>(), bhd, uvmap);
+        return SMP::parameterize(sm, SMP::ARAP_parameterizer_3<SurfaceMesh>(), bhd, uvmap);
     });
-  return run_on_mesh(soup, uv, [](SurfaceMesh& sm, halfedge_descriptor bhd, UvMap uvmap) {
-    return SMP::parameterize(sm, SMP::ARAP_parameterizer_3<SurfaceMesh>(), bhd, uvmap);
-  });
 }
 
 }  // namespace cgal_uv

@@ -25,16 +25,16 @@
 namespace cgal_uv {
 
 Outcome run_lscm_mvc_post(const TriangleSoup& soup, std::vector<double>& uv) {
-  return run_on_mesh(soup, uv, [](SurfaceMesh& sm, halfedge_descriptor bhd, UvMap uvmap) {
-    SMP::Error_code status = SMP::parameterize(sm, SMP::LSCM_parameterizer_3<SurfaceMesh>(), bhd, uvmap);
-    if (status != SMP::OK) return status;
-    // The post-processor numbers the unknowns by this map: the Surface_mesh's own vertex indices,
-    // 0..V−1, since every vertex is in the one component.
-    auto vimap = sm.add_property_map<vertex_descriptor, int>("v:index", 0).first;
-    for (vertex_descriptor v : sm.vertices()) vimap[v] = static_cast<int>(v.idx());
-    SMP::MVC_post_processor_3<SurfaceMesh> post;
-    return post.parameterize(sm, bhd, uvmap, vimap);
-  });
+    return run_on_mesh(soup, uv, [](SurfaceMesh& sm, halfedge_descriptor bhd, UvMap uvmap) {
+        SMP::Error_code status = SMP::parameterize(sm, SMP::LSCM_parameterizer_3<SurfaceMesh>(), bhd, uvmap);
+        if (status != SMP::OK) return status;
+        // The post-processor numbers the unknowns by this map: the Surface_mesh's own vertex indices,
+        // 0..V−1, since every vertex is in the one component.
+        auto vimap = sm.add_property_map<vertex_descriptor, int>("v:index", 0).first;
+        for (vertex_descriptor v : sm.vertices()) vimap[v] = static_cast<int>(v.idx());
+        SMP::MVC_post_processor_3<SurfaceMesh> post;
+        return post.parameterize(sm, bhd, uvmap, vimap);
+    });
 }
 
 }  // namespace cgal_uv

@@ -15,19 +15,19 @@
 namespace cgal_uv {
 
 struct TriangleSoup {
-  std::vector<double> xyz;          // 3 per vertex, finite
-  std::vector<std::uint32_t> tri;   // 3 per face, each < number of vertices, corners as in the file
-  std::size_t vertex_count() const { return xyz.size() / 3; }
-  std::size_t face_count() const { return tri.size() / 3; }
+    std::vector<double> xyz;         // 3 per vertex, finite
+    std::vector<std::uint32_t> tri;  // 3 per face, each < number of vertices, corners as in the file
+    std::size_t vertex_count() const { return xyz.size() / 3; }
+    std::size_t face_count() const { return tri.size() / 3; }
 };
 
 // What a step gives back: code 0 (done), 3 (not applicable: the mesh is not a disk) or 4 (CGAL
 // reported a failure), with a one-line message for codes 3 and 4; note: on code 0, what CGAL
 // printed on std::cerr, if anything (one line).
 struct Outcome {
-  int code = 0;
-  std::string message;
-  std::string note = {};
+    int code = 0;
+    std::string message;
+    std::string note = {};
 };
 
 enum class Border { circle, square };
@@ -41,9 +41,10 @@ Outcome check_disk(const TriangleSoup& soup);
 const char* cgal_version();
 
 // Each fills uv (2 per vertex, vertex order of the soup) on code 0. The soup has passed check_disk.
-Outcome run_fixed_border(FixedWeights weights, Border border, const TriangleSoup& soup, std::vector<double>& uv);  // fixed_border.cpp
-Outcome run_free_border(FreeMethod method, const TriangleSoup& soup, std::vector<double>& uv);                    // free_border.cpp
-Outcome run_lscm_mvc_post(const TriangleSoup& soup, std::vector<double>& uv);                                     // mvc_post.cpp
+Outcome run_fixed_border(FixedWeights weights, Border border, const TriangleSoup& soup,
+                         std::vector<double>& uv);                                              // fixed_border.cpp
+Outcome run_free_border(FreeMethod method, const TriangleSoup& soup, std::vector<double>& uv);  // free_border.cpp
+Outcome run_lscm_mvc_post(const TriangleSoup& soup, std::vector<double>& uv);                   // mvc_post.cpp
 
 // read_mesh.cpp: reads OFF, OBJ or PLY (chosen by the extension). On failure returns false and
 // sets error to one line naming the file (and line or element) and the problem.

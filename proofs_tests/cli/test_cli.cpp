@@ -25,10 +25,10 @@ namespace fs = std::filesystem;
 namespace {
 
 struct BadInput {
-    const char* name;      // the class of bad input
-    const char* file;      // file name (its extension picks the reader)
+    const char* name;  // the class of bad input
+    const char* file;  // file name (its extension picks the reader)
     std::string content;
-    const char* expect;    // a phrase the message must contain
+    const char* expect;  // a phrase the message must contain
 };
 
 const std::string tet_v = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
@@ -37,8 +37,9 @@ const std::string tet_f = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
 std::string off(const std::string& counts, const std::string& body) { return "OFF\n" + counts + "\n" + body; }
 
 std::string binary_ply_truncated() {
-    std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                    "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+    std::string s =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
     s += std::string(20, '\0');  // 4 vertices need 48 bytes
     return s;
 }
@@ -57,9 +58,11 @@ const std::vector<BadInput>& bad_inputs() {
         {"truncated text", "trunc.off", off("4 4 0", "0 0 0\n1 0 0\n"), "truncated"},
         {"truncated binary", "trunc.ply", binary_ply_truncated(), "truncated"},
         {"negative index", "neg.off", off("4 4 0", tet_v + "3 0 2 -1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"), "-1"},
-        {"OBJ index 0", "zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 0 2 3\nf 1 2 4\nf 1 4 3\nf 2 3 4\n", "1-based"},
+        {"OBJ index 0", "zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 0 2 3\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+         "1-based"},
         {"index out of range", "range.off", off("4 4 0", tet_v + "3 0 2 7\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"), "7"},
-        {"overflowing index", "overflow.off", off("4 4 0", tet_v + "3 0 2 99999999999999999999\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"), "range"},
+        {"overflowing index", "overflow.off",
+         off("4 4 0", tet_v + "3 0 2 99999999999999999999\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"), "range"},
         {"non-numeric", "word.off", off("4 4 0", "0 0 zero\n1 0 0\n0 1 0\n0 0 1\n" + tet_f), "zero"},
         {"number out of range", "huge.off", off("4 4 0", "0 0 1e400\n1 0 0\n0 1 0\n0 0 1\n" + tet_f), "range"},
         {"NaN coordinate", "nan.off", off("4 4 0", "0 0 nan\n1 0 0\n0 1 0\n0 0 1\n" + tet_f), "NaN"},
@@ -75,14 +78,16 @@ const std::vector<BadInput>& bad_inputs() {
          off("7 8 0", tet_v + "-1 0 0\n0 -1 0\n0 0 -1\n" + tet_f + "3 0 4 5\n3 0 6 4\n3 0 5 6\n3 4 6 5\n"),
          "non-manifold vertex 0"},
         {"non-orientable", "moebius.off",
-         off("6 6 0", "1 0 -0.2\n1.3 0 0.2\n-0.5 0.866 -0.15\n-0.65 1.1258 0.27\n-0.5 -0.866 -0.1\n-0.65 -1.1258 0.34\n"
-                      "3 0 2 1\n3 1 2 3\n3 2 4 3\n3 3 4 5\n3 4 1 5\n3 5 1 0\n"),
+         off("6 6 0",
+             "1 0 -0.2\n1.3 0 0.2\n-0.5 0.866 -0.15\n-0.65 1.1258 0.27\n-0.5 -0.866 -0.1\n-0.65 -1.1258 0.34\n"
+             "3 0 2 1\n3 1 2 3\n3 2 4 3\n3 3 4 5\n3 4 1 5\n3 5 1 0\n"),
          "not orientable"},
         {"flat closed component", "flat2.obj",
          "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 5 0 0\nv 6 0 0\nv 5 1 0\nv 5.2 0.2 0\n"
          "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n",
          "closed component at vertex 4 is flat"},
-        {"coordinates that overflow lengths", "big.off", off("4 4 0", "0 0 0\n1e200 0 0\n0 1 0\n0 0 1\n" + tet_f), "overflow"},
+        {"coordinates that overflow lengths", "big.off", off("4 4 0", "0 0 0\n1e200 0 0\n0 1 0\n0 0 1\n" + tet_f),
+         "overflow"},
         {"missing file", "does-not-exist.off", "", "cannot open"},
     };
     return cases;
@@ -93,7 +98,8 @@ const std::vector<BadInput>& bad_inputs() {
 TEST_CASE("CLI-ERR-1: every bad-input class gives one line, exit code 2, in under a second", "[cli]") {
     for (const BadInput& c : bad_inputs()) {
         DYNAMIC_SECTION(c.name) {
-            const std::string path = std::string(c.name) == "missing file" ? temp_path(c.file) : write_temp(c.file, c.content);
+            const std::string path =
+                std::string(c.name) == "missing file" ? temp_path(c.file) : write_temp(c.file, c.content);
             const auto r = run_fhr({"info", path});
             INFO(r.err);
             CHECK(r.exit_code == 2);
@@ -108,7 +114,8 @@ TEST_CASE("CLI-ERR-1: every bad-input class gives one line, exit code 2, in unde
 TEST_CASE("CLI-ERR-2: a failed command leaves no output file behind", "[cli]") {
     for (const BadInput& c : bad_inputs()) {
         DYNAMIC_SECTION(c.name) {
-            const std::string path = std::string(c.name) == "missing file" ? temp_path(c.file) : write_temp(c.file, c.content);
+            const std::string path =
+                std::string(c.name) == "missing file" ? temp_path(c.file) : write_temp(c.file, c.content);
             const fs::path dir = fs::path(temp_path("out-" + std::string(c.file)));
             fs::create_directories(dir);
             const auto r = run_fhr({"convert", path, "--out", (dir / "result.off").string()});
@@ -136,8 +143,8 @@ TEST_CASE("CLI-ERR-4: help and --version print on stdout and exit with 0", "[cli
         const auto r = run_fhr({help});
         CHECK(r.exit_code == 0);
         CHECK(r.err.empty());
-        for (const char* command : {"fhr info", "fhr generate", "fhr convert", "fhr decimate", "fhr attach", "fhr geodesic", "fhr run",
-                                    "fhr verify", "fhr oracle-fuzz"})
+        for (const char* command : {"fhr info", "fhr generate", "fhr convert", "fhr decimate", "fhr attach",
+                                    "fhr geodesic", "fhr run", "fhr verify", "fhr oracle-fuzz"})
             CHECK_THAT(r.out, Catch::Contains(std::string("  ") + command + " "));
     }
     for (const char* version : {"--version", "version"}) {
@@ -149,7 +156,8 @@ TEST_CASE("CLI-ERR-4: help and --version print on stdout and exit with 0", "[cli
 
 TEST_CASE("CLI-INFO-1: warnings for repaired input, exit code 0", "[cli]") {
     // An isolated vertex and one face turned the wrong way round.
-    const std::string path = write_temp("repair.off", off("5 4 0", tet_v + "7 7 7\n3 0 1 2\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"));
+    const std::string path =
+        write_temp("repair.off", off("5 4 0", tet_v + "7 7 7\n3 0 1 2\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"));
     const auto r = run_fhr({"info", "--json", path});
     CHECK(r.exit_code == 0);
     CHECK_THAT(r.err, Catch::Contains("fhr: warning:") && Catch::Contains("dropped 1 isolated vertices") &&
@@ -164,8 +172,10 @@ TEST_CASE("CLI-INFO-1: warnings for repaired input, exit code 0", "[cli]") {
 
 TEST_CASE("CLI-INFO-2: an invalid mesh still gets its counts and the reason", "[cli]") {
     // A cube of quadrilaterals (INV-IN-3): `fhr info` builds leniently, fan-triangulated, to report the topology.
-    const std::string path = write_temp("cube_quads.off", off("8 6 0", "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
-                                                                        "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n"));
+    const std::string path =
+        write_temp("cube_quads.off", off("8 6 0",
+                                         "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                                         "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n"));
     const auto r = run_fhr({"info", "--json", path});
     CHECK(r.exit_code == 2);
     CHECK_THAT(r.out, Catch::Contains("\"faces\": 12") && Catch::Contains("\"genus\": 0") &&
@@ -234,9 +244,10 @@ TEST_CASE("CLI-GEN-1: fhr generate writes meshes that fhr info accepts, with the
     }
 }
 
-TEST_CASE("CLI-GEN-2, GEN-7: --holes and --components: the file of generate_command's command holds exactly random_mesh's "
-          "mesh, and fhr info counts it",
-          "[cli]") {
+TEST_CASE(
+    "CLI-GEN-2, GEN-7: --holes and --components: the file of generate_command's command holds exactly random_mesh's "
+    "mesh, and fhr info counts it",
+    "[cli]") {
     const std::vector<fhr::generate::RandomMeshOptions> recipes{
         {1, 501, 5, 0.1, 3, 2}, {0, 400, 6, 0.0, 5, 3}, {2, 900, 7, 0.25, 0, 3}, {0, 13, 8, 0.0, 1, 1}};
     for (const fhr::generate::RandomMeshOptions& o : recipes) {
@@ -251,8 +262,8 @@ TEST_CASE("CLI-GEN-2, GEN-7: --holes and --components: the file of generate_comm
             INFO(gen.err);
             REQUIRE(gen.exit_code == 0);
             fhr::BuildLog log;
-            const fhr::TriMesh back = fhr::build_trimesh(fhr::io::read_soup(out),
-                                                         {.require_closed = false, .require_connected = false}, log);
+            const fhr::TriMesh back =
+                fhr::build_trimesh(fhr::io::read_soup(out), {.require_closed = false, .require_connected = false}, log);
             const fhr::TriMesh expected = fhr::generate::random_mesh(o);
             CHECK(back.positions() == expected.positions());
             CHECK(back.triangles() == expected.triangles());
@@ -266,9 +277,10 @@ TEST_CASE("CLI-GEN-2, GEN-7: --holes and --components: the file of generate_comm
     }
 }
 
-TEST_CASE("CLI-GEN-3, CLI-GEN-4: out-of-range --holes, --components, face counts, families and knobs are refused in "
-          "one line, exit code 2",
-          "[cli]") {
+TEST_CASE(
+    "CLI-GEN-3, CLI-GEN-4: out-of-range --holes, --components, face counts, families and knobs are refused in "
+    "one line, exit code 2",
+    "[cli]") {
     struct Refused {
         std::vector<std::string> options;
         const char* expect;
@@ -308,8 +320,8 @@ TEST_CASE("CLI-GEN-3, CLI-GEN-4: out-of-range --holes, --components, face counts
 TEST_CASE("CLI-GEN-5: --min-faces prints min_faces of the recipe and writes nothing", "[cli]") {
     const std::array<std::array<int, 3>, 5> recipes{{{0, 0, 1}, {2, 0, 1}, {0, 5, 1}, {3, 5, 3}, {1, 0, 2}}};
     for (const auto& [genus, holes, components] : recipes) {
-        const auto r = run_fhr({"generate", "--genus", std::to_string(genus), "--holes", std::to_string(holes), "--components",
-                                std::to_string(components), "--min-faces"});
+        const auto r = run_fhr({"generate", "--genus", std::to_string(genus), "--holes", std::to_string(holes),
+                                "--components", std::to_string(components), "--min-faces"});
         INFO(r.err);
         CHECK(r.exit_code == 0);
         CHECK(r.out == std::to_string(fhr::generate::min_faces(genus, holes, components)) + "\n");
@@ -325,8 +337,8 @@ TEST_CASE("CLI-GEN-5: --min-faces of each family is min_faces(options) (needs ev
         o.genus = 2;
         o.holes = 1;
         o.components = 2;
-        const auto r = run_fhr({"generate", "--family", fhr::generate::family_name(family), "--genus", "2", "--holes", "1",
-                                "--components", "2", "--min-faces"});
+        const auto r = run_fhr({"generate", "--family", fhr::generate::family_name(family), "--genus", "2", "--holes",
+                                "1", "--components", "2", "--min-faces"});
         INFO(fhr::generate::family_name(family) << ": " << r.err);
         CHECK(r.exit_code == 0);
         CHECK(r.out == std::to_string(fhr::generate::min_faces(o)) + "\n");
@@ -348,7 +360,8 @@ TEST_CASE("CLI-CONVERT-1: convert round-trips every writable format", "[cli]") {
 
 TEST_CASE("DOM-7: fhr decimate writes the domain and its correspondence, byte-identical on a rerun", "[cli][domain]") {
     const std::string mesh = temp_path("dec-in.off");
-    REQUIRE(run_fhr({"generate", "--genus", "2", "--faces", "3000", "--seed", "9", "--noise", "0.2", "--out", mesh}).exit_code == 0);
+    REQUIRE(run_fhr({"generate", "--genus", "2", "--faces", "3000", "--seed", "9", "--noise", "0.2", "--out", mesh})
+                .exit_code == 0);
     const std::string a = temp_path("dec-a.off"), b = temp_path("dec-b.off");
     REQUIRE(run_fhr({"decimate", mesh, "--faces", "200", "--out", a}).exit_code == 0);
     REQUIRE(run_fhr({"decimate", mesh, "--faces", "200", "--out", b}).exit_code == 0);
@@ -372,7 +385,9 @@ TEST_CASE("DOM-9: fhr decimate refuses requests that cannot be met, leaving no f
     const std::string mesh = temp_path("dec-bad.off");
     REQUIRE(run_fhr({"generate", "--genus", "1", "--faces", "500", "--seed", "2", "--out", mesh}).exit_code == 0);
     const std::vector<std::pair<std::string, std::string>> requests{
-        {"101", "odd"}, {"502", "more than the mesh has (500)"}, {"12", "fewer than a closed surface of genus 1 needs (at least 14)"}};
+        {"101", "odd"},
+        {"502", "more than the mesh has (500)"},
+        {"12", "fewer than a closed surface of genus 1 needs (at least 14)"}};
     for (const auto& [faces, expect] : requests) {
         const fs::path dir = temp_path("dec-bad-" + faces);
         fs::create_directories(dir);
@@ -384,7 +399,8 @@ TEST_CASE("DOM-9: fhr decimate refuses requests that cannot be met, leaving no f
     }
 }
 
-TEST_CASE("DOM-10..13: fhr attach inserts a user-given domain's points, and refuses bad correspondences", "[cli][domain]") {
+TEST_CASE("DOM-10..13: fhr attach inserts a user-given domain's points, and refuses bad correspondences",
+          "[cli][domain]") {
     const std::string mesh = temp_path("att.off"), dom = temp_path("att-d.off");
     REQUIRE(run_fhr({"generate", "--genus", "1", "--faces", "600", "--seed", "4", "--out", mesh}).exit_code == 0);
     REQUIRE(run_fhr({"decimate", mesh, "--faces", "60", "--out", dom}).exit_code == 0);
@@ -410,7 +426,8 @@ TEST_CASE("DOM-10..13: fhr attach inserts a user-given domain's points, and refu
         const std::string path = write_temp("att-bad.corr", text);
         const fs::path dir = temp_path("att-bad-out");
         fs::create_directories(dir);
-        const auto e = run_fhr({"attach", mesh, "--domain", dom, "--correspondence", path, "--out", (dir / "x.off").string()});
+        const auto e =
+            run_fhr({"attach", mesh, "--domain", dom, "--correspondence", path, "--out", (dir / "x.off").string()});
         CHECK(e.exit_code == 2);
         CHECK(count_lines(e.err) == 1);
         CHECK_THAT(e.err, Catch::Contains(expect));
@@ -420,7 +437,8 @@ TEST_CASE("DOM-10..13: fhr attach inserts a user-given domain's points, and refu
 
 TEST_CASE("GEO-E2: fhr geodesic prints the path, and refuses bad vertex indices", "[cli][geodesic]") {
     const std::string mesh = temp_path("geo.off");
-    REQUIRE(run_fhr({"generate", "--genus", "1", "--faces", "800", "--seed", "8", "--noise", "0.1", "--out", mesh}).exit_code == 0);
+    REQUIRE(run_fhr({"generate", "--genus", "1", "--faces", "800", "--seed", "8", "--noise", "0.1", "--out", mesh})
+                .exit_code == 0);
     const auto r = run_fhr({"geodesic", mesh, "3", "200", "--json"});
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
@@ -435,7 +453,8 @@ TEST_CASE("GEO-E2: fhr geodesic prints the path, and refuses bad vertex indices"
     }
 }
 
-TEST_CASE("LIB-2: the library's errors carry no exit code; the command maps each kind to spec/cli.md's", "[cli][unit]") {
+TEST_CASE("LIB-2: the library's errors carry no exit code; the command maps each kind to spec/cli.md's",
+          "[cli][unit]") {
     CHECK(fhr::cli::exit_code_of(fhr::InvalidInput("mesh.off", 3, "a face repeats vertex 1")) == 2);
     CHECK(fhr::cli::exit_code_of(fhr::PartitionFailure("conditions (1)/(2) of §3 fail")) == 3);
     CHECK(fhr::cli::exit_code_of(fhr::NumericalFailure("the solve missed its tolerance")) == 4);
@@ -443,14 +462,21 @@ TEST_CASE("LIB-2: the library's errors carry no exit code; the command maps each
     CHECK(fhr::cli::exit_code_of(std::logic_error("a broken precondition")) == 70);
 }
 
-TEST_CASE("CLI-DECIMATE-1, CLI-RUN-7: with boundary --vertices is refused, --corner-angle is taken; fhr run says why D is larger", "[cli][boundary]") {
+TEST_CASE(
+    "CLI-DECIMATE-1, CLI-RUN-7: with boundary --vertices is refused, --corner-angle is taken; fhr run says why D is "
+    "larger",
+    "[cli][boundary]") {
     const std::string mesh = temp_path("holes2.off");
-    REQUIRE(run_fhr({"generate", "--genus", "0", "--holes", "2", "--faces", "401", "--seed", "3", "--out", mesh}).exit_code == 0);
+    REQUIRE(run_fhr({"generate", "--genus", "0", "--holes", "2", "--faces", "401", "--seed", "3", "--out", mesh})
+                .exit_code == 0);
     const auto by_vertices = run_fhr({"decimate", mesh, "--vertices", "20", "--out", temp_path("d.off")});
     CHECK(by_vertices.exit_code == 2);
     CHECK_THAT(by_vertices.err, Catch::Contains("--vertices needs a closed surface"));
-    CHECK(run_fhr({"decimate", mesh, "--faces", "40", "--corner-angle", "200", "--out", temp_path("d.off")}).exit_code == 2);
-    CHECK(run_fhr({"decimate", mesh, "--faces", "40", "--corner-angle", "90", "--out", temp_path("d.off")}).exit_code == 0);
+    CHECK(
+        run_fhr({"decimate", mesh, "--faces", "40", "--corner-angle", "200", "--out", temp_path("d.off")}).exit_code ==
+        2);
+    CHECK(run_fhr({"decimate", mesh, "--faces", "40", "--corner-angle", "90", "--out", temp_path("d.off")}).exit_code ==
+          0);
     // Asked for 2 faces: the two loops (an annulus needs at least 6) give more, and the run says so.
     const auto r = run_fhr({"run", mesh, "--faces", "2", "--out", temp_path("run-holes2")});
     CHECK(r.exit_code == 0);

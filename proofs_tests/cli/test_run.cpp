@@ -25,26 +25,29 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* const outputs[] = {"domain.off", "geodesics.obj", "refined.ply", "param.fhrp", "textured.obj", "report.json", "timings.json"};
+const char* const outputs[] = {"domain.off",   "geodesics.obj", "refined.ply", "param.fhrp",
+                               "textured.obj", "report.json",   "timings.json"};
 
-std::string fandisk() {
-    return fhr::test::cgal_mesh("fandisk.off");
-}
+std::string fandisk() { return fhr::test::cgal_mesh("fandisk.off"); }
 
 // The integer value of "key": N in a JSON text (the first occurrence).
 long json_integer(const std::string& json, const std::string& key) {
     std::smatch m;
-    if (!std::regex_search(json, m, std::regex("\"" + key + "\": (-?[0-9]+)"))) throw std::runtime_error("no key " + key);
+    if (!std::regex_search(json, m, std::regex("\"" + key + "\": (-?[0-9]+)")))
+        throw std::runtime_error("no key " + key);
     return std::stol(m[1]);
 }
 
-bool json_true(const std::string& json, const std::string& key) { return json.find("\"" + key + "\": true") != std::string::npos; }
+bool json_true(const std::string& json, const std::string& key) {
+    return json.find("\"" + key + "\": true") != std::string::npos;
+}
 
 // Every capture of `pattern` in `text`, as numbers.
 std::vector<double> all_numbers(const std::string& text, const std::string& pattern) {
     std::vector<double> out;
     const std::regex re(pattern);
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it) out.push_back(std::stod((*it)[1]));
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it)
+        out.push_back(std::stod((*it)[1]));
     return out;
 }
 
@@ -72,7 +75,8 @@ void check_rate_distortion(const std::string& svg, const std::string& report) {
         for (std::size_t i = 0; i < expected_x.size(); ++i) CHECK(xs[s][i] == Approx(expected_x[i]).margin(1e-9));
     }
     // The y axis: 0 at 360, its last tick label m at 50 (REN-12).
-    const std::vector<double> ticks = all_numbers(svg, "<text x=\"70.00\" y=\"[0-9.]+\" text-anchor=\"end\">([0-9.e+-]+)<");
+    const std::vector<double> ticks =
+        all_numbers(svg, "<text x=\"70.00\" y=\"[0-9.]+\" text-anchor=\"end\">([0-9.e+-]+)<");
     REQUIRE(ticks.size() >= 4);
     const auto y_of = [&](double value) { return 360 - 310 * value / ticks.back(); };
     const std::vector<double> l2 = all_numbers(report, "\"l2_error\": ([0-9.e+-]+)");
@@ -144,12 +148,14 @@ void check_atlas(const std::string& obj, const fhr::exchange::ParamFile& param) 
         box[i] = {1, 1, 0, 0};
         for (const UV& p : q) {
             bad_triangles += !(p[0] >= 0 && p[0] <= 1 && p[1] >= 0 && p[1] <= 1);
-            box[i] = {std::min(box[i][0], p[0]), std::min(box[i][1], p[1]), std::max(box[i][2], p[0]), std::max(box[i][3], p[1])};
+            box[i] = {std::min(box[i][0], p[0]), std::min(box[i][1], p[1]), std::max(box[i][2], p[0]),
+                      std::max(box[i][3], p[1])};
         }
     }
     for (std::size_t i = 0; i < n; ++i)
         for (std::size_t j = i + 1; j < n; ++j)
-            touching += box[i][0] <= box[j][2] && box[j][0] <= box[i][2] && box[i][1] <= box[j][3] && box[j][1] <= box[i][3];
+            touching +=
+                box[i][0] <= box[j][2] && box[j][0] <= box[i][2] && box[i][1] <= box[j][3] && box[j][1] <= box[i][3];
     for (std::size_t f = 0; f < face_vt.size(); ++f) {
         const auto& q = corner[param.surface_faces[f].patch];
         for (int c = 0; c < 3; ++c) {
@@ -211,7 +217,8 @@ TEST_CASE("CLI-RUN-1..4: fhr run on the fandisk writes every file, certified, ve
 
 TEST_CASE("CLI-RUN-1: --weights and --solver are honoured and still certified", "[cli][run]") {
     const std::string mesh = fandisk(), dir = temp_path("run-mv");
-    const auto r = run_fhr({"run", mesh, "--faces", "200", "--out", dir, "--weights", "mean-value", "--solver", "bicgstab"});
+    const auto r =
+        run_fhr({"run", mesh, "--faces", "200", "--out", dir, "--weights", "mean-value", "--solver", "bicgstab"});
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     const std::string report = read_file(dir + "/report.json");
@@ -232,8 +239,9 @@ TEST_CASE("CLI-RUN-1, MAP-7: BiCGSTAB converges on small patches of graded meshe
         std::vector<std::string> recipe;
         std::string faces;
     };
-    const std::vector<Case> cases{
-        {{"--family", "density", "--genus", "0", "--components", "2", "--faces", "564", "--seed", "2420457183278695252"}, "24"}};
+    const std::vector<Case> cases{{{"--family", "density", "--genus", "0", "--components", "2", "--faces", "564",
+                                    "--seed", "2420457183278695252"},
+                                   "24"}};
     for (std::size_t k = 0; k < cases.size(); ++k) {
         const std::string mesh = temp_path("bicgstab-" + std::to_string(k) + ".off");
         std::vector<std::string> generate{"generate"};
@@ -242,8 +250,8 @@ TEST_CASE("CLI-RUN-1, MAP-7: BiCGSTAB converges on small patches of graded meshe
         REQUIRE(run_fhr(generate).exit_code == 0);
         for (const char* solver : {"bicgstab", "sparse-lu"}) {
             CAPTURE(k, solver);
-            const auto r = run_fhr({"run", mesh, "--faces", cases[k].faces, "--weights", "uniform", "--solver", solver, "--out",
-                                    temp_path("bicgstab-run-" + std::to_string(k) + solver)});
+            const auto r = run_fhr({"run", mesh, "--faces", cases[k].faces, "--weights", "uniform", "--solver", solver,
+                                    "--out", temp_path("bicgstab-run-" + std::to_string(k) + solver)});
             CHECK(r.exit_code == 0);
             CHECK_THAT(r.out, Catch::Contains("certified one-to-one"));
         }
@@ -257,8 +265,8 @@ TEST_CASE("CLI-RUN-1, MAP-4: a dividing edge's midpoint beside a needle is pulle
     // from that geometry their images lay far closer to the side than 2^-53, one β rounded onto it
     // and three image triangles were degenerate (PARAM-8, exit 4). Midpoints now get uniform weights.
     const std::string mesh = temp_path("midpoint-needle.off");
-    REQUIRE(run_fhr({"generate", "--family", "quality", "--genus", "0", "--holes", "2", "--components", "2", "--faces", "5789", "--seed",
-                     "3891427888069146560", "--out", mesh})
+    REQUIRE(run_fhr({"generate", "--family", "quality", "--genus", "0", "--holes", "2", "--components", "2", "--faces",
+                     "5789", "--seed", "3891427888069146560", "--out", mesh})
                 .exit_code == 0);
     const auto r = run_fhr({"run", mesh, "--faces", "56", "--out", temp_path("midpoint-needle-run")});
     INFO(r.err);
@@ -267,7 +275,8 @@ TEST_CASE("CLI-RUN-1, MAP-4: a dividing edge's midpoint beside a needle is pulle
     CHECK_THAT(r.err, !Catch::Contains(" 0 dividing edges split"));  // the splits this case is about happened
 }
 
-TEST_CASE("CLI-RUN-1, PARAM-11: a T' vertex on the edge of a needle of T is on T (the whole-pipeline property's draw)", "[cli][run]") {
+TEST_CASE("CLI-RUN-1, PARAM-11: a T' vertex on the edge of a needle of T is on T (the whole-pipeline property's draw)",
+          "[cli][run]") {
     // A path crosses edge 2-196 of T, the long side of two needles (width 2e-6 of their length
     // 0.17). The oracle's closest point on a triangle (Ericson's Voronoi regions) put the crossing
     // 1.7e-9 off T, above PARAM-11's 1.73e-9: a correct T' rejected. Now within a few ulp
@@ -276,22 +285,24 @@ TEST_CASE("CLI-RUN-1, PARAM-11: a T' vertex on the edge of a needle of T is on T
     REQUIRE(run_fhr({"generate", "--family", "quality", "--genus", "0", "--holes", "1", "--faces", "415", "--seed",
                      "3273395475174043845", "--out", mesh})
                 .exit_code == 0);
-    const auto r = run_fhr({"run", mesh, "--faces", "7", "--paths", "geodesic", "--out", temp_path("needle-crossing-run")});
+    const auto r =
+        run_fhr({"run", mesh, "--faces", "7", "--paths", "geodesic", "--out", temp_path("needle-crossing-run")});
     INFO(r.err);
     CHECK(r.exit_code == 0);
     CHECK_THAT(r.out, Catch::Contains("certified one-to-one"));
     CHECK_THAT(r.err, Catch::Contains("1 retries"));  // the domain this case is about (8 faces)
 }
 
-TEST_CASE("CLI-RUN-1, PART-4: needles of 1e-9 degrees end certified or 'not certified', never an internal error", "[cli][run]") {
+TEST_CASE("CLI-RUN-1, PART-4: needles of 1e-9 degrees end certified or 'not certified', never an internal error",
+          "[cli][run]") {
     // The quality family at extreme knobs: a path crosses a face near its 1e-9-degree corner, and
     // the face's piece has two points 2e-17 apart; every triangle of it had a smallest angle that
     // atan2 rounds to 0, so embed found "no proper triangulation" (exit 70). Properness is decided
     // by the face's sides (paper_notes/partition.md); what rounding then breaks, §4's certificate
     // and the oracle report (exit 4).
     const std::string mesh = temp_path("needles.off");
-    REQUIRE(run_fhr({"generate", "--family", "quality", "--genus", "0", "--smallest-angle", "1e-9", "--bad-fraction", "0.5",
-                     "--faces", "100", "--seed", "4", "--out", mesh})
+    REQUIRE(run_fhr({"generate", "--family", "quality", "--genus", "0", "--smallest-angle", "1e-9", "--bad-fraction",
+                     "0.5", "--faces", "100", "--seed", "4", "--out", mesh})
                 .exit_code == 0);
     const auto r = run_fhr({"run", mesh, "--faces", "24", "--out", temp_path("needles-run")});
     CHECK((r.exit_code == 0 || r.exit_code == 4));
@@ -299,7 +310,8 @@ TEST_CASE("CLI-RUN-1, PART-4: needles of 1e-9 degrees end certified or 'not cert
     if (r.exit_code == 4) CHECK_THAT(r.err, Catch::Contains("not certified"));
 }
 
-TEST_CASE("CLI-RUN-1, GEO-E8: a quality mesh at default knobs certifies (./run families 500, quality 483)", "[cli][run]") {
+TEST_CASE("CLI-RUN-1, GEO-E8: a quality mesh at default knobs certifies (./run families 500, quality 483)",
+          "[cli][run]") {
     // Needles of 1e-4 degrees: the exact search lost the windows beyond a needle's short edge, one
     // domain edge got no path, and embed stopped with an internal error (exit 70). Fixed with the
     // frames of GEO-E8 (paper_notes/exact_geodesics.md, "Needles").
@@ -354,7 +366,8 @@ TEST_CASE("CLI-RUN-5: a user domain whose paths break (1)/(2) exits 3 naming dom
     CHECK(!pairs.empty());
     CHECK(!fs::exists(dir + "/param.fhrp"));
     // The unchanged correspondence works.
-    CHECK(run_fhr({"run", mesh, "--domain", domain, "--correspondence", corr, "--out", temp_path("run-user-ok")}).exit_code == 0);
+    CHECK(run_fhr({"run", mesh, "--domain", domain, "--correspondence", corr, "--out", temp_path("run-user-ok")})
+              .exit_code == 0);
 }
 
 // The generator's quality family at its extreme knobs (10⁻⁹° needles, 180° caps): the exact
@@ -369,25 +382,28 @@ TEST_CASE("CLI-RUN-1: fhr run on 10⁻⁹° needles (quality family) completes, 
     for (const Case c : {Case{"0", "1", "200", "6", "24"}, Case{"2", "2", "1558", "478695528567056040", "40"}}) {
         CAPTURE(c.genus, c.seed);
         const std::string mesh = temp_path(std::string("needles-") + c.genus + ".off");
-        REQUIRE(run_fhr({"generate", "--family", "quality", "--genus", c.genus, "--components", c.components, "--smallest-angle", "1e-9",
-                         "--bad-fraction", "0.5", "--faces", c.faces, "--seed", c.seed, "--out", mesh})
+        REQUIRE(run_fhr({"generate", "--family", "quality", "--genus", c.genus, "--components", c.components,
+                         "--smallest-angle", "1e-9", "--bad-fraction", "0.5", "--faces", c.faces, "--seed", c.seed,
+                         "--out", mesh})
                     .exit_code == 0);
-        const auto r = run_fhr({"run", mesh, "--faces", c.domain_faces, "--out", temp_path(std::string("needles-run-") + c.genus)});
+        const auto r = run_fhr(
+            {"run", mesh, "--faces", c.domain_faces, "--out", temp_path(std::string("needles-run-") + c.genus)});
         INFO(r.err);
         CHECK(r.exit_code == 0);
         CHECK_THAT(r.out, Catch::Contains("certified one-to-one"));
     }
 }
 
-TEST_CASE("CLI-RUN-5: a domain edge whose geodesic the exact search loses exits 3 naming the edge and its vertices", "[cli][run]") {
+TEST_CASE("CLI-RUN-5: a domain edge whose geodesic the exact search loses exits 3 naming the edge and its vertices",
+          "[cli][run]") {
     // Vertex 87 of this mesh is one the exact search from vertex 9 still loses to rounding on
     // 10⁻⁹° needles (GEO-E9; exact_geodesics.md, "Needles", open). A user domain, the tetrahedron
     // on T's vertices 9, 87, 8 and 29, has the edge 9–87: a PartitionFailure naming it, not the
     // internal error `embed` met on the empty path. (Should the search stop losing 87, this case
     // needs another such pair.)
     const std::string mesh = temp_path("needles-lost.off");
-    REQUIRE(run_fhr({"generate", "--family", "quality", "--genus", "0", "--smallest-angle", "1e-9", "--bad-fraction", "0.5", "--faces",
-                     "200", "--seed", "2", "--out", mesh})
+    REQUIRE(run_fhr({"generate", "--family", "quality", "--genus", "0", "--smallest-angle", "1e-9", "--bad-fraction",
+                     "0.5", "--faces", "200", "--seed", "2", "--out", mesh})
                 .exit_code == 0);
     const fhr::TriMesh T = fhr::io::read_mesh(mesh);
     const std::array<std::uint32_t, 4> corners{9, 87, 8, 29};
@@ -402,21 +418,26 @@ TEST_CASE("CLI-RUN-5: a domain edge whose geodesic the exact search loses exits 
     off << "3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n";  // outward
     const std::string domain = fhr::test::write_temp("needles-tet.off", off.str());
     const std::string correspondence = fhr::test::write_temp("needles-tet.correspondence", corr.str());
-    const auto r = run_fhr({"run", mesh, "--domain", domain, "--correspondence", correspondence, "--out", temp_path("needles-lost-run")});
+    const auto r = run_fhr(
+        {"run", mesh, "--domain", domain, "--correspondence", correspondence, "--out", temp_path("needles-lost-run")});
     INFO(r.err);
     CHECK(r.exit_code == 3);
     CHECK_THAT(r.err, Catch::Contains("no shortest path found for domain edge 0 between vertices 9 and 87 of T"));
 }
 
-TEST_CASE("CLI-RUN-1..3, CLI-RUN-6, REN-14: --levels 3 --keep 5,20 on the fandisk reproduces the paper's §6 counts; --figures draws "
-          "Figs. 6-9 and the rate-distortion plot",
-          "[cli][run][wavelet]") {
+TEST_CASE(
+    "CLI-RUN-1..3, CLI-RUN-6, REN-14: --levels 3 --keep 5,20 on the fandisk reproduces the paper's §6 counts; "
+    "--figures draws "
+    "Figs. 6-9 and the rate-distortion plot",
+    "[cli][run][wavelet]") {
     const std::string mesh = fandisk(), dir = temp_path("run-wav");
-    const auto r = run_fhr({"run", mesh, "--faces", "114", "--levels", "3", "--keep", "5,20", "--figures", "--out", dir});
+    const auto r =
+        run_fhr({"run", mesh, "--faces", "114", "--levels", "3", "--keep", "5,20", "--figures", "--out", dir});
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
-    for (const char* f : {"remesh_L3.off", "wavelet_keep5.off", "wavelet_keep20.off", "figures/fig6.png", "figures/fig7.png",
-                          "figures/fig8.png", "figures/fig9.png", "figures/patch0.svg", "figures/rate_distortion.svg"})
+    for (const char* f :
+         {"remesh_L3.off", "wavelet_keep5.off", "wavelet_keep20.off", "figures/fig6.png", "figures/fig7.png",
+          "figures/fig8.png", "figures/fig9.png", "figures/patch0.svg", "figures/rate_distortion.svg"})
         CHECK(fs::exists(dir + "/" + f));
     const std::string report = read_file(dir + "/report.json");
     // Paper §6: D³ has 7,296 triangles; 3,650 − 59 = 3,591 coefficients; ⌊5 % · 3591⌋ = 179, ⌊20 % · 3591⌋ = 718.
@@ -429,7 +450,8 @@ TEST_CASE("CLI-RUN-1..3, CLI-RUN-6, REN-14: --levels 3 --keep 5,20 on the fandis
     CHECK(std::stod(m[1]) <= 1e-12);
     check_rate_distortion(read_file(dir + "/figures/rate_distortion.svg"), report);
     const std::string timings = read_file(dir + "/timings.json");
-    for (const char* stage : {"refinement", "decomposition", "reconstruction"}) CHECK(timings.find(stage) != std::string::npos);
+    for (const char* stage : {"refinement", "decomposition", "reconstruction"})
+        CHECK(timings.find(stage) != std::string::npos);
     CHECK(timings.find("\"hausdorff\"") > timings.find("\"total\""));  // after the total, not in it (CLI-RUN-3)
     CHECK(run_fhr({"run", mesh, "--faces", "114", "--keep", "5", "--out", temp_path("run-keep")}).exit_code == 2);
 }

@@ -25,18 +25,17 @@ TEST_CASE("fhr run on immersed meshes: certified and verified, or a clear error;
     };
     // Every genus 0–3, with holes and two components, from the smallest immersed mesh (20 faces)
     // to 5,000 faces, the finger from just through (1.1) to the deepest (4).
-    const Case cases[] = {{"0", "20", "6", "4", "0", "1", "12"},       {"0", "3000", "2", "1.1", "2", "1", "60"},
-                          {"1", "3001", "3", "4", "3", "2", "100"},    {"2", "5000", "4", "2.5", "0", "2", "120"},
-                          {"3", "2500", "5", "3.9", "1", "1", "150"},  {"1", "72", "7", "4", "0", "1", "40"}};
+    const Case cases[] = {{"0", "20", "6", "4", "0", "1", "12"},      {"0", "3000", "2", "1.1", "2", "1", "60"},
+                          {"1", "3001", "3", "4", "3", "2", "100"},   {"2", "5000", "4", "2.5", "0", "2", "120"},
+                          {"3", "2500", "5", "3.9", "1", "1", "150"}, {"1", "72", "7", "4", "0", "1", "40"}};
     for (const Case& c : cases) {
         const std::string mesh = temp_path("immersed.off"), out = temp_path("immersed_run");
-        const std::vector<std::string> generate{"generate",     "--family", "immersed", "--genus",      c.genus,
-                                                "--faces",      c.faces,    "--seed",   c.seed,         "--depth",
-                                                c.depth,        "--holes",  c.holes,    "--components", c.components,
-                                                "--out",        mesh};
+        const std::vector<std::string> generate{"generate", "--family",     "immersed",   "--genus", c.genus, "--faces",
+                                                c.faces,    "--seed",       c.seed,       "--depth", c.depth, "--holes",
+                                                c.holes,    "--components", c.components, "--out",   mesh};
         INFO("fhr generate --family immersed --genus " << c.genus << " --faces " << c.faces << " --seed " << c.seed
-                                                        << " --depth " << c.depth << " --holes " << c.holes
-                                                        << " --components " << c.components);
+                                                       << " --depth " << c.depth << " --holes " << c.holes
+                                                       << " --components " << c.components);
         REQUIRE(run_fhr(generate).exit_code == 0);
         const auto run = run_fhr({"run", mesh, "--faces", c.domain_faces, "--out", out});
         INFO(run.err);

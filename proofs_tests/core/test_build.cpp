@@ -83,7 +83,8 @@ TEST_CASE("INV-IN-2: faces with fewer than 3 vertices or a repeated vertex are r
 }
 
 TEST_CASE("INV-IN-3: polygons need --triangulate", "[unit][build]") {
-    const std::vector<Vec3> cube{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    const std::vector<Vec3> cube{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                 {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
     const std::vector<std::vector<std::uint32_t>> quads{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
                                                         {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
     const auto e = refused(soup(cube, quads));
@@ -105,7 +106,8 @@ TEST_CASE("INV-IN-4: duplicate faces are refused, whatever their orientation", "
     CHECK(e.line() == 3 + 4 + 4);
 }
 
-TEST_CASE("INV-IN-4: two faces on the same three edges are duplicates too; the message uses the file's numbers", "[unit][build]") {
+TEST_CASE("INV-IN-4: two faces on the same three edges are duplicates too; the message uses the file's numbers",
+          "[unit][build]") {
     // The pillow (1, 2, 3), (1, 3, 2): each edge in exactly two faces, consistently oriented, so
     // only the vertex sets tell. Points 0 and 4 are isolated and dropped first (INV-IN-12), so
     // the mesh numbers the vertices 0, 1, 2; the message still names the file's 1, 3, 2.
@@ -116,9 +118,11 @@ TEST_CASE("INV-IN-4: two faces on the same three edges are duplicates too; the m
     CHECK(e.line() == 3 + 5 + 1);
     // Every order of the second face's corners: turned over, or the same orientation started
     // elsewhere (then no corner of one sits where the same vertex sits in the other).
-    for (const std::vector<std::uint32_t>& second : std::vector<std::vector<std::uint32_t>>{{1, 2, 3}, {2, 3, 1}, {3, 1, 2}, {1, 3, 2}, {3, 2, 1}, {2, 1, 3}}) {
+    for (const std::vector<std::uint32_t>& second :
+         std::vector<std::vector<std::uint32_t>>{{1, 2, 3}, {2, 3, 1}, {3, 1, 2}, {1, 3, 2}, {3, 2, 1}, {2, 1, 3}}) {
         INFO(second[0] << ", " << second[1] << ", " << second[2]);
-        CHECK_THAT(refused(soup(pts, {{1, 2, 3}, second})).problem(), Catch::StartsWith("faces 0 and 1 are duplicates"));
+        CHECK_THAT(refused(soup(pts, {{1, 2, 3}, second})).problem(),
+                   Catch::StartsWith("faces 0 and 1 are duplicates"));
     }
 }
 
@@ -156,8 +160,8 @@ TEST_CASE("INV-IN-7: a Moebius strip is not orientable", "[unit][build]") {
         pts.push_back({std::cos(a), std::sin(a), -0.2 + 0.05 * i});
         pts.push_back({1.3 * std::cos(a), 1.3 * std::sin(a), 0.2 + 0.07 * i});
     }
-    const std::vector<std::vector<std::uint32_t>> faces{{0, 2, 1}, {1, 2, 3}, {2, 4, 3}, {3, 4, 5},
-                                                        {4, 1, 5}, {5, 1, 0}};
+    const std::vector<std::vector<std::uint32_t>> faces{{0, 2, 1}, {1, 2, 3}, {2, 4, 3},
+                                                        {3, 4, 5}, {4, 1, 5}, {5, 1, 0}};
     const auto e = refused(soup(pts, faces));
     CHECK_THAT(e.problem(), Catch::Contains("not orientable"));
 }
@@ -221,7 +225,8 @@ TEST_CASE("INV-IN-10: two boundary loops, counted in the plural", "[unit][build]
     BuildOptions o;
     o.require_closed = true;
     const auto e = refused(soup(pts, {{0, 1, 2}, {4, 5, 6}}), o);
-    CHECK(e.problem() == "the mesh has boundary (2 boundary loops, the first through edge (1, 0)): the method needs a closed surface");
+    CHECK(e.problem() ==
+          "the mesh has boundary (2 boundary loops, the first through edge (1, 0)): the method needs a closed surface");
     CHECK(e.line() == 0);
 }
 
@@ -235,7 +240,8 @@ TEST_CASE("INV-IN-10, INV-IN-11: a closed connected surface passes when both are
     CHECK(connected_components(m).count == 1);
 }
 
-TEST_CASE("INV-IN-11: several components are accepted, and refused when a connected surface is required", "[unit][build]") {
+TEST_CASE("INV-IN-11: several components are accepted, and refused when a connected surface is required",
+          "[unit][build]") {
     auto pts = tet_points;
     for (const auto& p : tet_points) pts.push_back(p + Vec3(5, 0, 0));
     auto faces = tet_faces;
@@ -274,7 +280,8 @@ TEST_CASE("INV-IN: an empty soup is refused", "[unit][build]") {
     CHECK_THAT(e.problem(), Catch::Contains("no faces"));
 }
 
-TEST_CASE("INV-IN-13: a flat closed surface (four coplanar points as a tetrahedron) is refused as bad input", "[unit][build]") {
+TEST_CASE("INV-IN-13: a flat closed surface (four coplanar points as a tetrahedron) is refused as bad input",
+          "[unit][build]") {
     // The apex moved into the plane of face 0, inside its triangle: no triangle is degenerate,
     // but the four faces cover the triangle twice.
     auto pts = tet_points;

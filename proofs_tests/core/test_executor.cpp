@@ -21,7 +21,8 @@
 using fhr::Executor;
 using fhr::ThreadPool;
 
-TEST_CASE("ThreadPool calls every task exactly once, on any threads and grain (grain 0 counts as 1)", "[unit][executor]") {
+TEST_CASE("ThreadPool calls every task exactly once, on any threads and grain (grain 0 counts as 1)",
+          "[unit][executor]") {
     for (unsigned threads : {0u, 1u, 3u}) {
         ThreadPool pool(threads);
         CHECK(pool.threads() == (threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads));
@@ -56,8 +57,7 @@ TEST_CASE("ThreadPool: n tasks of grain g get min(workers, n / g) helpers", "[un
     std::atomic<int> running{0}, most{0};
     pool.for_each(3, 2, [&](std::size_t) {
         const int now = ++running;
-        for (int seen = most; now > seen && !most.compare_exchange_weak(seen, now);) {
-        }
+        for (int seen = most; now > seen && !most.compare_exchange_weak(seen, now);) {}
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
         --running;
     });
@@ -130,7 +130,8 @@ TEST_CASE("executor_or_default: the given executor, else the one shared default"
     CHECK(&fhr::default_executor() == &shared);
 }
 
-TEST_CASE("ThreadPool: a caller whose tasks are done helps the calls its helpers post while it waits", "[unit][executor]") {
+TEST_CASE("ThreadPool: a caller whose tasks are done helps the calls its helpers post while it waits",
+          "[unit][executor]") {
     // Two threads, two tasks: a task on the calling thread ends soon; a task on the worker posts
     // a call of two tasks that must run at once (each waits until both have started). Its only
     // possible helper is the caller, waiting for the outer call: without its help they never meet.

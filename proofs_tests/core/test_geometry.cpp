@@ -112,22 +112,24 @@ TEST_CASE("closest_point_on_triangle: degenerate triangles give the nearest poin
         Vec3 a, b, c, p, expected;
     };
     const std::vector<Case> cases{
-        {{0, 0, 0}, {0, 0, 0}, {2, 0, 0}, {1, 1, 0}, {1, 0, 0}},       // a = b: the segment a–c
-        {{0, 0, 0}, {2, 0, 0}, {2, 0, 0}, {1, 0, 3}, {1, 0, 0}},       // b = c
-        {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {1.5, 1, 0}, {1.5, 0, 0}},   // three on a line
-        {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 1, 0}, {2, 0, 0}},       // beyond the far end
-        {{1, 1, 1}, {1, 1, 1}, {1, 1, 1}, {0, 0, 0}, {1, 1, 1}},       // one point
+        {{0, 0, 0}, {0, 0, 0}, {2, 0, 0}, {1, 1, 0}, {1, 0, 0}},      // a = b: the segment a–c
+        {{0, 0, 0}, {2, 0, 0}, {2, 0, 0}, {1, 0, 3}, {1, 0, 0}},      // b = c
+        {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {1.5, 1, 0}, {1.5, 0, 0}},  // three on a line
+        {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 1, 0}, {2, 0, 0}},      // beyond the far end
+        {{1, 1, 1}, {1, 1, 1}, {1, 1, 1}, {0, 0, 0}, {1, 1, 1}},      // one point
     };
     for (const Case& k : cases) {
         const Vec3 corners[3] = {k.a, k.b, k.c};
-        for (const auto& [i, j, l] : std::vector<std::array<int, 3>>{{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}}) {
+        for (const auto& [i, j, l] :
+             std::vector<std::array<int, 3>>{{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}}) {
             INFO("corners " << i << j << l << ", p = " << k.p.transpose());
             CHECK((closest_point_on_triangle(k.p, corners[i], corners[j], corners[l]) - k.expected).norm() < 1e-15);
         }
     }
 }
 
-TEST_CASE("closest_point_on_triangle is within a few ulp of the exact closest point, on needles too", "[property][geometry]") {
+TEST_CASE("closest_point_on_triangle is within a few ulp of the exact closest point, on needles too",
+          "[property][geometry]") {
     // Exact rational distances (GMP) are the oracle. Needles of width 10^-12..1 of their length,
     // with the small angle at a corner (apex) or a corner almost on the opposite side (flat), at
     // scales 2^-20..2^20, far from the origin or not, in a random orientation; the query points
@@ -146,36 +148,39 @@ TEST_CASE("closest_point_on_triangle is within a few ulp of the exact closest po
         const Vec3 corners[3] = {a, b, c};
         Vec3 p;
         switch (*rc::gen::inRange(0, 4)) {
-        case 0: {  // on an edge
-            const int i = *rc::gen::inRange(0, 3);
-            const double t = unit();
-            p = (1 - t) * corners[i] + t * corners[(i + 1) % 3];
-            break;
-        }
-        case 1: {  // above or below the interior
-            const double s = unit(), t = unit() * (1 - s);
-            p = a + s * (b - a) + t * (c - a) + (unit() - 0.5) * scale * width * u.cross(v);
-            break;
-        }
-        case 2: {  // near the line of an edge, beyond its ends (where the nearest side changes)
-            const int i = *rc::gen::inRange(0, 3);
-            const double t = *rc::gen::element(-1.0, 1.0) * std::pow(10.0, -16 * unit()) + *rc::gen::element(0.0, 1.0);
-            p = (1 - t) * corners[i] + t * corners[(i + 1) % 3] + (unit() - 0.5) * scale * width * u.cross(v);
-            break;
-        }
-        default: p = origin + scale * Vec3(unit() - 0.3, unit() - 0.5, unit() - 0.5) * 2;
+            case 0: {  // on an edge
+                const int i = *rc::gen::inRange(0, 3);
+                const double t = unit();
+                p = (1 - t) * corners[i] + t * corners[(i + 1) % 3];
+                break;
+            }
+            case 1: {  // above or below the interior
+                const double s = unit(), t = unit() * (1 - s);
+                p = a + s * (b - a) + t * (c - a) + (unit() - 0.5) * scale * width * u.cross(v);
+                break;
+            }
+            case 2: {  // near the line of an edge, beyond its ends (where the nearest side changes)
+                const int i = *rc::gen::inRange(0, 3);
+                const double t =
+                    *rc::gen::element(-1.0, 1.0) * std::pow(10.0, -16 * unit()) + *rc::gen::element(0.0, 1.0);
+                p = (1 - t) * corners[i] + t * corners[(i + 1) % 3] + (unit() - 0.5) * scale * width * u.cross(v);
+                break;
+            }
+            default: p = origin + scale * Vec3(unit() - 0.3, unit() - 0.5, unit() - 0.5) * 2;
         }
         const int order = *rc::gen::inRange(0, 3);
         const Vec3 q = closest_point_on_triangle(p, corners[order], corners[(order + 1) % 3], corners[(order + 2) % 3]);
         // Rounding of differences and of q itself: a few u of the coordinates and the diameter.
-        const double tolerance = 32 * std::numeric_limits<double>::epsilon() * (p.cwiseAbs().maxCoeff() + origin.cwiseAbs().maxCoeff() + 2 * scale);
+        const double tolerance = 32 * std::numeric_limits<double>::epsilon() *
+                                 (p.cwiseAbs().maxCoeff() + origin.cwiseAbs().maxCoeff() + 2 * scale);
         const double exact = std::sqrt(triangle_distance2(p, a, b, c).get_d());
         RC_ASSERT(std::fabs((q - p).norm() - exact) <= tolerance);
         RC_ASSERT(std::sqrt(triangle_distance2(q, a, b, c).get_d()) <= tolerance);
     });
 }
 
-TEST_CASE("WAV-9: corner_cover_radius bounds how far a point of the triangle is from every corner, tightly", "[property][geometry]") {
+TEST_CASE("WAV-9: corner_cover_radius bounds how far a point of the triangle is from every corner, tightly",
+          "[property][geometry]") {
     // Closed forms: the equilateral's ℓ/√3, a right triangle's half hypotenuse, and the obtuse
     // (0,0), (4,0), (1,1), whose farthest points lie on the long side where the bisectors of the
     // short sides meet it: x = 1 (1 from (0,0) and (1,1)) and x = 7/3 (5/3 from (4,0) and (1,1)).
@@ -183,15 +188,16 @@ TEST_CASE("WAV-9: corner_cover_radius bounds how far a point of the triangle is 
     CHECK(near(corner_cover_radius({0, 0, 0}, {1, 0, 0}, {0.5, std::sqrt(3.0) / 2, 0}), 1 / std::sqrt(3.0)));
     CHECK(near(corner_cover_radius({0, 0, 0}, {3, 0, 0}, {0, 4, 0}), 2.5));
     for (const auto& [a, b, c] : std::vector<std::array<Vec3, 3>>{{Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(1, 1, 0)},
-                                                                 {Vec3(4, 0, 0), Vec3(1, 1, 0), Vec3(0, 0, 0)},
-                                                                 {Vec3(1, 1, 0), Vec3(0, 0, 0), Vec3(4, 0, 0)}})
+                                                                  {Vec3(4, 0, 0), Vec3(1, 1, 0), Vec3(0, 0, 0)},
+                                                                  {Vec3(1, 1, 0), Vec3(0, 0, 0), Vec3(4, 0, 0)}})
         CHECK(near(corner_cover_radius(a, b, c), 5.0 / 3));
     // Random triangles, acute, obtuse and needles, in every corner order, against a dense sample:
     // max over the samples of min_k |p − x_k| is at most the radius, and at least the radius less
     // the sample's spacing (min_k |· − x_k| is 1-Lipschitz).
     rc::prop("sampled ≤ r ≤ sampled + spacing", [] {
         auto coordinate = [] { return *rc::gen::inRange(-1000, 1001) / 1000.0; };
-        const Vec3 x[3] = {{coordinate(), coordinate(), coordinate()}, {coordinate(), coordinate(), coordinate()},
+        const Vec3 x[3] = {{coordinate(), coordinate(), coordinate()},
+                           {coordinate(), coordinate(), coordinate()},
                            {coordinate(), coordinate(), coordinate()}};
         const int k = 120;
         double sampled = 0, longest = 0;
@@ -208,7 +214,8 @@ TEST_CASE("WAV-9: corner_cover_radius bounds how far a point of the triangle is 
     });
 }
 
-TEST_CASE("normals of degenerate faces are zero; a flat disk's boundary vertex has the disk's normal", "[unit][geometry]") {
+TEST_CASE("normals of degenerate faces are zero; a flat disk's boundary vertex has the disk's normal",
+          "[unit][geometry]") {
     // The triangle (0, 1, 2) on the x axis has no normal; nor has any of its vertices.
     const std::vector<Triangle> line{{0, 1, 2}};
     const TriMesh flat = TriMesh::from_triangles({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(3, 0, 0)}, line);

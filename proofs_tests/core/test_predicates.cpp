@@ -22,7 +22,8 @@ using V3 = Eigen::Vector3d;
 namespace {
 
 int cgal2(const V2& a, const V2& b, const V2& c) {
-    return static_cast<int>(CGAL::orientation(K::Point_2(a.x(), a.y()), K::Point_2(b.x(), b.y()), K::Point_2(c.x(), c.y())));
+    return static_cast<int>(
+        CGAL::orientation(K::Point_2(a.x(), a.y()), K::Point_2(b.x(), b.y()), K::Point_2(c.x(), c.y())));
 }
 int cgal3(const V3& a, const V3& b, const V3& c, const V3& d) {
     auto p = [](const V3& v) { return K::Point_3(v.x(), v.y(), v.z()); };
@@ -46,7 +47,8 @@ TEST_CASE("orient2d: basic signs", "[unit][predicates]") {
     CHECK(orient2d({0, 0}, {0, 0}, {3, 1}) == 0);
 }
 
-TEST_CASE("orient2d agrees with CGAL on nearly collinear points (Kettner et al.'s classic input)", "[oracle][predicates]") {
+TEST_CASE("orient2d agrees with CGAL on nearly collinear points (Kettner et al.'s classic input)",
+          "[oracle][predicates]") {
     // Points near the diagonal y = x, stepped by ulps: naive evaluation gets many of these wrong.
     const V2 b(12, 12), c(24, 24);
     int zero = 0, disagreements = 0;
@@ -81,7 +83,8 @@ TEST_CASE("orient3d agrees with CGAL on nearly coplanar points", "[oracle][predi
     CHECK(disagreements == 0);
 }
 
-TEST_CASE("predicates agree with CGAL on random near-degenerate inputs of any scale", "[property][oracle][predicates]") {
+TEST_CASE("predicates agree with CGAL on random near-degenerate inputs of any scale",
+          "[property][oracle][predicates]") {
     rc::prop("orient2d and orient3d match CGAL", [] {
         const int exponent = *rc::gen::inRange(-300, 140);
         const double scale = std::ldexp(1.0, exponent);
@@ -110,7 +113,8 @@ TEST_CASE("predicates are exact for subnormal and huge coordinates", "[unit][pre
     CHECK_FALSE(collinear({0, 0, 0}, {1, 1, 1}, {1, 1, std::nextafter(1.0, 2.0)}));
 }
 
-TEST_CASE("orient2d: the rational fallback for coordinates outside the expansion's range 2^±450", "[unit][predicates]") {
+TEST_CASE("orient2d: the rational fallback for coordinates outside the expansion's range 2^±450",
+          "[unit][predicates]") {
     // Products of 1e-300 underflow, so the filter sees a zero permanent and the determinant ±1e-600
     // is beyond double; a tiny first point (x, then y) sends the exact sign to rationals.
     const double t = 1e-300;

@@ -55,7 +55,8 @@ TEST_CASE("SurfacePoint canonical form names each location once", "[unit][surfac
     }
 }
 
-TEST_CASE("SurfacePoint: face points inside a face are the same location only with the same weights", "[unit][surface_point]") {
+TEST_CASE("SurfacePoint: face points inside a face are the same location only with the same weights",
+          "[unit][surface_point]") {
     const TriMesh m = tetrahedron();
     const SurfacePoint p = SurfacePoint::in_face(FaceId(3), {0.5, 0.25, 0.25});
     CHECK(same_location(m, p, SurfacePoint::in_face(FaceId(3), {0.5, 0.25, 0.25})));

@@ -22,6 +22,7 @@
 #include <fhr/core/trimesh.hpp>
 #include <fhr/testing/rapidcheck.hpp>
 
+using Catch::Matchers::Contains;
 using fhr::Coned;
 using fhr::EdgeId;
 using fhr::FaceId;
@@ -30,7 +31,6 @@ using fhr::Triangle;
 using fhr::TriMesh;
 using fhr::Vec3;
 using fhr::VertexId;
-using Catch::Matchers::Contains;
 
 namespace {
 
@@ -51,7 +51,8 @@ TriMesh octahedron() { return TriMesh::from_triangles(octahedron_positions(), oc
 TriMesh cube() {
     std::vector<Vec3> p;
     for (int i = 0; i < 8; ++i) p.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-    const std::uint32_t squares[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    const std::uint32_t squares[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                         {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     std::vector<Triangle> t;
     for (const auto& s : squares) {
         t.push_back({s[0], s[1], s[2]});
@@ -64,7 +65,8 @@ TriMesh cube() {
 TriMesh hexagon() {
     std::vector<Vec3> p{Vec3(0, 0, 0)};
     const double c = 0.5, s = 0.8660254037844386;
-    for (const auto& [x, y] : std::vector<std::pair<double, double>>{{1, 0}, {c, s}, {-c, s}, {-1, 0}, {-c, -s}, {c, -s}})
+    for (const auto& [x, y] :
+         std::vector<std::pair<double, double>>{{1, 0}, {c, s}, {-c, s}, {-1, 0}, {-c, -s}, {c, -s}})
         p.emplace_back(x, y, 0);
     std::vector<Triangle> t;
     for (std::uint32_t i = 1; i <= 6; ++i) t.push_back({0, i, i % 6 + 1});
@@ -234,7 +236,8 @@ TEST_CASE("a single triangle: one boundary loop of three halfedges", "[unit]") {
         CHECK_FALSE(m.is_collapse_ok(TriMesh::halfedge(e, 0)));
         // A boundary edge splits too: its one triangle becomes two, the loop gains a vertex.
         TriMesh split = m;
-        const VertexId added = split.split_edge(e, 0.5 * (m.position(m.from(TriMesh::halfedge(e, 0))) + m.position(m.to(TriMesh::halfedge(e, 0)))));
+        const VertexId added = split.split_edge(
+            e, 0.5 * (m.position(m.from(TriMesh::halfedge(e, 0))) + m.position(m.to(TriMesh::halfedge(e, 0)))));
         split.validate();
         CHECK(split.n_faces() == m.n_faces() + 1);
         CHECK(split.is_boundary(added));
@@ -384,8 +387,7 @@ TEST_CASE("collapse on the octahedron, then compact", "[unit]") {
     CHECK(m.position(VertexId(4)) == Vec3(0, 0, -1));
     CHECK(m.position(VertexId(3)) == Vec3(0, -1, 0));
     // The faces (0, 2, 4), (3, 0, 4) at the collapsed edge vanish, 4 becomes 0 elsewhere.
-    CHECK(canonical(m.triangles()) ==
-          canonical({{2, 1, 0}, {1, 3, 0}, {2, 0, 4}, {1, 2, 4}, {3, 1, 4}, {0, 3, 4}}));
+    CHECK(canonical(m.triangles()) == canonical({{2, 1, 0}, {1, 3, 0}, {2, 0, 4}, {1, 2, 4}, {3, 1, 4}, {0, 3, 4}}));
 }
 
 TEST_CASE("before compact(), triangles() and is_closed() skip the collapse's garbage", "[unit]") {
@@ -480,16 +482,18 @@ TEST_CASE("from_triangles refuses input that would break the invariants", "[unit
             CHECK_THAT(e.what(), Contains(part));
         }
     };
-    refused({{0, 1, 5}}, "face 0 has index out of range");                       // INV-MESH-1
-    refused({{0, 1, 2}, {2, 1, 1}}, "face 1 repeats a vertex");                  // INV-MESH-2
-    refused({{3, 3, 1}}, "face 0 repeats a vertex");                             // INV-MESH-2
-    refused({{0, 1, 2}, {1, 0, 3}, {4, 2, 4}}, "face 2 repeats a vertex");       // INV-MESH-2
-    refused({{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}, "edge in more than two faces");   // INV-MESH-4
-    refused({{0, 1, 2}, {0, 1, 3}}, "faces 0 and 1 are inconsistently oriented"); // INV-MESH-4
-    refused({{0, 1, 2}, {0, 3, 4}}, "vertex 0 has more than one fan");           // INV-MESH-7 (bow-tie)
+    refused({{0, 1, 5}}, "face 0 has index out of range");                         // INV-MESH-1
+    refused({{0, 1, 2}, {2, 1, 1}}, "face 1 repeats a vertex");                    // INV-MESH-2
+    refused({{3, 3, 1}}, "face 0 repeats a vertex");                               // INV-MESH-2
+    refused({{0, 1, 2}, {1, 0, 3}, {4, 2, 4}}, "face 2 repeats a vertex");         // INV-MESH-2
+    refused({{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}, "edge in more than two faces");     // INV-MESH-4
+    refused({{0, 1, 2}, {0, 1, 3}}, "faces 0 and 1 are inconsistently oriented");  // INV-MESH-4
+    refused({{0, 1, 2}, {0, 3, 4}}, "vertex 0 has more than one fan");             // INV-MESH-7 (bow-tie)
     p.emplace_back(1, 0, 1);
-    refused({{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {0, 4, 5}}, "vertex 0 has more than one fan");  // a closed fan and an open one
-    refused({{0, 1, 2}, {1, 3, 4}, {1, 4, 5}}, "vertex 1 has more than one fan");  // the first such vertex, not vertex 0
+    refused({{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {0, 4, 5}},
+            "vertex 0 has more than one fan");  // a closed fan and an open one
+    refused({{0, 1, 2}, {1, 3, 4}, {1, 4, 5}},
+            "vertex 1 has more than one fan");  // the first such vertex, not vertex 0
     refused({{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}}, "vertex 4 is in no face");  // INV-MESH-6
 }
 
@@ -555,7 +559,8 @@ TriMesh::Arrays polygon_arrays(std::uint32_t n) {
 /// inside, the boundary loops 5 -> 3 -> 1 (0 -> 2 -> 1 -> 0) and 11 -> 9 -> 7 (0 -> 4 -> 3 -> 0).
 /// Vertex 0 has degree 4: halfedges 0 and 6 inside, 5 and 11 on the boundary; out(0) = 5.
 TriMesh::Arrays bow_tie_arrays() {
-    return hand_made(5, {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {3, 4}, {4, 0}}, {{0, 2, 4}, {6, 8, 10}}, {{5, 3, 1}, {11, 9, 7}});
+    return hand_made(5, {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {3, 4}, {4, 0}}, {{0, 2, 4}, {6, 8, 10}},
+                     {{5, 3, 1}, {11, 9, 7}});
 }
 
 /// The message from_arrays throws, or "" when it accepts the arrays.
@@ -593,7 +598,8 @@ TEST_CASE("from_arrays refuses garbage: a collapsed mesh's arrays before compact
     for (HalfedgeId h : m.halfedges())
         if (!first_gone.valid() && m.is_deleted(TriMesh::edge(h))) first_gone = h;
     REQUIRE(first_gone.valid());
-    CHECK(refusal(m.arrays()) == "INV-MESH-1: halfedge " + std::to_string(first_gone.idx()) + " has an out-of-range reference");
+    CHECK(refusal(m.arrays()) ==
+          "INV-MESH-1: halfedge " + std::to_string(first_gone.idx()) + " has an out-of-range reference");
     m.compact();
     CHECK(refusal(m.arrays()).empty());
 }
@@ -734,7 +740,8 @@ TEST_CASE("split_edge on a boundary edge whose halfedge 0 is the boundary side",
     CHECK(m.is_boundary(HalfedgeId(6)));
     CHECK(m.triangles() == std::vector<Triangle>{{0, 3, 2}, {3, 1, 2}});
     std::vector<std::uint32_t> loop;
-    for (HalfedgeId g = m.out(VertexId(0)); loop.empty() || g != m.out(VertexId(0)); g = m.next(g)) loop.push_back(m.from(g).idx());
+    for (HalfedgeId g = m.out(VertexId(0)); loop.empty() || g != m.out(VertexId(0)); g = m.next(g))
+        loop.push_back(m.from(g).idx());
     CHECK(loop == std::vector<std::uint32_t>{0, 2, 1, 3});
 }
 
@@ -868,7 +875,8 @@ TEST_CASE("split_face inserts a vertex of valence 3 inside a face (paper Fig. 4)
         const std::set<std::uint32_t> expected{corners[0].idx(), corners[1].idx(), corners[2].idx()};
         RC_ASSERT(ring == expected);
         // The three new faces keep the old face's orientation: their normals agree with it.
-        const Vec3 n = (m.position(corners[1]) - m.position(corners[0])).cross(m.position(corners[2]) - m.position(corners[0]));
+        const Vec3 n =
+            (m.position(corners[1]) - m.position(corners[0])).cross(m.position(corners[2]) - m.position(corners[0]));
         m.for_each_outgoing(c, [&](HalfedgeId g) { RC_ASSERT(fhr::face_normal(m, m.face(g)).dot(n) > 0); });
     });
 }
@@ -883,7 +891,13 @@ using fhr::genus;
 
 TEST_CASE("CONE-1: fill_hole closes a loop by a cone and keeps every existing id", "[unit][trimesh][boundary]") {
     rc::prop("random surfaces with holes", [] {
-        const fhr::testing::GeneratedMesh T = *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 600, .min_holes = 1, .max_holes = 5, .min_components = 1, .max_components = 3});
+        const fhr::testing::GeneratedMesh T = *fhr::testing::gen_mesh({.min_genus = 0,
+                                                                       .max_genus = 2,
+                                                                       .max_faces = 600,
+                                                                       .min_holes = 1,
+                                                                       .max_holes = 5,
+                                                                       .min_components = 1,
+                                                                       .max_components = 3});
         const Coned C = add_cones(T);
         C.mesh.validate();
         RC_ASSERT(C.mesh.is_closed());
@@ -903,7 +917,8 @@ TEST_CASE("CONE-1: fill_hole closes a loop by a cone and keeps every existing id
             std::size_t n = 0;
             for (HalfedgeId g = hs[i]; n == 0 || g != hs[i]; g = T.next(g)) {
                 ++n;
-                RC_ASSERT(C.mesh.find_halfedge(T.from(g), VertexId(static_cast<VertexId::Index>(T.n_vertices() + i))).valid());
+                RC_ASSERT(C.mesh.find_halfedge(T.from(g), VertexId(static_cast<VertexId::Index>(T.n_vertices() + i)))
+                              .valid());
             }
             RC_ASSERT(C.mesh.valence(VertexId(static_cast<VertexId::Index>(T.n_vertices() + i))) == n);
         }
@@ -927,9 +942,12 @@ TEST_CASE("CONE-2: boundary_arc walks T's boundary with T's faces on its left", 
         for (VertexId v : a) out.push_back(v.idx());
         return out;
     };
-    CHECK(ids(boundary_arc(C.mesh, C.real_vertices, VertexId(0), VertexId(3))) == std::vector<std::uint32_t>{0, 1, 2, 3});
-    CHECK(ids(boundary_arc(C.mesh, C.real_vertices, VertexId(3), VertexId(0))) == std::vector<std::uint32_t>{3, 7, 6, 5, 4, 0});
-    CHECK(ids(boundary_arc(C.mesh, C.real_vertices, VertexId(6), VertexId(1))) == std::vector<std::uint32_t>{6, 5, 4, 0, 1});
+    CHECK(ids(boundary_arc(C.mesh, C.real_vertices, VertexId(0), VertexId(3))) ==
+          std::vector<std::uint32_t>{0, 1, 2, 3});
+    CHECK(ids(boundary_arc(C.mesh, C.real_vertices, VertexId(3), VertexId(0))) ==
+          std::vector<std::uint32_t>{3, 7, 6, 5, 4, 0});
+    CHECK(ids(boundary_arc(C.mesh, C.real_vertices, VertexId(6), VertexId(1))) ==
+          std::vector<std::uint32_t>{6, 5, 4, 0, 1});
     // Each step has a face of T on its left.
     const auto arc = boundary_arc(C.mesh, C.real_vertices, VertexId(2), VertexId(1));
     for (std::size_t i = 0; i + 1 < arc.size(); ++i) {
@@ -940,7 +958,8 @@ TEST_CASE("CONE-2: boundary_arc walks T's boundary with T's faces on its left", 
     }
 }
 
-TEST_CASE("CONE-2: boundary_arc refuses a, b that are not two vertices of one loop (LIB-2)", "[unit][trimesh][boundary]") {
+TEST_CASE("CONE-2: boundary_arc refuses a, b that are not two vertices of one loop (LIB-2)",
+          "[unit][trimesh][boundary]") {
     // The hexagonal disk: boundary loop 1..6 around the interior vertex 0; the apex is vertex 7.
     const TriMesh T = hexagon();
     const Coned C = add_cones(T);
@@ -955,5 +974,6 @@ TEST_CASE("CONE-2: boundary_arc refuses a, b that are not two vertices of one lo
     // To the interior vertex the walk goes round the loop without end: it stops after #V(T) steps.
     CHECK_THROWS_WITH(boundary_arc(C.mesh, C.real_vertices, VertexId(1), VertexId(0)), Contains(step));
     // The valid arcs around the loop: 1 -> 2 -> 3 (the disk lies to the left).
-    CHECK((boundary_arc(C.mesh, C.real_vertices, VertexId(1), VertexId(3)) == std::vector<VertexId>{VertexId(1), VertexId(2), VertexId(3)}));
+    CHECK((boundary_arc(C.mesh, C.real_vertices, VertexId(1), VertexId(3)) ==
+           std::vector<VertexId>{VertexId(1), VertexId(2), VertexId(3)}));
 }

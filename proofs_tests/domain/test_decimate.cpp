@@ -77,16 +77,23 @@ std::string domain_violation(const TriMesh& T, const Domain& d, const DecimateOp
     if (const std::string why = correspondence_and_shape_violation(T, d, o); !why.empty()) return why;
     for (VertexId v : D.vertices())
         if (D.valence(v) < 3) return "DOM-6: valence below 3";
-    if (!(signed_volume(D) >= 1e-6 * signed_volume(T) * (1 - 1e-9))) return "DOM-15: D is not outward oriented (volume)";
+    if (!(signed_volume(D) >= 1e-6 * signed_volume(T) * (1 - 1e-9)))
+        return "DOM-15: D is not outward oriented (volume)";
     if (d.history.size() != (T.n_faces() - D.n_faces()) / 2) return "DOM-8: history length";
     return "";
 }
 
 // A random mesh of any embedded family: genus 0-3, up to 3 holes, 1-2 components, ≤ 3,000 faces.
 rc::Gen<fhr::testing::GeneratedMesh> any_family_mesh() {
-    return fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 3, .max_faces = 3000, .min_holes = 0, .max_holes = 3,
-                                   .min_components = 1, .max_components = 2,
-                                   .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+    return fhr::testing::gen_mesh(
+        {.min_genus = 0,
+         .max_genus = 3,
+         .max_faces = 3000,
+         .min_holes = 0,
+         .max_holes = 3,
+         .min_components = 1,
+         .max_components = 2,
+         .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
 }
 
 // The pass over the cells (DOM-23) on a small mesh: from any size, cells of 16 to `largest` faces.
@@ -108,14 +115,13 @@ bool undo_gives_back(const TriMesh& T, const Domain& d) {
     return canonical(tris) == canonical(T.triangles());
 }
 
-
 }  // namespace
 
 TEST_CASE("min_closed_faces follows Heawood's bound, with the genus-2 exception", "[unit][domain]") {
-    CHECK(domain::min_closed_faces(0) == 4);    // tetrahedron
-    CHECK(domain::min_closed_faces(1) == 14);   // Möbius–Császár torus, 7 vertices
-    CHECK(domain::min_closed_faces(2) == 24);   // 10 vertices (Jungerman–Ringel)
-    CHECK(domain::min_closed_faces(3) == 28);   // 10 vertices
+    CHECK(domain::min_closed_faces(0) == 4);                    // tetrahedron
+    CHECK(domain::min_closed_faces(1) == 14);                   // Möbius–Császár torus, 7 vertices
+    CHECK(domain::min_closed_faces(2) == 24);                   // 10 vertices (Jungerman–Ringel)
+    CHECK(domain::min_closed_faces(3) == 28);                   // 10 vertices
     CHECK(domain::min_closed_faces(6) == 2 * (12 - (2 - 12)));  // 12 vertices: K12 embeds in genus 6
 }
 
@@ -177,61 +183,72 @@ TEST_CASE("DOM-2: the horse (g = 0) keeps its genus", "[real][domain][shared]") 
     keeps_its_genus(path, 0, 200);
 }
 
-TEST_CASE("DOM-16: decimating again from an earlier decimation keeps every rule and a consistent history", "[property][domain]") {
-    rc::prop("random meshes, with and without the pass over small cells; a decimation, then more kept vertices and more faces", [] {
-        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_closed_mesh(0, 3, 1200);
-        const TriMesh& T = g;
-        DecimateOptions first;
-        const bool cells = *rc::gen::arbitrary<bool>();
-        RC_TAG(cells ? "pass over cells" : "greedy loop only");
-        if (cells) {
-            pass_over_small_cells(first, 400);
-        }
-        first.target_faces = std::max<std::size_t>(domain::min_closed_faces(g.options.genus) + 8, T.n_faces() / 4) & ~std::size_t{1};
-        RC_PRE(first.target_faces < T.n_faces());
-        Domain d1, d2;
-        try {
-            d1 = decimate(T, first);
-        } catch (const InvalidInput&) {
-            RC_DISCARD("target unreachable under the validity rules");
-        }
-        DecimateOptions again = first;
-        const std::size_t extra = *rc::gen::inRange<std::size_t>(0, 6);
-        for (std::size_t i = 0; i < extra; ++i)
-            again.keep.push_back(VertexId(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(T.n_vertices()))));
-        again.target_faces = std::min(T.n_faces(), d1.mesh.n_faces() + 2 * extra);
-        try {
-            d2 = decimate_again(T, d1, again);
-        } catch (const InvalidInput&) {
-            RC_DISCARD("target unreachable with the new kept vertices");
-        }
-        for (VertexId x : again.keep) RC_ASSERT(std::find(d2.t_vertex.begin(), d2.t_vertex.end(), x) != d2.t_vertex.end());
-        RC_ASSERT(d1.by_cells == (cells && 4 * first.target_faces <= T.n_faces()));
-        RC_ASSERT(d2.by_cells == d1.by_cells);  // decimate_again keeps to previous's regime
-        RC_ASSERT(domain_violation(T, d2, again) == "");
-        RC_ASSERT(undo_gives_back(T, d2));  // the reused prefix and the new collapses make one history
-        // d1's collapses up to its first that removes a vertex kept now or goes below the new
-        // target begin d2's history.
-        std::size_t prefix = 0;
-        while (prefix < d1.history.size() && T.n_faces() - 2 * (prefix + 1) >= again.target_faces &&
-               std::find(again.keep.begin(), again.keep.end(), d1.history[prefix].removed) == again.keep.end())
-            ++prefix;
-        RC_ASSERT(d2.history.size() >= prefix);
-        RC_ASSERT(std::equal(d1.history.begin(), d1.history.begin() + static_cast<std::ptrdiff_t>(prefix), d2.history.begin()));
-        RC_ASSERT(domain::history_describes(d2, T));
-        Domain flipped = d2;  // a domain changed after its decimation is told apart
-        EdgeId e(0);
-        while (e.idx() < flipped.mesh.n_edges() && !flipped.mesh.is_flip_ok(e)) e = EdgeId(e.idx() + 1);
-        if (e.idx() < flipped.mesh.n_edges()) {
-            flipped.mesh.flip(e);
-            RC_ASSERT(!domain::history_describes(flipped, T));
-        }
-        // Nothing new to keep and the same target: the earlier decimation is reused whole.
-        if (extra == 0) RC_ASSERT(d2.mesh.triangles() == d1.mesh.triangles() && d2.t_vertex == d1.t_vertex);
-    });
+TEST_CASE("DOM-16: decimating again from an earlier decimation keeps every rule and a consistent history",
+          "[property][domain]") {
+    rc::prop(
+        "random meshes, with and without the pass over small cells; a decimation, then more kept vertices and more "
+        "faces",
+        [] {
+            const fhr::testing::GeneratedMesh g = *fhr::testing::gen_closed_mesh(0, 3, 1200);
+            const TriMesh& T = g;
+            DecimateOptions first;
+            const bool cells = *rc::gen::arbitrary<bool>();
+            RC_TAG(cells ? "pass over cells" : "greedy loop only");
+            if (cells) {
+                pass_over_small_cells(first, 400);
+            }
+            first.target_faces =
+                std::max<std::size_t>(domain::min_closed_faces(g.options.genus) + 8, T.n_faces() / 4) & ~std::size_t{1};
+            RC_PRE(first.target_faces < T.n_faces());
+            Domain d1, d2;
+            try {
+                d1 = decimate(T, first);
+            } catch (const InvalidInput&) {
+                RC_DISCARD("target unreachable under the validity rules");
+            }
+            DecimateOptions again = first;
+            const std::size_t extra = *rc::gen::inRange<std::size_t>(0, 6);
+            for (std::size_t i = 0; i < extra; ++i)
+                again.keep.push_back(
+                    VertexId(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(T.n_vertices()))));
+            again.target_faces = std::min(T.n_faces(), d1.mesh.n_faces() + 2 * extra);
+            try {
+                d2 = decimate_again(T, d1, again);
+            } catch (const InvalidInput&) {
+                RC_DISCARD("target unreachable with the new kept vertices");
+            }
+            for (VertexId x : again.keep)
+                RC_ASSERT(std::find(d2.t_vertex.begin(), d2.t_vertex.end(), x) != d2.t_vertex.end());
+            RC_ASSERT(d1.by_cells == (cells && 4 * first.target_faces <= T.n_faces()));
+            RC_ASSERT(d2.by_cells == d1.by_cells);  // decimate_again keeps to previous's regime
+            RC_ASSERT(domain_violation(T, d2, again) == "");
+            RC_ASSERT(undo_gives_back(T, d2));  // the reused prefix and the new collapses make one history
+            // d1's collapses up to its first that removes a vertex kept now or goes below the new
+            // target begin d2's history.
+            std::size_t prefix = 0;
+            while (prefix < d1.history.size() && T.n_faces() - 2 * (prefix + 1) >= again.target_faces &&
+                   std::find(again.keep.begin(), again.keep.end(), d1.history[prefix].removed) == again.keep.end())
+                ++prefix;
+            RC_ASSERT(d2.history.size() >= prefix);
+            RC_ASSERT(std::equal(d1.history.begin(), d1.history.begin() + static_cast<std::ptrdiff_t>(prefix),
+                                 d2.history.begin()));
+            RC_ASSERT(domain::history_describes(d2, T));
+            Domain flipped = d2;  // a domain changed after its decimation is told apart
+            EdgeId e(0);
+            while (e.idx() < flipped.mesh.n_edges() && !flipped.mesh.is_flip_ok(e)) e = EdgeId(e.idx() + 1);
+            if (e.idx() < flipped.mesh.n_edges()) {
+                flipped.mesh.flip(e);
+                RC_ASSERT(!domain::history_describes(flipped, T));
+            }
+            // Nothing new to keep and the same target: the earlier decimation is reused whole.
+            if (extra == 0) RC_ASSERT(d2.mesh.triangles() == d1.mesh.triangles() && d2.t_vertex == d1.t_vertex);
+        });
 }
 
-TEST_CASE("DOM-23: the pass over the cells runs at its default sizes on a large mesh, and only for a target of a quarter or less", "[unit][domain]") {
+TEST_CASE(
+    "DOM-23: the pass over the cells runs at its default sizes on a large mesh, and only for a target of a quarter or "
+    "less",
+    "[unit][domain]") {
     const TriMesh T = generate::random_mesh({.genus = 1, .faces = 140000, .seed = 3, .noise = 0.1});
     REQUIRE(T.n_faces() > DecimateOptions{}.cells_from);
     const DecimateOptions coarse{.target_faces = 1400}, fine{.target_faces = T.n_faces() / 4 + 2};
@@ -270,7 +287,8 @@ std::vector<double> component_volumes6(const TriMesh& m) {
 
 }  // namespace
 
-TEST_CASE("DOM-15: the rule holds per closed component, beside a large one and beside one with boundary", "[unit][domain]") {
+TEST_CASE("DOM-15: the rule holds per closed component, beside a large one and beside one with boundary",
+          "[unit][domain]") {
     // The noisy sphere above, beside a sphere ten times its size: a rule on the summed volume let
     // the small one turn inside out at its share of 4 faces.
     const TriMesh small = generate::random_closed_mesh({0, 220, 9223371488181092352ull, 0.2});
@@ -290,21 +308,24 @@ TEST_CASE("DOM-15: the rule holds per closed component, beside a large one and b
     // Found by the pipeline property (test_pipeline_property.cpp): the closed sphere of this mesh had
     // no volume rule at all because the other component has boundary, and came out inside out.
     // (fhr generate --genus 0 --holes 1 --components 2 --faces 208 --seed 0 --noise 0.05)
-    const TriMesh U = generate::random_mesh({.genus = 0, .faces = 208, .seed = 0, .noise = 0.05, .holes = 1, .components = 2});
+    const TriMesh U =
+        generate::random_mesh({.genus = 0, .faces = 208, .seed = 0, .noise = 0.05, .holes = 1, .components = 2});
     const Domain e = decimate(U, {.target_faces = 1});
     REQUIRE(boundary_loops(U).size() == 1);
     REQUIRE(connected_components(U).vertex_component[U.from(boundary_loops(U)[0])] == 0);  // component 1 is closed
     CHECK(component_volumes6(e.mesh)[1] > 0);
 }
 
-TEST_CASE("DOM-9: a closed component that cannot reach its share is refused beside one with boundary", "[unit][domain]") {
+TEST_CASE("DOM-9: a closed component that cannot reach its share is refused beside one with boundary",
+          "[unit][domain]") {
     // Found by the pipeline property: the genus-1 closed component stopped at 20 faces above its
     // share of 14 without a word because the other component has boundary.
     // (fhr generate --genus 2 --holes 1 --components 2 --faces 126 --seed 0)
     const TriMesh T = generate::random_mesh({.genus = 2, .faces = 126, .seed = 0, .holes = 1, .components = 2});
     CHECK_THROWS_WITH(decimate(T, {.target_faces = 1}), Catch::Contains("decimation stopped at"));
     // The component with boundary alone may stop above its share: best effort is not needed for it.
-    const TriMesh U = generate::random_mesh({.genus = 0, .faces = 208, .seed = 0, .noise = 0.05, .holes = 1, .components = 2});
+    const TriMesh U =
+        generate::random_mesh({.genus = 0, .faces = 208, .seed = 0, .noise = 0.05, .holes = 1, .components = 2});
     CHECK_NOTHROW(decimate(U, {.target_faces = 1}));
 }
 
@@ -314,7 +335,8 @@ std::size_t named_request(const std::string& message) {
     return at == std::string::npos ? 0 : std::stoul(message.substr(at + 28));
 }
 
-TEST_CASE("DOM-9: the refusal names a request that succeeds, with several components (./run families finding)", "[unit][domain]") {
+TEST_CASE("DOM-9: the refusal names a request that succeeds, with several components (./run families finding)",
+          "[unit][domain]") {
     // Quality family, genus 3, three closed components (`./run families 500`, quality 496): asked
     // for 56 faces §2 stopped at 60; asked for 60 (the shares of 60 are not those of 56) at 62,
     // then 64: each count reached, asked for again, stopped once more. (Since ties of cost go to
@@ -345,8 +367,8 @@ TEST_CASE("DOM-9: the refusal names a request that succeeds, with several compon
 
 TEST_CASE("DOM-9: a refused request names one that succeeds (random meshes of 1-3 components)", "[property][domain]") {
     rc::prop("decimate to a small random request; when refused, the named request succeeds with its shares' faces", [] {
-        const fhr::testing::GeneratedMesh T =
-            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 900, .min_components = 1, .max_components = 3});
+        const fhr::testing::GeneratedMesh T = *fhr::testing::gen_mesh(
+            {.min_genus = 0, .max_genus = 2, .max_faces = 900, .min_components = 1, .max_components = 3});
         const std::size_t asked = 2 * static_cast<std::size_t>(*rc::gen::inRange(1, 20));
         DecimateOptions o{.target_faces = asked};
         if (*rc::gen::arbitrary<bool>()) {  // the pass over small cells first (its quotas are per component)
@@ -398,20 +420,24 @@ TEST_CASE("DOM-9: requests that cannot be met are refused with a clear message",
     o.target_faces = 22;
     CHECK_THROWS_WITH(decimate(T, o), Catch::Contains("fewer than a closed surface of genus 2 needs (at least 24)"));
     o.target_faces = 24;  // allowed topologically, but no collapse keeps the angles above 1°
-    CHECK_THROWS_WITH(decimate(T, o), Catch::Contains("decimation stopped at") && Catch::Contains("ask for more faces"));
+    CHECK_THROWS_WITH(decimate(T, o),
+                      Catch::Contains("decimation stopped at") && Catch::Contains("ask for more faces"));
     o.target_faces = 400;  // nothing to do
     CHECK(decimate(T, o).mesh.triangles() == T.triangles());
 }
 
-TEST_CASE("DOM-14: kept vertices stay in D; best effort stops above an unreachable target instead of throwing", "[property][domain]") {
+TEST_CASE("DOM-14: kept vertices stay in D; best effort stops above an unreachable target instead of throwing",
+          "[property][domain]") {
     rc::prop("random meshes, random kept vertices", [] {
         const fhr::testing::GeneratedMesh g = *fhr::testing::gen_closed_mesh(0, 3, 1200);
         const TriMesh& T = g;
         DecimateOptions o;
-        o.target_faces = std::max<std::size_t>(domain::min_closed_faces(g.options.genus) + 8, T.n_faces() / 4) & ~std::size_t{1};
+        o.target_faces =
+            std::max<std::size_t>(domain::min_closed_faces(g.options.genus) + 8, T.n_faces() / 4) & ~std::size_t{1};
         RC_PRE(o.target_faces < T.n_faces());
         const std::size_t n_keep = *rc::gen::inRange<std::size_t>(1, 8);
-        for (std::size_t i = 0; i < n_keep; ++i) o.keep.push_back(VertexId(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(T.n_vertices()))));
+        for (std::size_t i = 0; i < n_keep; ++i)
+            o.keep.push_back(VertexId(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(T.n_vertices()))));
         Domain d;
         try {
             d = decimate(T, o);
@@ -461,7 +487,8 @@ std::string open_violation(const TriMesh& T, const Domain& d, const DecimateOpti
     }
     // DOM-18: components correspond one to one, with T's χ and loops each.
     const Components ct = connected_components(T), cd = connected_components(D);
-    if (cd.count != ct.count) return "DOM-18: " + std::to_string(cd.count) + " components, T has " + std::to_string(ct.count);
+    if (cd.count != ct.count)
+        return "DOM-18: " + std::to_string(cd.count) + " components, T has " + std::to_string(ct.count);
     std::vector<long> chi_t(ct.count, 0), chi_d(ct.count, 0), loops_t(ct.count, 0), loops_d(ct.count, 0);
     std::vector<std::uint32_t> match(cd.count, UINT32_MAX);
     for (VertexId v : D.vertices()) {
@@ -470,7 +497,8 @@ std::string open_violation(const TriMesh& T, const Domain& d, const DecimateOpti
         if (m != UINT32_MAX && m != c) return "DOM-18: a component of D spans two of T";
         m = c;
     }
-    auto tally = [](const TriMesh& m, const Components& comp, const std::vector<std::uint32_t>* map, std::vector<long>& chi, std::vector<long>& loops) {
+    auto tally = [](const TriMesh& m, const Components& comp, const std::vector<std::uint32_t>* map,
+                    std::vector<long>& chi, std::vector<long>& loops) {
         auto of = [&](VertexId v) { return map ? (*map)[comp.vertex_component[v]] : comp.vertex_component[v]; };
         for (VertexId v : m.vertices()) ++chi[of(v)];
         for (FaceId f : m.faces()) ++chi[of(m.face_vertices(f)[0])];
@@ -485,14 +513,16 @@ std::string open_violation(const TriMesh& T, const Domain& d, const DecimateOpti
     // DOM-17: D's boundary vertices are T's, each loop of D goes once around one loop of T
     // (close_domain checks it and throws otherwise), and T's corners are D's vertices.
     for (VertexId v : D.vertices())
-        if (D.is_boundary(v) != T.is_boundary(d.t_vertex[v])) return "DOM-17: a vertex of D on the boundary of one mesh only";
+        if (D.is_boundary(v) != T.is_boundary(d.t_vertex[v]))
+            return "DOM-17: a vertex of D on the boundary of one mesh only";
     try {
         domain::close_domain(d, T).mesh.validate();
     } catch (const std::exception& e) {
         return std::string("DOM-17/19: ") + e.what();
     }
     for (VertexId c : corners_of(T, o.corner_angle_deg))
-        if (!std::binary_search(d.t_vertex.begin(), d.t_vertex.end(), c)) return "DOM-17: a boundary corner of T is not in D";
+        if (!std::binary_search(d.t_vertex.begin(), d.t_vertex.end(), c))
+            return "DOM-17: a boundary corner of T is not in D";
     for (HalfedgeId h : boundary_loops(D)) {
         std::size_t n = 0;
         for (HalfedgeId g = h; n == 0 || g != h; g = D.next(g)) ++n;
@@ -503,10 +533,16 @@ std::string open_violation(const TriMesh& T, const Domain& d, const DecimateOpti
 
 }  // namespace
 
-TEST_CASE("DOM-17..19: decimation of random surfaces with 1-5 boundary loops and 1-3 components of genus 0-2", "[property][domain][boundary]") {
+TEST_CASE("DOM-17..19: decimation of random surfaces with 1-5 boundary loops and 1-3 components of genus 0-2",
+          "[property][domain][boundary]") {
     rc::prop("decimate, check, undo", [] {
-        const fhr::testing::GeneratedMesh T =
-            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1500, .min_holes = 0, .max_holes = 5, .min_components = 1, .max_components = 3});
+        const fhr::testing::GeneratedMesh T = *fhr::testing::gen_mesh({.min_genus = 0,
+                                                                       .max_genus = 2,
+                                                                       .max_faces = 1500,
+                                                                       .min_holes = 0,
+                                                                       .max_holes = 5,
+                                                                       .min_components = 1,
+                                                                       .max_components = 3});
         RC_PRE(!T.is_closed() || connected_components(T).count > 1);
         DecimateOptions o;
         o.target_faces = *rc::gen::inRange<std::size_t>(1, T.n_faces() + 1);
@@ -543,7 +579,8 @@ TEST_CASE("DOM-17..19: decimation of random surfaces with 1-5 boundary loops and
     });
 }
 
-TEST_CASE("DOM-23: the pass over the cells keeps every rule (every family, boundary, components)", "[property][domain][boundary]") {
+TEST_CASE("DOM-23: the pass over the cells keeps every rule (every family, boundary, components)",
+          "[property][domain][boundary]") {
     rc::prop("decimate to a quarter of the faces or fewer, with cells of 16-600 faces", [] {
         const fhr::testing::GeneratedMesh g = *any_family_mesh();
         const TriMesh& T = g;
@@ -554,7 +591,8 @@ TEST_CASE("DOM-23: the pass over the cells keeps every rule (every family, bound
         double smallest = o.min_angle_deg;
         for (FaceId f : T.faces()) smallest = std::min(smallest, min_angle_deg(T, f));
         o.min_angle_deg = std::min(o.min_angle_deg, smallest / 2);
-        o.target_faces = *rc::gen::inRange<std::size_t>(std::max<std::size_t>(1, T.n_faces() / 40), T.n_faces() / 4 + 1);
+        o.target_faces =
+            *rc::gen::inRange<std::size_t>(std::max<std::size_t>(1, T.n_faces() / 40), T.n_faces() / 4 + 1);
         if (T.is_closed()) o.target_faces -= o.target_faces % 2;
         RC_PRE(o.target_faces > 0);
         Domain d;
@@ -562,7 +600,8 @@ TEST_CASE("DOM-23: the pass over the cells keeps every rule (every family, bound
             d = decimate(T, o);
         } catch (const InvalidInput& e) {
             const std::string what = e.what();
-            RC_ASSERT((what.find("decimation stopped at") != std::string::npos || what.find("is fewer than a closed surface") != std::string::npos));
+            RC_ASSERT((what.find("decimation stopped at") != std::string::npos ||
+                       what.find("is fewer than a closed surface") != std::string::npos));
             RC_DISCARD("below the least faces, or a closed component cannot reach its share under the validity rules");
         }
         RC_ASSERT(d.by_cells);
@@ -596,7 +635,8 @@ TEST_CASE("DOM-23: the pass over the cells keeps every rule (every family, bound
         const std::size_t undone = *rc::gen::inRange<std::size_t>(0, d.history.size() + 1);
         const Domain finer = domain::undo_collapses(d, T, undone);
         RC_ASSERT(finer.by_cells == d.by_cells);
-        RC_ASSERT(std::equal(finer.history.begin(), finer.history.end(), d.history.begin(), d.history.end() - static_cast<std::ptrdiff_t>(undone)));
+        RC_ASSERT(std::equal(finer.history.begin(), finer.history.end(), d.history.begin(),
+                             d.history.end() - static_cast<std::ptrdiff_t>(undone)));
         RC_ASSERT(finer.cell_collapses == std::min(d.cell_collapses, finer.history.size()));
         RC_TAG(undone > d.history.size() - d.cell_collapses ? "undone into the pass" : "the pass kept");
         const Domain again = decimate(T, o);  // DOM-7
@@ -630,12 +670,16 @@ std::string decimate_both_ways(const TriMesh& T, DecimateOptions o, const Domain
 
 }  // namespace
 
-TEST_CASE("DOM-22: remembering rejected collapses gives the same D as checking each in full (every family, boundary, components, decimating again)", "[property][domain]") {
+TEST_CASE(
+    "DOM-22: remembering rejected collapses gives the same D as checking each in full (every family, boundary, "
+    "components, decimating again)",
+    "[property][domain]") {
     rc::prop("decimate and decimate_again both ways", [] {
         const fhr::testing::GeneratedMesh g = *any_family_mesh();
         const TriMesh& T = g;
         DecimateOptions o;
-        o.target_faces = *rc::gen::inRange<std::size_t>(std::max<std::size_t>(1, T.n_faces() / 20), T.n_faces() / 2 + 2);
+        o.target_faces =
+            *rc::gen::inRange<std::size_t>(std::max<std::size_t>(1, T.n_faces() / 20), T.n_faces() / 2 + 2);
         if (T.is_closed()) o.target_faces += o.target_faces % 2;
         o.best_effort = *rc::gen::arbitrary<bool>();
         if (*rc::gen::arbitrary<bool>()) {  // the pass over small cells first (where the target allows it)
@@ -649,13 +693,18 @@ TEST_CASE("DOM-22: remembering rejected collapses gives the same D as checking e
             return;  // refused alike, checked above
         }
         DecimateOptions again = o;
-        for (int i = 0; i < 3; ++i) again.keep.push_back(VertexId(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(T.n_vertices()))));
+        for (int i = 0; i < 3; ++i)
+            again.keep.push_back(
+                VertexId(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(T.n_vertices()))));
         again.target_faces = std::min(T.n_faces(), d.mesh.n_faces() + 6);
         RC_ASSERT(decimate_both_ways(T, again, &d) == "");
     });
 }
 
-TEST_CASE("DOM-22: on the fandisk's flat CAD regions, where every collapse costs 0, remembering rejections changes no decimation", "[real][domain]") {
+TEST_CASE(
+    "DOM-22: on the fandisk's flat CAD regions, where every collapse costs 0, remembering rejections changes no "
+    "decimation",
+    "[real][domain]") {
     const TriMesh T = test::load_mesh(test::cgal_mesh("fandisk.off"));
     for (std::size_t faces : {114, 1000, 4000}) {
         DecimateOptions o;
@@ -664,7 +713,8 @@ TEST_CASE("DOM-22: on the fandisk's flat CAD regions, where every collapse costs
     }
 }
 
-TEST_CASE("DOM-17: a disk keeps its boundary corners and decimates to a single triangle when asked", "[unit][domain][boundary]") {
+TEST_CASE("DOM-17: a disk keeps its boundary corners and decimates to a single triangle when asked",
+          "[unit][domain][boundary]") {
     // A flat 4 x 4 grid of squares (32 faces): its four corners turn by 90°; the other boundary
     // vertices by 0°.
     std::vector<Vec3> p;
@@ -696,7 +746,8 @@ TEST_CASE("DOM-17: a disk keeps its boundary corners and decimates to a single t
     CHECK(open_violation(T, one, o) == "");
 }
 
-TEST_CASE("DOM-20: component_targets shares the faces by area, sums to the request, raises to the least sizes", "[unit][domain]") {
+TEST_CASE("DOM-20: component_targets shares the faces by area, sums to the request, raises to the least sizes",
+          "[unit][domain]") {
     // Three closed generated components; their areas are measured here.
     generate::RandomMeshOptions g{0, 48, 3, 0.0, 0, 3};
     const TriMesh closed3 = generate::random_mesh(g);
@@ -713,7 +764,8 @@ TEST_CASE("DOM-20: component_targets shares the faces by area, sums to the reque
             CHECK(t.faces[k] % 2 == 0);  // closed components: even
             CHECK(t.faces[k] >= domain::min_closed_faces(0));
             // Within one step (2 faces) of the proportional share, unless raised to the least size.
-            if (t.faces[k] > domain::min_closed_faces(0)) CHECK(std::abs(static_cast<double>(t.faces[k]) - request * area[k] / total) < 2 + 1e-9);
+            if (t.faces[k] > domain::min_closed_faces(0))
+                CHECK(std::abs(static_cast<double>(t.faces[k]) - request * area[k] / total) < 2 + 1e-9);
         }
         if (t.raised == 0) CHECK(sum == request);
         CHECK(sum == request + t.raised);

@@ -48,7 +48,8 @@ const domain::DomainSources names{"d.off", "d.corr"};
 TEST_CASE("DOM-10..13: attach_domain inserts face and edge points exactly (Fig. 4)", "[property][domain]") {
     rc::prop("random correspondences", [] {
         const fhr::testing::GeneratedMesh G = *fhr::testing::gen_closed_mesh(0, 3, 800);
-        Setup s = make_setup(G, std::max<std::size_t>(2 * domain::min_closed_faces(G.options.genus), G.n_faces() / 4) & ~std::size_t(1));
+        Setup s = make_setup(
+            G, std::max<std::size_t>(2 * domain::min_closed_faces(G.options.genus), G.n_faces() / 4) & ~std::size_t(1));
         // Move some entries into faces (several may share one face) or onto edges.
         const std::uint32_t shared_face = *rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(G.n_faces()));
         std::size_t moved = 0;
@@ -61,8 +62,9 @@ TEST_CASE("DOM-10..13: attach_domain inserts face and edge points exactly (Fig. 
             std::array<double, 3> b{w[0] / sum, w[1] / sum, w[2] / sum};
             b[2] = 1 - b[0] - b[1];
             RC_PRE(b[2] >= 0);
-            const FaceId f = kind == 3 ? FaceId(shared_face)
-                                       : FaceId(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(G.n_faces())));
+            const FaceId f = kind == 3
+                                 ? FaceId(shared_face)
+                                 : FaceId(*rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(G.n_faces())));
             if (kind == 2) {  // on an edge: one weight zero
                 b[0] = 0;
                 b[1] = w[1] / std::max(1.0, double(w[1] + w[2]));
@@ -87,10 +89,11 @@ TEST_CASE("DOM-10..13: attach_domain inserts face and edge points exactly (Fig. 
         for (std::size_t j = 0; j < s.x.size(); ++j) {
             const SurfacePoint c = canonical(G, s.x[j].point);
             inserted += c.kind != SurfacePoint::Kind::vertex;
-            RC_ASSERT((T.position(d.t_vertex[VertexId(static_cast<VertexId::Index>(j))]) - expected[j]).norm() <= 1e-12 * (1 + expected[j].norm()));
+            RC_ASSERT((T.position(d.t_vertex[VertexId(static_cast<VertexId::Index>(j))]) - expected[j]).norm() <=
+                      1e-12 * (1 + expected[j].norm()));
         }
         RC_ASSERT(T.n_vertices() == G.n_vertices() + inserted);
-        for (VertexId v : G.vertices()) RC_ASSERT(T.position(v) == G.position(v));  // T's vertices stay
+        for (VertexId v : G.vertices()) RC_ASSERT(T.position(v) == G.position(v));    // T's vertices stay
         RC_ASSERT(std::abs(total_area(T) - total_area(G)) <= 1e-12 * total_area(G));  // Ω_T unchanged
         const std::set<VertexId> unique(d.t_vertex.begin(), d.t_vertex.end());
         RC_ASSERT(unique.size() == d.t_vertex.size());
@@ -105,12 +108,14 @@ TEST_CASE("DOM-10, DOM-11, DOM-12: bad correspondences are refused with the entr
         auto x = s.x;
         x.pop_back();
         TriMesh t = T;
-        CHECK_THROWS_WITH(domain::attach_domain(t, s.D, x, names), Catch::Contains("has 19 entries but the domain d.off has 20 vertices"));
+        CHECK_THROWS_WITH(domain::attach_domain(t, s.D, x, names),
+                          Catch::Contains("has 19 entries but the domain d.off has 20 vertices"));
     }
     SECTION("DOM-11 another topology") {
         const TriMesh sphere = generate::random_closed_mesh({0, 36, 1, 0.0});
         std::vector<io::CorrespondenceEntry> x;
-        for (std::uint32_t j = 0; j < sphere.n_vertices(); ++j) x.push_back(entry(SurfacePoint::at_vertex(VertexId(j)), j + 1));
+        for (std::uint32_t j = 0; j < sphere.n_vertices(); ++j)
+            x.push_back(entry(SurfacePoint::at_vertex(VertexId(j)), j + 1));
         TriMesh t = T;
         CHECK_THROWS_WITH(domain::attach_domain(t, sphere, x, names),
                           Catch::Contains("Euler characteristic 2 (genus 0) but the mesh has 0 (genus 1)"));

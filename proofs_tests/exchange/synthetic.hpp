@@ -55,20 +55,29 @@ inline exchange::ParamFile subdivided_param(const TriMesh& domain, int k) {
         for (int p = 0; p <= k; ++p)
             for (int q = 0; p + q <= k; ++q) {
                 const int r = k - p - q;
-                if (r == k) at(p, q) = c[0];
-                else if (p == k) at(p, q) = c[1];
-                else if (q == k) at(p, q) = c[2];
-                else if (q == 0) at(p, q) = edge_point(c[0], c[1], p);
-                else if (p == 0) at(p, q) = edge_point(c[0], c[2], q);
-                else if (r == 0) at(p, q) = edge_point(c[1], c[2], q);
+                if (r == k)
+                    at(p, q) = c[0];
+                else if (p == k)
+                    at(p, q) = c[1];
+                else if (q == k)
+                    at(p, q) = c[2];
+                else if (q == 0)
+                    at(p, q) = edge_point(c[0], c[1], p);
+                else if (p == 0)
+                    at(p, q) = edge_point(c[0], c[2], q);
+                else if (r == 0)
+                    at(p, q) = edge_point(c[1], c[2], q);
                 else {
                     at(p, q) = static_cast<std::uint32_t>(file.surface_vertices.size());
                     file.surface_vertices.push_back((double(r) * file.domain_vertices[c[0]] +
                                                      double(p) * file.domain_vertices[c[1]] +
-                                                     double(q) * file.domain_vertices[c[2]]) / kd);
+                                                     double(q) * file.domain_vertices[c[2]]) /
+                                                    kd);
                 }
             }
-        auto beta = [&](int p, int q) { return exchange::Beta{double(k - p - q) / kd, double(p) / kd, double(q) / kd}; };
+        auto beta = [&](int p, int q) {
+            return exchange::Beta{double(k - p - q) / kd, double(p) / kd, double(q) / kd};
+        };
         auto add = [&](int p0, int q0, int p1, int q1, int p2, int q2) {
             exchange::ParamFace face;
             face.v = {at(p0, q0), at(p1, q1), at(p2, q2)};
@@ -90,7 +99,8 @@ inline exchange::ParamFile subdivided_param(const TriMesh& domain, int k) {
 /// triangles, one boundary loop, χ = 1.
 inline TriMesh hexagon_disk() {
     std::vector<Vec3> p{Vec3(0, 0, 0)};
-    for (int i = 0; i < 6; ++i) p.emplace_back(std::cos(i * std::numbers::pi / 3), std::sin(i * std::numbers::pi / 3), 0);
+    for (int i = 0; i < 6; ++i)
+        p.emplace_back(std::cos(i * std::numbers::pi / 3), std::sin(i * std::numbers::pi / 3), 0);
     std::vector<Triangle> t;
     for (std::uint32_t i = 0; i < 6; ++i) t.push_back({0, 1 + i, 1 + (i + 1) % 6});
     return TriMesh::from_triangles(std::move(p), t);

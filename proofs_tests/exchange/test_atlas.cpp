@@ -128,7 +128,8 @@ TEST_CASE("ATLAS-6, ATLAS-7: two charts overlapping, touching at a corner or alo
     const std::vector<Vec3> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 5}, {1, 0, 5}, {0, 1, 5}};
     const std::vector<Triangle> faces{{0, 1, 2}, {3, 4, 5}};
     SECTION("overlapping in one texture") {
-        const AtlasReport r = verify_atlas(make(points, faces, {{0, 0}, {1, 0}, {0, 1}, {0.2, 0.2}, {1.2, 0.2}, {0.2, 1.2}}), nullptr);
+        const AtlasReport r =
+            verify_atlas(make(points, faces, {{0, 0}, {1, 0}, {0, 1}, {0.2, 0.2}, {1.2, 0.2}, {0.2, 1.2}}), nullptr);
         CHECK(first(r) == "ATLAS-6");
         CHECK(r.overlapping.size() == 1);
         CHECK(r.charts == 2);
@@ -139,8 +140,8 @@ TEST_CASE("ATLAS-6, ATLAS-7: two charts overlapping, touching at a corner or alo
         CHECK(*r.packing_bounding_square == Approx(0.82 / 1.44).epsilon(1e-12));
     }
     SECTION("overlapping in two textures: legitimate") {
-        const AtlasReport r =
-            verify_atlas(make(points, faces, {{0, 0}, {1, 0}, {0, 1}, {0.2, 0.2}, {1.2, 0.2}, {0.2, 1.2}}, {0, 1}), nullptr);
+        const AtlasReport r = verify_atlas(
+            make(points, faces, {{0, 0}, {1, 0}, {0, 1}, {0.2, 0.2}, {1.2, 0.2}, {0.2, 1.2}}, {0, 1}), nullptr);
         CHECK(r.valid());
         CHECK(r.overlapping.empty());
     }
@@ -153,12 +154,14 @@ TEST_CASE("ATLAS-6, ATLAS-7: two charts overlapping, touching at a corner or alo
         CHECK(first(verify_atlas(a, nullptr, AtlasOptions{.strict = true})) == "ATLAS-7");
     }
     SECTION("along an edge") {
-        const AtlasReport r = verify_atlas(make(points, faces, {{0, 0}, {1, 0}, {0, 1}, {1, 0}, {1, 1}, {0, 1}}), nullptr);
+        const AtlasReport r =
+            verify_atlas(make(points, faces, {{0, 0}, {1, 0}, {0, 1}, {1, 0}, {1, 1}, {0, 1}}), nullptr);
         CHECK(r.contacts.size() == 1);
         CHECK(r.overlapping.empty());
     }
     SECTION("apart by a hair") {
-        const AtlasReport r = verify_atlas(make(points, faces, {{0, 0}, {1, 0}, {0, 1}, {1 + 1e-12, 0}, {2, 0}, {1, 1}}), nullptr);
+        const AtlasReport r =
+            verify_atlas(make(points, faces, {{0, 0}, {1, 0}, {0, 1}, {1 + 1e-12, 0}, {2, 0}, {1, 1}}), nullptr);
         CHECK(r.contacts.empty());
         CHECK(r.overlapping.empty());
     }
@@ -167,41 +170,50 @@ TEST_CASE("ATLAS-6, ATLAS-7: two charts overlapping, touching at a corner or alo
 TEST_CASE("ATLAS-7: faces sharing a corner meet there legitimately; a side along the other's is a contact",
           "[exchange][atlas]") {
     // The square's two faces joined at vertex 0 only (vertex 2 has two UV points): two charts.
-    const AtlasReport r = verify_atlas(make(square, square_faces, {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {-1, -1}, {0, -1}}), nullptr);
+    const AtlasReport r =
+        verify_atlas(make(square, square_faces, {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {-1, -1}, {0, -1}}), nullptr);
     CHECK(r.valid());
     CHECK(r.charts == 2);
     CHECK(r.contacts.empty());
     // Face 1 turned so that its side from the shared corner runs along face 0's side: a contact.
-    const AtlasReport along = verify_atlas(make(square, square_faces, {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {0.5, -1}, {0.5, 0}}), nullptr);
+    const AtlasReport along =
+        verify_atlas(make(square, square_faces, {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {0.5, -1}, {0.5, 0}}), nullptr);
     CHECK(along.contacts == std::vector<std::pair<std::uint32_t, std::uint32_t>>{{0, 1}});
     CHECK(along.overlapping.empty());
 }
 
 TEST_CASE("ATLAS-3: a degenerate UV triangle fails, and the checks that need signs are skipped", "[exchange][atlas]") {
-    const AtlasReport r = verify_atlas(make(square, square_faces, {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {2, 2}}), nullptr);
+    const AtlasReport r =
+        verify_atlas(make(square, square_faces, {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {2, 2}}), nullptr);
     CHECK(first(r) == "ATLAS-3");
     CHECK(check(r, "ATLAS-3").face == 1);
-    for (const char* id : {"ATLAS-4", "ATLAS-5", "ATLAS-6", "ATLAS-7"}) CHECK(check(r, id).status == CheckStatus::skipped);
+    for (const char* id : {"ATLAS-4", "ATLAS-5", "ATLAS-6", "ATLAS-7"})
+        CHECK(check(r, id).status == CheckStatus::skipped);
     CHECK(r.distortion.degenerate == 1);
 }
 
 TEST_CASE("ATLAS-5: an edge torn in UV by rounding, and a T-vertex, are cracks", "[exchange][atlas]") {
     SECTION("torn edge: one end shared, the other 1e-9 apart") {
-        const AtlasReport r = verify_atlas(make(square, square_faces, {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1 + 1e-9}, {0, 1}}), nullptr);
+        const AtlasReport r =
+            verify_atlas(make(square, square_faces, {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1 + 1e-9}, {0, 1}}), nullptr);
         CHECK(first(r) == "ATLAS-5");
         CHECK(check(r, "ATLAS-5").failures == 1);
         CHECK(r.charts == 2);
     }
     SECTION("a seam whose ends are far apart is no crack") {
-        const AtlasReport r = verify_atlas(make(square, square_faces, {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1.5}, {0, 1}}), nullptr);
+        const AtlasReport r =
+            verify_atlas(make(square, square_faces, {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1.5}, {0, 1}}), nullptr);
         CHECK(check(r, "ATLAS-5").status == CheckStatus::pass);
     }
     SECTION("T-vertices") {
         // A triangle above y = 0 and two below whose vertices p, m, q lie inside its edge a-b.
-        const std::vector<Vec3> points{{0, 0, 0}, {2, 0, 0}, {1, 1, 0}, {0.5, 0, 0}, {1, 0, 0}, {1.5, 0, 0}, {1, -1, 0}};
+        const std::vector<Vec3> points{{0, 0, 0}, {2, 0, 0},   {1, 1, 0}, {0.5, 0, 0},
+                                       {1, 0, 0}, {1.5, 0, 0}, {1, -1, 0}};
         const std::vector<Triangle> faces{{0, 1, 2}, {3, 6, 4}, {4, 6, 5}};
         const AtlasReport r = verify_atlas(
-            make(points, faces, {{0, 0}, {2, 0}, {1, 1}, {0.5, -0.1}, {1, -1}, {1, -0.1}, {1, -0.1}, {1, -1}, {1.5, -0.1}}), nullptr);
+            make(points, faces,
+                 {{0, 0}, {2, 0}, {1, 1}, {0.5, -0.1}, {1, -1}, {1, -0.1}, {1, -0.1}, {1, -1}, {1.5, -0.1}}),
+            nullptr);
         CHECK(first(r) == "ATLAS-5");
         CHECK(check(r, "ATLAS-5").failures == 3);
         CHECK(check(r, "ATLAS-5").vertex == 3);
@@ -218,8 +230,8 @@ TEST_CASE("ATLAS-2: the welded surface must be a consistently wound manifold", "
     std::vector<Vec3> duplicated = square;
     duplicated.push_back(square[0]);
     duplicated.push_back(square[2]);
-    const AtlasReport welded =
-        verify_atlas(make(duplicated, {{0, 1, 2}, {4, 5, 3}}, {{0, 0}, {1, 0}, {1, 1}, {5, 5}, {6, 6}, {5, 6}}), nullptr);
+    const AtlasReport welded = verify_atlas(
+        make(duplicated, {{0, 1, 2}, {4, 5, 3}}, {{0, 0}, {1, 0}, {1, 1}, {5, 5}, {6, 6}, {5, 6}}), nullptr);
     CHECK(welded.valid());
     CHECK(welded.vertices == 4);
     CHECK(welded.charts == 2);
@@ -229,7 +241,8 @@ TEST_CASE("ATLAS-2: the welded surface must be a consistently wound manifold", "
 TEST_CASE("ATLAS-2: vertices that coincide inside the surface of the file's indices stay apart", "[exchange][atlas]") {
     // Two closed tetrahedra touching at one point, each with its own vertex there (records 0 and 4):
     // welded, they would make a non-manifold vertex; they are two vertices, the surface two components.
-    const std::vector<Vec3> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+    const std::vector<Vec3> points{{0, 0, 0}, {1, 0, 0},  {0, 1, 0},  {0, 0, 1},
+                                   {0, 0, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
     std::vector<Triangle> faces;
     for (std::uint32_t base : {0u, 4u}) {
         const std::vector<Triangle> tetra{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
@@ -248,10 +261,12 @@ TEST_CASE("ATLAS-2: vertices that coincide inside the surface of the file's indi
     CHECK(r.charts == 8);
 }
 
-TEST_CASE("ATLAS-1: the readers give texture coordinates; a missing one or a polygon is refused", "[exchange][atlas][io]") {
+TEST_CASE("ATLAS-1: the readers give texture coordinates; a missing one or a polygon is refused",
+          "[exchange][atlas][io]") {
     SECTION("OBJ with vt, negative references and two usemtl groups") {
-        const std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-                                "usemtl a\nf 1/1 2/2 3/3\nusemtl b\nf 1/-4 3/-2 4/-1\n";
+        const std::string obj =
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+            "usemtl a\nf 1/1 2/2 3/3\nusemtl b\nf 1/-4 3/-2 4/-1\n";
         const Atlas a = fhr::exchange::parse_atlas(obj, "t.obj");
         CHECK(a.faces.size() == 2);
         CHECK(a.face_texture == std::vector<std::uint32_t>{1, 2});
@@ -265,8 +280,10 @@ TEST_CASE("ATLAS-1: the readers give texture coordinates; a missing one or a pol
         // half a float32 ulp of the largest coordinate (2⁻²⁴ · 12, or · 1500) is added.
         // A fixed-point writer with 6 decimals: half a unit in the 6th.
         CHECK(fhr::exchange::parse_atlas("v 0.123457 0.000000 12.000000\nv 1.000000 0.500000 0.000000\n"
-                                         "v 0.000000 1.000000 0.000000\n" + face, "t.obj").rounding ==
-              Approx(5e-7 + 12 * 0x1p-24).epsilon(1e-12));
+                                         "v 0.000000 1.000000 0.000000\n" +
+                                             face,
+                                         "t.obj")
+                  .rounding == Approx(5e-7 + 12 * 0x1p-24).epsilon(1e-12));
         // %g: trailing zeros dropped, at most 6 significant digits: half a unit in the 6th of the largest, 12.
         CHECK(fhr::exchange::parse_atlas("v 0.123457 0 12\nv 1 0.5 0\nv 0 1 0\n" + face, "t.obj").rounding ==
               Approx(5e-5 + 12 * 0x1p-24).epsilon(1e-12));
@@ -288,13 +305,15 @@ TEST_CASE("ATLAS-1: the readers give texture coordinates; a missing one or a pol
                           Catch::Contains("t.obj:4"));
     }
     SECTION("a quadrilateral") {
-        CHECK_THROWS_WITH(fhr::exchange::parse_atlas("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1 4/1\n", "t.obj"),
-                          Catch::Contains("has 4 corners"));
+        CHECK_THROWS_WITH(
+            fhr::exchange::parse_atlas("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1 4/1\n", "t.obj"),
+            Catch::Contains("has 4 corners"));
     }
     SECTION("PLY with per-vertex u v, duplicated at a seam") {
-        const std::string ply = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
-                                "property float u\nproperty float v\nelement face 2\nproperty list uchar int vertex_indices\n"
-                                "end_header\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 0 0 3 3\n1 1 0 4 4\n0 1 0 3 4\n3 0 1 2\n3 3 4 5\n";
+        const std::string ply =
+            "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
+            "property float u\nproperty float v\nelement face 2\nproperty list uchar int vertex_indices\n"
+            "end_header\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 0 0 3 3\n1 1 0 4 4\n0 1 0 3 4\n3 0 1 2\n3 3 4 5\n";
         const Atlas a = fhr::exchange::parse_atlas(ply, "t.ply");
         const AtlasReport r = verify_atlas(a, nullptr);
         CHECK(r.valid());
@@ -302,9 +321,10 @@ TEST_CASE("ATLAS-1: the readers give texture coordinates; a missing one or a pol
         CHECK(r.charts == 2);
     }
     SECTION("PLY with per-face texcoord and texnumber; a wrong length refused") {
-        const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
-                                 "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n"
-                                 "property int texnumber\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+        const std::string head =
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
+            "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n"
+            "property int texnumber\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
         const Atlas a = fhr::exchange::parse_atlas(head + "3 0 1 2 6 0 0 1 0 0 1 4\n", "t.ply");
         CHECK(a.face_texture == std::vector<std::uint32_t>{4});
         CHECK(a.uv[a.face_uv[0][2]] == UV{0, 1});
@@ -312,8 +332,9 @@ TEST_CASE("ATLAS-1: the readers give texture coordinates; a missing one or a pol
                           Catch::Contains("texcoord has 4 values, expected 6"));
     }
     SECTION("PLY without texture coordinates") {
-        const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                                "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        const std::string ply =
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+            "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
         CHECK_THROWS_WITH(fhr::exchange::parse_atlas(ply, "t.ply"), Catch::Contains("has no texture coordinates"));
     }
 }

@@ -56,7 +56,8 @@ TEST_CASE("DIST-1, DIST-3..8: a stretch by 2 along x, normalised (spec's worked 
     CHECK(*d.area_distortion_max == Approx(1).epsilon(1e-15));
 }
 
-TEST_CASE("DIST-3, DIST-9: two faces, the weighted median is the heavier face's (spec's worked example)", "[exchange][distortion]") {
+TEST_CASE("DIST-3, DIST-9: two faces, the weighted median is the heavier face's (spec's worked example)",
+          "[exchange][distortion]") {
     const FaceStretch thin = face_stretch(o, Vec3(3, 0, 0), ey, o, ex, ey);
     CHECK(thin.sigma1 == Approx(1).epsilon(1e-15));
     CHECK(thin.sigma2 == Approx(1.0 / 3).epsilon(1e-15));
@@ -88,17 +89,19 @@ TEST_CASE("DIST-2: degenerate faces are counted apart; all degenerate gives no f
     CHECK_FALSE(none.area_distortion_max.has_value());
 }
 
-TEST_CASE("DIST-9: the weighted percentile is the smallest value whose faces at or below weigh p", "[exchange][distortion]") {
+TEST_CASE("DIST-9: the weighted percentile is the smallest value whose faces at or below weigh p",
+          "[exchange][distortion]") {
     const std::vector<double> x{5, 1, 3, 2}, w{1, 1, 1, 1};
     CHECK(weighted_percentile(x, w, 0.5) == 2);
     CHECK(weighted_percentile(x, w, 0.51) == 3);
     CHECK(weighted_percentile(x, w, 0.99) == 5);
     CHECK(weighted_percentile(x, w, 0.0) == 1);
-    CHECK(weighted_percentile({1, 100}, {3, 1}, 0.75) == 1);      // exactly ¾ of the weight at 1
+    CHECK(weighted_percentile({1, 100}, {3, 1}, 0.75) == 1);  // exactly ¾ of the weight at 1
     CHECK(weighted_percentile({1, 100}, {2.5, 1.5}, 0.75) == 100);
 }
 
-TEST_CASE("DIST-1: σ equals an independent SVD and is invariant under motions and scaling", "[exchange][distortion][property]") {
+TEST_CASE("DIST-1: σ equals an independent SVD and is invariant under motions and scaling",
+          "[exchange][distortion][property]") {
     rc::prop("random triangle pairs", [] {
         const auto point = [] {
             return Vec3(*rc::gen::inRange(-1000, 1000) / 100.0, *rc::gen::inRange(-1000, 1000) / 100.0,

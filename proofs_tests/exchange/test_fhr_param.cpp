@@ -19,8 +19,8 @@
 
 using fhr::InvalidInput;
 using fhr::exchange::format_param;
-using fhr::exchange::parse_param;
 using fhr::exchange::ParamFile;
+using fhr::exchange::parse_param;
 
 namespace {
 
@@ -48,7 +48,8 @@ bool bitwise_equal(const ParamFile& a, const ParamFile& b) { return format_param
 
 }  // namespace
 
-TEST_CASE("PARAM-1: write -> read -> write is byte-identical and gives back every double bit for bit", "[exchange][property]") {
+TEST_CASE("PARAM-1: write -> read -> write is byte-identical and gives back every double bit for bit",
+          "[exchange][property]") {
     rc::prop("random domains, k-to-k^2 subdivisions, noisy coordinates", [] {
         const auto& domain = *fhr::testing::gen_closed_mesh(0, 3, 300);
         const int k = *rc::gen::inRange(1, 4);
@@ -95,12 +96,13 @@ TEST_CASE("PARAM-1: write_param is atomic and its file reads back", "[exchange]"
 }
 
 TEST_CASE("PARAM-1: tokens may be separated by any whitespace, and comments are ignored", "[exchange]") {
-    const std::string text = "# a parameterization\nfhr-param 1 domain_vertices 4 0 0 0  1 0 0\t0 1 0 0 0 1\r\n"
-                             "domain_faces 4 0 2 1 0 1 3 0 3 2 1 2 3 # the tetrahedron\n"
-                             "surface_vertices 4\n0 0 0\v1 0 0\f0 1 0\n0 0 1\n"
-                             "surface_faces 4\n"
-                             "0 2 1 0  1 0 0  0 1 0  0 0 1\n0 1 3 1  1 0 0  0 1 0  0 0 1\n"
-                             "0 3 2 2  1 0 0  0 1 0  0 0 1\n1 2 3 3  1 0 0  0 1 0  0 0 1 # the end";  // no final newline
+    const std::string text =
+        "# a parameterization\nfhr-param 1 domain_vertices 4 0 0 0  1 0 0\t0 1 0 0 0 1\r\n"
+        "domain_faces 4 0 2 1 0 1 3 0 3 2 1 2 3 # the tetrahedron\n"
+        "surface_vertices 4\n0 0 0\v1 0 0\f0 1 0\n0 0 1\n"
+        "surface_faces 4\n"
+        "0 2 1 0  1 0 0  0 1 0  0 0 1\n0 1 3 1  1 0 0  0 1 0  0 0 1\n"
+        "0 3 2 2  1 0 0  0 1 0  0 0 1\n1 2 3 3  1 0 0  0 1 0  0 0 1 # the end";  // no final newline
     const ParamFile file = parse_param(text, "tet.fhrp");
     REQUIRE(file.domain_faces.size() == 4);
     CHECK(file.surface_faces[3].v == fhr::Triangle{1, 2, 3});
@@ -109,7 +111,8 @@ TEST_CASE("PARAM-1: tokens may be separated by any whitespace, and comments are 
     CHECK(fhr::exchange::verify(file, nullptr).valid());  // T′ = D: the identity
 }
 
-TEST_CASE("PARAM-1: malformed files are refused with one line naming the file, the line and the problem", "[exchange]") {
+TEST_CASE("PARAM-1: malformed files are refused with one line naming the file, the line and the problem",
+          "[exchange]") {
     const std::string body = format_param(small_file());
     const std::string after_header = body.substr(body.find('\n') + 1);
     struct Bad {
@@ -123,12 +126,15 @@ TEST_CASE("PARAM-1: malformed files are refused with one line naming the file, t
         {"wrong magic", "fhr-params 1\n" + after_header, "t.fhrp:1: header: PARAM-1: not a fhr-param file"},
         {"wrong version", "fhr-param 2\n" + after_header, "unsupported version '2'"},
         {"header only", "fhr-param 1\n", "expected 'domain_vertices'"},
-        {"sections out of order", "fhr-param 1\ndomain_faces 0\n", "expected the section 'domain_vertices', found 'domain_faces'"},
+        {"sections out of order", "fhr-param 1\ndomain_faces 0\n",
+         "expected the section 'domain_vertices', found 'domain_faces'"},
         {"huge count", "fhr-param 1\ndomain_vertices 4000000000\n0 0 0\n", "truncated"},
         {"count beyond 32 bits", "fhr-param 1\ndomain_vertices 99999999999\n", "not in [0, 2^32)"},
         {"negative count", "fhr-param 1\ndomain_vertices -4\n", "not in [0, 2^32)"},
-        {"count beyond 64 bits", "fhr-param 1\ndomain_vertices 99999999999999999999\n", "a count '99999999999999999999' is not in [0, 2^32)"},
-        {"word for a number", "fhr-param 1\ndomain_vertices 1\n0 zero 0\n", "t.fhrp:3: domain vertex 0: expected a number, found 'zero'"},
+        {"count beyond 64 bits", "fhr-param 1\ndomain_vertices 99999999999999999999\n",
+         "a count '99999999999999999999' is not in [0, 2^32)"},
+        {"word for a number", "fhr-param 1\ndomain_vertices 1\n0 zero 0\n",
+         "t.fhrp:3: domain vertex 0: expected a number, found 'zero'"},
         {"number out of range", "fhr-param 1\ndomain_vertices 1\n0 1e999 0\n", "out of double range"},
         {"negative index", "fhr-param 1\ndomain_vertices 3\n0 0 0\n1 0 0\n0 1 0\ndomain_faces 1\n0 -1 2\n",
          "t.fhrp:7: domain face 0: a vertex index '-1' is not in [0, 2^32)"},
@@ -151,8 +157,10 @@ TEST_CASE("PARAM-1: every truncation of a valid file is refused, naming where th
         const std::string message = refusal(bytes.substr(0, n));
         // Cutting the final newline or inside the last number's trailing digits may still parse
         // (to a different last β); every other prefix is refused.
-        if (!message.empty()) ++refused;
-        else CHECK(n + 20 > bytes.size());
+        if (!message.empty())
+            ++refused;
+        else
+            CHECK(n + 20 > bytes.size());
     }
     CHECK(refused + 20 >= bytes.size());
 }

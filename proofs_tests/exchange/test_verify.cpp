@@ -51,7 +51,8 @@ std::string first_failure(const VerifyReport& r) { return r.first_failure() ? r.
 
 /// Where two reports differ (check by check: id, status, counts, first failure and its place), or "".
 std::string difference(const VerifyReport& a, const VerifyReport& b) {
-    if (a.checks.size() != b.checks.size()) return std::to_string(a.checks.size()) + " checks against " + std::to_string(b.checks.size());
+    if (a.checks.size() != b.checks.size())
+        return std::to_string(a.checks.size()) + " checks against " + std::to_string(b.checks.size());
     for (std::size_t i = 0; i < a.checks.size(); ++i) {
         const CheckResult &x = a.checks[i], &y = b.checks[i];
         if (x.id != y.id || x.status != y.status || x.checked != y.checked || x.failures != y.failures ||
@@ -64,7 +65,8 @@ std::string difference(const VerifyReport& a, const VerifyReport& b) {
 std::string describe(const VerifyReport& r) {
     std::string s;
     for (const CheckResult& c : r.checks)
-        s += c.id + " " + fhr::exchange::to_string(c.status) + " " + std::to_string(c.failures) + " " + c.first_failure + "\n";
+        s += c.id + " " + fhr::exchange::to_string(c.status) + " " + std::to_string(c.failures) + " " +
+             c.first_failure + "\n";
     return s;
 }
 
@@ -150,12 +152,12 @@ std::uint32_t slide_side_vertex(ParamFile& f, bool one_patch_only, std::size_t p
 // ---- the corruptions ---------------------------------------------------------------------------
 
 struct Expect {
-    std::string first;             ///< the id of the first check that fails
-    std::string also = "";         ///< another check that must fail
-    std::int64_t vertex = -1;      ///< the vertex the first failure names (-1: not checked)
-    std::int64_t face = -1;        ///< the face `also` (or `first`) names (-1: not checked)
-    std::string says = "";         ///< a phrase of the first failure's description
-    std::string also_says = "";    ///< a phrase of `also`'s first failure
+    std::string first;           ///< the id of the first check that fails
+    std::string also = "";       ///< another check that must fail
+    std::int64_t vertex = -1;    ///< the vertex the first failure names (-1: not checked)
+    std::int64_t face = -1;      ///< the face `also` (or `first`) names (-1: not checked)
+    std::string says = "";       ///< a phrase of the first failure's description
+    std::string also_says = "";  ///< a phrase of `also`'s first failure
 };
 
 struct Corruption {
@@ -228,9 +230,13 @@ const std::vector<Corruption>& corruptions() {
              return Expect{"PARAM-7", "PARAM-9", v};
          }},
         {"broken continuity: a boundary vertex slid along its side in one patch only",
-         [](ParamFile& f, TriMesh&) { return Expect{"PARAM-7", "", slide_side_vertex(f, true)}; }},
+         [](ParamFile& f, TriMesh&) {
+             return Expect{"PARAM-7", "", slide_side_vertex(f, true)};
+         }},
         {"wrong chord length: a boundary vertex slid along its side in both patches",
-         [](ParamFile& f, TriMesh&) { return Expect{"PARAM-10", "", slide_side_vertex(f, false), -1, "but chord length"}; }},
+         [](ParamFile& f, TriMesh&) {
+             return Expect{"PARAM-10", "", slide_side_vertex(f, false), -1, "but chord length"};
+         }},
         {"a missing face: T' has a hole that the closed D lacks",
          [](ParamFile& f, TriMesh&) {
              f.surface_faces.pop_back();
@@ -285,7 +291,11 @@ const std::vector<Corruption>& corruptions() {
                  b[zero] = 1e-13;
                  // PARAM-7 sees a face of D in one face and an edge in the others; PARAM-9 checks
                  // every face of the patch against the side the walk put v on.
-                 return Expect{"PARAM-7", "PARAM-9", v, i.face, "not the same vertex, edge or face of D",
+                 return Expect{"PARAM-7",
+                               "PARAM-9",
+                               v,
+                               i.face,
+                               "not the same vertex, edge or face of D",
                                "boundary vertex " + std::to_string(v) + " lies on the side ("};
              }
              throw std::logic_error("k must be >= 3");
@@ -373,9 +383,11 @@ const std::vector<Corruption>& corruptions() {
          [](ParamFile& f, TriMesh&) {
              const TriMesh d = TriMesh::from_triangles(f.domain_vertices, f.domain_faces);
              const int genus = static_cast<int>(fhr::genus(d)) + 1;
-             const TriMesh other = random_domain(
-                 genus, std::max<std::size_t>(fhr::generate::min_faces(genus), f.domain_faces.size() + f.domain_faces.size() % 2),
-                 11);
+             const TriMesh other =
+                 random_domain(genus,
+                               std::max<std::size_t>(fhr::generate::min_faces(genus),
+                                                     f.domain_faces.size() + f.domain_faces.size() % 2),
+                               11);
              f.domain_vertices = other.positions();
              f.domain_faces = other.triangles();
              return Expect{"PARAM-4"};
@@ -395,7 +407,8 @@ const std::vector<Corruption>& corruptions() {
              fhr::Vec3 n = fhr::Vec3::Zero();
              for (const Incidence& i : inc[v]) {
                  const auto& t = f.surface_faces[i.face].v;
-                 n += (f.surface_vertices[t[1]] - f.surface_vertices[t[0]]).cross(f.surface_vertices[t[2]] - f.surface_vertices[t[0]]);
+                 n += (f.surface_vertices[t[1]] - f.surface_vertices[t[0]])
+                          .cross(f.surface_vertices[t[2]] - f.surface_vertices[t[0]]);
              }
              f.surface_vertices[v] += 1e3 * n.normalized();
              return Expect{"PARAM-11", "", v, -1, "is not on T (distance > "};
@@ -419,7 +432,8 @@ void expect_caught(const Corruption& c, const TriMesh& domain, int k) {
     const Expect e = c.apply(file, input);
     const VerifyReport r = verify(file, &input, nullptr, true);
     INFO(c.name << "\n" << describe(r));
-    CHECK(difference(r, verify(file, fhr::exchange::PreparedInput(input), nullptr, true)).empty());  // T's side prepared apart
+    CHECK(difference(r, verify(file, fhr::exchange::PreparedInput(input), nullptr, true))
+              .empty());  // T's side prepared apart
     REQUIRE_FALSE(r.valid());
     CHECK(first_failure(r) == e.first);
     const CheckResult& first = check(r, e.first);
@@ -473,7 +487,7 @@ TEST_CASE("PARAM-2..11: every k-to-k^2 subdivision of a random closed mesh is a 
 TEST_CASE("PARAM-2..11: the checks come in order, each with a count", "[exchange]") {
     const TriMesh domain = random_domain(1, 200, 5);
     const VerifyReport r = verify(fhr::test::subdivided_param(domain, 3), &domain);
-    const std::vector<std::string> ids{"PARAM-2", "PARAM-3", "PARAM-4", "PARAM-5", "PARAM-6",
+    const std::vector<std::string> ids{"PARAM-2", "PARAM-3", "PARAM-4", "PARAM-5",  "PARAM-6",
                                        "PARAM-7", "PARAM-8", "PARAM-9", "PARAM-10", "PARAM-11"};
     REQUIRE(r.checks.size() == ids.size());
     for (std::size_t i = 0; i < ids.size(); ++i) {
@@ -497,9 +511,8 @@ TEST_CASE("PARAM-2..11: verify rejects each deliberate corruption, naming the br
 }
 
 TEST_CASE("PARAM-2..11: the corruptions are caught on random domains of genus 0-3", "[exchange][property]") {
-    rc::prop("every corruption of the 4-to-16 subdivision of a random domain", [] {
-        rc_expect_caught(corruptions(), *fhr::testing::gen_closed_mesh(0, 3, 200));
-    });
+    rc::prop("every corruption of the 4-to-16 subdivision of a random domain",
+             [] { rc_expect_caught(corruptions(), *fhr::testing::gen_closed_mesh(0, 3, 200)); });
 }
 
 TEST_CASE("PARAM-2: when it fails every later check is skipped; without T, PARAM-11 is not listed", "[exchange]") {
@@ -665,7 +678,10 @@ const std::vector<Corruption>& boundary_corruptions() {
         {"a slit: T' cut open along an interior edge of D that reaches the boundary",
          [](ParamFile& f, TriMesh&) {
              slit(f);
-             return Expect{"PARAM-9", "PARAM-11", -1, -1,
+             return Expect{"PARAM-9",
+                           "PARAM-11",
+                           -1,
+                           -1,
                            "lies on the boundary of T', but the side is an interior edge of D",
                            "is on the boundary of T' but not on T's boundary"};
          }},
@@ -686,7 +702,8 @@ const std::vector<Corruption>& boundary_corruptions() {
              const fhr::Components comp = fhr::connected_components(D);
              std::vector<std::uint32_t> first(comp.count, UINT32_MAX);
              for (fhr::VertexId v : D.vertices())
-                 if (D.is_boundary(v) && first[comp.vertex_component[v]] == UINT32_MAX) first[comp.vertex_component[v]] = v.idx();
+                 if (D.is_boundary(v) && first[comp.vertex_component[v]] == UINT32_MAX)
+                     first[comp.vertex_component[v]] = v.idx();
              std::sort(first.begin(), first.end());  // the two lowest: components with boundary
              for (auto& t : f.domain_faces)
                  for (auto& v : t)
@@ -719,7 +736,7 @@ const std::vector<Corruption>& boundary_corruptions() {
          [](ParamFile& f, TriMesh&) {
              const std::vector<std::uint32_t> component = face_components(f);
              const std::uint32_t last = component.back();  // the sphere (mixed_domain)
-             std::uint32_t lowest = UINT32_MAX;  // the vertex that names the moved component
+             std::uint32_t lowest = UINT32_MAX;            // the vertex that names the moved component
              for (auto& face : f.surface_faces)
                  if (component[face.patch] == last) {
                      lowest = std::min({lowest, face.v[0], face.v[1], face.v[2]});
@@ -727,7 +744,8 @@ const std::vector<Corruption>& boundary_corruptions() {
                  }
              return Expect{"PARAM-4", "PARAM-6", -1, -1,
                            "the component of T' at surface vertex 0 and the component of T' at surface vertex " +
-                               std::to_string(lowest) + " both lie in patches of the component of D at domain vertex 0"};
+                               std::to_string(lowest) +
+                               " both lie in patches of the component of D at domain vertex 0"};
          }},
         {"an extra component of D that holds no face of T'",
          [](ParamFile& f, TriMesh&) {
@@ -761,7 +779,8 @@ const std::vector<Corruption>& boundary_corruptions() {
              const auto inc = incidences(f);
              for (std::size_t x = 0; x < f.surface_faces.size(); ++x) {
                  bool inside = true;
-                 for (int c = 0; c < 3; ++c) inside = inside && point(f, {static_cast<std::uint32_t>(x), c}).size() == 3;
+                 for (int c = 0; c < 3; ++c)
+                     inside = inside && point(f, {static_cast<std::uint32_t>(x), c}).size() == 3;
                  if (inside) {
                      f.surface_faces.erase(f.surface_faces.begin() + static_cast<std::ptrdiff_t>(x));
                      return Expect{"PARAM-4", "PARAM-8", -1, -1, "chi(the component of T' at surface vertex "};
@@ -828,8 +847,10 @@ TEST_CASE("PARAM-4, PARAM-10: boundary sides are checked from their one patch; c
     CHECK(check(mixed, "PARAM-4").checked == 3);
 }
 
-TEST_CASE("PARAM-3..11: verify rejects each corruption of a surface with boundary and several components, naming "
-          "the broken invariant first", "[exchange][boundary]") {
+TEST_CASE(
+    "PARAM-3..11: verify rejects each corruption of a surface with boundary and several components, naming "
+    "the broken invariant first",
+    "[exchange][boundary]") {
     const TriMesh domain = mixed_domain(5);
     for (const Corruption& c : boundary_corruptions()) {
         DYNAMIC_SECTION(c.name) { expect_caught(c, domain, 4); }
@@ -840,7 +861,8 @@ TEST_CASE("PARAM-3..11: the boundary corruptions are caught on random domains wi
           "[exchange][boundary][property]") {
     rc::prop("every boundary corruption of the 4-to-16 subdivision of a random domain", [] {
         const auto& closed = *fhr::testing::gen_closed_mesh(0, 2, 200);
-        const std::size_t holes = *rc::gen::inRange<std::size_t>(1, std::max<std::size_t>(2, closed.n_faces() / 12 + 1));
+        const std::size_t holes =
+            *rc::gen::inRange<std::size_t>(1, std::max<std::size_t>(2, closed.n_faces() / 12 + 1));
         const bool annulus = *rc::gen::arbitrary<bool>();
         const TriMesh domain = disjoint_union(disjoint_union(with_holes(closed, holes, *rc::gen::inRange(0, 1000)),
                                                              annulus ? square_annulus() : hexagon_disk()),
@@ -894,8 +916,8 @@ TEST_CASE("PARAM-4: each component of T' has the chi and the boundary loops of i
     };
     const std::size_t f = 200;
     SECTION("chi: a torus and a sphere against a sphere and a torus") {
-        const VerifyReport r = swapped(random_domain(1, f, 1), random_domain(0, f, 2), random_domain(0, f, 3),
-                                       random_domain(1, f, 4));
+        const VerifyReport r =
+            swapped(random_domain(1, f, 1), random_domain(0, f, 2), random_domain(0, f, 3), random_domain(1, f, 4));
         INFO(describe(r));
         CHECK(first_failure(r) == "PARAM-4");
         CHECK_THAT(check(r, "PARAM-4").first_failure,
@@ -960,7 +982,8 @@ TEST_CASE("PARAM-11: T' with T's vertices, triangulated otherwise, covers anothe
 TEST_CASE("PARAM-3: a flat closed component is refused (INV-IN-13 for each closed component)", "[exchange][boundary]") {
     // Four coplanar points as a tetrahedron: not degenerate triangles, but a flat closed surface.
     const std::vector<fhr::Vec3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
-    const TriMesh flat = TriMesh::from_triangles(p, std::vector<fhr::Triangle>{{0, 1, 2}, {1, 3, 2}, {0, 3, 1}, {0, 2, 3}});
+    const TriMesh flat =
+        TriMesh::from_triangles(p, std::vector<fhr::Triangle>{{0, 1, 2}, {1, 3, 2}, {0, 3, 1}, {0, 2, 3}});
     SECTION("alone: the message of a closed connected surface") {
         const VerifyReport r = verify(fhr::test::subdivided_param(flat, 2), nullptr);
         CHECK(first_failure(r) == "PARAM-3");
@@ -1001,17 +1024,19 @@ TEST_CASE("PARAM-11: a vertex on T's boundary must be on T''s boundary", "[excha
     const VerifyReport r = verify(fhr::test::subdivided_param(disk, 2), &slit_disk);
     INFO(describe(r));
     CHECK(first_failure(r) == "PARAM-11");
-    CHECK_THAT(check(r, "PARAM-11").first_failure,
-               Catch::StartsWith("vertex 0 of T (0, 0, 0) is on T's boundary, but surface vertex 0 at the same point is "
-                                 "not on the boundary of T'"));
+    CHECK_THAT(
+        check(r, "PARAM-11").first_failure,
+        Catch::StartsWith("vertex 0 of T (0, 0, 0) is on T's boundary, but surface vertex 0 at the same point is "
+                          "not on the boundary of T'"));
     // Where: T's vertex 0, no face, no patch.
     CHECK(check(r, "PARAM-11").vertex == 0);
     CHECK(check(r, "PARAM-11").face == -1);
     CHECK(check(r, "PARAM-11").patch == -1);
 }
 
-TEST_CASE("the oracle on 1 and 3 threads: the same report (PARAM-11's distances in parallel blocks, the checks side by side)",
-          "[exchange]") {
+TEST_CASE(
+    "the oracle on 1 and 3 threads: the same report (PARAM-11's distances in parallel blocks, the checks side by side)",
+    "[exchange]") {
     // T′ with about 10,800 vertices: three blocks of PARAM-11's parallel loop. Every 7th vertex
     // from 5,000 on is moved off T, so failures come from every block after the first; the first
     // is vertex 5,000. Below 2^19 faces of T′ PARAM-3 runs beside PARAM-11's preparation of T and
@@ -1021,7 +1046,8 @@ TEST_CASE("the oracle on 1 and 3 threads: the same report (PARAM-11's distances 
     ParamFile file = fhr::test::subdivided_param(domain, 6);
     REQUIRE(file.surface_vertices.size() > 2 * 4096);
     std::uint64_t moved = 0;
-    for (std::size_t v = 5000; v < file.surface_vertices.size(); v += 7, ++moved) file.surface_vertices[v] += fhr::Vec3(0, 0, 1);
+    for (std::size_t v = 5000; v < file.surface_vertices.size(); v += 7, ++moved)
+        file.surface_vertices[v] += fhr::Vec3(0, 0, 1);
     file.surface_faces[100].beta[0] = {2.0, -1.0};
     fhr::ThreadPool one(1), three(3);
     const VerifyReport r1 = verify(file, &domain, &one), r3 = verify(file, &domain, &three);
@@ -1041,7 +1067,8 @@ TEST_CASE("PARAM-11: T's side prepared once (PreparedInput) serves several files
     const TriMesh domain = random_domain(1, 600, 11);
     const ParamFile valid = fhr::test::subdivided_param(domain, 6);
     ParamFile moved = valid, broken = valid;
-    for (std::size_t v = 5000; v < moved.surface_vertices.size(); v += 7) moved.surface_vertices[v] += fhr::Vec3(0, 0, 1);
+    for (std::size_t v = 5000; v < moved.surface_vertices.size(); v += 7)
+        moved.surface_vertices[v] += fhr::Vec3(0, 0, 1);
     broken.surface_faces[100].beta[0] = {2.0, -1.0};
     fhr::exchange::PreparedInput made(domain);
     const fhr::exchange::PreparedInput prepared = std::move(made);

@@ -69,7 +69,8 @@ TEST_CASE("CLI-VERIFY-1, CLI-VERIFY-4: a valid file gives exit code 0 and a pass
     CHECK_THAT(j.out, !Catch::Contains("\"result\": \"fail\"") && !Catch::Contains("\"result\": \"skipped\""));
 }
 
-TEST_CASE("CLI-VERIFY-2, CLI-VERIFY-4: an invalid file gives exit code 1 and names the broken invariant", "[cli][exchange]") {
+TEST_CASE("CLI-VERIFY-2, CLI-VERIFY-4: an invalid file gives exit code 1 and names the broken invariant",
+          "[cli][exchange]") {
     auto file = files().file;
     std::swap(file.surface_faces[10].beta[1], file.surface_faces[10].beta[2]);  // a flipped image triangle
     const std::string path = temp_path("cli-flipped.fhrp");
@@ -97,7 +98,8 @@ TEST_CASE("CLI-VERIFY-2, CLI-VERIFY-4: an invalid file gives exit code 1 and nam
     CHECK_THAT(m.out, Catch::Contains("\"first_failure\": \"PARAM-11\""));
 }
 
-TEST_CASE("CLI-VERIFY-3, CLI-VERIFY-4: an unreadable file or mesh gives one error line and exit code 2", "[cli][exchange]") {
+TEST_CASE("CLI-VERIFY-3, CLI-VERIFY-4: an unreadable file or mesh gives one error line and exit code 2",
+          "[cli][exchange]") {
     const std::string good = fhr::test::read_file(files().param);
     struct Bad {
         const char* name;
@@ -105,7 +107,10 @@ TEST_CASE("CLI-VERIFY-3, CLI-VERIFY-4: an unreadable file or mesh gives one erro
         const char* expect;
     };
     const std::vector<Bad> cases{
-        {"garbage", "\x7f" "ELF\x01\x02 binary junk", ":1: header: PARAM-1: not a fhr-param file"},
+        {"garbage",
+         "\x7f"
+         "ELF\x01\x02 binary junk",
+         ":1: header: PARAM-1: not a fhr-param file"},
         {"wrong header", "fhr-param 7\n" + good.substr(good.find('\n') + 1), "unsupported version"},
         {"truncated", good.substr(0, good.size() / 2), "unexpected end of file"},
         {"huge counts", "fhr-param 1\ndomain_vertices 4294967295\n0 0 0\n", "truncated"},
@@ -144,8 +149,8 @@ TEST_CASE("CLI-VERIFY-1..4: a surface with boundary and several components: exit
     o.faces = 120;
     o.seed = 8;
     o.noise = 0.1;
-    const fhr::TriMesh domain =
-        fhr::test::disjoint_union(fhr::test::with_holes(fhr::generate::random_closed_mesh(o), 2, 3), fhr::test::hexagon_disk());
+    const fhr::TriMesh domain = fhr::test::disjoint_union(
+        fhr::test::with_holes(fhr::generate::random_closed_mesh(o), 2, 3), fhr::test::hexagon_disk());
     const fhr::exchange::ParamFile file = fhr::test::subdivided_param(domain, 4);
     const std::string param = temp_path("cli-boundary.fhrp"), mesh = temp_path("cli-boundary.off");
     fhr::exchange::write_param(param, file);
@@ -171,7 +176,8 @@ TEST_CASE("CLI-VERIFY-1..4: a surface with boundary and several components: exit
                                                 "component of D at domain vertex 0) = -2"));
 
     // T with a non-manifold boundary vertex (two triangles meeting at one vertex): unreadable.
-    const std::string bowtie = write_temp("bowtie.off", "OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n3 0 1 2\n3 0 3 4\n");
+    const std::string bowtie =
+        write_temp("bowtie.off", "OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n3 0 1 2\n3 0 3 4\n");
     const auto unreadable = run_fhr({"verify", param, "--mesh", bowtie});
     INFO(unreadable.err);
     CHECK(unreadable.exit_code == 2);

@@ -91,7 +91,8 @@ VertexMapFile map_of(const fhr::exchange::ParamFile& p) {
     m.source = "test";
     m.records.resize(p.surface_vertices.size());
     for (const auto& face : p.surface_faces)
-        for (int c = 0; c < 3; ++c) m.records[face.v[c]] = at_face(face.patch, face.beta[c][0], face.beta[c][1], face.beta[c][2]);
+        for (int c = 0; c < 3; ++c)
+            m.records[face.v[c]] = at_face(face.patch, face.beta[c][0], face.beta[c][1], face.beta[c][2]);
     return m;
 }
 
@@ -101,7 +102,8 @@ PolygonSoup surface_of(const fhr::exchange::ParamFile& p) {
     return soup_of(p.surface_vertices, t);
 }
 
-TriMesh random_surface(fhr::generate::Family family, int genus, std::size_t holes, bool two_components, std::uint64_t seed) {
+TriMesh random_surface(fhr::generate::Family family, int genus, std::size_t holes, bool two_components,
+                       std::uint64_t seed) {
     fhr::generate::RandomMeshOptions o;
     o.family = family;
     o.genus = genus;
@@ -121,7 +123,6 @@ TriMesh random_surface(fhr::generate::Family family, int genus, std::size_t hole
     return m;
 }
 
-
 /// The angle at a between b and c, in 3D.
 double angle(const Vec3& a, const Vec3& b, const Vec3& c) {
     return std::acos(std::clamp((b - a).normalized().dot((c - a).normalized()), -1.0, 1.0));
@@ -140,7 +141,8 @@ TriMesh with_flips(const TriMesh& m) {
     std::vector<std::set<std::uint32_t>> neighbours(m.n_vertices());
     for (const Triangle& t : faces)
         for (int k = 0; k < 3; ++k) {
-            total[t[k]] += angle(m.position(fhr::VertexId(t[k])), m.position(fhr::VertexId(t[(k + 1) % 3])), m.position(fhr::VertexId(t[(k + 2) % 3])));
+            total[t[k]] += angle(m.position(fhr::VertexId(t[k])), m.position(fhr::VertexId(t[(k + 1) % 3])),
+                                 m.position(fhr::VertexId(t[(k + 2) % 3])));
             neighbours[t[k]].insert(t[(k + 1) % 3]);
             neighbours[t[k]].insert(t[(k + 2) % 3]);
         }
@@ -149,14 +151,16 @@ TriMesh with_flips(const TriMesh& m) {
         if (m.is_boundary(e)) continue;
         const std::uint32_t f = m.face(h).idx(), k = m.face(g).idx();
         if (used[f] || used[k]) continue;
-        const std::uint32_t ia = m.from(h).idx(), ib = m.to(h).idx(), ic = m.to(m.next(h)).idx(), id = m.to(m.next(g)).idx();
+        const std::uint32_t ia = m.from(h).idx(), ib = m.to(h).idx(), ic = m.to(m.next(h)).idx(),
+                            id = m.to(m.next(g)).idx();
         const Vec3 &a = m.position(m.from(h)), &b = m.position(m.to(h)), &c = m.position(m.to(m.next(h))),
                    &d = m.position(m.to(m.next(g)));
         const double at_a = angle(a, b, c) + angle(a, d, b), at_b = angle(b, c, a) + angle(b, a, d);
-        if (at_a > M_PI - 0.1 || at_b > M_PI - 0.1 || total[ia] - at_a < M_PI + 0.1 || total[ib] - at_b < M_PI + 0.1) continue;
+        if (at_a > M_PI - 0.1 || at_b > M_PI - 0.1 || total[ia] - at_a < M_PI + 0.1 || total[ib] - at_b < M_PI + 0.1)
+            continue;
         std::vector<std::uint32_t> common;
-        std::set_intersection(neighbours[ic].begin(), neighbours[ic].end(), neighbours[id].begin(), neighbours[id].end(),
-                              std::back_inserter(common));
+        std::set_intersection(neighbours[ic].begin(), neighbours[ic].end(), neighbours[id].begin(),
+                              neighbours[id].end(), std::back_inserter(common));
         if (common.size() != 2 || neighbours[ic].count(id) || !added.insert(std::minmax(ic, id)).second) continue;
         faces[f] = {ia, id, ic};
         faces[k] = {ib, ic, id};
@@ -181,13 +185,16 @@ TEST_CASE("VMAP-2..9: the identity of an octahedron is valid; its distortion is 
 TEST_CASE("VMAP-1: the four formats read the same map; bad files are refused naming line and vertex",
           "[exchange][vertex_map][io]") {
     // The octahedron onto itself; vertex 4 (+z) given on face 0 = (0, 2, 4) at corner 2.
-    const std::string plain = "fhr-vertex-map 1\n6\n0 1 0 0\n1 0 1 0  # face 1 = (2, 1, 4)\n0 0 1 0\n2 0 1 0\n0 0 0 1\n4 0 0 1\n";
+    const std::string plain =
+        "fhr-vertex-map 1\n6\n0 1 0 0\n1 0 1 0  # face 1 = (2, 1, 4)\n0 0 1 0\n2 0 1 0\n0 0 0 1\n4 0 0 1\n";
     const std::string corr = "1 1 0 0\n2 0 1 0\n1 0 1 0\n3 0 1 0\n1 0 0 1\n5 0 0 1\n";
     const std::string vtpm = "6 6\n0 2 0 0\n1 4 0 0\n2 4 0 0\n3 4 0 0\n4 0 0 0\n5 2 0 0\n";
     const std::string ijv = "1 1 1\n2 2 1\n3 3 1\n4 4 1\n5 5 1\n6 6 1\n";
     const PolygonSoup D = soup_of(octahedron, octahedron_faces);
-    for (auto [text, format] : {std::pair{plain, VertexMapFormat::plain}, {corr, VertexMapFormat::corr},
-                                {vtpm, VertexMapFormat::vtpm}, {ijv, VertexMapFormat::ijv}}) {
+    for (auto [text, format] : {std::pair{plain, VertexMapFormat::plain},
+                                {corr, VertexMapFormat::corr},
+                                {vtpm, VertexMapFormat::vtpm},
+                                {ijv, VertexMapFormat::ijv}}) {
         INFO(fhr::exchange::to_string(format));
         const VertexMapFile m = parse_vertex_map(text, "m", format, 6, 6);
         REQUIRE(m.records.size() == 6);
@@ -215,7 +222,8 @@ TEST_CASE("VMAP-1: the four formats read the same map; bad files are refused nam
     refused("1 1 0.2\n1 2 0.2\n1 3 0.2\n1 4 0.4\n", VertexMapFormat::ijv, "more than three");
 }
 
-TEST_CASE("VMAP-2: missing images, faces out of range, NaN and non-barycentric weights are named", "[exchange][vertex_map]") {
+TEST_CASE("VMAP-2: missing images, faces out of range, NaN and non-barycentric weights are named",
+          "[exchange][vertex_map]") {
     const PolygonSoup D = soup_of(octahedron, octahedron_faces);
     VertexMapFile m = identity(octahedron_faces, 6);
     m.records[1].ref = VertexImageRecord::Ref::none;
@@ -263,7 +271,8 @@ TEST_CASE("VMAP-5: an edge whose ends share no fan has no image; the rest is sti
     VertexMapFile m;
     m.source = "test";
     const double third = 1.0 / 3;
-    m.records = {at_face(0, third, third, third), at_face(6, third, third, third), at_face(0, 0, 0, 1), at_face(0, 0, 1, 0)};
+    m.records = {at_face(0, third, third, third), at_face(6, third, third, third), at_face(0, 0, 0, 1),
+                 at_face(0, 0, 1, 0)};
     const VertexMapReport r = verify_vertex_map(m, soup_of(square, square_faces), D);
     CHECK(check(r, "VMAP-5").status == CheckStatus::fail);
     CHECK(r.edges_without_image == std::vector<std::pair<std::uint32_t, std::uint32_t>>{{0, 1}});
@@ -329,7 +338,8 @@ TEST_CASE("VMAP-6: two vertices of T with one image are named", "[exchange][vert
     CHECK_THAT(check(r, "VMAP-6").first_failure, Catch::Contains("vertices 7 and 8 of T have one image"));
 }
 
-TEST_CASE("VMAP-9: a boundary edge pulled inside D, and an interior vertex on the boundary, are named", "[exchange][vertex_map]") {
+TEST_CASE("VMAP-9: a boundary edge pulled inside D, and an interior vertex on the boundary, are named",
+          "[exchange][vertex_map]") {
     const PolygonSoup D = soup_of(square, square_faces);
     // The identity, then vertex 3 (a corner) moved inside face (0, 1, 2)... onto the diagonal's
     // middle: the boundary edges (2, 3) and (3, 0) leave ∂D.
@@ -347,14 +357,16 @@ TEST_CASE("VMAP-9: a boundary edge pulled inside D, and an interior vertex on th
     CHECK_THAT(check(rc, "VMAP-9").first_failure, Catch::Contains("interior vertex 0 of T"));
 }
 
-TEST_CASE("VMAP-2..9: maps of subdivisions onto their domains are valid and a swap is named; the identity of D onto D with edges flipped is valid",
-          "[exchange][vertex_map][property]") {
+TEST_CASE(
+    "VMAP-2..9: maps of subdivisions onto their domains are valid and a swap is named; the identity of D onto D with "
+    "edges flipped is valid",
+    "[exchange][vertex_map][property]") {
     rc::prop("the generator's families, genus 0-3, with holes and components", [] {
         const int genus = *rc::gen::inRange(0, 4);
         const auto holes = static_cast<std::size_t>(*rc::gen::inRange(0, 3));
         const bool two = *rc::gen::inRange(0, 4) == 0;
-        const auto family = *rc::gen::elementOf(std::vector<fhr::generate::Family>(std::begin(fhr::generate::embedded_families),
-                                                                                   std::end(fhr::generate::embedded_families)));
+        const auto family = *rc::gen::elementOf(std::vector<fhr::generate::Family>(
+            std::begin(fhr::generate::embedded_families), std::end(fhr::generate::embedded_families)));
         RC_TAG(fhr::generate::family_name(family));
         const TriMesh domain = random_surface(family, genus, holes, two, *rc::gen::inRange<std::uint64_t>(0, 1000000));
         const fhr::exchange::ParamFile p = fhr::test::subdivided_param(domain, *rc::gen::inRange(2, 4));
@@ -372,7 +384,8 @@ TEST_CASE("VMAP-2..9: maps of subdivisions onto their domains are valid and a sw
         // quadrilateral is convex, no two flipped edges in one face).
         const TriMesh flipped = with_flips(domain);
         RC_ASSERT(flipped.n_faces() == domain.n_faces());
-        const VertexMapReport rf = verify_vertex_map(identity(domain.triangles(), domain.n_vertices()), soup_of(flipped), D);
+        const VertexMapReport rf =
+            verify_vertex_map(identity(domain.triangles(), domain.n_vertices()), soup_of(flipped), D);
         RC_ASSERT(first(rf) == "none");
     });
 }

@@ -138,18 +138,21 @@ void check_generated(const RandomMeshOptions& o, const TriMesh& m) {
     for (fhr::EdgeId e : m.edges()) --chi[component(m.from(TriMesh::halfedge(e, 0)))];
     for (fhr::FaceId f : m.faces()) {
         ++chi[component(m.face_vertices(f)[0])];
-        if (f.idx() > 0) RC_ASSERT(component(m.face_vertices(f)[0]) >= component(m.face_vertices(fhr::FaceId(f.idx() - 1))[0]));
+        if (f.idx() > 0)
+            RC_ASSERT(component(m.face_vertices(f)[0]) >= component(m.face_vertices(fhr::FaceId(f.idx() - 1))[0]));
     }
     for (HalfedgeId h : loops) ++n_loops[component(m.from(h))];
     // GEN-6: outward: each component, its holes filled, encloses a positive volume.
     const std::vector<double> six_volume = filled_six_volumes(m, comps);
     for (std::size_t c = 0; c < C; ++c) {
-        const int g = share(o.genus, o.components, static_cast<int>(c)), b = share(o.holes, o.components, static_cast<int>(c));
+        const int g = share(o.genus, o.components, static_cast<int>(c)),
+                  b = share(o.holes, o.components, static_cast<int>(c));
         RC_ASSERT(chi[c] == 2 - 2 * g - b);
         RC_ASSERT(n_loops[c] == b);
         RC_ASSERT(six_volume[c] > 0);
         // Block: component c lies at least 1 beyond the ones before it along x (up to rounding).
-        if (o.family == fhr::generate::Family::block && c > 0) RC_ASSERT(min_x[c] - *std::max_element(max_x.begin(), max_x.begin() + c) >= 1 - 1e-9);
+        if (o.family == fhr::generate::Family::block && c > 0)
+            RC_ASSERT(min_x[c] - *std::max_element(max_x.begin(), max_x.begin() + c) >= 1 - 1e-9);
     }
     // Block shape: every corner at least 20°, up to the rounding of the two angle evaluations.
     if (o.family == fhr::generate::Family::block)

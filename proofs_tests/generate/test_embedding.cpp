@@ -16,8 +16,8 @@ using fhr::FaceId;
 using fhr::TriMesh;
 using fhr::Vec3;
 using fhr::VertexId;
-using fhr::generate::TriangleAt;
 using fhr::generate::meet_improperly;
+using fhr::generate::TriangleAt;
 
 namespace {
 
@@ -54,10 +54,13 @@ TEST_CASE("GEN-E1: two triangles with one common vertex", "[unit]") {
 
 TEST_CASE("GEN-E1: two triangles with a common edge", "[unit]") {
     const auto a = tri({0, 1, 2}, {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 2, 0)});
-    CHECK_FALSE(meet_improperly(a, tri({1, 0, 3}, {Vec3(2, 0, 0), Vec3(0, 0, 0), Vec3(1, -1, 0)})));   // flat, opposite sides
-    CHECK_FALSE(meet_improperly(a, tri({1, 0, 3}, {Vec3(2, 0, 0), Vec3(0, 0, 0), Vec3(1, 1, 1e-300)})));  // a hair off the plane
-    CHECK(meet_improperly(a, tri({1, 0, 3}, {Vec3(2, 0, 0), Vec3(0, 0, 0), Vec3(1, 1, 0)})));   // folded flat onto a
-    CHECK(meet_improperly(a, tri({1, 0, 3}, {Vec3(2, 0, 0), Vec3(0, 0, 0), Vec3(5, 5, 0)})));   // folded, reaching past a
+    CHECK_FALSE(
+        meet_improperly(a, tri({1, 0, 3}, {Vec3(2, 0, 0), Vec3(0, 0, 0), Vec3(1, -1, 0)})));  // flat, opposite sides
+    CHECK_FALSE(meet_improperly(
+        a, tri({1, 0, 3}, {Vec3(2, 0, 0), Vec3(0, 0, 0), Vec3(1, 1, 1e-300)})));               // a hair off the plane
+    CHECK(meet_improperly(a, tri({1, 0, 3}, {Vec3(2, 0, 0), Vec3(0, 0, 0), Vec3(1, 1, 0)})));  // folded flat onto a
+    CHECK(
+        meet_improperly(a, tri({1, 0, 3}, {Vec3(2, 0, 0), Vec3(0, 0, 0), Vec3(5, 5, 0)})));  // folded, reaching past a
 }
 
 TEST_CASE("GEN-E2: find_self_intersection names a degenerate face and the first pair that meets", "[unit]") {
@@ -68,7 +71,8 @@ TEST_CASE("GEN-E2: find_self_intersection names a degenerate face and the first 
     CHECK((*pair)[0] == FaceId(0));
     CHECK((*pair)[1] == FaceId(1));
     const std::vector<Vec3> q{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};  // collinear: zero area
-    const auto flat = fhr::generate::find_self_intersection(TriMesh::from_triangles(q, std::vector<fhr::Triangle>{{0, 1, 2}}));
+    const auto flat =
+        fhr::generate::find_self_intersection(TriMesh::from_triangles(q, std::vector<fhr::Triangle>{{0, 1, 2}}));
     REQUIRE(flat);
     CHECK((*flat)[0] == (*flat)[1]);
 }
@@ -77,15 +81,18 @@ TEST_CASE("GEN-E3: the guard accepts an edit exactly when the edited mesh is emb
     // Random vertex moves on generated meshes: the guard's verdict against the whole-mesh check of
     // the moved mesh (an independent, brute-force-free path: every pair from scratch).
     rc::prop("guard == find_self_intersection after the move", [] {
-        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh({.max_genus = 1, .max_faces = 300, .max_holes = 2});
+        const fhr::testing::GeneratedMesh g =
+            *fhr::testing::gen_mesh({.max_genus = 1, .max_faces = 300, .max_holes = 2});
         TriMesh m = g;
         fhr::generate::EmbeddingGuard guard(m, 0);
         const int moves = *rc::gen::inRange(1, 20);
         for (int i = 0; i < moves; ++i) {
             const VertexId v(*rc::gen::inRange<unsigned>(0, static_cast<unsigned>(m.n_vertices())));
             const double scale = *rc::gen::element(0.01, 0.2, 0.6);
-            const Vec3 moved = m.position(v) + scale * Vec3(*rc::gen::inRange(-100, 101), *rc::gen::inRange(-100, 101),
-                                                             *rc::gen::inRange(-100, 101)) / 100.0;
+            const Vec3 moved =
+                m.position(v) +
+                scale * Vec3(*rc::gen::inRange(-100, 101), *rc::gen::inRange(-100, 101), *rc::gen::inRange(-100, 101)) /
+                    100.0;
             std::vector<FaceId> star;
             std::vector<TriangleAt> added;
             m.for_each_outgoing(v, [&](fhr::HalfedgeId h) {

@@ -32,8 +32,8 @@ using fhr::TriMesh;
 using fhr::Vec3;
 using fhr::VertexId;
 using fhr::generate::Family;
-using fhr::generate::RandomMeshOptions;
 using fhr::generate::random_mesh;
+using fhr::generate::RandomMeshOptions;
 using namespace fhr::generate::checks;
 
 namespace {
@@ -70,8 +70,9 @@ rc::Gen<RandomMeshOptions> gen_recipe(Family family, std::size_t max_faces) {
 
 /// The mesh of a drawn recipe; a counterexample shows its `fhr generate` command.
 rc::Gen<fhr::testing::GeneratedMesh> gen_family_mesh(Family family, std::size_t max_faces) {
-    return rc::gen::map(gen_recipe(family, max_faces),
-                        [](const RandomMeshOptions& o) { return fhr::testing::GeneratedMesh{random_mesh(o), o}; });
+    return rc::gen::map(gen_recipe(family, max_faces), [](const RandomMeshOptions& o) {
+        return fhr::testing::GeneratedMesh{random_mesh(o), o};
+    });
 }
 
 /// The smallest corner of face f, in degrees, as atan2(|u × v|, u · v): accurate to a relative
@@ -107,7 +108,8 @@ void check_quality(const RandomMeshOptions& o, const TriMesh& m) {
     RC_LOG() << "smallest corner " << smallest << "°, θ = " << theta << "°\n";
     RC_ASSERT(smallest <= theta);
     RC_ASSERT(smallest >= 0.875 * theta * (1 - 1e-9));
-    RC_ASSERT(below_one_degree == static_cast<std::size_t>(std::ceil(o.knobs.bad_fraction * static_cast<double>(o.faces))));
+    RC_ASSERT(below_one_degree ==
+              static_cast<std::size_t>(std::ceil(o.knobs.bad_fraction * static_cast<double>(o.faces))));
 }
 
 /// The block of the same recipe (the family's starting point).
@@ -135,9 +137,7 @@ double first_grid_spacing(const RandomMeshOptions& o, const TriMesh& block) {
 /// neighbour of a or b (where a coarse grid makes it happen); with axis_parallel, only for ab
 /// parallel to an axis (w then has the same two coordinates as a and b).
 bool has_vertex_on_an_edge_line(const TriMesh& m, bool axis_parallel = false) {
-    const auto same = [&](VertexId a, VertexId b) {
-        return (m.position(a).array() == m.position(b).array()).count();
-    };
+    const auto same = [&](VertexId a, VertexId b) { return (m.position(a).array() == m.position(b).array()).count(); };
     for (FaceId f : m.faces()) {
         const auto t = m.face_vertices(f);
         for (int i = 0; i < 3; ++i) {
@@ -147,7 +147,8 @@ bool has_vertex_on_an_edge_line(const TriMesh& m, bool axis_parallel = false) {
             for (VertexId end : {a, b})
                 m.for_each_outgoing(end, [&](HalfedgeId h) {
                     const VertexId w = m.to(h);
-                    if (w != t[0] && w != t[1] && w != t[2] && fhr::collinear(m.position(a), m.position(b), m.position(w)))
+                    if (w != t[0] && w != t[1] && w != t[2] &&
+                        fhr::collinear(m.position(a), m.position(b), m.position(w)))
                         found = true;
                 });
             if (found) return true;

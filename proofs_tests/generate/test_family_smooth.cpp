@@ -89,9 +89,10 @@ void require_family_mesh(const RandomMeshOptions& o, const TriMesh& m) {
 
 }  // namespace
 
-TEST_CASE("GEN-8, GEN-9: smooth meshes are valid, embedded, outward, the block's triangles, no two adjacent faces "
-          "coplanar",
-          "[property]") {
+TEST_CASE(
+    "GEN-8, GEN-9: smooth meshes are valid, embedded, outward, the block's triangles, no two adjacent faces "
+    "coplanar",
+    "[property]") {
     rc::prop("smooth", [] {
         const RandomMeshOptions o = *gen_recipe(Family::smooth, 2500);
         RC_LOG() << "checked: " << generate_command(o) << "\n";
@@ -192,13 +193,20 @@ TEST_CASE("the smooth and immersed knobs are checked: InvalidInput naming the kn
         }
     };
     using Knobs = fhr::generate::FamilyKnobs;
-    refused(Family::smooth, [](Knobs& k) { k.roundness = 0; }, "--roundness must be in (0, 0.45] (got 0");
-    refused(Family::smooth, [](Knobs& k) { k.roundness = 0.46; }, "--roundness must be in (0, 0.45] (got 0.46");
-    refused(Family::smooth, [](Knobs& k) { k.roundness = NAN; }, "--roundness must be in (0, 0.45]");
-    refused(Family::smooth, [](Knobs& k) { k.amplitude = -0.01; }, "--amplitude must be in [0, 0.5] (got -0.01");
-    refused(Family::smooth, [](Knobs& k) { k.amplitude = 0.51; }, "--amplitude must be in [0, 0.5] (got 0.51");
-    refused(Family::immersed, [](Knobs& k) { k.depth = 1.09; }, "--depth must be in [1.1, 4] (got 1.09");
-    refused(Family::immersed, [](Knobs& k) { k.depth = INFINITY; }, "--depth must be in [1.1, 4]");
+    refused(
+        Family::smooth, [](Knobs& k) { k.roundness = 0; }, "--roundness must be in (0, 0.45] (got 0");
+    refused(
+        Family::smooth, [](Knobs& k) { k.roundness = 0.46; }, "--roundness must be in (0, 0.45] (got 0.46");
+    refused(
+        Family::smooth, [](Knobs& k) { k.roundness = NAN; }, "--roundness must be in (0, 0.45]");
+    refused(
+        Family::smooth, [](Knobs& k) { k.amplitude = -0.01; }, "--amplitude must be in [0, 0.5] (got -0.01");
+    refused(
+        Family::smooth, [](Knobs& k) { k.amplitude = 0.51; }, "--amplitude must be in [0, 0.5] (got 0.51");
+    refused(
+        Family::immersed, [](Knobs& k) { k.depth = 1.09; }, "--depth must be in [1.1, 4] (got 1.09");
+    refused(
+        Family::immersed, [](Knobs& k) { k.depth = INFINITY; }, "--depth must be in [1.1, 4]");
     // The immersed family needs 8 faces more per component than the block (its finger).
     RandomMeshOptions o;
     o.family = Family::immersed;

@@ -93,7 +93,8 @@ void check_valence(const RandomMeshOptions& o, const TriMesh& m) {
         valence3 += k == 3;
     }
     for (std::size_t c = 0; c < C; ++c) RC_ASSERT(largest[c] >= static_cast<std::size_t>(o.knobs.high_valence));
-    RC_ASSERT(valence3 >= static_cast<std::size_t>(std::floor(o.knobs.low_fraction * static_cast<double>(m.n_vertices()))));
+    RC_ASSERT(valence3 >=
+              static_cast<std::size_t>(std::floor(o.knobs.low_fraction * static_cast<double>(m.n_vertices()))));
 }
 
 double length(const Vec3& a) { return std::sqrt(a.x() * a.x() + a.y() * a.y() + a.z() * a.z()); }
@@ -138,8 +139,9 @@ void check_refused(RandomMeshOptions o, const std::string& part) {
 
 }  // namespace
 
-TEST_CASE("valence family: embedded recipes with a hub of valence >= 64 per component and 5 % valence 3 (GEN-8, GEN-11)",
-          "[property]") {
+TEST_CASE(
+    "valence family: embedded recipes with a hub of valence >= 64 per component and 5 % valence 3 (GEN-8, GEN-11)",
+    "[property]") {
     rc::prop("default knobs", [] {
         const RandomMeshOptions o = *gen_family(Family::valence, 2000, default_knobs);
         RC_LOG() << fhr::generate::generate_command(o) << "\n";
@@ -208,9 +210,10 @@ TEST_CASE("density family: the same with random knobs up to edge ratio 1e9 and a
     });
 }
 
-TEST_CASE("valence and density: the least face count is made, one face pair less is refused, the same options give "
-          "the same mesh (GEN-4)",
-          "[property]") {
+TEST_CASE(
+    "valence and density: the least face count is made, one face pair less is refused, the same options give "
+    "the same mesh (GEN-4)",
+    "[property]") {
     rc::prop("min_faces(options)", [] {
         const Family family = *rc::gen::element(Family::valence, Family::density);
         RandomMeshOptions o = *gen_family(family, 0, default_knobs);
@@ -239,8 +242,8 @@ TEST_CASE("valence and density: least face counts worked by hand", "[unit]") {
     o.components = 2;
     o.genus = 1;
     CHECK(min_faces(o) == min_faces(1, 0, 2) + 2 * 270);
-    o.knobs.edge_ratio = 10;   // K = 4 + 1
-    o.knobs.anisotropy = 1;    // J = 2 + 1
+    o.knobs.edge_ratio = 10;  // K = 4 + 1
+    o.knobs.anisotropy = 1;   // J = 2 + 1
     CHECK(min_faces(o) == min_faces(1, 0, 2) + 2 * (48 + 2 + 30));
     o = RandomMeshOptions{};
     o.family = Family::valence;

@@ -45,7 +45,8 @@ namespace {
 /// Holes in 0–5 and components in 1–3 (the ranges the property tests cover everywhere), total
 /// genus 0–2, with every noise level of gen_mesh_options.
 rc::Gen<fhr::testing::GeneratedMesh> gen_open_mesh(std::size_t max_faces) {
-    return fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = max_faces, .max_holes = 5, .max_components = 3});
+    return fhr::testing::gen_mesh(
+        {.min_genus = 0, .max_genus = 2, .max_faces = max_faces, .max_holes = 5, .max_components = 3});
 }
 
 }  // namespace
@@ -58,13 +59,13 @@ TEST_CASE("min_faces is 12 for genus 0 and 36g + 28 otherwise", "[unit]") {
 TEST_CASE("min_faces with holes and components: 2Q of each component's coarsest block, summed", "[unit]") {
     // Worked by hand from paper_notes/generator.md: at resolution (1,1,1) a W x H block with g
     // genus cells and b holes has Q = 2(WH − g) − b + 2(W + H) + 4g unit squares.
-    CHECK(min_faces(0, 1) == 10);   // cube without its top: 1 + 4
-    CHECK(min_faces(0, 2) == 8);    // a tube: 0 + 4
-    CHECK(min_faces(0, 3) == 22);   // 3 x 1 cells: 3 + 8
-    CHECK(min_faces(0, 4) == 20);   // 2 + 8
-    CHECK(min_faces(0, 5) == 34);   // 5 x 1 cells: 5 + 12
-    CHECK(min_faces(1, 5) == 54);   // 3 x 3 cells, 8 places for holes: 11 + 12 + 4
-    CHECK(min_faces(1, 9) == 78);   // 5 x 3 cells: (28 − 9) + 16 + 4
+    CHECK(min_faces(0, 1) == 10);     // cube without its top: 1 + 4
+    CHECK(min_faces(0, 2) == 8);      // a tube: 0 + 4
+    CHECK(min_faces(0, 3) == 22);     // 3 x 1 cells: 3 + 8
+    CHECK(min_faces(0, 4) == 20);     // 2 + 8
+    CHECK(min_faces(0, 5) == 34);     // 5 x 1 cells: 5 + 12
+    CHECK(min_faces(1, 5) == 54);     // 3 x 3 cells, 8 places for holes: 11 + 12 + 4
+    CHECK(min_faces(1, 9) == 78);     // 5 x 3 cells: (28 − 9) + 16 + 4
     CHECK(min_faces(0, 0, 3) == 36);  // three cubes
     // Totals spread over 3 components: genus 1, 1, 0 and holes 2, 2, 1: 60 + 60 + 10.
     CHECK(min_faces(2, 5, 3) == 130);
@@ -82,16 +83,14 @@ TEST_CASE("the smallest meshes exist for genus 0 to 8 (GEN-1..3, GEN-6)", "[unit
     }
 }
 
-TEST_CASE("generated meshes are valid closed meshes of the requested genus and size (GEN-1, 2, 3, 6)",
-          "[property]") {
+TEST_CASE("generated meshes are valid closed meshes of the requested genus and size (GEN-1, 2, 3, 6)", "[property]") {
     rc::prop("GEN-1,2,3,6", [] {
         const fhr::testing::GeneratedMesh m = *fhr::testing::gen_closed_mesh(0, 4, 3000);
         check_generated(m.options, m);
     });
 }
 
-TEST_CASE("with holes and components: the requested loops, components, genus and size (GEN-1, 2, 3, 6)",
-          "[property]") {
+TEST_CASE("with holes and components: the requested loops, components, genus and size (GEN-1, 2, 3, 6)", "[property]") {
     rc::prop("GEN-1,2,3,6 with boundary", [] {
         const fhr::testing::GeneratedMesh m = *gen_open_mesh(3000);
         check_generated(m.options, m);
@@ -102,7 +101,8 @@ TEST_CASE("generated meshes are embedded and their components disjoint (exact pr
     rc::prop("no two triangles meet beyond what they share (fhr::generate::find_self_intersection)", [] {
         const fhr::testing::GeneratedMesh m = *gen_open_mesh(1200);
         const auto pair = fhr::generate::find_self_intersection(m);
-        if (pair) RC_FAIL("faces " + std::to_string((*pair)[0].idx()) + " and " + std::to_string((*pair)[1].idx()) + " meet");
+        if (pair)
+            RC_FAIL("faces " + std::to_string((*pair)[0].idx()) + " and " + std::to_string((*pair)[1].idx()) + " meet");
     });
 }
 
@@ -152,7 +152,8 @@ TEST_CASE("generated meshes pass the strict input builder unchanged (GEN-5)", "[
 
 TEST_CASE("with holes and components they pass the builder that allows both, unchanged (GEN-5)", "[property]") {
     rc::prop("GEN-5 with boundary", [] {
-        check_builds_unchanged(*gen_open_mesh(2000), fhr::BuildOptions{.require_closed = false, .require_connected = false});
+        check_builds_unchanged(*gen_open_mesh(2000),
+                               fhr::BuildOptions{.require_closed = false, .require_connected = false});
     });
 }
 
@@ -187,8 +188,7 @@ TEST_CASE("with holes and components too, the output does not depend on the comp
     CHECK(mesh_hash(random_mesh({2, 1000, 7, 0.1, 0, 2})) == 0x5b513c92f89ab845ull);
 }
 
-TEST_CASE("GEN-4: recipes without holes and with one component give the closed generator's pinned meshes",
-          "[unit]") {
+TEST_CASE("GEN-4: recipes without holes and with one component give the closed generator's pinned meshes", "[unit]") {
     // Recipes are stable across versions. These hashes (mesh_hash) were recorded from the
     // generator of commit 181923c, which had neither holes nor components, by a separate program
     // linked against that commit's libfhr_generate; the first four ones' recipes cover each genus
@@ -198,10 +198,14 @@ TEST_CASE("GEN-4: recipes without holes and with one component give the closed g
         std::uint64_t hash;
     };
     const Pinned pinned[] = {
-        {{0, 12, 0, 0.0}, 0x089d3593bab46aa5ull},          {{0, 1000, 1, 0.0}, 0x80a4e15cc2c506a5ull},
-        {{1, 100, 3, 0.25}, 0x3e4ae946208b9c5bull},        {{2, 1000, 7, 0.1}, 0x8ec6efc2c22ec417ull},
-        {{3, 2000, 42, 0.05}, 0xdd4b5e7ef85e376bull},      {{4, 5000, 9, 0.25}, 0xe98b26082694d6feull},
-        {{0, 20000, 123456789, 0.1}, 0x7c1f5fac99ee45aeull}, {{8, 4000, 8, 0.2}, 0xc179b566da97ab2bull},
+        {{0, 12, 0, 0.0}, 0x089d3593bab46aa5ull},
+        {{0, 1000, 1, 0.0}, 0x80a4e15cc2c506a5ull},
+        {{1, 100, 3, 0.25}, 0x3e4ae946208b9c5bull},
+        {{2, 1000, 7, 0.1}, 0x8ec6efc2c22ec417ull},
+        {{3, 2000, 42, 0.05}, 0xdd4b5e7ef85e376bull},
+        {{4, 5000, 9, 0.25}, 0xe98b26082694d6feull},
+        {{0, 20000, 123456789, 0.1}, 0x7c1f5fac99ee45aeull},
+        {{8, 4000, 8, 0.2}, 0xc179b566da97ab2bull},
     };
     for (const Pinned& p : pinned) {
         INFO(fhr::testing::generate_command(p.options));
@@ -301,7 +305,8 @@ TEST_CASE("with holes every face count from min_faces up is reachable, odd ones 
     struct Counts {
         int genus, holes, components;
     };
-    for (const Counts& k : {Counts{0, 1, 1}, Counts{0, 2, 1}, Counts{1, 3, 1}, Counts{0, 5, 1}, Counts{1, 2, 3}, Counts{2, 4, 2}}) {
+    for (const Counts& k :
+         {Counts{0, 1, 1}, Counts{0, 2, 1}, Counts{1, 3, 1}, Counts{0, 5, 1}, Counts{1, 2, 3}, Counts{2, 4, 2}}) {
         const std::size_t least = min_faces(k.genus, k.holes, k.components);
         for (std::size_t f = least; f <= least + 300; ++f) {
             const TriMesh m = random_mesh({k.genus, f, f, 0.0, k.holes, k.components});
@@ -334,7 +339,8 @@ TEST_CASE("a large mesh: genus 3, 200,000 faces", "[slow]") {
     CHECK(smallest_corner_angle(m) >= fhr::generate::min_corner_angle_degrees * std::numbers::pi / 180 - 1e-9);
 }
 
-TEST_CASE("generated meshes survive write -> read -> build exactly, in every writable format (FMT-WRITE-2, GEN-5)", "[property]") {
+TEST_CASE("generated meshes survive write -> read -> build exactly, in every writable format (FMT-WRITE-2, GEN-5)",
+          "[property]") {
     rc::prop("file round trip", [] {
         const TriMesh m = *fhr::testing::gen_closed_mesh(0, 4, 1500);
         for (const char* ext : {"off", "obj", "ply"}) {
@@ -359,13 +365,19 @@ TEST_CASE("generated meshes survive write -> read -> build exactly, in every wri
 // holes and components, fewest faces, seed 0, no noise.
 TEST_CASE("LIB-7: fhr::testing recipes stay in bounds and shrink toward the smallest recipe", "[unit][library]") {
     const fhr::testing::MeshRanges closed{.min_genus = 1, .max_genus = 3, .max_faces = 800};
-    const fhr::testing::MeshRanges open{.min_genus = 1, .max_genus = 3, .max_faces = 800, .min_holes = 1, .max_holes = 5,
-                                        .min_components = 1, .max_components = 3};
+    const fhr::testing::MeshRanges open{.min_genus = 1,
+                                        .max_genus = 3,
+                                        .max_faces = 800,
+                                        .min_holes = 1,
+                                        .max_holes = 5,
+                                        .min_components = 1,
+                                        .max_components = 3};
     for (const fhr::testing::MeshRanges& r : {closed, open}) {
-        const auto gen = r.max_holes == 0 ? fhr::testing::gen_mesh_options(1, 3, 800) : fhr::testing::gen_mesh_options(r);
+        const auto gen =
+            r.max_holes == 0 ? fhr::testing::gen_mesh_options(1, 3, 800) : fhr::testing::gen_mesh_options(r);
         const auto in_bounds = [&](const RandomMeshOptions& o) {
-            return r.min_genus <= o.genus && o.genus <= r.max_genus && r.min_holes <= o.holes && o.holes <= r.max_holes &&
-                   r.min_components <= o.components && o.components <= r.max_components &&
+            return r.min_genus <= o.genus && o.genus <= r.max_genus && r.min_holes <= o.holes &&
+                   o.holes <= r.max_holes && r.min_components <= o.components && o.components <= r.max_components &&
                    o.faces >= min_faces(o.genus, o.holes, o.components) && o.faces <= r.max_faces &&
                    (o.holes > 0 || o.faces % 2 == 0);
         };
@@ -384,7 +396,8 @@ TEST_CASE("LIB-7: fhr::testing recipes stay in bounds and shrink toward the smal
                 auto shrinks = current.shrinks();
                 const auto first = shrinks.next();
                 if (!first) break;
-                INFO(fhr::testing::generate_command(current.value()) << " -> " << fhr::testing::generate_command(first->value()));
+                INFO(fhr::testing::generate_command(current.value())
+                     << " -> " << fhr::testing::generate_command(first->value()));
                 CHECK(in_bounds(first->value()));
                 CHECK(smaller(first->value(), current.value()));
                 current = *first;

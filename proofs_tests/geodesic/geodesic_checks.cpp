@@ -98,10 +98,12 @@ double fan_position(const TriMesh& m, const Fan& fan, VertexId v, const SurfaceP
     const std::size_t n = fan.edges.size();
     for (std::size_t k = 0; k < n; ++k) {
         const HalfedgeId g = fan.edges[k];
-        const bool on_edge = q.kind == SurfacePoint::Kind::vertex ? q.vertex == m.to(g) : TriMesh::edge(q.halfedge) == TriMesh::edge(g);
+        const bool on_edge =
+            q.kind == SurfacePoint::Kind::vertex ? q.vertex == m.to(g) : TriMesh::edge(q.halfedge) == TriMesh::edge(g);
         if (on_edge) return fan.theta[k];
         // face(g), between the edges k − 1 and k (for k = 0 only when the fan is closed).
-        if ((k > 0 || fan.closed) && q.kind == SurfacePoint::Kind::edge && TriMesh::edge(q.halfedge) == TriMesh::edge(m.next(g))) {
+        if ((k > 0 || fan.closed) && q.kind == SurfacePoint::Kind::edge &&
+            TriMesh::edge(q.halfedge) == TriMesh::edge(m.next(g))) {
             const std::size_t before = k > 0 ? k - 1 : n - 1;
             return fan.theta[before] + angle(m.position(m.to(fan.edges[before])) - pv, pq - pv);
         }
@@ -124,10 +126,12 @@ std::optional<std::pair<double, double>> side_angles(const TriMesh& m, const Fac
 
 }  // namespace
 
-std::string path_violation(const TriMesh& m, const GeodesicPath& p, VertexId s, VertexId t, const FaceData<std::uint8_t>* mask,
-                           double conditioning) {
+std::string path_violation(const TriMesh& m, const GeodesicPath& p, VertexId s, VertexId t,
+                           const FaceData<std::uint8_t>* mask, double conditioning) {
     if (p.points.empty()) return "empty path";
-    const auto is_vertex = [](const SurfacePoint& q, VertexId v) { return q.kind == SurfacePoint::Kind::vertex && q.vertex == v; };
+    const auto is_vertex = [](const SurfacePoint& q, VertexId v) {
+        return q.kind == SurfacePoint::Kind::vertex && q.vertex == v;
+    };
     if (!is_vertex(p.points.front(), s) || !is_vertex(p.points.back(), t)) return "does not run from source to target";
     const BoundingBox box = bounding_box(m);
     const double diag = box.diagonal();
@@ -153,14 +157,16 @@ std::string path_violation(const TriMesh& m, const GeodesicPath& p, VertexId s, 
         // node was reached within cover_tolerance·|edge| of a window (exact.hpp): ≤ ℓ_max·that.
         if (p.points[i].kind == SurfacePoint::Kind::vertex) {
             double longest = 0;
-            m.for_each_outgoing(p.points[i].vertex, [&](HalfedgeId h) { longest = std::max(longest, edge_length(m, TriMesh::edge(h))); });
+            m.for_each_outgoing(p.points[i].vertex,
+                                [&](HalfedgeId h) { longest = std::max(longest, edge_length(m, TriMesh::edge(h))); });
             err[i] += geodesic::snap_tolerance * longest + geodesic::cover_tolerance * longest_edge;
         }
     }
     // 1e-12 relative, plus the rounding of the nodes' coordinates (about 4 ulps of the largest
     // coordinate per node, whatever the path's length: it matters for paths of ~10⁻⁴·diag).
     const double coordinate = std::max(box.min.cwiseAbs().maxCoeff(), box.max.cwiseAbs().maxCoeff());
-    const double length_tol = (1e-12 * p.length + 4 * DBL_EPSILON * coordinate * static_cast<double>(p.points.size())) * conditioning;
+    const double length_tol =
+        (1e-12 * p.length + 4 * DBL_EPSILON * coordinate * static_cast<double>(p.points.size())) * conditioning;
     if (std::abs(sum - p.length) > length_tol)
         return "length " + std::to_string(p.length) + " != segment sum, off by " + sci(rel_dev(sum, p.length));
     for (std::size_t i = 1; i + 1 < p.points.size(); ++i) {
@@ -171,7 +177,8 @@ std::string path_violation(const TriMesh& m, const GeodesicPath& p, VertexId s, 
             const Vec3 a = m.position(m.from(q.halfedge));
             const double unfolded = angle(x[i - 1] - x[i], a - x[i]) + angle(a - x[i], x[i + 1] - x[i]);
             if (std::abs(unfolded - std::numbers::pi) > tol)
-                return "bends by " + sci(unfolded - std::numbers::pi) + " (tolerance " + sci(tol) + ") at edge point " + std::to_string(i);
+                return "bends by " + sci(unfolded - std::numbers::pi) + " (tolerance " + sci(tol) + ") at edge point " +
+                       std::to_string(i);
             continue;
         }
         const auto sides = side_angles(m, mask, q.vertex, p.points[i - 1], p.points[i + 1]);
@@ -182,9 +189,9 @@ std::string path_violation(const TriMesh& m, const GeodesicPath& p, VertexId s, 
         const double tie = std::sqrt(2 * node_error * (a + b) / (a * b));
         const double least = std::min(sides->first, sides->second);
         if (!(least >= std::numbers::pi - tol - tie))
-            return std::string("a side angle is π − ") + sci(std::numbers::pi - least) + " (tolerance " + sci(tol + tie) + ") at " +
-                   (std::isinf(sides->second) ? "boundary " : "") + "vertex " + std::to_string(q.vertex.idx()) + " (node " +
-                   std::to_string(i) + ")";
+            return std::string("a side angle is π − ") + sci(std::numbers::pi - least) + " (tolerance " +
+                   sci(tol + tie) + ") at " + (std::isinf(sides->second) ? "boundary " : "") + "vertex " +
+                   std::to_string(q.vertex.idx()) + " (node " + std::to_string(i) + ")";
     }
     return "";
 }
@@ -194,7 +201,8 @@ VertexPassages vertex_passages(const TriMesh& m, const GeodesicPath& p) {
     const auto& pts = p.points;
     for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
         const bool vv = pts[i].kind == SurfacePoint::Kind::vertex && pts[i + 1].kind == SurfacePoint::Kind::vertex;
-        if (vv && m.is_boundary(TriMesh::edge(m.find_halfedge(pts[i].vertex, pts[i + 1].vertex)))) ++count.boundary_edges;
+        if (vv && m.is_boundary(TriMesh::edge(m.find_halfedge(pts[i].vertex, pts[i + 1].vertex))))
+            ++count.boundary_edges;
         if (i == 0 || pts[i].kind != SurfacePoint::Kind::vertex) continue;
         const VertexId v = pts[i].vertex;
         if (!m.is_boundary(v)) {
@@ -220,7 +228,8 @@ double needle_ratio(const TriMesh& m) {
 }
 
 bool passes_a_vertex(const GeodesicPath& p) {
-    return std::any_of(p.points.begin() + 1, p.points.end() - 1, [](const SurfacePoint& q) { return q.kind == SurfacePoint::Kind::vertex; });
+    return std::any_of(p.points.begin() + 1, p.points.end() - 1,
+                       [](const SurfacePoint& q) { return q.kind == SurfacePoint::Kind::vertex; });
 }
 
 std::vector<std::vector<VertexId>> boundary_loop_vertices(const TriMesh& m) {
@@ -240,7 +249,8 @@ std::vector<std::pair<VertexId, VertexId>> hugging_pairs(const TriMesh& m) {
     std::vector<std::pair<VertexId, VertexId>> pairs;
     for (const std::vector<VertexId>& loop : boundary_loop_vertices(m)) {
         const std::size_t n = loop.size();
-        const auto reflex = std::max_element(loop.begin(), loop.end(), [&](VertexId a, VertexId b) { return angle_sum(m, a) < angle_sum(m, b); });
+        const auto reflex = std::max_element(loop.begin(), loop.end(),
+                                             [&](VertexId a, VertexId b) { return angle_sum(m, a) < angle_sum(m, b); });
         const auto r = static_cast<std::size_t>(reflex - loop.begin());
         for (std::size_t k = 1; k <= 3 && 2 * k < n; ++k) pairs.emplace_back(loop[(r + n - k) % n], loop[(r + k) % n]);
         if (n >= 4) pairs.emplace_back(loop[r], loop[(r + n / 2) % n]);

@@ -76,7 +76,8 @@ std::vector<double> compare_with_cgal(const TriMesh& m, VertexId s, Tally& tally
         // CGAL 5.5 can report too short a distance from a source on the border (github.com/CGAL/cgal/issues/6681;
         // a mesh of genus 1 with 3 holes gave 3.2641 where fhr's path, and a Steiner graph of 16
         // points per edge, give 3.3166): there d(s, t) is taken from t, CGAL's source off the border.
-        if (dev > 1e-9 && m.is_boundary(s) && !m.is_boundary(t)) dev = rel_dev(g.distance(t), (*cgal_distances(m, t))[s.idx()]);
+        if (dev > 1e-9 && m.is_boundary(s) && !m.is_boundary(t))
+            dev = rel_dev(g.distance(t), (*cgal_distances(m, t))[s.idx()]);
         tally.max_dev = std::max(tally.max_dev, dev);
         tally.unreachable += std::isinf(oracle[t.idx()]);
     }
@@ -85,7 +86,8 @@ std::vector<double> compare_with_cgal(const TriMesh& m, VertexId s, Tally& tally
         const GeodesicPath p = g.path_to(t);
         const std::string violation = path_violation(m, p, s, t);
         if (tally.violation.empty() && !violation.empty())
-            tally.violation = "source " + std::to_string(s.idx()) + " target " + std::to_string(t.idx()) + ": " + violation;
+            tally.violation =
+                "source " + std::to_string(s.idx()) + " target " + std::to_string(t.idx()) + ": " + violation;
         tally.add(test::vertex_passages(m, p));
         ++tally.paths;
     }
@@ -98,8 +100,8 @@ TEST_CASE("GEO-10 and GEO-4: exact distances equal CGAL's on random meshes with 
           "[geodesic][oracle][property]") {
     Tally tally;
     rc::prop("from a boundary vertex and a random one to all vertices", [&] {
-        const fhr::testing::GeneratedMesh m =
-            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1000, .min_holes = 1, .max_holes = 5, .max_components = 3});
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_mesh(
+            {.min_genus = 0, .max_genus = 2, .max_faces = 1000, .min_holes = 1, .max_holes = 5, .max_components = 3});
         const std::vector<std::vector<VertexId>> ls = test::boundary_loop_vertices(m);
         const std::vector<VertexId>& loop = ls[*rc::gen::inRange<std::size_t>(0, ls.size())];
         const VertexId on_boundary = loop[*rc::gen::inRange<std::size_t>(0, loop.size())];
@@ -114,19 +116,20 @@ TEST_CASE("GEO-10 and GEO-4: exact distances equal CGAL's on random meshes with 
         RC_ASSERT(mine.violation == "");
     });
     const std::string max_dev = sci(tally.max_dev);
-    CAPTURE(tally.pairs, tally.unreachable, tally.paths, max_dev, tally.seen.interior, tally.seen.boundary, tally.seen.boundary_bends,
-            tally.seen.boundary_edges);
+    CAPTURE(tally.pairs, tally.unreachable, tally.paths, max_dev, tally.seen.interior, tally.seen.boundary,
+            tally.seen.boundary_bends, tally.seen.boundary_edges);
     CHECK(tally.max_dev <= 1e-9);
     CHECK(tally.unreachable > 0);
     CHECK(tally.seen.boundary_bends > 0);
     CHECK(tally.seen.boundary_edges > 0);
 }
 
-TEST_CASE("GEO-11: paths around a hole (along the boundary, wrapping a reflex vertex) equal CGAL's", "[geodesic][oracle][property]") {
+TEST_CASE("GEO-11: paths around a hole (along the boundary, wrapping a reflex vertex) equal CGAL's",
+          "[geodesic][oracle][property]") {
     Tally tally;
     rc::prop("pairs on one loop around its most reflex vertex", [&] {
-        const fhr::testing::GeneratedMesh m =
-            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 400, .min_holes = 1, .max_holes = 5, .max_components = 3});
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_mesh(
+            {.min_genus = 0, .max_genus = 2, .max_faces = 400, .min_holes = 1, .max_holes = 5, .max_components = 3});
         std::map<VertexId, std::vector<VertexId>> targets;
         for (const auto& [a, b] : test::hugging_pairs(m)) targets[a].push_back(b);
         // one CGAL tree per source, all its targets at once
@@ -144,7 +147,8 @@ TEST_CASE("GEO-11: paths around a hole (along the boundary, wrapping a reflex ve
 TEST_CASE("GEO-12 and GEO-E5: libcgal-demo meshes with boundary agree with CGAL, exactly and by the ellipse search",
           "[geodesic][oracle][real]") {
     std::size_t meshes = 0;
-    for (const char* name : {"cylinder.off", "holes.off", "mech-holes-shark.off", "lion-head.off", "blobby_3cc.off", "elephant-with-holes.off"}) {
+    for (const char* name : {"cylinder.off", "holes.off", "mech-holes-shark.off", "lion-head.off", "blobby_3cc.off",
+                             "elephant-with-holes.off"}) {
         const std::string path = test::cgal_mesh(name);
         ++meshes;
         const TriMesh m = test::load_mesh(path);
@@ -175,8 +179,9 @@ TEST_CASE("GEO-12 and GEO-E5: libcgal-demo meshes with boundary agree with CGAL,
         const std::string max_dev = sci(tally.max_dev), max_ellipse_dev = sci(ellipse_dev);
         const std::size_t border = certificates[geodesic::EllipsePath::Certificate::border],
                           search = certificates[geodesic::EllipsePath::Certificate::search];
-        CAPTURE(name, s.idx(), angle_sum(m, s), tally.pairs, tally.unreachable, tally.paths, max_dev, tally.seen.boundary,
-                tally.seen.boundary_bends, tally.seen.boundary_edges, ellipse_paths, max_ellipse_dev, border, search);
+        CAPTURE(name, s.idx(), angle_sum(m, s), tally.pairs, tally.unreachable, tally.paths, max_dev,
+                tally.seen.boundary, tally.seen.boundary_bends, tally.seen.boundary_edges, ellipse_paths,
+                max_ellipse_dev, border, search);
         CHECK(tally.violation == "");
         CHECK(tally.max_dev <= 1e-9);
         CHECK(ellipse_dev <= 1e-9);
@@ -194,7 +199,9 @@ namespace {
 /// (π), the outer corners convex (π/2).
 struct SquareWithHole {
     TriMesh mesh;
-    VertexId at(int i, int j) const { return VertexId(static_cast<std::uint32_t>(7 * j + i - (7 * j + i > 24 ? 1 : 0))); }
+    VertexId at(int i, int j) const {
+        return VertexId(static_cast<std::uint32_t>(7 * j + i - (7 * j + i > 24 ? 1 : 0)));
+    }
     SquareWithHole() {
         std::vector<Vec3> pts;
         for (int j = 0; j <= 6; ++j)
@@ -216,8 +223,9 @@ struct SquareWithHole {
 
 // Analytic distances in a plane domain with a polygonal hole: the shortest path is the shortest
 // polyline through the hole's corners that stays out of the hole (the visibility graph).
-TEST_CASE("GEO-13 and GEO-4: a flat square with a square hole: analytic distances, bends only at reflex boundary vertices",
-          "[geodesic][unit]") {
+TEST_CASE(
+    "GEO-13 and GEO-4: a flat square with a square hole: analytic distances, bends only at reflex boundary vertices",
+    "[geodesic][unit]") {
     const SquareWithHole q;
     const TriMesh& m = q.mesh;
     m.validate();
@@ -274,8 +282,10 @@ TEST_CASE("GEO-13 and GEO-4: a flat square with a square hole: analytic distance
         }
         return p;
     };
-    CHECK_THAT(path_violation(m, fake({{1, 0}, {0, 0}, {0, 1}}), q.at(1, 0), q.at(0, 1)), Catch::Contains("at boundary vertex"));
-    CHECK_THAT(path_violation(m, fake({{3, 2}, {4, 2}, {3, 1}}), q.at(3, 2), q.at(3, 1)), Catch::Contains("at boundary vertex"));
+    CHECK_THAT(path_violation(m, fake({{1, 0}, {0, 0}, {0, 1}}), q.at(1, 0), q.at(0, 1)),
+               Catch::Contains("at boundary vertex"));
+    CHECK_THAT(path_violation(m, fake({{3, 2}, {4, 2}, {3, 1}}), q.at(3, 2), q.at(3, 1)),
+               Catch::Contains("at boundary vertex"));
     // and accepts the turn towards the hole there: around the corner, fan-side angle 3π/2 − π/4
     CHECK(path_violation(m, fake({{3, 2}, {4, 2}, {5, 3}}), q.at(3, 2), q.at(5, 3)) == "");
 }
@@ -295,5 +305,6 @@ TEST_CASE("GEO-14: a target on another component is unreachable: no distance, no
     CHECK(p.points.empty());
     CHECK(std::isinf(p.length));
     const std::vector<double> oracle = *cgal_distances(m, s);
-    for (VertexId v : m.vertices()) CHECK(std::isinf(oracle[v.idx()]) == (comp.vertex_component[v] != comp.vertex_component[s]));
+    for (VertexId v : m.vertices())
+        CHECK(std::isinf(oracle[v.idx()]) == (comp.vertex_component[v] != comp.vertex_component[s]));
 }

@@ -220,7 +220,8 @@ TEST_CASE("GEO-E2: bad requests are refused", "[unit][geodesic]") {
     const TriMesh m = generate::random_closed_mesh({0, 100, 1, 0.0});
     CHECK_THROWS_AS(ellipse_shortest_path(m, VertexId(3), VertexId(3)), InvalidInput);
     CHECK_THROWS_WITH(ellipse_shortest_path(m, VertexId(3), VertexId(9999)), Catch::Contains("out of range"));
-    CHECK_THROWS_WITH(ellipse_shortest_path(m, VertexId(3), VertexId(4), {1.0}), Catch::Contains("K must be greater than 1"));
+    CHECK_THROWS_WITH(ellipse_shortest_path(m, VertexId(3), VertexId(4), {1.0}),
+                      Catch::Contains("K must be greater than 1"));
     // A target on another component (the first and last vertex of a 3-component mesh).
     const TriMesh three = generate::random_mesh({1, 300, 7, 0.1, 3, 3});
     const VertexId last(static_cast<std::uint32_t>(three.n_vertices() - 1));
@@ -231,12 +232,13 @@ TEST_CASE("GEO-E2: bad requests are refused", "[unit][geodesic]") {
 // T is a surface with holes and several components; the path may run along a hole.
 // The certificates' argument only needs that a path leaves T_jk through its artificial border
 // (paper_notes/ellipse.md), so every kind must still agree with the unrestricted length.
-TEST_CASE("GEO-E5: on meshes with holes and components the ellipse path is a shortest path of T", "[property][geodesic]") {
+TEST_CASE("GEO-E5: on meshes with holes and components the ellipse path is a shortest path of T",
+          "[property][geodesic]") {
     std::map<Certificate, std::size_t> seen, seen_reaching_hole;
     std::size_t hugging = 0, grown = 0;
     rc::prop("ellipse vs whole mesh, with boundary", [&] {
-        const fhr::testing::GeneratedMesh m =
-            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 1, .max_holes = 5, .max_components = 3});
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_mesh(
+            {.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 1, .max_holes = 5, .max_components = 3});
         const auto pairs = test::hugging_pairs(m);
         const Components comp = connected_components(m);
         VertexId a, b;
@@ -259,7 +261,8 @@ TEST_CASE("GEO-E5: on meshes with holes and components the ellipse path is a sho
         bool reaches_hole = false;
         for (FaceId f : m.faces()) {
             const HalfedgeId h = m.halfedge(f);
-            for (HalfedgeId g : {h, m.next(h), m.next(m.next(h))}) reaches_hole = reaches_hole || (T_jk[f] && m.is_boundary(TriMesh::twin(g)));
+            for (HalfedgeId g : {h, m.next(h), m.next(m.next(h))})
+                reaches_hole = reaches_hole || (T_jk[f] && m.is_boundary(TriMesh::twin(g)));
         }
         const test::VertexPassages p = test::vertex_passages(m, e.path);
         ++seen[e.certificate];
@@ -267,8 +270,9 @@ TEST_CASE("GEO-E5: on meshes with holes and components the ellipse path is a sho
         hugging += p.boundary + p.boundary_edges > 0;
         grown += e.attempts > 1;
     });
-    CAPTURE(seen[Certificate::border], seen[Certificate::search], seen[Certificate::replaced], seen[Certificate::whole_mesh],
-            seen_reaching_hole[Certificate::border], seen_reaching_hole[Certificate::search], hugging, grown);
+    CAPTURE(seen[Certificate::border], seen[Certificate::search], seen[Certificate::replaced],
+            seen[Certificate::whole_mesh], seen_reaching_hole[Certificate::border],
+            seen_reaching_hole[Certificate::search], hugging, grown);
     CHECK(seen_reaching_hole[Certificate::border] > 0);
     CHECK(seen_reaching_hole[Certificate::search] > 0);
     CHECK(hugging > 0);
@@ -282,8 +286,8 @@ TEST_CASE("GEO-E5: on meshes with holes and components the ellipse path is a sho
 TEST_CASE("GEO-E6: a path that hugs a hole inside T_jk is accepted at K_0", "[property][geodesic]") {
     std::size_t checked = 0;
     rc::prop("hugging pairs at K_0 = 1.06", [&] {
-        const fhr::testing::GeneratedMesh m =
-            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 1, .max_holes = 5, .max_components = 3});
+        const fhr::testing::GeneratedMesh m = *fhr::testing::gen_mesh(
+            {.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 1, .max_holes = 5, .max_components = 3});
         const auto pairs = test::hugging_pairs(m);
         const auto [a, b] = pairs[*rc::gen::inRange<std::size_t>(0, pairs.size())];
         const double K0 = 1.06;
@@ -309,7 +313,8 @@ TEST_CASE("GEO-E6: a path that hugs a hole inside T_jk is accepted at K_0", "[pr
 
 // With several components T_jk can grow at most to a's component, never to all of T: the search
 // then has no artificial border left and the border certificate must hold (ellipse.md).
-TEST_CASE("GEO-E5: a T_jk that covers its whole component (of several) is certified by the border", "[unit][geodesic]") {
+TEST_CASE("GEO-E5: a T_jk that covers its whole component (of several) is certified by the border",
+          "[unit][geodesic]") {
     std::map<Certificate, std::size_t> seen;
     for (std::uint64_t seed = 1; seed <= 4; ++seed) {
         const TriMesh m = generate::random_mesh({0, 60, seed, 0.1, 2, 2});
@@ -324,7 +329,8 @@ TEST_CASE("GEO-E5: a T_jk that covers its whole component (of several) is certif
                 if (e.ellipse_faces == faces0) ++seen[e.certificate];
             }
     }
-    CAPTURE(seen[Certificate::border], seen[Certificate::search], seen[Certificate::replaced], seen[Certificate::whole_mesh]);
+    CAPTURE(seen[Certificate::border], seen[Certificate::search], seen[Certificate::replaced],
+            seen[Certificate::whole_mesh]);
     CHECK(seen[Certificate::border] > 0);
     CHECK(seen[Certificate::search] + seen[Certificate::replaced] + seen[Certificate::whole_mesh] == 0);
 }

@@ -39,12 +39,12 @@
 #include "geodesic/geodesic_checks.hpp"
 
 using namespace fhr;
-using test::icosphere;
 using geodesic::ExactGeodesic;
 using geodesic::ExactOptions;
 using geodesic::GeodesicPath;
 using test::cgal_distances;
 using test::faces_at;
+using test::icosphere;
 using test::needle_ratio;
 using test::passes_a_vertex;
 using test::path_violation;
@@ -103,7 +103,6 @@ TriMesh flat_square(int n, double jitter, std::uint64_t seed) {
     return TriMesh::from_triangles(std::move(pts), tris);
 }
 
-
 /// The faces of the path plus `rings` rings of faces around them (GEO-6).
 FaceData<std::uint8_t> path_neighbourhood(const TriMesh& m, const GeodesicPath& p, int rings) {
     FaceData<std::uint8_t> mask(m.n_faces(), 0);
@@ -115,7 +114,9 @@ FaceData<std::uint8_t> path_neighbourhood(const TriMesh& m, const GeodesicPath& 
         for (FaceId f : m.faces())
             if (mask[f])
                 for (VertexId v : m.face_vertices(f))
-                    m.for_each_outgoing(v, [&](HalfedgeId h) { if (m.face(h).valid()) grown[m.face(h)] = 1; });
+                    m.for_each_outgoing(v, [&](HalfedgeId h) {
+                        if (m.face(h).valid()) grown[m.face(h)] = 1;
+                    });
         mask = std::move(grown);
     }
     return mask;
@@ -205,7 +206,8 @@ void agrees_with_cgal(const char* name, const TriMesh& m) {
 }  // namespace
 
 TEST_CASE("GEO-1 and GEO-4: the fandisk and the elephant (genus 3) agree with CGAL", "[geodesic][oracle][real]") {
-    for (const char* name : {"fandisk.off", "elephant.off"}) agrees_with_cgal(name, test::load_mesh(test::cgal_mesh(name)));
+    for (const char* name : {"fandisk.off", "elephant.off"})
+        agrees_with_cgal(name, test::load_mesh(test::cgal_mesh(name)));
 }
 
 TEST_CASE("GEO-1 and GEO-4: the rocker (genus 1) agrees with CGAL", "[geodesic][oracle][real][shared]") {
@@ -329,7 +331,8 @@ TEST_CASE("GEO-2: symmetry; triangle inequality; Euclidean lower and edge-path u
     });
 }
 
-TEST_CASE("GEO-3: on a flat square every distance is Euclidean and every path one straight segment", "[geodesic][unit]") {
+TEST_CASE("GEO-3: on a flat square every distance is Euclidean and every path one straight segment",
+          "[geodesic][unit]") {
     for (const double jitter : {0.0, 0.3}) {
         const TriMesh m = flat_square(12, jitter, 7);
         for (const VertexId s : {VertexId(0), VertexId(6 * 13 + 6), VertexId(13 * 13 - 1)}) {
@@ -354,19 +357,21 @@ TEST_CASE("GEO-5: a shortest path along mesh edges is reported vertex to vertex"
     const TriMesh m = flat_square(8, 0.0, 1);
     // Vertex (i, j) is 9j + i. Row 0 runs along the boundary, row 4 through flat interior vertices,
     // the diagonal i = j along the grid's diagonal edges.
-    for (const auto& [s, t, nodes] : {std::tuple{0u, 8u, 9u}, std::tuple{36u, 44u, 9u}, std::tuple{0u, 80u, 9u},
-                                      std::tuple{2u, 6u, 5u}}) {
+    for (const auto& [s, t, nodes] :
+         {std::tuple{0u, 8u, 9u}, std::tuple{36u, 44u, 9u}, std::tuple{0u, 80u, 9u}, std::tuple{2u, 6u, 5u}}) {
         ExactGeodesic g(m, VertexId(s));
         g.propagate(std::array{VertexId(t)});
         const GeodesicPath p = g.path_to(VertexId(t));
         CAPTURE(s, t);
         CHECK(p.points.size() == nodes);
-        CHECK(std::all_of(p.points.begin(), p.points.end(), [](const SurfacePoint& q) { return q.kind == SurfacePoint::Kind::vertex; }));
+        CHECK(std::all_of(p.points.begin(), p.points.end(),
+                          [](const SurfacePoint& q) { return q.kind == SurfacePoint::Kind::vertex; }));
     }
 }
 
-TEST_CASE("GEO-6: face masks: a path's neighbourhood keeps its length; a cut never shortens it; ellipses agree with CGAL",
-          "[geodesic][oracle][property]") {
+TEST_CASE(
+    "GEO-6: face masks: a path's neighbourhood keeps its length; a cut never shortens it; ellipses agree with CGAL",
+    "[geodesic][oracle][property]") {
     std::size_t ellipse_pairs = 0;
     rc::prop("masked propagation", [&] {
         const fhr::testing::GeneratedMesh m = *fhr::testing::gen_closed_mesh(0, 3, 600);
@@ -397,14 +402,16 @@ TEST_CASE("GEO-6: face masks: a path's neighbourhood keeps its length; a cut nev
         std::vector<double> from_a(m.n_vertices());
         for (VertexId v : m.vertices()) from_a[v.idx()] = g.distance(v);
         const std::vector<double> from_b = exact_distances(m, b);
-        const FaceData<std::uint8_t> tight = ellipse(m, from_a, from_b, g.distance(b), *rc::gen::element(1.0, 1.02, 1.06));
+        const FaceData<std::uint8_t> tight =
+            ellipse(m, from_a, from_b, g.distance(b), *rc::gen::element(1.0, 1.02, 1.06));
         const auto oracle = cgal_distances(m, a, &tight);
         if (!oracle) return;  // CGAL cannot build a sub-mesh with a pinched vertex
         ExactGeodesic restricted(m, a, ExactOptions{&tight});
         restricted.propagate();
         for (VertexId v : m.vertices()) {
             RC_ASSERT(rel_dev(restricted.distance(v), (*oracle)[v.idx()]) <= 1e-9);
-            if (restricted.distance(v) < INFINITY) RC_ASSERT(path_violation(m, restricted.path_to(v), a, v, &tight) == "");
+            if (restricted.distance(v) < INFINITY)
+                RC_ASSERT(path_violation(m, restricted.path_to(v), a, v, &tight) == "");
             ellipse_pairs += restricted.distance(v) < INFINITY;
         }
     });
@@ -421,7 +428,8 @@ TEST_CASE("GEO-7: on icospheres the polyhedral distance converges to the geodesi
     // Geodetic latitude and longitude (degrees) of a point of the ellipsoid x² + y² + z²/(1−f)² = 1.
     const auto lat_lon = [&](const Vec3& p, double f) {
         const double r = std::hypot(p.x(), p.y());
-        return std::pair{std::atan2(p.z(), (1 - f) * (1 - f) * r) * 180 / std::numbers::pi, std::atan2(p.y(), p.x()) * 180 / std::numbers::pi};
+        return std::pair{std::atan2(p.z(), (1 - f) * (1 - f) * r) * 180 / std::numbers::pi,
+                         std::atan2(p.y(), p.x()) * 180 / std::numbers::pi};
     };
     for (const double f : {0.0, flattening}) {
         std::vector<double> error;
@@ -472,8 +480,10 @@ TEST_CASE("GEO-8: early stop gives the final distance on the fandisk's 171 domai
     for (const VertexId s : {pairs[0].first, pairs[60].first, pairs[120].first}) {
         const std::vector<double> oracle = *cgal_distances(m, s);
         for (std::size_t i = 0; i < pairs.size(); ++i)
-            if (pairs[i].first == s) count.add(paths[i].length, oracle[pairs[i].second.idx()]);
-            else if (pairs[i].second == s) count.add(paths[i].length, oracle[pairs[i].first.idx()]);
+            if (pairs[i].first == s)
+                count.add(paths[i].length, oracle[pairs[i].second.idx()]);
+            else if (pairs[i].second == s)
+                count.add(paths[i].length, oracle[pairs[i].first.idx()]);
     }
     const std::string max_dev = sci(count.max_dev);
     CAPTURE(count.pairs, max_dev);
@@ -489,8 +499,9 @@ TEST_CASE("GEO-8: early stop gives the final distance on the fandisk's 171 domai
 // is 0.300. (Shrunk by RapidCheck from a GEO-9 counterexample.)
 TEST_CASE("GEO-E4: a cap with an angle of π at its apex does not hide the face beyond it", "[unit][geodesic]") {
     TriMesh m = generate::random_closed_mesh({0, 82, 5463374062748197205ull, 0.0});
-    const std::vector<std::pair<std::uint32_t, double>> splits{{0, 1e-2}, {3, 1e-2}, {5, 1e-2}, {6, 1e-4}, {7, 1e-2}, {9, 1e-2},
-                                                               {8, 1e-2}, {10, 1e-3}, {4, 1e-2}, {11, 1e-3}, {1, 1e-2}};
+    const std::vector<std::pair<std::uint32_t, double>> splits{{0, 1e-2}, {3, 1e-2},  {5, 1e-2}, {6, 1e-4},
+                                                               {7, 1e-2}, {9, 1e-2},  {8, 1e-2}, {10, 1e-3},
+                                                               {4, 1e-2}, {11, 1e-3}, {1, 1e-2}};
     for (const auto& [index, t] : splits) {
         const HalfedgeId h = TriMesh::halfedge(EdgeId(index), 0);
         const Vec3 &a = m.position(m.from(h)), &b = m.position(m.to(h));

@@ -27,11 +27,11 @@
 #include "support/test_support.hpp"
 
 using namespace fhr;
-using test::icosphere;
 using geodesic::DistanceField;
 using geodesic::fast_marching;
 using geodesic::FastMarchingOptions;
 using geodesic::planar_update;
+using test::icosphere;
 
 namespace {
 
@@ -417,8 +417,9 @@ TEST_CASE("early stop: the values within max_distance are bitwise those of the f
         const double largest = *std::max_element(full.distance.begin(), full.distance.end());
         FastMarchingOptions o;
         // A radius at a vertex's distance exactly (ties at the boundary) or anywhere below.
-        o.max_distance = *rc::gen::element(0, 1) ? full.distance[VertexId(*rc::gen::inRange<VertexId::Index>(0, static_cast<VertexId::Index>(m.n_vertices())))]
-                                                   : largest * *rc::gen::inRange(0, 1001) / 1000.0;
+        o.max_distance = *rc::gen::element(0, 1) ? full.distance[VertexId(*rc::gen::inRange<VertexId::Index>(
+                                                       0, static_cast<VertexId::Index>(m.n_vertices())))]
+                                                 : largest * *rc::gen::inRange(0, 1001) / 1000.0;
         const DistanceField part = fast_marching(m, sources, o);
         std::size_t within = 0;
         for (VertexId v : m.vertices()) {
@@ -451,9 +452,11 @@ TEST_CASE("deterministic: repeated runs and reordered or repeated sources agree 
     });
 }
 
-TEST_CASE("ties go to the lower vertex index: sources, all at 0, are final in increasing index order", "[unit][geodesic]") {
+TEST_CASE("ties go to the lower vertex index: sources, all at 0, are final in increasing index order",
+          "[unit][geodesic]") {
     const TriMesh m = flat_grid(10);
-    for (const std::vector<std::uint32_t>& given : {std::vector<std::uint32_t>{70, 3, 41, 12}, {12, 41, 3, 70}, {41, 70, 12, 3}}) {
+    for (const std::vector<std::uint32_t>& given :
+         {std::vector<std::uint32_t>{70, 3, 41, 12}, {12, 41, 3, 70}, {41, 70, 12, 3}}) {
         std::vector<VertexId> sources;
         for (std::uint32_t v : given) sources.push_back(VertexId(v));
         const DistanceField f = fast_marching(m, sources);
@@ -484,7 +487,8 @@ TEST_CASE("fast marching refuses bad sources and handles empty ones", "[unit][ge
     CHECK(at_source.distance[VertexId(0)] == 0);
 }
 
-TEST_CASE("horse: the full field is valid, and early stop finalizes exactly the vertices within the bound", "[real][geodesic][shared]") {
+TEST_CASE("horse: the full field is valid, and early stop finalizes exactly the vertices within the bound",
+          "[real][geodesic][shared]") {
     FHR_SHARED_MESH_OR_SKIP(path, "horse.off");
     const TriMesh m = test::load_mesh(path);
     const std::vector<VertexId> source{VertexId(0)};

@@ -33,7 +33,8 @@ namespace {
 bool same_points(const std::vector<SurfacePoint>& p, const std::vector<SurfacePoint>& q) {
     if (p.size() != q.size()) return false;
     for (std::size_t i = 0; i < p.size(); ++i)
-        if (p[i].kind != q[i].kind || p[i].vertex != q[i].vertex || p[i].halfedge != q[i].halfedge || p[i].t != q[i].t) return false;
+        if (p[i].kind != q[i].kind || p[i].vertex != q[i].vertex || p[i].halfedge != q[i].halfedge || p[i].t != q[i].t)
+            return false;
     return true;
 }
 
@@ -129,7 +130,8 @@ TEST_CASE("GEO-15: searches alive at once on one workspace, then more of them th
     runs.clear();
     CHECK(exact(m, a, b, &workspace) == exact(m, a, b, nullptr));
     CHECK(same(marching(m, b, INFINITY, &workspace), marching(m, b, INFINITY, nullptr)));
-    CHECK(same(geodesic::ellipse_shortest_path(m, a, b, {.workspace = &workspace}), geodesic::ellipse_shortest_path(m, a, b)));
+    CHECK(same(geodesic::ellipse_shortest_path(m, a, b, {.workspace = &workspace}),
+               geodesic::ellipse_shortest_path(m, a, b)));
 }
 
 TEST_CASE("GEO-16: a search that stops early, is abandoned or ends by an exception hands its arrays back clean",
@@ -155,7 +157,8 @@ TEST_CASE("GEO-16: a search that stops early, is abandoned or ends by an excepti
     };
     SECTION("the ellipse search throws in the middle of its searches") {
         Workspace workspace;
-        CHECK_THROWS_AS(geodesic::ellipse_shortest_path(m, a, other_component, {.workspace = &workspace}), InvalidInput);
+        CHECK_THROWS_AS(geodesic::ellipse_shortest_path(m, a, other_component, {.workspace = &workspace}),
+                        InvalidInput);
         check_clean(workspace);
     }
     SECTION("a fast-marching run throws when continued with a NaN bound") {
@@ -215,7 +218,9 @@ TEST_CASE("GEO-17: focus fields give the ellipse search bitwise its own result, 
             cut.distance.resize(keep);
         }
         const geodesic::EllipsePath own = geodesic::ellipse_shortest_path(m, a, b, {.K = K});
-        RC_ASSERT(same(geodesic::ellipse_shortest_path(m, a, b, {.K = K, .workspace = &workspace, .field_a = &fa, .field_b = &fb}), own));
+        RC_ASSERT(same(
+            geodesic::ellipse_shortest_path(m, a, b, {.K = K, .workspace = &workspace, .field_a = &fa, .field_b = &fb}),
+            own));
         // Fields of other foci are not used.
         RC_ASSERT(same(geodesic::ellipse_shortest_path(m, b, a, {.K = K, .field_a = &fa, .field_b = &fb}),
                        geodesic::ellipse_shortest_path(m, b, a, {.K = K})));
@@ -228,7 +233,8 @@ TEST_CASE("GEO-17: advance_to a vertex that is final already accepts nothing mor
     const TriMesh m = generate::random_mesh({.genus = 2, .faces = 900, .seed = 3});
     const VertexId source(0);
     geodesic::FastMarching run(m, std::span(&source, 1));
-    const VertexId far(static_cast<VertexId::Index>(m.n_vertices() / 2)), near_(run.advance_to(far) < INFINITY ? run.finalized()[1] : far);
+    const VertexId far(static_cast<VertexId::Index>(m.n_vertices() / 2)),
+        near_(run.advance_to(far) < INFINITY ? run.finalized()[1] : far);
     const std::size_t accepted = run.finalized().size();
     CHECK(accepted < m.n_vertices());
     CHECK(run.advance_to(near_) == run.distance(near_));

@@ -35,9 +35,11 @@ TEST_CASE("FMT-OBJ-2/3: a tetrahedron is read exactly, 1-based indices become 0-
 }
 
 TEST_CASE("FMT-OBJ-3: the corner forms i, i/t, i//n and i/t/n", "[unit][io]") {
-    const fhr::PolygonSoup soup = parse_obj(tetra_vertices + "vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n"
-                                            "f 1/1 3/2 2/3\nf 1//1 2//1 4//1\nf 1/1/1 4/2/1 3/3/1\nf 2/-1 3/-2/-1 4\n",
-                                            "t.obj");
+    const fhr::PolygonSoup soup =
+        parse_obj(tetra_vertices +
+                      "vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n"
+                      "f 1/1 3/2 2/3\nf 1//1 2//1 4//1\nf 1/1/1 4/2/1 3/3/1\nf 2/-1 3/-2/-1 4\n",
+                  "t.obj");
     CHECK(soup.indices == std::vector<std::uint32_t>{0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3});
     CHECK(soup.polygon_line == std::vector<std::uint64_t>{9, 10, 11, 12});
 }
@@ -106,7 +108,8 @@ TEST_CASE("FMT-OBJ-3: malformed corners are refused", "[unit][io]") {
         INFO(corner);
         const fhr::InvalidInput e = face_refusal(std::string("f 1 2 ") + corner);
         CHECK(e.line() == 5);
-        CHECK_THAT(e.problem(), Contains("face 0:") && (Contains("malformed corner") || Contains("expected a vertex index")));
+        CHECK_THAT(e.problem(),
+                   Contains("face 0:") && (Contains("malformed corner") || Contains("expected a vertex index")));
     }
 }
 

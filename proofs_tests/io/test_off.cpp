@@ -110,8 +110,7 @@ TEST_CASE("FMT-OFF-1..5: a tetrahedron is read exactly, with its source lines", 
     CHECK(soup.polygon_line == std::vector<std::uint64_t>{7, 8, 9, 10});
 }
 
-TEST_CASE("FMT-OFF-1/2: counts on the header line, comments, blank lines, CRLF, no final newline",
-          "[unit][io]") {
+TEST_CASE("FMT-OFF-1/2: counts on the header line, comments, blank lines, CRLF, no final newline", "[unit][io]") {
     const std::string text =
         "# made by hand\r\nOFF 4 4 6 # counts here\r\n\r\n0 0 0\r\n1 0 0\r\n  # a comment line\r\n0 1 0\r\n"
         "0 0 1\r\n3 0 2 1\r\n3 0 1 3\r\n3 0 3 2\r\n3 1 2 3";
@@ -128,15 +127,18 @@ TEST_CASE("FMT-OFF-2: the edge count is optional and ignored", "[unit][io]") {
 }
 
 TEST_CASE("FMT-OFF-1/3/4: COFF, NOFF, STCNOFF vertex extras and face colours are skipped", "[unit][io]") {
-    const std::string coff = "COFF\n4 4 6\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n0 0 1 9 9 9 9\n"
-                             "3 0 2 1 0.5 0.5 0.5\n3 0 1 3 1 0 0 1\n3 0 3 2 7\n3 1 2 3\n";
+    const std::string coff =
+        "COFF\n4 4 6\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n0 0 1 9 9 9 9\n"
+        "3 0 2 1 0.5 0.5 0.5\n3 0 1 3 1 0 0 1\n3 0 3 2 7\n3 1 2 3\n";
     const fhr::PolygonSoup soup = parse_off(coff, "t.coff");
     CHECK(soup.points[3] == fhr::Vec3(0, 0, 1));
     CHECK(soup.indices.back() == 3);
     const std::string noff = "NOFF\n4 4 6\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n0 0 1 0 0 1\n" + tetra_faces;
     CHECK(parse_off(noff, "t.off").points[2] == fhr::Vec3(0, 1, 0));
-    const std::string stcnoff = "STCNOFF\n4 4 6\n0 0 0 0 0 1 1 1 1 1 0 0\n1 0 0 0 0 1 1 1 1 1 0 0\n"
-                                "0 1 0 0 0 1 1 1 1 1 0 0\n0 0 1 0 0 1 1 1 1 1 0 0\n" + tetra_faces;
+    const std::string stcnoff =
+        "STCNOFF\n4 4 6\n0 0 0 0 0 1 1 1 1 1 0 0\n1 0 0 0 0 1 1 1 1 1 0 0\n"
+        "0 1 0 0 0 1 1 1 1 1 0 0\n0 0 1 0 0 1 1 1 1 1 0 0\n" +
+        tetra_faces;
     CHECK(parse_off(stcnoff, "t.off").points.size() == 4);
 }
 
@@ -181,7 +183,8 @@ TEST_CASE("FMT-SIZE-1: absurd counts are refused before allocating", "[unit][io]
     text.resize(100, '\n');
     const auto start = std::chrono::steady_clock::now();
     const fhr::InvalidInput e = off_refusal(text);
-    CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(1));  // CLI-ERR-1: refused at once, not after a huge allocation
+    CHECK(std::chrono::steady_clock::now() - start <
+          std::chrono::seconds(1));  // CLI-ERR-1: refused at once, not after a huge allocation
     CHECK(e.line() == 2);
     CHECK_THAT(e.problem(), Contains("1000000000 vertices and 1000000000 faces") && Contains("truncated file"));
     // counts whose byte need overflows 64 bits saturate instead of wrapping around
@@ -193,8 +196,9 @@ TEST_CASE("FMT-SIZE-1: absurd counts are refused before allocating", "[unit][io]
 
 TEST_CASE("FMT-OFF-3/4: truncated vertex and face lists are refused", "[unit][io]") {
     // long coordinates make the file big enough for the size check, so the scan meets its end
-    const std::string long_vertices = "0.0000000000 0.0000000000 0.0000000000\n1.0000000000 0 0\n"
-                                      "0 1.0000000000 0\n0 0 1.0000000000\n";
+    const std::string long_vertices =
+        "0.0000000000 0.0000000000 0.0000000000\n1.0000000000 0 0\n"
+        "0 1.0000000000 0\n0 0 1.0000000000\n";
     const fhr::InvalidInput faces = off_refusal("OFF\n4 5 0\n" + long_vertices + tetra_faces);
     CHECK(faces.line() == 10);
     CHECK_THAT(faces.problem(), Contains("unexpected end of file: expected 5 faces, found 4"));
@@ -262,7 +266,8 @@ TEST_CASE("FMT-OFF-3: extra values on a plain OFF vertex line are refused", "[un
 }
 
 TEST_CASE("FMT-OFF-4: a face colour has at most 4 values", "[unit][io]") {
-    const fhr::InvalidInput e = off_refusal("OFF\n4 4 6\n" + tetra_vertices + "3 0 2 1 1 1 1 1 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    const fhr::InvalidInput e =
+        off_refusal("OFF\n4 4 6\n" + tetra_vertices + "3 0 2 1 1 1 1 1 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
     CHECK(e.line() == 7);
     CHECK_THAT(e.problem(), Contains("face 0: unexpected '1' after 3 indices and 4 colour values"));
     CHECK_THAT(off_refusal("OFF\n4 4 6\n" + tetra_vertices + "3 0 2 1 red\n3 0 1 3\n3 0 3 2\n3 1 2 3\n").problem(),

@@ -31,15 +31,24 @@ void put(std::string& out, std::string_view type, double v, bool big_endian) {
         if (big_endian == (std::endian::native == std::endian::little)) std::reverse(b, b + sizeof x);
         out.append(b, sizeof x);
     };
-    if (type == "char" || type == "int8") bytes(static_cast<std::int8_t>(v));
-    else if (type == "uchar" || type == "uint8") bytes(static_cast<std::uint8_t>(v));
-    else if (type == "short" || type == "int16") bytes(static_cast<std::int16_t>(v));
-    else if (type == "ushort" || type == "uint16") bytes(static_cast<std::uint16_t>(v));
-    else if (type == "int" || type == "int32") bytes(static_cast<std::int32_t>(v));
-    else if (type == "uint" || type == "uint32") bytes(static_cast<std::uint32_t>(v));
-    else if (type == "float" || type == "float32") bytes(static_cast<float>(v));
-    else if (type == "double" || type == "float64") bytes(v);
-    else FAIL("unknown type in test: " << type);
+    if (type == "char" || type == "int8")
+        bytes(static_cast<std::int8_t>(v));
+    else if (type == "uchar" || type == "uint8")
+        bytes(static_cast<std::uint8_t>(v));
+    else if (type == "short" || type == "int16")
+        bytes(static_cast<std::int16_t>(v));
+    else if (type == "ushort" || type == "uint16")
+        bytes(static_cast<std::uint16_t>(v));
+    else if (type == "int" || type == "int32")
+        bytes(static_cast<std::int32_t>(v));
+    else if (type == "uint" || type == "uint32")
+        bytes(static_cast<std::uint32_t>(v));
+    else if (type == "float" || type == "float32")
+        bytes(static_cast<float>(v));
+    else if (type == "double" || type == "float64")
+        bytes(v);
+    else
+        FAIL("unknown type in test: " << type);
 }
 
 const double tetra_points[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -49,8 +58,8 @@ const int tetra_faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
 std::string binary_tetra(bool big_endian, std::string_view coord, std::string_view count, std::string_view index) {
     std::string out = std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
                       " 1.0\nelement vertex 4\nproperty " + std::string(coord) + " x\nproperty " + std::string(coord) +
-                      " y\nproperty " + std::string(coord) + " z\nelement face 4\nproperty list " +
-                      std::string(count) + " " + std::string(index) + " vertex_indices\nend_header\n";
+                      " y\nproperty " + std::string(coord) + " z\nelement face 4\nproperty list " + std::string(count) +
+                      " " + std::string(index) + " vertex_indices\nend_header\n";
     for (const auto& p : tetra_points)
         for (double c : p) put(out, coord, c, big_endian);
     for (const auto& f : tetra_faces) {
@@ -60,8 +69,9 @@ std::string binary_tetra(bool big_endian, std::string_view coord, std::string_vi
     return out;
 }
 
-const std::string ascii_header = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                                 "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+const std::string ascii_header =
+    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+    "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
 // padded beyond the minimum size, so that shortened face lists still pass FMT-SIZE-1
 const std::string ascii_vertices = "0.0 0.0 0.0\n1.0 0.0 0.0\n0.0 1.0 0.0\n0.0 0.0 1.0\n";
 const std::string ascii_faces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
@@ -69,7 +79,8 @@ const std::string ascii_faces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
 /// The expected tetrahedron.
 void check_tetra(const fhr::PolygonSoup& soup) {
     REQUIRE(soup.points.size() == 4);
-    for (int v = 0; v < 4; ++v) CHECK(soup.points[v] == fhr::Vec3(tetra_points[v][0], tetra_points[v][1], tetra_points[v][2]));
+    for (int v = 0; v < 4; ++v)
+        CHECK(soup.points[v] == fhr::Vec3(tetra_points[v][0], tetra_points[v][1], tetra_points[v][2]));
     CHECK(soup.offsets == std::vector<std::uint32_t>{0, 3, 6, 9, 12});
     CHECK(soup.indices == std::vector<std::uint32_t>{0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3});
 }
@@ -84,8 +95,7 @@ TEST_CASE("FMT-PLY-1..3: an ascii tetrahedron is read exactly, with its source l
     CHECK(soup.polygon_line == std::vector<std::uint64_t>{14, 15, 16, 17});
 }
 
-TEST_CASE("FMT-PLY-2/3: extra properties, extra list properties and extra elements are read past",
-          "[unit][io]") {
+TEST_CASE("FMT-PLY-2/3: extra properties, extra list properties and extra elements are read past", "[unit][io]") {
     const std::string text =
         "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nobj_info nothing\r\nelement vertex 4\r\n"
         "property uchar red\r\nproperty double z\r\nproperty list uchar float extra\r\nproperty double y\r\n"
@@ -100,7 +110,7 @@ TEST_CASE("FMT-PLY-2/3: extra properties, extra list properties and extra elemen
 
 TEST_CASE("FMT-PLY-3: binary little and big endian with every scalar type spelling", "[unit][io]") {
     const std::vector<std::pair<std::string, std::string>> types = {
-        {"char", "int8"}, {"uchar", "uint8"}, {"short", "int16"}, {"ushort", "uint16"},
+        {"char", "int8"}, {"uchar", "uint8"}, {"short", "int16"},   {"ushort", "uint16"},
         {"int", "int32"}, {"uint", "uint32"}, {"float", "float32"}, {"double", "float64"}};
     for (bool big_endian : {false, true})
         for (const auto& [name, alias] : types)
@@ -108,7 +118,8 @@ TEST_CASE("FMT-PLY-3: binary little and big endian with every scalar type spelli
                 INFO((big_endian ? "big endian " : "little endian ") << spelling);
                 check_tetra(parse_ply(binary_tetra(big_endian, spelling, "uchar", "int"), "t.ply"));
                 if (name != "float" && name != "double") {
-                    const fhr::PolygonSoup soup = parse_ply(binary_tetra(big_endian, "float", spelling, spelling), "t.ply");
+                    const fhr::PolygonSoup soup =
+                        parse_ply(binary_tetra(big_endian, "float", spelling, spelling), "t.ply");
                     check_tetra(soup);
                     CHECK(soup.point_line.empty());
                     CHECK(soup.polygon_line.empty());
@@ -117,9 +128,10 @@ TEST_CASE("FMT-PLY-3: binary little and big endian with every scalar type spelli
 }
 
 TEST_CASE("FMT-PLY-3: binary float32 coordinates are widened exactly; faces may come first", "[unit][io]") {
-    std::string out = "ply\nformat binary_little_endian 1.0\nelement face 1\nproperty list uchar uint vertex_indices\n"
-                      "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                      "property list uint double normal\nend_header\n";
+    std::string out =
+        "ply\nformat binary_little_endian 1.0\nelement face 1\nproperty list uchar uint vertex_indices\n"
+        "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "property list uint double normal\nend_header\n";
     put(out, "uchar", 3, false);
     for (int i : {2, 1, 0}) put(out, "uint", i, false);
     for (int v = 0; v < 3; ++v) {
@@ -170,14 +182,17 @@ TEST_CASE("FMT-PLY-2: the vertex coordinates and the face list must be declared"
     CHECK_THAT(header(vertex).problem(), Contains("no 'face' element"));
     CHECK_THAT(header("element vertex 1\nproperty float x\nproperty float z\n" + face).problem(),
                Contains("element 'vertex' has no property 'y'"));
-    CHECK_THAT(header("element vertex 1\nproperty float x\nproperty list uchar float y\nproperty float z\n" + face).problem(),
-               Contains("vertex property 'y' is a list"));
+    CHECK_THAT(
+        header("element vertex 1\nproperty float x\nproperty list uchar float y\nproperty float z\n" + face).problem(),
+        Contains("vertex property 'y' is a list"));
     CHECK_THAT(header(vertex + "element face 1\nproperty list uchar int indices\n").problem(),
                Contains("element 'face' has no property 'vertex_indices'"));
-    CHECK_THAT(header(vertex + "element face 1\nproperty int vertex_indices\n").problem(), Contains("must be a list of integers"));
+    CHECK_THAT(header(vertex + "element face 1\nproperty int vertex_indices\n").problem(),
+               Contains("must be a list of integers"));
     CHECK_THAT(header(vertex + "element face 1\nproperty list uchar float vertex_indices\n").problem(),
                Contains("must be a list of integers"));
-    CHECK_THAT(header(vertex + "element face 0\nproperty list uchar int vertex_indices\n").problem(), Contains("no faces"));
+    CHECK_THAT(header(vertex + "element face 0\nproperty list uchar int vertex_indices\n").problem(),
+               Contains("no faces"));
     CHECK_THAT(header(vertex + face + "element empty 0\n").problem(), Contains("element 'empty' has no properties"));
 }
 
@@ -185,16 +200,19 @@ TEST_CASE("FMT-SIZE-1: absurd element counts are refused before allocating", "[u
     const auto start = std::chrono::steady_clock::now();
     const fhr::InvalidInput ascii = ply_refusal(
         "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\n"
-        "element face 4000000000\nproperty list uchar int vertex_indices\nend_header\n" + ascii_vertices + ascii_faces);
+        "element face 4000000000\nproperty list uchar int vertex_indices\nend_header\n" +
+        ascii_vertices + ascii_faces);
     CHECK_THAT(ascii.problem(), Contains("need at least") && Contains("truncated file"));
     std::string binary = binary_tetra(false, "double", "uchar", "int");
     binary.replace(binary.find("vertex 4"), 8, "vertex 4000000000");
     CHECK_THAT(ply_refusal(binary).problem(), Contains("need at least 96000000"));
-    const std::string other = "ply\nformat binary_big_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                              "property float z\nelement face 4\nproperty list uchar int vertex_indices\n"
-                              "element junk 9223372036854775807\nproperty list uint uint v\nend_header\n";
+    const std::string other =
+        "ply\nformat binary_big_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 4\nproperty list uchar int vertex_indices\n"
+        "element junk 9223372036854775807\nproperty list uint uint v\nend_header\n";
     CHECK_THAT(ply_refusal(other).problem(), Contains("truncated file"));
-    CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(1));  // CLI-ERR-1: refused at once, not after a huge allocation
+    CHECK(std::chrono::steady_clock::now() - start <
+          std::chrono::seconds(1));  // CLI-ERR-1: refused at once, not after a huge allocation
 }
 
 TEST_CASE("FMT-PLY-3: truncated bodies are refused, naming the element", "[unit][io]") {
@@ -221,11 +239,13 @@ TEST_CASE("FMT-PLY-3: truncated bodies are refused, naming the element", "[unit]
 }
 
 TEST_CASE("FMT-IDX-1: negative, out-of-range and overflowing PLY indices are refused", "[unit][io]") {
-    const fhr::InvalidInput ascii = ply_refusal(ascii_header + ascii_vertices + "3 0 2 1\n3 0 -1 3\n3 0 3 2\n3 1 2 3\n");
+    const fhr::InvalidInput ascii =
+        ply_refusal(ascii_header + ascii_vertices + "3 0 2 1\n3 0 -1 3\n3 0 3 2\n3 1 2 3\n");
     CHECK(ascii.line() == 15);
     CHECK(ascii.problem() == "face 1: negative index -1");
     CHECK(std::string(ascii.what()) == "t.ply:15: face 1: negative index -1");
-    CHECK_THAT(ply_refusal(ascii_header + ascii_vertices + "3 0 2 1\n3 0 99999999999999999999 3\n3 0 3 2\n3 1 2 3\n").problem(),
+    CHECK_THAT(ply_refusal(ascii_header + ascii_vertices + "3 0 2 1\n3 0 99999999999999999999 3\n3 0 3 2\n3 1 2 3\n")
+                   .problem(),
                Contains("face 1: number '99999999999999999999' is out of 64-bit integer range"));
     CHECK_THAT(ply_refusal(ascii_header + ascii_vertices + "3 0 2 1\n3 0 2147483648 3\n3 0 3 2\n3 1 2 3\n").problem(),
                Contains("face 1: value 2147483648 out of range for int"));

@@ -49,8 +49,9 @@ std::string binary_stl(const std::vector<Triangle>& triangles, const std::string
     return out;
 }
 
-const std::string ascii_facet_1 = " facet normal 0 0 -1\n  outer loop\n   vertex 0 0 0\n   vertex 0 1 0\n"
-                                  "   vertex 1 0 0\n  endloop\n endfacet\n";
+const std::string ascii_facet_1 =
+    " facet normal 0 0 -1\n  outer loop\n   vertex 0 0 0\n   vertex 0 1 0\n"
+    "   vertex 1 0 0\n  endloop\n endfacet\n";
 const std::string ascii_rest =
     " facet normal 0 -1 0\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 0 0 1\n  endloop\n endfacet\n"
     " facet normal -1 0 0\n  outer loop\n   vertex 0 0 0\n   vertex 0 0 1\n   vertex 0 1 0\n  endloop\n endfacet\n"
@@ -79,7 +80,8 @@ TEST_CASE("FMT-STL-2/3: an ascii tetrahedron is read and its equal corners welde
 }
 
 TEST_CASE("FMT-STL-2: CRLF, several solids, nameless solids, NaN normals", "[unit][io]") {
-    std::string text = "solid\r\n" + ascii_facet_1 + "endsolid\r\nsolid second part\r\n" + ascii_rest + "endsolid second part";
+    std::string text =
+        "solid\r\n" + ascii_facet_1 + "endsolid\r\nsolid second part\r\n" + ascii_rest + "endsolid second part";
     text.replace(text.find("normal 0 0 -1"), 13, "normal nan nan nan");
     check_tetra(parse_stl(text, "t.stl"));
 }
@@ -135,7 +137,8 @@ TEST_CASE("FMT-NUM-2/3: NaN, infinite and huge binary corners are refused, namin
         CHECK_THAT(e.problem(), Contains("triangle 2: coordinate is") && (Contains("NaN") || Contains("infinite")));
     }
     const std::string huge = "solid\n" + ascii_facet_1 + "endsolid\n";
-    const fhr::InvalidInput e = stl_refusal(std::string(huge).replace(huge.find("vertex 0 1 0"), 12, "vertex 0 1e151 0"));
+    const fhr::InvalidInput e =
+        stl_refusal(std::string(huge).replace(huge.find("vertex 0 1 0"), 12, "vertex 0 1e151 0"));
     CHECK(e.line() == 5);
     CHECK_THAT(e.problem(), Contains("facet 0: coordinate too large"));
 }
@@ -158,11 +161,14 @@ TEST_CASE("FMT-STL-2: broken ascii files are refused with their line", "[unit][i
     CHECK(four.problem() == "facet 0: expected 'endloop', found 'vertex'");
     CHECK_THAT(broken(" facet normal 0 0 -1", " facet 0 0 -1").problem(), Contains("expected 'normal', found '0'"));
     CHECK_THAT(broken("outer loop", "outer").problem(), Contains("expected 'loop', found end of line"));
-    CHECK_THAT(broken("endsolid tetra\n", "").problem(), Contains("unexpected end of file: expected 'facet' or 'endsolid'"));
-    CHECK_THAT(broken("endsolid tetra\n", "endsolid tetra\nextra\n").problem(), Contains("expected 'solid', found 'extra'"));
+    CHECK_THAT(broken("endsolid tetra\n", "").problem(),
+               Contains("unexpected end of file: expected 'facet' or 'endsolid'"));
+    CHECK_THAT(broken("endsolid tetra\n", "endsolid tetra\nextra\n").problem(),
+               Contains("expected 'solid', found 'extra'"));
     CHECK_THAT(broken(" facet normal 1 1 1", " facet normal 1 1").problem(), Contains("facet 3: expected a number"));
     CHECK_THAT(stl_refusal("solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n").problem(),
                Contains("unexpected end of file: expected 'vertex'"));
     CHECK_THAT(stl_refusal("solid empty\nendsolid empty\n").problem(), Contains("no facets"));
-    CHECK_THAT(stl_refusal("solid x\nsomething\n").problem(), Contains("expected 'facet' or 'endsolid', found 'something'"));
+    CHECK_THAT(stl_refusal("solid x\nsomething\n").problem(),
+               Contains("expected 'facet' or 'endsolid', found 'something'"));
 }

@@ -236,9 +236,9 @@ TEST_CASE("FMT-WRITE-1: a failed write throws InvalidInput and leaves nothing be
         const fs::path read_only = dir / "read-only";
         fs::create_directories(read_only);
         fs::permissions(read_only, fs::perms::owner_read | fs::perms::owner_exec);
-        CHECK_THAT(refusal([&] { fhr::io::write_off((read_only / "m.off").string(), unit_points, unit_triangle); })
-                       .problem(),
-                   Contains("cannot write: Permission denied"));
+        CHECK_THAT(
+            refusal([&] { fhr::io::write_off((read_only / "m.off").string(), unit_points, unit_triangle); }).problem(),
+            Contains("cannot write: Permission denied"));
         CHECK(listing(read_only).empty());
         fs::permissions(read_only, fs::perms::owner_all);
         expected.push_back("read-only");
@@ -247,7 +247,10 @@ TEST_CASE("FMT-WRITE-1: a failed write throws InvalidInput and leaves nothing be
     CHECK(listing(dir / "occupied.obj").empty());
 }
 
-TEST_CASE("FMT-WRITE-1, FMT-WRITE-2: files of many chunks are written whole, and one failing after its first chunks leaves nothing", "[unit][io]") {
+TEST_CASE(
+    "FMT-WRITE-1, FMT-WRITE-2: files of many chunks are written whole, and one failing after its first chunks leaves "
+    "nothing",
+    "[unit][io]") {
     // io::FileParts makes a part of every 16,384 elements: 200,000 points and triangles make
     // several MiB and dozens of parts in every format.
     const fs::path dir = fhr::test::temp_path("atomic-chunks");
@@ -269,7 +272,8 @@ TEST_CASE("FMT-WRITE-1, FMT-WRITE-2: files of many chunks are written whole, and
     }
     // The last polyline indexes past the points: refused after several MiB went to the temporary.
     const std::vector<std::vector<std::uint32_t>> lines = {std::vector<std::uint32_t>(300000, 1), {0, 200000}};
-    CHECK_THROWS_AS(fhr::io::write_obj_polylines((dir / "lines.obj").string(), points, lines, {}), std::invalid_argument);
+    CHECK_THROWS_AS(fhr::io::write_obj_polylines((dir / "lines.obj").string(), points, lines, {}),
+                    std::invalid_argument);
     CHECK(listing(dir) == std::vector<std::string>{"big.obj", "big.off", "big.ply"});
 }
 
@@ -281,19 +285,22 @@ TEST_CASE("FMT-WRITE-4: a file of many parts has the same bytes on one thread an
     auto parts = [](std::atomic<int>& slow_calls) {
         fhr::io::FileParts p;
         p.text("head\n");
-        p.elements(3 * fhr::io::FileParts::block + 5, [&slow_calls](std::size_t first, std::size_t end, std::string& out) {
-            if (first == fhr::io::FileParts::block) {  // the second part
-                ++slow_calls;
-                std::this_thread::sleep_for(std::chrono::milliseconds(50));
-            }
-            for (std::size_t i = first; i < end; ++i) {
-                fhr::io::append_number(out, i * i);
-                out += i % 7 == 0 ? "\n" : " ";
-            }
-        });
+        p.elements(3 * fhr::io::FileParts::block + 5,
+                   [&slow_calls](std::size_t first, std::size_t end, std::string& out) {
+                       if (first == fhr::io::FileParts::block) {  // the second part
+                           ++slow_calls;
+                           std::this_thread::sleep_for(std::chrono::milliseconds(50));
+                       }
+                       for (std::size_t i = first; i < end; ++i) {
+                           fhr::io::append_number(out, i * i);
+                           out += i % 7 == 0 ? "\n" : " ";
+                       }
+                   });
         p.text("");
         p.text("middle\n");
-        p.elements(2, [](std::size_t first, std::size_t end, std::string& out) { out += std::to_string(first) + "-" + std::to_string(end); });
+        p.elements(2, [](std::size_t first, std::size_t end, std::string& out) {
+            out += std::to_string(first) + "-" + std::to_string(end);
+        });
         return p;
     };
     std::atomic<int> calls{0};
@@ -312,7 +319,8 @@ TEST_CASE("FMT-WRITE-4: a file of many parts has the same bytes on one thread an
     CHECK(listing(dir) == std::vector<std::string>{"default.txt", "one.txt", "three.txt"});
 }
 
-TEST_CASE("FMT-WRITE-1, FMT-WRITE-4: when parts fail, the first failing part's exception is thrown and nothing is left", "[unit][io]") {
+TEST_CASE("FMT-WRITE-1, FMT-WRITE-4: when parts fail, the first failing part's exception is thrown and nothing is left",
+          "[unit][io]") {
     const fs::path dir = fhr::test::temp_path("parts-fail");
     fs::create_directories(dir);
     fhr::io::FileParts p;
@@ -338,13 +346,17 @@ TEST_CASE("FMT-WRITE-1, FMT-WRITE-4: when parts fail, the first failing part's e
     }
 }
 
-TEST_CASE("FMT-WRITE-1, FMT-WRITE-4: a part the system refuses to write (a file size limit) throws InvalidInput and leaves nothing", "[unit][io]") {
+TEST_CASE(
+    "FMT-WRITE-1, FMT-WRITE-4: a part the system refuses to write (a file size limit) throws InvalidInput and leaves "
+    "nothing",
+    "[unit][io]") {
     // RLIMIT_FSIZE makes writes past 64 KiB fail with EFBIG (SIGXFSZ ignored), after a first part
     // went to the temporary in full and the one across the limit in part.
     const fs::path dir = fhr::test::temp_path("parts-limit");
     fs::create_directories(dir);
     fhr::io::FileParts p;
-    p.elements(4 * fhr::io::FileParts::block, [](std::size_t first, std::size_t end, std::string& out) { out.append(4 * (end - first), 'x'); });
+    p.elements(4 * fhr::io::FileParts::block,
+               [](std::size_t first, std::size_t end, std::string& out) { out.append(4 * (end - first), 'x'); });
     rlimit before{};
     REQUIRE(::getrlimit(RLIMIT_FSIZE, &before) == 0);
     const auto previous = std::signal(SIGXFSZ, SIG_IGN);
@@ -367,7 +379,10 @@ TEST_CASE("FMT-WRITE-1, FMT-WRITE-4: a part the system refuses to write (a file 
     CHECK(fs::file_size(path) == 4 * 4 * fhr::io::FileParts::block);
 }
 
-TEST_CASE("FMT-WRITE-1: a one-byte file, a file whose descriptor is 0 (standard input closed), and a stale errno: each written", "[unit][io]") {
+TEST_CASE(
+    "FMT-WRITE-1: a one-byte file, a file whose descriptor is 0 (standard input closed), and a stale errno: each "
+    "written",
+    "[unit][io]") {
     // open() returns the lowest free descriptor: with standard input closed, the temporary is fd 0,
     // which is a valid descriptor, not a failure; a write of one byte is a whole write; errno left
     // at EINTR by an earlier call says nothing about a write that succeeded.

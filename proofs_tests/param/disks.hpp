@@ -56,7 +56,8 @@ inline param::Disk disk_from_mesh(const TriMesh& m, std::uint64_t seed, std::siz
         for (const auto& [f, h] : candidates) {
             const HalfedgeId h1 = m.next(h), h2 = m.next(h1);
             const VertexId w = m.to(h1);
-            const int shared = int(in[m.face(TriMesh::twin(h1)).idx()] != 0) + int(in[m.face(TriMesh::twin(h2)).idx()] != 0);
+            const int shared =
+                int(in[m.face(TriMesh::twin(h1)).idx()] != 0) + int(in[m.face(TriMesh::twin(h2)).idx()] != 0);
             if (vertex_faces[w.idx()] == 0 && shared == 0) {
                 boundary_edges += 1;
             } else if (vertex_faces[w.idx()] != 0 && shared == 1 && boundary_edges > 3) {
@@ -142,7 +143,9 @@ inline param::Disk lattice_triangle(int n, double jitter, std::mt19937_64& rng, 
             if (i + j < n - 1) disk.triangles.push_back({index[{i + 1, j}], index[{i + 1, j + 1}], index[{i, j + 1}]});
         }
     auto point = [&](std::uint32_t v) { return Eigen::Vector2d(st[v][0], st[v][1]); };
-    auto positive = [&](const std::array<std::uint32_t, 3>& f) { return orient2d(point(f[0]), point(f[1]), point(f[2])) > 0; };
+    auto positive = [&](const std::array<std::uint32_t, 3>& f) {
+        return orient2d(point(f[0]), point(f[1]), point(f[2])) > 0;
+    };
     for (const auto& f : disk.triangles)
         if (!positive(f)) throw std::logic_error("lattice_triangle: jitter folded a triangle");
     std::vector<char> boundary_vertex(st.size(), 0);
@@ -212,7 +215,8 @@ inline DiagonalPair diagonal_pair(int n, std::mt19937_64& rng, Lift&& lift) {
     std::vector<std::array<double, 2>> xy2(st2.size());
     for (std::size_t v = 0; v < st2.size(); ++v) xy2[v] = {1 - st2[v][0], 1 - st2[v][1]};
     for (int i = 0; i <= n; ++i)
-        xy2[pair.p2.boundary[static_cast<std::size_t>(2 * n - i)]] = st1[pair.p1.boundary[static_cast<std::size_t>(n + i)]];
+        xy2[pair.p2.boundary[static_cast<std::size_t>(2 * n - i)]] =
+            st1[pair.p1.boundary[static_cast<std::size_t>(n + i)]];
     for (std::size_t v = 0; v < st1.size(); ++v) pair.p1.positions[v] = lift(st1[v]);
     for (std::size_t v = 0; v < xy2.size(); ++v) pair.p2.positions[v] = lift(xy2[v]);
     return pair;

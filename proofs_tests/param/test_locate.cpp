@@ -61,7 +61,8 @@ TEST_CASE("MAP-11: φ(ψ(v)) is v's position exactly, for every vertex", "[prope
         const PatchLocator phi(s.disk, s.psi);
         // At a vertex two of the three sub-triangle areas are exactly 0 and its own weight is
         // exactly 1 (locate.cpp); on a side the segment starting at the vertex has s = 0.
-        for (std::size_t v = 0; v < s.disk.positions.size(); ++v) RC_ASSERT(phi.phi(s.psi.beta[v]) == s.disk.positions[v]);
+        for (std::size_t v = 0; v < s.disk.positions.size(); ++v)
+            RC_ASSERT(phi.phi(s.psi.beta[v]) == s.disk.positions[v]);
     });
 }
 
@@ -80,7 +81,8 @@ TEST_CASE("MAP-11: random points of the patch come back through ψ and then φ",
             const double w0 = 1 - w1 - w2;
             const Vec3 x = w0 * s.disk.positions[f[0]] + w1 * s.disk.positions[f[1]] + w2 * s.disk.positions[f[2]];
             std::array<double, 3> beta{};
-            for (int c = 0; c < 3; ++c) beta[c] = w0 * s.psi.beta[f[0]][c] + w1 * s.psi.beta[f[1]][c] + w2 * s.psi.beta[f[2]][c];
+            for (int c = 0; c < 3; ++c)
+                beta[c] = w0 * s.psi.beta[f[0]][c] + w1 * s.psi.beta[f[1]][c] + w2 * s.psi.beta[f[2]][c];
             // The located triangle holds β (exactly, by orient2d, when β is inside); φ is linear
             // there. Error bound: β carries a few ε; the weights in the image triangle then err
             // by ≈ ε / h (h its smallest height in the reference plane), and the 3-D point by
@@ -88,12 +90,13 @@ TEST_CASE("MAP-11: random points of the patch come back through ψ and then φ",
             // triangle by rounding, the same bound there; so use the patch's worst L / h.
             double worst = 0;
             for (const auto& g : s.disk.triangles) {
-                Eigen::Vector2d a(s.psi.beta[g[0]][1], s.psi.beta[g[0]][2]), b(s.psi.beta[g[1]][1], s.psi.beta[g[1]][2]),
-                    c(s.psi.beta[g[2]][1], s.psi.beta[g[2]][2]);
+                Eigen::Vector2d a(s.psi.beta[g[0]][1], s.psi.beta[g[0]][2]),
+                    b(s.psi.beta[g[1]][1], s.psi.beta[g[1]][2]), c(s.psi.beta[g[2]][1], s.psi.beta[g[2]][2]);
                 const double twice_area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
                 const double longest_image = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
                 double L = 0;
-                for (int k = 0; k < 3; ++k) L = std::max(L, (s.disk.positions[g[k]] - s.disk.positions[g[(k + 1) % 3]]).norm());
+                for (int k = 0; k < 3; ++k)
+                    L = std::max(L, (s.disk.positions[g[k]] - s.disk.positions[g[(k + 1) % 3]]).norm());
                 worst = std::max(worst, L * longest_image / twice_area);
             }
             const Vec3 back = phi.phi(beta);
@@ -153,7 +156,8 @@ TEST_CASE("MAP-11: points on a side lie on its boundary edges, at the chord-leng
     });
 }
 
-TEST_CASE("MAP-11: a point on a shared side gives the same 3-D point, bit for bit, from both patches", "[property][param]") {
+TEST_CASE("MAP-11: a point on a shared side gives the same 3-D point, bit for bit, from both patches",
+          "[property][param]") {
     rc::prop("two bumpy lattice triangles sharing their diagonal", [] {
         // As in MAP-5's test: a bumpy square cut along its diagonal B–C.
         const int n = *rc::gen::inRange(1, 10);
@@ -200,7 +204,8 @@ TEST_CASE("MAP-11: corners, a large patch, and refused coordinates", "[unit][par
     std::uniform_real_distribution<double> along(0.001, 0.999);
     for (int q = 0; q < 200; ++q) {
         const double t = along(pick), rest = std::nextafter(std::nextafter(1 - t, 2.0), 2.0);
-        REQUIRE(orient2d(Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1), Eigen::Vector2d(t, rest)) < 0);  // exactly beyond
+        REQUIRE(orient2d(Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1), Eigen::Vector2d(t, rest)) <
+                0);  // exactly beyond
         const Vec3 on_side = phi.phi({0, t, 1 - t}), beyond = phi.phi({1e-17, t, rest});
         CAPTURE(t, (beyond - on_side).norm());
         CHECK((beyond - on_side).norm() < 1e-12);
@@ -216,7 +221,8 @@ TEST_CASE("MAP-11: corners, a large patch, and refused coordinates", "[unit][par
             auto at = [&](std::uint32_t v) { return Eigen::Vector2d(psi.beta[v][1], psi.beta[v][2]); };
             const Eigen::Vector2d q(b1, b2);
             ++total;
-            held += orient2d(at(f[0]), at(f[1]), q) >= 0 && orient2d(at(f[1]), at(f[2]), q) >= 0 && orient2d(at(f[2]), at(f[0]), q) >= 0;
+            held += orient2d(at(f[0]), at(f[1]), q) >= 0 && orient2d(at(f[1]), at(f[2]), q) >= 0 &&
+                    orient2d(at(f[2]), at(f[0]), q) >= 0;
         }
     CHECK(held == total);
     CHECK_THROWS_AS(phi.phi({-0.1, 0.6, 0.5}), InvalidInput);

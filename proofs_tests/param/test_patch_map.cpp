@@ -188,7 +188,8 @@ TEST_CASE("MAP-1: invalid disks are refused with the broken rule", "[unit][param
     // Two closed fans (cones without their bases) sharing their apex 0: no boundary edge starts
     // at 0, but the walk around it from vertex 1 closes after 3 of its 6 triangles.
     Disk cones;
-    cones.positions = {Vec3(0, 0, 0), Vec3(1, 0, 1), Vec3(0, 1, 1), Vec3(-1, -1, 1), Vec3(1, 0, -1), Vec3(0, 1, -1), Vec3(-1, -1, -1)};
+    cones.positions = {Vec3(0, 0, 0),  Vec3(1, 0, 1),  Vec3(0, 1, 1),   Vec3(-1, -1, 1),
+                       Vec3(1, 0, -1), Vec3(0, 1, -1), Vec3(-1, -1, -1)};
     cones.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {0, 5, 4}, {0, 6, 5}, {0, 4, 6}};
     cones.boundary = {1, 2, 3};
     cones.corners = {0, 1, 2};
@@ -196,7 +197,8 @@ TEST_CASE("MAP-1: invalid disks are refused with the broken rule", "[unit][param
     // The ear disk beside a closed tetrahedron: every rule but connectivity holds.
     d = good;
     for (const Vec3& p : {Vec3(5, 0, 0), Vec3(6, 0, 0), Vec3(5, 1, 0), Vec3(5, 0, 1)}) d.positions.push_back(p);
-    for (const std::array<std::uint32_t, 3> f : {std::array<std::uint32_t, 3>{4, 5, 6}, {4, 6, 7}, {4, 7, 5}, {5, 7, 6}})
+    for (const std::array<std::uint32_t, 3> f :
+         {std::array<std::uint32_t, 3>{4, 5, 6}, {4, 6, 7}, {4, 7, 5}, {5, 7, 6}})
         d.triangles.push_back(f);
     refused(d, "not connected (vertex 4)", Element::vertex, 4);
     // A torus with a hole: connected, manifold, one boundary loop, but χ = −1.
@@ -232,7 +234,9 @@ TEST_CASE("MAP-1: invalid disks are refused with the broken rule", "[unit][param
     CHECK_THROWS_WITH(param::validate(annulus), Catch::Contains("repeats vertex"));
 }
 
-TEST_CASE("MAP-4, MAP-9: a triangle with all three vertices on one side cannot certify until its dividing edge is split", "[unit][param]") {
+TEST_CASE(
+    "MAP-4, MAP-9: a triangle with all three vertices on one side cannot certify until its dividing edge is split",
+    "[unit][param]") {
     Disk d = ear_disk();
     // Without the split: the image of (A, P, B) lies on side 0, a degenerate triangle.
     const param::Certificate before = param::certify(d, param::map_patch(d));
@@ -260,7 +264,10 @@ TEST_CASE("MAP-4, MAP-9: a triangle with all three vertices on one side cannot c
     CHECK(param::split_dividing_edges(d) == 0);
 }
 
-TEST_CASE("MAP-4: splitting dividing edges keeps the disk, its boundary, its surface and its old vertices; each triangle lies in its origin", "[property][param]") {
+TEST_CASE(
+    "MAP-4: splitting dividing edges keeps the disk, its boundary, its surface and its old vertices; each triangle "
+    "lies in its origin",
+    "[property][param]") {
     rc::prop("random disks", [] {
         const Disk original = *gen_disk();
         Disk d = original;
@@ -293,7 +300,8 @@ TEST_CASE("MAP-4: splitting dividing edges keeps the disk, its boundary, its sur
     });
 }
 
-TEST_CASE("MAP-5: chord-length boundary, exactly on the sides, bit-identical from both patches of a curve", "[property][param]") {
+TEST_CASE("MAP-5: chord-length boundary, exactly on the sides, bit-identical from both patches of a curve",
+          "[property][param]") {
     rc::prop("random disks: β on the sides equals L_p / L_r from the canonical end", [] {
         Disk d = *gen_disk();
         param::split_dividing_edges(d);
@@ -302,12 +310,14 @@ TEST_CASE("MAP-5: chord-length boundary, exactly on the sides, bit-identical fro
         const std::array<double, 3> e[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
         for (unsigned c = 0; c < 3; ++c) {
             std::vector<std::uint32_t> u;
-            for (std::size_t p = d.corners[c]; p <= (c == 2 ? n : d.corners[c + 1]); ++p) u.push_back(d.boundary[p % n]);
+            for (std::size_t p = d.corners[c]; p <= (c == 2 ? n : d.corners[c + 1]); ++p)
+                u.push_back(d.boundary[p % n]);
             RC_ASSERT(psi.beta[u.front()] == e[c]);
             RC_ASSERT(psi.beta[u.back()] == e[(c + 1) % 3]);
             // The canonical end: the lexicographically smaller corner position.
             const Vec3 &first = d.positions[u.front()], &last = d.positions[u.back()];
-            const bool forward = std::lexicographical_compare(last.data(), last.data() + 3, first.data(), first.data() + 3) == false;
+            const bool forward =
+                std::lexicographical_compare(last.data(), last.data() + 3, first.data(), first.data() + 3) == false;
             if (!forward) std::reverse(u.begin(), u.end());
             const unsigned far = forward ? (c + 1) % 3 : c;
             double L = 0, total = 0;
@@ -335,7 +345,8 @@ TEST_CASE("MAP-5: two patches sharing a geodesic curve give its vertices bit-ide
             return Vec3(q[0], q[1], amplitude * std::sin(7 * q[0] + 1) * std::cos(5 * q[1] + 2));
         });
         // The shared vertices now have identical positions (the same doubles went in).
-        for (int i = 0; i <= n; ++i) RC_ASSERT(p1.positions[p1.boundary[n + i]] == p2.positions[p2.boundary[2 * n - i]]);
+        for (int i = 0; i <= n; ++i)
+            RC_ASSERT(p1.positions[p1.boundary[n + i]] == p2.positions[p2.boundary[2 * n - i]]);
         param::split_dividing_edges(p1);
         param::split_dividing_edges(p2);
         const PatchMap psi1 = param::map_patch(p1), psi2 = param::map_patch(p2);
@@ -368,13 +379,17 @@ TEST_CASE("MAP-6: every interior vertex is the convex combination of its neighbo
             std::vector<std::uint32_t> ring{pairs[v][0].first};
             while (ring.size() < pairs[v].size())
                 for (const auto& [x, y] : pairs[v])
-                    if (x == ring.back()) { ring.push_back(y); break; }
+                    if (x == ring.back()) {
+                        ring.push_back(y);
+                        break;
+                    }
             std::vector<Vec3> positions;
             for (auto w : ring) positions.push_back(d.positions[w]);
             // A dividing edge's midpoint has uniform weights (MAP-4, MAP-6).
-            const std::vector<double> lambda = v + d.midpoints >= d.positions.size()
-                                                   ? std::vector<double>(ring.size(), 1.0 / static_cast<double>(ring.size()))
-                                                   : param::one_ring_weights(kind, d.positions[v], positions, v);
+            const std::vector<double> lambda =
+                v + d.midpoints >= d.positions.size()
+                    ? std::vector<double>(ring.size(), 1.0 / static_cast<double>(ring.size()))
+                    : param::one_ring_weights(kind, d.positions[v], positions, v);
             double r1 = b[1], r2 = b[2];
             for (std::size_t k = 0; k < ring.size(); ++k) {
                 r1 -= lambda[k] * psi.beta[ring[k]][1];
@@ -409,32 +424,35 @@ TEST_CASE("MAP-7: BiCGSTAB on a patch whose incomplete LU is exact (a fuzz_pipel
     // residual of exactly 0 and its next step divided 0 by 0 (NaN after 2 iterations, exit 4). It
     // starts from the preconditioner's solution now, which already meets the tolerance.
     Disk d;
-    d.positions = {
-        {7, 0, -0.5},
-        {7, -0.5, -0.5},
-        {6.5, 0.5, -0.5},
-        {6.5, -0.5, -0.5},
-        {6.5625, -0.375, -0.5},
-        {6.8125, -0.375, -0.5},
-        {7.5, -0.5, -0.5},
-        {7.4921875, -0.5, -0.5},
-        {7.4846153846153847, -0.48461538461538467, -0.5},
-        {7.166666666666667, -0.16666666666666674, -0.5},
-        {7.25, -0.5, -0.5},
-        {7.2999999999999998, -0.30000000000000004, -0.5},
-        {7.375, -0.5, -0.5},
-        {7.3888888888888893, -0.38888888888888884, -0.5},
-        {7.4375, -0.5, -0.5},
-        {7.4411764705882355, -0.44117647058823528, -0.5},
-        {7.46875, -0.5, -0.5},
-        {7.4696969696969697, -0.46969696969696972, -0.5},
-        {7.484375, -0.5, -0.5},
-        {6.5625, 0.125, -0.5},
-        {6.71875, -0.3125, -0.5},
-        {6.59375, -0.0625, -0.5},
-        {6.59375, -0.3125, -0.5},
-        {6.625, -0.25, -0.5}};
-    d.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}, {9, 1, 0}, {9, 10, 1}, {11, 10, 9}, {11, 12, 10}, {13, 12, 11}, {13, 14, 12}, {15, 14, 13}, {15, 16, 14}, {17, 16, 15}, {17, 18, 16}, {8, 18, 17}, {8, 7, 18}, {2, 19, 3}, {1, 5, 2}, {5, 1, 3}, {5, 20, 19}, {19, 2, 5}, {19, 21, 4}, {4, 3, 19}, {4, 22, 20}, {20, 5, 4}, {23, 21, 20}, {21, 19, 20}, {23, 22, 21}, {22, 4, 21}, {22, 23, 20}};
+    d.positions = {{7, 0, -0.5},
+                   {7, -0.5, -0.5},
+                   {6.5, 0.5, -0.5},
+                   {6.5, -0.5, -0.5},
+                   {6.5625, -0.375, -0.5},
+                   {6.8125, -0.375, -0.5},
+                   {7.5, -0.5, -0.5},
+                   {7.4921875, -0.5, -0.5},
+                   {7.4846153846153847, -0.48461538461538467, -0.5},
+                   {7.166666666666667, -0.16666666666666674, -0.5},
+                   {7.25, -0.5, -0.5},
+                   {7.2999999999999998, -0.30000000000000004, -0.5},
+                   {7.375, -0.5, -0.5},
+                   {7.3888888888888893, -0.38888888888888884, -0.5},
+                   {7.4375, -0.5, -0.5},
+                   {7.4411764705882355, -0.44117647058823528, -0.5},
+                   {7.46875, -0.5, -0.5},
+                   {7.4696969696969697, -0.46969696969696972, -0.5},
+                   {7.484375, -0.5, -0.5},
+                   {6.5625, 0.125, -0.5},
+                   {6.71875, -0.3125, -0.5},
+                   {6.59375, -0.0625, -0.5},
+                   {6.59375, -0.3125, -0.5},
+                   {6.625, -0.25, -0.5}};
+    d.triangles = {{0, 1, 2},    {3, 4, 5},    {6, 7, 8},    {9, 1, 0},    {9, 10, 1},   {11, 10, 9},
+                   {11, 12, 10}, {13, 12, 11}, {13, 14, 12}, {15, 14, 13}, {15, 16, 14}, {17, 16, 15},
+                   {17, 18, 16}, {8, 18, 17},  {8, 7, 18},   {2, 19, 3},   {1, 5, 2},    {5, 1, 3},
+                   {5, 20, 19},  {19, 2, 5},   {19, 21, 4},  {4, 3, 19},   {4, 22, 20},  {20, 5, 4},
+                   {23, 21, 20}, {21, 19, 20}, {23, 22, 21}, {22, 4, 21},  {22, 23, 20}};
     d.boundary = {3, 2, 0, 9, 11, 13, 15, 17, 8, 6, 7, 18, 16, 14, 12, 10, 1};
     d.corners = {0, 1, 9};
     param::validate(d);
@@ -462,7 +480,8 @@ TEST_CASE("MAP-8: Proposition 1 — every split disk maps one-to-one with every 
     });
 }
 
-TEST_CASE("MAP-9: without the split, a disk certifies exactly when it has no dividing edge on one side", "[property][param]") {
+TEST_CASE("MAP-9: without the split, a disk certifies exactly when it has no dividing edge on one side",
+          "[property][param]") {
     // Theorem (Floater 2003, 6.1) gives "no such edge ⇒ one-to-one"; conversely such an edge
     // cuts off a sub-disk whose whole boundary maps into one side, so its images have total
     // signed area 0 and cannot all be positive.
@@ -571,7 +590,8 @@ TEST_CASE("MAP-10: Proposition 2 — a planar patch spanning its triangle maps a
         std::vector<std::array<double, 2>> st;
         Disk d = test::lattice_triangle(n, 0.2, rng, st);
         std::uniform_real_distribution<double> u(-10, 10);
-        const std::array<Vec3, 3> abc{Vec3(u(rng), u(rng), u(rng)), Vec3(u(rng), u(rng), u(rng)), Vec3(u(rng), u(rng), u(rng))};
+        const std::array<Vec3, 3> abc{Vec3(u(rng), u(rng), u(rng)), Vec3(u(rng), u(rng), u(rng)),
+                                      Vec3(u(rng), u(rng), u(rng))};
         RC_PRE((abc[1] - abc[0]).cross(abc[2] - abc[0]).norm() > 1e-2 * (abc[1] - abc[0]).squaredNorm());
         test::place(d, st, abc, 0, 0, 0, 0, 0);
         // A planar triangle has no dividing edge on one side (its boundary is straight).
@@ -623,7 +643,8 @@ double every_corner_min_angle(const Disk& d, const PatchMap& psi, const std::arr
 
 }  // namespace
 
-TEST_CASE("MAP-8: the certificate's smallest image angle is the least of all corners' angles, bit for bit", "[property][param]") {
+TEST_CASE("MAP-8: the certificate's smallest image angle is the least of all corners' angles, bit for bit",
+          "[property][param]") {
     // The certificate computes a corner's atan2 only where its tangent does not already show it
     // above the minimum; the value must be the one of computing every corner.
     rc::prop("maps of random disks, in the equilateral triangle and in a random one", [] {
@@ -673,13 +694,15 @@ TEST_CASE("MAP-8: the certificate's smallest image angle is the least of all cor
     });
 }
 
-TEST_CASE("MAP-8: three images that round to one point give the smallest angle 0, as computed at every corner", "[unit][param]") {
+TEST_CASE("MAP-8: three images that round to one point give the smallest angle 0, as computed at every corner",
+          "[unit][param]") {
     // P, R, Q differ by an ulp in the β plane (positively oriented there, so certified) but their
     // points in the equilateral triangle round to one point: every corner of (P, R, Q) has
     // u · w = 0 and |u × w| = 0, atan2(0, 0) = 0. Triangle (0, 1, R) first sets a positive minimum.
     Disk d;
     const double px = 0.20000000000000004, py = 0.7000000000000004;
-    const std::array<double, 2> plane[6] = {{0, 0}, {1, 0}, {0, 1}, {px, py}, {std::nextafter(px, 1.0), py}, {px, std::nextafter(py, 1.0)}};
+    const std::array<double, 2> plane[6] = {
+        {0, 0}, {1, 0}, {0, 1}, {px, py}, {std::nextafter(px, 1.0), py}, {px, std::nextafter(py, 1.0)}};
     PatchMap psi;
     for (const auto& [b1, b2] : plane) {
         d.positions.emplace_back(b1, b2, 0);

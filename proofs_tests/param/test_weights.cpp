@@ -92,7 +92,8 @@ TEST_CASE("weight names parse and print", "[unit][param]") {
     CHECK(param::name(Weights::mean_value) == "mean-value");
     CHECK(param::name(Weights::uniform) == "uniform");
     CHECK_THROWS_AS(param::parse_weights("harmonic"), InvalidInput);
-    CHECK_THROWS_WITH(param::parse_weights("Shape-Preserving"), Catch::Contains("expected shape-preserving, mean-value or uniform"));
+    CHECK_THROWS_WITH(param::parse_weights("Shape-Preserving"),
+                      Catch::Contains("expected shape-preserving, mean-value or uniform"));
     // A bad option value comes from no file and no line: the message is the problem alone.
     try {
         param::parse_weights("harmonic");
@@ -103,7 +104,8 @@ TEST_CASE("weight names parse and print", "[unit][param]") {
     }
 }
 
-TEST_CASE("MAP-2, MAP-3: planar 1-rings of valence 3..12: positive, partition of unity, linear reproduction", "[property][param]") {
+TEST_CASE("MAP-2, MAP-3: planar 1-rings of valence 3..12: positive, partition of unity, linear reproduction",
+          "[property][param]") {
     rc::prop("random planar rings in random planes", [] {
         const PlanarRing r = *gen_planar_ring();
         const Motion motion = *gen_motion();
@@ -130,7 +132,8 @@ TEST_CASE("MAP-2, MAP-3: planar 1-rings of valence 3..12: positive, partition of
     });
 }
 
-TEST_CASE("MAP-2: nearly flat, sharp (cone) and saddle 1-rings keep positive weights summing to one", "[property][param]") {
+TEST_CASE("MAP-2: nearly flat, sharp (cone) and saddle 1-rings keep positive weights summing to one",
+          "[property][param]") {
     rc::prop("random rings lifted off the plane", [] {
         const PlanarRing r = *gen_planar_ring();
         const std::size_t d = r.angle.size();
@@ -145,11 +148,13 @@ TEST_CASE("MAP-2: nearly flat, sharp (cone) and saddle 1-rings keep positive wei
                                           : (k % 2 == 0 ? 1 : -1) * slope * r.radius[k];
             ring.emplace_back(r.radius[k] * std::cos(r.angle[k]), r.radius[k] * std::sin(r.angle[k]), z);
         }
-        for (Weights kind : all_kinds) RC_ASSERT(positive_partition_of_unity(one_ring_weights(kind, Vec3::Zero(), ring, 3), d));
+        for (Weights kind : all_kinds)
+            RC_ASSERT(positive_partition_of_unity(one_ring_weights(kind, Vec3::Zero(), ring, 3), d));
     });
 }
 
-TEST_CASE("MAP-2: the tie where the ray from q_k passes through q_l (even regular rings) is resolved consistently", "[unit][param]") {
+TEST_CASE("MAP-2: the tie where the ray from q_k passes through q_l (even regular rings) is resolved consistently",
+          "[unit][param]") {
     // In a regular ring of even valence the origin lies on every segment [q_k, q_{k+d/2}], so
     // both triangles at that ray qualify; by symmetry every shape-preserving weight is 1/d.
     for (int d : {4, 6, 8, 12}) {
@@ -160,7 +165,8 @@ TEST_CASE("MAP-2: the tie where the ray from q_k passes through q_l (even regula
     }
 }
 
-TEST_CASE("MAP-2, MAP-3: at valence 3 shape-preserving and mean-value weights are the barycentric coordinates", "[unit][param]") {
+TEST_CASE("MAP-2, MAP-3: at valence 3 shape-preserving and mean-value weights are the barycentric coordinates",
+          "[unit][param]") {
     // Three neighbours leave one convex combination: p's barycentric coordinates in the
     // triangle (p_1, p_2, p_3), here (0.2, 0.3, 0.5).
     const Vec3 a(0, 0, 0), b(4, 1, 0), c(1, 3, 0);
@@ -184,7 +190,8 @@ TEST_CASE("MAP-2: degenerate 1-rings are refused, naming the vertex", "[unit][pa
     // polygon's boundary and no strictly positive shape-preserving or mean-value weights exist.
     const std::vector<Vec3> straight{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(-1, 0, 0)};
     for (Weights kind : {Weights::shape_preserving, Weights::mean_value})
-        CHECK_THROWS_WITH(one_ring_weights(kind, p, straight, 17), Catch::Contains("MAP-2") && Catch::Contains("vertex 17"));
+        CHECK_THROWS_WITH(one_ring_weights(kind, p, straight, 17),
+                          Catch::Contains("MAP-2") && Catch::Contains("vertex 17"));
     CHECK(positive_partition_of_unity(one_ring_weights(Weights::uniform, p, straight, 17), 3));
     // A neighbour at p's position.
     const std::vector<Vec3> coincident{Vec3(1, 0, 0), Vec3(0, 0, 0), Vec3(-1, -1, 0)};

@@ -1,7 +1,6 @@
 // FHR tests — PART-1..8 of spec/partition.md, independent of how src/fhr/partition computes them.
 #include "partition/partition_checks.hpp"
 
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -80,7 +79,8 @@ std::string piece_violation(const TriMesh& T, const partition::Network& net) {
         unsigned bits = 0;
         HalfedgeId h = T.halfedge(F);
         for (unsigned s = 0; s < 3; ++s, h = T.next(h))
-            if (o.vertex.valid() ? (T.from(h) == o.vertex || T.to(h) == o.vertex) : TriMesh::edge(h) == o.edge) bits |= 1u << s;
+            if (o.vertex.valid() ? (T.from(h) == o.vertex || T.to(h) == o.vertex) : TriMesh::edge(h) == o.edge)
+                bits |= 1u << s;
         return bits;
     };
     for (const std::vector<FaceId>& faces : pieces) {
@@ -94,7 +94,8 @@ std::string piece_violation(const TriMesh& T, const partition::Network& net) {
             for (int k = 0; k < 3; ++k, h = M.next(h)) {
                 const HalfedgeId t = TriMesh::twin(h);
                 if (!M.is_boundary(t) && in_piece.count(M.face(t).idx())) continue;
-                if (!after.emplace(M.from(h).idx(), M.to(h).idx()).second) return "PART-13: a piece of a face of T is not a disk";
+                if (!after.emplace(M.from(h).idx(), M.to(h).idx()).second)
+                    return "PART-13: a piece of a face of T is not a disk";
             }
         }
         std::vector<VertexId> polygon{VertexId(after.begin()->first)};
@@ -128,7 +129,8 @@ std::string piece_violation(const TriMesh& T, const partition::Network& net) {
                 const std::size_t j = i + len;
                 best[i * m + j] = -INFINITY;
                 for (std::size_t k = i + 1; k < j; ++k)
-                    best[i * m + j] = std::max(best[i * m + j], std::min({best[i * m + k], best[k * m + j], quality(i, k, j)}));
+                    best[i * m + j] =
+                        std::max(best[i * m + j], std::min({best[i * m + k], best[k * m + j], quality(i, k, j)}));
             }
         double made = INFINITY;
         for (FaceId f : faces) {
@@ -138,8 +140,9 @@ std::string piece_violation(const TriMesh& T, const partition::Network& net) {
         if (made != best[m - 1]) {
             std::ostringstream why;
             why.precision(17);
-            why << "PART-13: a piece of face " << F.idx() << " of T (" << m << " corners) is triangulated with smallest angle " << made
-                << ", its best triangulation has " << best[m - 1];
+            why << "PART-13: a piece of face " << F.idx() << " of T (" << m
+                << " corners) is triangulated with smallest angle " << made << ", its best triangulation has "
+                << best[m - 1];
             return why.str();
         }
     }
@@ -207,21 +210,24 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
         double length = 0;
         for (std::size_t i = 0; i + 1 < path.size(); ++i) {
             const HalfedgeId h = M.find_halfedge(path[i], path[i + 1]);
-            if (!h.valid() || P.network.d_halfedge[h] != dh || P.network.d_halfedge[TriMesh::twin(h)] != TriMesh::twin(dh))
+            if (!h.valid() || P.network.d_halfedge[h] != dh ||
+                P.network.d_halfedge[TriMesh::twin(h)] != TriMesh::twin(dh))
                 return "PART-3: a path segment is not a labelled edge of T′";
             length += (M.position(path[i + 1]) - M.position(path[i])).norm();
         }
         // Snapping moves each node by at most max_snap_distance: the embedded curve is at most
         // 2·(#nodes)·max_snap longer than the exact geodesic, and never shorter than it by more than rounding.
         const double L = P.paths[e].path.length;
-        if (length < L * (1 - 1e-12) || length > L * (1 + 1e-12) + 2 * static_cast<double>(path.size()) * P.network.max_snap_distance) {
+        if (length < L * (1 - 1e-12) ||
+            length > L * (1 + 1e-12) + 2 * static_cast<double>(path.size()) * P.network.max_snap_distance) {
             why << "PART-3: the curve of domain edge " << e.idx() << " is " << length << " long, its geodesic " << L;
             return why.str();
         }
         // PART-4: condition (1) — the curves' interiors are disjoint and hold no corner.
         for (std::size_t i = 1; i + 1 < path.size(); ++i) {
             if (P.network.corner[path[i]].valid() || on_path[path[i].idx()] >= 0) {
-                why << "PART-4: the curve of domain edge " << e.idx() << " meets another curve or a corner at vertex " << path[i].idx();
+                why << "PART-4: the curve of domain edge " << e.idx() << " meets another curve or a corner at vertex "
+                    << path[i].idx();
                 return why.str();
             }
             on_path[path[i].idx()] = static_cast<int>(e.idx());
@@ -240,7 +246,8 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
             if (P.network.d_halfedge[h].valid()) t_order.push_back(P.network.d_halfedge[h]);
         });
         const auto it = std::find(t_order.begin(), t_order.end(), d_order.front());
-        if (it == t_order.end() || t_order.size() != d_order.size()) return "PART-5: the curves at a corner are not D's edges";
+        if (it == t_order.end() || t_order.size() != d_order.size())
+            return "PART-5: the curves at a corner are not D's edges";
         std::rotate(t_order.begin(), it, t_order.end());
         if (t_order != d_order) {
             why << "PART-5: the cyclic order at domain vertex " << vj.idx() << " differs from D's";
@@ -249,25 +256,29 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
     }
     // PART-6: every face of T′ in exactly one patch, one patch per face of D.
     const auto& patches = P.patches;
-    if (patches.patch.size() != D.mesh.n_faces() || patches.patch_of_face.size() != M.n_faces()) return "PART-6: patch count";
+    if (patches.patch.size() != D.mesh.n_faces() || patches.patch_of_face.size() != M.n_faces())
+        return "PART-6: patch count";
     std::vector<int> seen(M.n_faces(), 0);
     for (FaceId df : D.mesh.faces())
         for (FaceId f : patches.patch[df].faces) {
             if (patches.patch_of_face[f] != df) return "PART-6: patch_of_face disagrees with the patch's faces";
             ++seen[f.idx()];
         }
-    if (std::any_of(seen.begin(), seen.end(), [](int s) { return s != 1; })) return "PART-6: a face of T′ is not in exactly one patch";
+    if (std::any_of(seen.begin(), seen.end(), [](int s) { return s != 1; }))
+        return "PART-6: a face of T′ is not in exactly one patch";
     // PART-7: patch adjacency is D's — across every curve edge, the patches of D's two faces.
     for (HalfedgeId h : M.halfedges()) {
         const HalfedgeId dh = P.network.d_halfedge[h];
         if (M.is_boundary(h)) {
             // PART-12: T′'s boundary lies on the curves of D's boundary edges.
-            if (!dh.valid() || !D.mesh.is_boundary(dh)) return "PART-12: a boundary edge of T′ is on no boundary curve of D";
+            if (!dh.valid() || !D.mesh.is_boundary(dh))
+                return "PART-12: a boundary edge of T′ is on no boundary curve of D";
             continue;
         }
         if (dh.valid() && patches.patch_of_face[M.face(h)] != D.mesh.face(dh))
             return "PART-7: a patch borders a curve of a domain face it does not belong to";
-        if (!dh.valid() && !M.is_boundary(TriMesh::twin(h)) && patches.patch_of_face[M.face(h)] != patches.patch_of_face[M.face(TriMesh::twin(h))])
+        if (!dh.valid() && !M.is_boundary(TriMesh::twin(h)) &&
+            patches.patch_of_face[M.face(h)] != patches.patch_of_face[M.face(TriMesh::twin(h))])
             return "PART-7: two patches meet along an edge that is on no curve";
     }
     // PART-8: each patch is a disk bounded by the three curves of its face, corners at x_j, x_k, x_l.
@@ -279,9 +290,11 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
         }
         const auto corners = D.mesh.face_vertices(df);
         for (std::size_t c = 0; c < 3; ++c)
-            if (p.vertices[p.disk.boundary[p.disk.corners[c]]] != D.t_vertex[corners[c]]) return "PART-8: a corner is misplaced";
+            if (p.vertices[p.disk.boundary[p.disk.corners[c]]] != D.t_vertex[corners[c]])
+                return "PART-8: a corner is misplaced";
         for (std::size_t i = 0; i < p.vertices.size(); ++i)
-            if (p.disk.positions[i] != M.position(p.vertices[i])) return "PART-8: a patch vertex's position differs from T′'s";
+            if (p.disk.positions[i] != M.position(p.vertices[i]))
+                return "PART-8: a patch vertex's position differs from T′'s";
     }
     return piece_violation(T, P.network);
 }
@@ -308,7 +321,8 @@ std::string recovery_violation(const TriMesh& T, const domain::Domain& D0, const
 }
 
 std::string keep_violation(const TriMesh& T, const domain::Domain& D0, const partition::Partition& P) {
-    if (P.domain.mesh.triangles() != D0.mesh.triangles() || P.domain.t_vertex != D0.t_vertex) return "PART-10: D was changed";
+    if (P.domain.mesh.triangles() != D0.mesh.triangles() || P.domain.t_vertex != D0.t_vertex)
+        return "PART-10: D was changed";
     if (P.retries != 0 || P.curves.size() != D0.mesh.n_edges()) return "PART-10: retries or curve count";
     const auto ends = domain::edge_endpoints(D0);
     for (EdgeId e : P.curves.ids()) {
@@ -316,8 +330,8 @@ std::string keep_violation(const TriMesh& T, const domain::Domain& D0, const par
         const double g = geodesic::ellipse_shortest_path(T, ends[e.idx()].first, ends[e.idx()].second).path.length;
         const double L = P.paths[e].path.length;
         std::ostringstream why;
-        why << "PART-10: domain edge " << e.idx() << " (L " << L << ", geodesic " << g << ", restricted shortest " << c.shortest
-            << ", bound " << c.separation_bound << "): ";
+        why << "PART-10: domain edge " << e.idx() << " (L " << L << ", geodesic " << g << ", restricted shortest "
+            << c.shortest << ", bound " << c.separation_bound << "): ";
         if (c.kind == partition::CurveKind::boundary) {
             // PART-12: the arc of T's boundary between the ends, T's faces on its left.
             const auto& pts = P.paths[e].path.points;
@@ -342,8 +356,10 @@ std::string keep_violation(const TriMesh& T, const domain::Domain& D0, const par
         }
         if (c.reason.empty()) return why.str() + "a restricted curve without its reason";
         if (c.shortest < g * (1 - 1e-12)) return why.str() + "the restricted shortest length is below the geodesic's";
-        if (L < c.shortest * (1 - 1e-9)) return why.str() + "the separated curve is shorter than the restricted shortest";
-        if (L > c.shortest + c.separation_bound + 1e-12 * L) return why.str() + "the separation added more than its bound";
+        if (L < c.shortest * (1 - 1e-9))
+            return why.str() + "the separated curve is shorter than the restricted shortest";
+        if (L > c.shortest + c.separation_bound + 1e-12 * L)
+            return why.str() + "the separation added more than its bound";
     }
     return "";
 }

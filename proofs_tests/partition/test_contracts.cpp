@@ -59,7 +59,8 @@ const Fixture& tetrahedron() {
         for (std::uint32_t k = 0; k < 4; ++k) x.D.t_vertex.push_back(VertexId(k));
         x.paths = test::exact_paths(x.T, x.D);
         partition::Embedding e = partition::embed(x.T, x.D, x.paths);
-        if (!e.conflicts.empty()) throw std::logic_error("the fixture's network breaks (1)/(2): " + e.conflicts.front().describe());
+        if (!e.conflicts.empty())
+            throw std::logic_error("the fixture's network breaks (1)/(2): " + e.conflicts.front().describe());
         x.patches = partition::extract_patches(x.D, e.network);
         x.network = std::move(e.network);
         return x;
@@ -97,26 +98,32 @@ VertexId other_corner(VertexId a, VertexId b) {
 
 // ---- embed(): the paths' contract (embed.hpp: "throws std::logic_error when a path breaks its contract") ----
 
-TEST_CASE("PART-3: embed refuses a set of paths that is not one per edge of D, or flags that are not one per path", "[partition][contract]") {
+TEST_CASE("PART-3: embed refuses a set of paths that is not one per edge of D, or flags that are not one per path",
+          "[partition][contract]") {
     const Fixture& f = tetrahedron();
     std::vector<geodesic::GeodesicPath> few(f.paths.begin(), f.paths.end() - 1), many = f.paths;
     many.push_back(f.paths.front());
     for (const auto* paths : {&few, &many})
-        CHECK(refusal<std::logic_error>([&] { (void)partition::embed(f.T, f.D, *paths); }) == "embed: one path per edge of D is needed");
+        CHECK(refusal<std::logic_error>([&] { (void)partition::embed(f.T, f.D, *paths); }) ==
+              "embed: one path per edge of D is needed");
     const std::vector<std::uint8_t> flags(f.paths.size() - 1, 0);
-    CHECK(refusal<std::logic_error>([&] { (void)partition::embed(f.T, f.D, f.paths, flags); }) == "embed: one unsnapped flag per path");
-    CHECK(refusal<std::logic_error>([&] { (void)partition::embed_curves(f.T, f.paths, flags); }) == "embed: one unsnapped flag per curve");
+    CHECK(refusal<std::logic_error>([&] { (void)partition::embed(f.T, f.D, f.paths, flags); }) ==
+          "embed: one unsnapped flag per path");
+    CHECK(refusal<std::logic_error>([&] { (void)partition::embed_curves(f.T, f.paths, flags); }) ==
+          "embed: one unsnapped flag per curve");
     // The control: the same paths with one flag each are embedded, placed as given (none is snapped here).
     const std::vector<std::uint8_t> all(f.paths.size(), 1);
     CHECK(partition::embed(f.T, f.D, f.paths, all).conflicts.empty());
 }
 
-TEST_CASE("PART-3: embed refuses a path that does not run from x_j to x_k, naming its domain edge", "[partition][contract]") {
+TEST_CASE("PART-3: embed refuses a path that does not run from x_j to x_k, naming its domain edge",
+          "[partition][contract]") {
     const Fixture& f = tetrahedron();
     REQUIRE(chains_of_vertices(f));
     const std::uint32_t e = 2;
     const geodesic::GeodesicPath& p = f.paths[e];
-    const HalfedgeId far = out_of(f.T, other_corner(p.points.front().vertex, p.points.back().vertex));  // away from its ends
+    const HalfedgeId far =
+        out_of(f.T, other_corner(p.points.front().vertex, p.points.back().vertex));  // away from its ends
     auto with = [&](std::vector<SurfacePoint> points) {
         std::vector<geodesic::GeodesicPath> paths = f.paths;
         paths[e].points = std::move(points);
@@ -125,16 +132,17 @@ TEST_CASE("PART-3: embed refuses a path that does not run from x_j to x_k, namin
     const std::string wrong_ends = "embed: the path of D edge 2 does not run from x_j to x_k";
     std::vector<SurfacePoint> reversed = p.points;
     std::reverse(reversed.begin(), reversed.end());
-    CHECK(with({p.points.front()}) == wrong_ends);                                                     // one point
-    CHECK(with({SurfacePoint::on_edge(far, 0.5), p.points.back()}) == wrong_ends);                     // starts inside an edge
-    CHECK(with(reversed) == wrong_ends);                                                               // from x_k to x_j
-    CHECK(with({p.points.front(), SurfacePoint::on_edge(far, 0.5)}) == wrong_ends);                    // ends inside an edge
-    CHECK(with(std::vector<SurfacePoint>(p.points.begin(), p.points.end() - 1)) == wrong_ends);        // stops short of x_k
+    CHECK(with({p.points.front()}) == wrong_ends);                                   // one point
+    CHECK(with({SurfacePoint::on_edge(far, 0.5), p.points.back()}) == wrong_ends);   // starts inside an edge
+    CHECK(with(reversed) == wrong_ends);                                             // from x_k to x_j
+    CHECK(with({p.points.front(), SurfacePoint::on_edge(far, 0.5)}) == wrong_ends);  // ends inside an edge
+    CHECK(with(std::vector<SurfacePoint>(p.points.begin(), p.points.end() - 1)) == wrong_ends);  // stops short of x_k
     // The control: the path itself runs from x_j to x_k.
     CHECK(with(p.points) == "accepted");
 }
 
-TEST_CASE("PART-3: embed refuses a path whose consecutive nodes share no face of T, naming its domain edge", "[partition][contract]") {
+TEST_CASE("PART-3: embed refuses a path whose consecutive nodes share no face of T, naming its domain edge",
+          "[partition][contract]") {
     const Fixture& f = tetrahedron();
     REQUIRE(chains_of_vertices(f));
     const std::uint32_t e = 1;
@@ -153,12 +161,14 @@ TEST_CASE("PART-3: embed refuses a path whose consecutive nodes share no face of
     // A jump from x_j (or from a point of an edge of its faces) to a point of an edge far away.
     const HalfedgeId far = out_of(f.T, other_corner(xj, p.back().vertex));
     const HalfedgeId opposite = f.T.next(out_of(f.T, xj));  // the side of a face at x_j opposite it
-    CHECK(with({p.front(), SurfacePoint::on_edge(far, 0.5), p.back()}) == "embed: consecutive path nodes share no face (D edge 1)");
+    CHECK(with({p.front(), SurfacePoint::on_edge(far, 0.5), p.back()}) ==
+          "embed: consecutive path nodes share no face (D edge 1)");
     CHECK(with({p.front(), SurfacePoint::on_edge(opposite, 0.5), SurfacePoint::on_edge(far, 0.5), p.back()}) ==
           "embed: consecutive path nodes share no face (D edge 1)");
     // A node inside a face: GeodesicPath's nodes are vertices and edge points only.
     const FaceId face = f.T.face(out_of(f.T, xj));
-    CHECK(with({p.front(), SurfacePoint::in_face(face, {0.2, 0.3, 0.5}), p.back()}) == "embed: a path node inside a face");
+    CHECK(with({p.front(), SurfacePoint::in_face(face, {0.2, 0.3, 0.5}), p.back()}) ==
+          "embed: a path node inside a face");
 }
 
 TEST_CASE("PART-3: embed_curves refuses a curve that does not run between two vertices", "[partition][contract]") {
@@ -178,7 +188,8 @@ TEST_CASE("PART-3: embed_curves refuses a curve that does not run between two ve
 
 // ---- embed(): conditions (1) and (2) reported, with the message the partition passes on ----
 
-TEST_CASE("PART-4: a path through one point twice is a shared node of its own edge, described as such", "[partition][contract]") {
+TEST_CASE("PART-4: a path through one point twice is a shared node of its own edge, described as such",
+          "[partition][contract]") {
     const Fixture& f = tetrahedron();
     REQUIRE(chains_of_vertices(f));
     // D edge 4 goes x_j, v1, v2, back to v1 and v2 again, then on to x_k: not a simple curve.
@@ -199,17 +210,21 @@ TEST_CASE("PART-4: a path through one point twice is a shared node of its own ed
     CHECK(emb.conflicts[1].near[0] == v2.vertex);
 }
 
-TEST_CASE("PART-11: every kind of conflict is described by the domain edges and vertex it names", "[partition][contract]") {
+TEST_CASE("PART-11: every kind of conflict is described by the domain edges and vertex it names",
+          "[partition][contract]") {
     // These sentences are what a refused user domain is told (PART-11), one per conflicting pair.
     const auto described = [](Conflict::Kind kind, std::uint32_t a, std::uint32_t b, VertexId v = {}) {
         return Conflict{kind, EdgeId(a), EdgeId(b), v, {}}.describe();
     };
     using K = Conflict::Kind;
-    CHECK(described(K::shared_node, 3, 8) == "the paths of domain edge 3 and domain edge 8 meet at a point that is not a common end");
+    CHECK(described(K::shared_node, 3, 8) ==
+          "the paths of domain edge 3 and domain edge 8 meet at a point that is not a common end");
     CHECK(described(K::shared_node, 5, 5) == "the path of domain edge 5 passes a point twice");
     CHECK(described(K::crossing, 0, 11) == "the paths of domain edge 0 and domain edge 11 cross");
-    CHECK(described(K::through_corner, 7, 7, VertexId(2)) == "the path of domain edge 7 passes through the corner of domain vertex 2");
-    CHECK(described(K::order, 6, 6, VertexId(9)) == "around domain vertex 9 the path of domain edge 6 is out of the domain's cyclic order");
+    CHECK(described(K::through_corner, 7, 7, VertexId(2)) ==
+          "the path of domain edge 7 passes through the corner of domain vertex 2");
+    CHECK(described(K::order, 6, 6, VertexId(9)) ==
+          "around domain vertex 9 the path of domain edge 6 is out of the domain's cyclic order");
 }
 
 // ---- extract_patches(): a network that is not the one embed() made for D (PART-6..8, checked all the same) ----
@@ -226,7 +241,9 @@ std::string patches_of(const std::function<void(partition::Network&)>& change) {
 
 // The torus of revolution (radii 3 and 1) as n × n squares, each cut into two triangles along
 // the diagonal from (i, j) to (i + 1, j + 1); vertex (i, j) (indices mod n) is torus_vertex(n, i, j).
-VertexId torus_vertex(int n, int i, int j) { return VertexId(static_cast<VertexId::Index>(((i % n + n) % n) * n + (j % n + n) % n)); }
+VertexId torus_vertex(int n, int i, int j) {
+    return VertexId(static_cast<VertexId::Index>(((i % n + n) % n) * n + (j % n + n) % n));
+}
 
 TriMesh torus(int n) {
     std::vector<Vec3> positions;
@@ -257,7 +274,8 @@ HalfedgeId inner_edge(FaceId df, VertexId v = {}) {
     auto off_curves = [&](VertexId u) { return !f.network.on_path[u].d_edge.valid() && !f.network.corner[u].valid(); };
     for (HalfedgeId h : M.halfedges()) {
         const FaceId a = M.face(h), b = M.face(TriMesh::twin(h));
-        if (f.patches.patch_of_face[a] != df || f.patches.patch_of_face[b] != df || f.network.d_halfedge[h].valid()) continue;
+        if (f.patches.patch_of_face[a] != df || f.patches.patch_of_face[b] != df || f.network.d_halfedge[h].valid())
+            continue;
         if (v.valid() ? M.from(h) == v : off_curves(M.from(h)) && off_curves(M.to(h))) return h;
     }
     return {};
@@ -265,7 +283,8 @@ HalfedgeId inner_edge(FaceId df, VertexId v = {}) {
 
 }  // namespace
 
-TEST_CASE("PART-6, PART-7: extract_patches refuses regions that do not match D's faces one to one, naming the face", "[partition][contract]") {
+TEST_CASE("PART-6, PART-7: extract_patches refuses regions that do not match D's faces one to one, naming the face",
+          "[partition][contract]") {
     const Fixture& f = tetrahedron();
     CHECK(patches_of([](partition::Network&) {}) == "accepted");  // the control
     const EdgeId e(0);
@@ -277,8 +296,10 @@ TEST_CASE("PART-6, PART-7: extract_patches refuses regions that do not match D's
             if (net.d_halfedge[h].valid() && TriMesh::edge(net.d_halfedge[h]) == e) net.d_halfedge[h] = HalfedgeId();
     };
     const std::string merged = patches_of(unlabel_edge_0);
-    CHECK((merged == "the patch of domain face " + std::to_string(left.idx()) + " runs into the patch of domain face " + std::to_string(right.idx()) ||
-           merged == "the patch of domain face " + std::to_string(right.idx()) + " runs into the patch of domain face " + std::to_string(left.idx())));
+    CHECK((merged == "the patch of domain face " + std::to_string(left.idx()) + " runs into the patch of domain face " +
+                         std::to_string(right.idx()) ||
+           merged == "the patch of domain face " + std::to_string(right.idx()) +
+                         " runs into the patch of domain face " + std::to_string(left.idx())));
     // ... and with the curves around the right face's patch relabelled to the left face: the right face has no region.
     CHECK(patches_of([&](partition::Network& net) {
               unlabel_edge_0(net);
@@ -301,10 +322,14 @@ TEST_CASE("PART-6, PART-7: extract_patches refuses regions that do not match D's
           }) == "the patch of domain face 2 falls apart into several pieces");
 }
 
-TEST_CASE("PART-8: extract_patches refuses a patch whose boundary is not its three curves once around a disk, naming the face", "[partition][contract]") {
+TEST_CASE(
+    "PART-8: extract_patches refuses a patch whose boundary is not its three curves once around a disk, naming the "
+    "face",
+    "[partition][contract]") {
     const Fixture& f = tetrahedron();
     const FaceId df(0);
-    const EdgeId e = TriMesh::edge(sides(df)[0]);  // a curve on the boundary of patch 0 (face 0 is the lower of its faces)
+    const EdgeId e =
+        TriMesh::edge(sides(df)[0]);  // a curve on the boundary of patch 0 (face 0 is the lower of its faces)
     REQUIRE(f.D.mesh.face(TriMesh::twin(sides(df)[0])).idx() > df.idx());
     // Every label moved to the next face of D: the regions are still one per face, but each
     // patch's curves now have another face's patch on their left.
@@ -334,7 +359,8 @@ TEST_CASE("PART-8: extract_patches refuses a patch whose boundary is not its thr
           }) == "the patch of domain face 0 has a second boundary loop");
 }
 
-TEST_CASE("PART-8: extract_patches refuses a patch with a handle (one boundary loop, not a disk)", "[partition][contract]") {
+TEST_CASE("PART-8: extract_patches refuses a patch with a handle (one boundary loop, not a disk)",
+          "[partition][contract]") {
     // T′: a torus of 8 × 8 squares, each cut into two triangles. D: the two triangles of a pillow
     // (three vertices, faces (0, 1, 2) and (0, 2, 1)). Its curves ring one face F of the torus:
     // face 0's patch is F, a disk; face 1's is the rest, a torus with a hole (χ = −1).
@@ -343,7 +369,8 @@ TEST_CASE("PART-8: extract_patches refuses a patch with a handle (one boundary l
     D.mesh = TriMesh::from_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, std::vector<Triangle>{{0, 1, 2}, {0, 2, 1}});
     partition::Network net;
     net.mesh = torus(n);
-    const std::array<VertexId, 3> ring{torus_vertex(n, 0, 0), torus_vertex(n, 1, 0), torus_vertex(n, 1, 1)};  // face 0 of T′
+    const std::array<VertexId, 3> ring{torus_vertex(n, 0, 0), torus_vertex(n, 1, 0),
+                                       torus_vertex(n, 1, 1)};  // face 0 of T′
     net.d_halfedge.assign(net.mesh.n_halfedges(), HalfedgeId());
     net.path.resize(D.mesh.n_edges());
     for (EdgeId e : D.mesh.edges()) {
@@ -356,12 +383,14 @@ TEST_CASE("PART-8: extract_patches refuses a patch with a handle (one boundary l
     }
     // The curves of face 0 run around F with F on their left.
     REQUIRE(net.mesh.face(net.mesh.find_halfedge(ring[0], ring[1])) == FaceId(0));
-    CHECK(refusal<PartitionFailure>([&] { (void)partition::extract_patches(D, net); }) == "the patch of domain face 1 is not a topological disk");
+    CHECK(refusal<PartitionFailure>([&] { (void)partition::extract_patches(D, net); }) ==
+          "the patch of domain face 1 is not a topological disk");
 }
 
 // ---- the region of T′ cut out on its own, and the restricted path in it (partition/region.hpp, restricted.hpp) ----
 
-TEST_CASE("PART-10: a region refuses a curve that leaves the faces around it, and a point inside a face", "[partition][contract][keep]") {
+TEST_CASE("PART-10: a region refuses a curve that leaves the faces around it, and a point inside a face",
+          "[partition][contract][keep]") {
     const Fixture& f = tetrahedron();
     const VertexId x0(0);
     const FaceId at_x0 = f.T.face(out_of(f.T, x0));
@@ -382,8 +411,11 @@ TEST_CASE("PART-10: a region refuses a curve that leaves the faces around it, an
     }
     REQUIRE(outside);
     const HalfedgeId across = TriMesh::halfedge(*outside, 0);
-    const geodesic::GeodesicPath leaves{{SurfacePoint::at_vertex(f.T.from(across)), SurfacePoint::on_edge(across, 0.5), SurfacePoint::at_vertex(f.T.to(across))}, 0};
-    const geodesic::GeodesicPath through_face{{SurfacePoint::at_vertex(x0), SurfacePoint::in_face(at_x0, {0.2, 0.3, 0.5})}, 0};
+    const geodesic::GeodesicPath leaves{{SurfacePoint::at_vertex(f.T.from(across)), SurfacePoint::on_edge(across, 0.5),
+                                         SurfacePoint::at_vertex(f.T.to(across))},
+                                        0};
+    const geodesic::GeodesicPath through_face{
+        {SurfacePoint::at_vertex(x0), SurfacePoint::in_face(at_x0, {0.2, 0.3, 0.5})}, 0};
     const std::vector<FaceId> at_corner{at_x0};
     using Case = std::pair<const geodesic::GeodesicPath*, const std::vector<FaceId>*>;
     for (const Case& c : {Case{&leaves, &touched}, Case{&through_face, &at_corner}}) {
@@ -395,10 +427,13 @@ TEST_CASE("PART-10: a region refuses a curve that leaves the faces around it, an
     }
     // A point of T_S inside a face has no place as a vertex or edge point of T: a caller's bug.
     const partition::Region region = partition::Region::cut_out(f.T, touched, {}).value();
-    CHECK(refusal<InternalError>([&] { (void)region.in_t(SurfacePoint::in_face(FaceId(0), {0.2, 0.3, 0.5})); }) == "region: a point inside a face");
+    CHECK(refusal<InternalError>([&] {
+              (void)region.in_t(SurfacePoint::in_face(FaceId(0), {0.2, 0.3, 0.5}));
+          }) == "region: a point inside a face");
 }
 
-TEST_CASE("PART-10: a region whose curve runs along T's boundary has no side beyond it", "[partition][contract][keep][boundary]") {
+TEST_CASE("PART-10: a region whose curve runs along T's boundary has no side beyond it",
+          "[partition][contract][keep][boundary]") {
     // A flat 4 × 4 grid (with boundary); the curve runs along its boundary edge from (1, 0) to (0, 0).
     const int n = 4;
     std::vector<Vec3> positions;
@@ -423,7 +458,8 @@ TEST_CASE("PART-10: a region whose curve runs along T's boundary has no side bey
     CHECK(region.side(0, false).why() == "the curves do not enclose the region");
 }
 
-TEST_CASE("PART-10: the restricted path refuses an end outside its region, naming both vertices of T", "[partition][contract][keep]") {
+TEST_CASE("PART-10: the restricted path refuses an end outside its region, naming both vertices of T",
+          "[partition][contract][keep]") {
     const Fixture& f = tetrahedron();
     // The region: the patch of D face 0, bounded by its three curves (each with the patch on its left).
     std::vector<geodesic::GeodesicPath> ring;
@@ -439,7 +475,8 @@ TEST_CASE("PART-10: the restricted path refuses an end outside its region, namin
     const partition::Region region = partition::Region::cut_out(f.T, all, curves).value();
     const FaceData<std::uint8_t> inside = region.side(0, true).value();
     const VertexId from = ring[0].points.front().vertex, to = ring[0].points.back().vertex;
-    const VertexId apart = VertexId(6 - from.idx() - to.idx() - ring[1].points.back().vertex.idx());  // the corner not on face 0
+    const VertexId apart =
+        VertexId(6 - from.idx() - to.idx() - ring[1].points.back().vertex.idx());  // the corner not on face 0
     // The control: between two corners of the patch, the restricted shortest length is the
     // tetrahedron's edge, which bounds the patch (the curve touches it and is separated from it).
     const partition::RestrictedPath r = partition::restricted_path(region, inside, from, to).value();
@@ -449,8 +486,8 @@ TEST_CASE("PART-10: the restricted path refuses an end outside its region, namin
     CHECK(r.path.points.back().vertex == to);
     CHECK(r.path.length <= r.shortest + r.separation_bound + 1e-12 * edge);
     CHECK(refusal<PartitionFailure>([&] { (void)partition::restricted_path(region, inside, from, apart); }) ==
-          "restricted path: vertex " + std::to_string(apart.idx()) + " cannot be reached from vertex " + std::to_string(from.idx()) +
-              " inside the region the other curves leave free");
+          "restricted path: vertex " + std::to_string(apart.idx()) + " cannot be reached from vertex " +
+              std::to_string(from.idx()) + " inside the region the other curves leave free");
 }
 
 // ---- partition(): a domain given by the user whose geodesics break (1) (PART-11) ----
@@ -487,13 +524,16 @@ Quadrilateral quadrilateral(double theta) {
 }
 
 std::string crossing_of(const Quadrilateral& q) {
-    return "the paths of domain edge " + std::to_string(q.diagonal_a.idx()) + " and domain edge " + std::to_string(q.diagonal_b.idx()) + " cross";
+    return "the paths of domain edge " + std::to_string(q.diagonal_a.idx()) + " and domain edge " +
+           std::to_string(q.diagonal_b.idx()) + " cross";
 }
 
 }  // namespace
 
-TEST_CASE("PART-11: a given domain whose diagonals cross is kept with a restricted path, and refused naming the pair in the paper-only mode",
-          "[partition][contract][given]") {
+TEST_CASE(
+    "PART-11: a given domain whose diagonals cross is kept with a restricted path, and refused naming the pair in the "
+    "paper-only mode",
+    "[partition][contract][given]") {
     const Quadrilateral q = quadrilateral(0.35);
     const partition::Embedding e = partition::embed(q.T, q.D, test::exact_paths(q.T, q.D));
     REQUIRE(e.conflicts.size() == 1);
@@ -523,7 +563,8 @@ TEST_CASE("PART-11: a given domain whose vertices §2 cannot reach is kept direc
     CHECK(P.retries == 0);
     CHECK(test::partition_violation(q.T, P) == "");
     CHECK(test::keep_violation(q.T, q.D, P) == "");
-    CHECK(std::count_if(P.curves.begin(), P.curves.end(), [](const partition::CurveInfo& c) { return c.kind == partition::CurveKind::restricted; }) == 1);
+    CHECK(std::count_if(P.curves.begin(), P.curves.end(),
+                        [](const partition::CurveInfo& c) { return c.kind == partition::CurveKind::restricted; }) == 1);
 }
 
 TEST_CASE("PART-10: the curve kinds have the names the report and geodesics.obj use", "[partition][contract]") {
@@ -532,7 +573,8 @@ TEST_CASE("PART-10: the curve kinds have the names the report and geodesics.obj 
     CHECK(std::string(partition::name(partition::CurveKind::boundary)) == "boundary");
 }
 
-TEST_CASE("PART-11: a given domain of another genus than T is refused, saying that §2 cannot reach it", "[partition][contract][given]") {
+TEST_CASE("PART-11: a given domain of another genus than T is refused, saying that §2 cannot reach it",
+          "[partition][contract][given]") {
     // A tetrahedron (genus 0) over four vertices of a torus, in convex position around a spot so
     // that its diagonals' geodesics conflict: §2 cannot decimate a torus to 4 faces.
     const int n = 24;
@@ -547,8 +589,9 @@ TEST_CASE("PART-11: a given domain of another genus than T is refused, saying th
     REQUIRE_FALSE(partition::embed(T, D, test::exact_paths(T, D)).conflicts.empty());
     const std::string what = refusal<PartitionFailure>([&] { (void)partition::partition(T, D); });
     const std::string head = "conditions (1)/(2) of §3 fail for the given domain: ";
-    const std::string tail = "; and the domain cannot be kept: §2 cannot decimate T to the domain's vertices: "
-                             "--faces 4 is fewer than a closed surface of genus 1 needs (at least 14)";
+    const std::string tail =
+        "; and the domain cannot be kept: §2 cannot decimate T to the domain's vertices: "
+        "--faces 4 is fewer than a closed surface of genus 1 needs (at least 14)";
     CHECK(what.substr(0, head.size()) == head);
     REQUIRE(what.size() > tail.size());
     CHECK(what.substr(what.size() - tail.size()) == tail);

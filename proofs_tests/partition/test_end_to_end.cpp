@@ -24,7 +24,7 @@ std::array<double, 3> barycentric(const Vec3& x, const Vec3& a, const Vec3& b, c
 
 // The largest deviation of ψ from the linear map over all vertices of T′, for a certified run.
 double linear_deviation(const std::vector<Vec3>& corners, const std::vector<Triangle>& faces, param::Weights weights,
-                            unsigned seed) {
+                        unsigned seed) {
     const TriMesh T = test::refined_polyhedron(corners, faces, 12, 0.25, seed);
     domain::Domain D;
     D.mesh = TriMesh::from_triangles(corners, faces);
@@ -44,7 +44,8 @@ double linear_deviation(const std::vector<Vec3>& corners, const std::vector<Tria
     for (std::size_t f = 0; f < p.refined_faces.size(); ++f) {
         const Triangle& d = faces[p.face_patch[f]];
         for (int c = 0; c < 3; ++c) {
-            const auto want = barycentric(p.refined_positions[p.refined_faces[f][c]], corners[d[0]], corners[d[1]], corners[d[2]]);
+            const auto want =
+                barycentric(p.refined_positions[p.refined_faces[f][c]], corners[d[0]], corners[d[1]], corners[d[2]]);
             for (int r = 0; r < 3; ++r) worst = std::max(worst, std::abs(p.face_beta[f][c][r] - want[r]));
         }
     }
@@ -53,15 +54,19 @@ double linear_deviation(const std::vector<Vec3>& corners, const std::vector<Tria
 
 }  // namespace
 
-TEST_CASE("Prop. 2 end to end: an irregularly triangulated tetrahedron over its corners maps linearly", "[pipeline][prop2]") {
+TEST_CASE("Prop. 2 end to end: an irregularly triangulated tetrahedron over its corners maps linearly",
+          "[pipeline][prop2]") {
     for (param::Weights w : {param::Weights::shape_preserving, param::Weights::mean_value})
-        for (unsigned seed : {1u, 2u, 3u}) CHECK(linear_deviation(test::tetrahedron_corners, test::tetrahedron_faces, w, seed) <= 1e-12);
+        for (unsigned seed : {1u, 2u, 3u})
+            CHECK(linear_deviation(test::tetrahedron_corners, test::tetrahedron_faces, w, seed) <= 1e-12);
     // The control: uniform weights have no linear precision, and the check sees it.
     CHECK(linear_deviation(test::tetrahedron_corners, test::tetrahedron_faces, param::Weights::uniform, 1) > 1e-4);
 }
 
-TEST_CASE("Prop. 2 end to end: an irregularly triangulated octahedron over its corners maps linearly", "[pipeline][prop2]") {
+TEST_CASE("Prop. 2 end to end: an irregularly triangulated octahedron over its corners maps linearly",
+          "[pipeline][prop2]") {
     for (param::Weights w : {param::Weights::shape_preserving, param::Weights::mean_value})
-        for (unsigned seed : {4u, 5u}) CHECK(linear_deviation(test::octahedron_corners, test::octahedron_faces, w, seed) <= 1e-12);
+        for (unsigned seed : {4u, 5u})
+            CHECK(linear_deviation(test::octahedron_corners, test::octahedron_faces, w, seed) <= 1e-12);
     CHECK(linear_deviation(test::octahedron_corners, test::octahedron_faces, param::Weights::uniform, 4) > 1e-4);
 }

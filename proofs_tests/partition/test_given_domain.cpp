@@ -63,7 +63,8 @@ Tally run_mesh(const std::string& name, const TriMesh& T, std::size_t faces) {
                 ++t.refused;
             }
         }
-    std::printf("PART-11 %-18s %4zu faces: %d of %d kept, %d refused\n", name.c_str(), faces, t.kept, t.runs, t.refused);
+    std::printf("PART-11 %-18s %4zu faces: %d of %d kept, %d refused\n", name.c_str(), faces, t.kept, t.runs,
+                t.refused);
     return t;
 }
 
@@ -76,12 +77,14 @@ TEST_CASE("PART-11: given domains (decimations with random flips, no history) ar
         sum.kept += t.kept;
         sum.refused += t.refused;
     };
-    for (const auto& [name, faces, genus] : {std::tuple{"fandisk.off", 114, 0}, {"elephant.off", 200, 3}, {"knot1.off", 200, 1}}) {
+    for (const auto& [name, faces, genus] :
+         {std::tuple{"fandisk.off", 114, 0}, {"elephant.off", 200, 3}, {"knot1.off", 200, 1}}) {
         const std::string path = test::cgal_mesh(name);
         add(genus == 0 ? genus0 : higher, run_mesh(name, test::load_mesh(path), static_cast<std::size_t>(faces)));
     }
     for (int genus = 0; genus <= 3; ++genus) {
-        const TriMesh T = generate::random_closed_mesh({.genus = genus, .faces = 3000, .seed = 11u + static_cast<unsigned>(genus), .noise = 0.2});
+        const TriMesh T = generate::random_closed_mesh(
+            {.genus = genus, .faces = 3000, .seed = 11u + static_cast<unsigned>(genus), .noise = 0.2});
         add(genus == 0 ? genus0 : higher, run_mesh("random genus " + std::to_string(genus), T, 60));
     }
     CHECK(genus0.kept == genus0.runs);
@@ -89,7 +92,8 @@ TEST_CASE("PART-11: given domains (decimations with random flips, no history) ar
     CHECK(genus0.kept + genus0.refused + higher.kept + higher.refused == genus0.runs + higher.runs);
 }
 
-TEST_CASE("PART-11, PART-12, DOM-21: given domains with boundary (decimations with random flips, no history) are kept", "[partition][keep][given][boundary]") {
+TEST_CASE("PART-11, PART-12, DOM-21: given domains with boundary (decimations with random flips, no history) are kept",
+          "[partition][keep][given][boundary]") {
     Tally all;
     auto add = [&](const Tally& t) {
         all.runs += t.runs;
@@ -99,7 +103,11 @@ TEST_CASE("PART-11, PART-12, DOM-21: given domains with boundary (decimations wi
     const std::string path = test::cgal_mesh("lion-head.off");
     add(run_mesh("lion-head.off", test::load_mesh(path), 200));
     for (int holes : {1, 3}) {
-        const TriMesh T = generate::random_mesh({.genus = holes - 1, .faces = 3001, .seed = 5u + static_cast<unsigned>(holes), .noise = 0.2, .holes = holes});
+        const TriMesh T = generate::random_mesh({.genus = holes - 1,
+                                                 .faces = 3001,
+                                                 .seed = 5u + static_cast<unsigned>(holes),
+                                                 .noise = 0.2,
+                                                 .holes = holes});
         add(run_mesh("random, " + std::to_string(holes) + " holes", T, 80));
     }
     CHECK(all.kept + all.refused == all.runs);

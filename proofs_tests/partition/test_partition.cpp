@@ -27,9 +27,7 @@ using partition::Conflict;
 
 namespace {
 
-TriMesh cgal_mesh(const char* name) {
-    return test::load_mesh(test::cgal_mesh(name));
-}
+TriMesh cgal_mesh(const char* name) { return test::load_mesh(test::cgal_mesh(name)); }
 
 TriMesh fandisk() { return cgal_mesh("fandisk.off"); }
 
@@ -38,7 +36,8 @@ struct Narrated {
     partition::Partition P;
     std::vector<std::string> lines;
     bool said(const char* words) const {
-        return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(words) != std::string::npos; });
+        return std::any_of(lines.begin(), lines.end(),
+                           [&](const std::string& l) { return l.find(words) != std::string::npos; });
     }
 };
 
@@ -105,7 +104,8 @@ std::string restricted_oracle_violation(const TriMesh& T, const partition::Parti
         const bool left = (D.mesh.next(h).idx() & 1u) == 0;  // net.path runs along D's halfedge (e, 0)
         const VertexId a = D.t_vertex[D.mesh.from(h)], b = D.t_vertex[D.mesh.to(h)];
         partition::Region region = partition::Region::cut_out(T, touched, around).value();
-        const partition::RestrictedPath r = partition::restricted_path(region, region.side(0, left).value(), a, b).value();
+        const partition::RestrictedPath r =
+            partition::restricted_path(region, region.side(0, left).value(), a, b).value();
         // CGAL's inexact constructions can trip its own assertions in the slivers next to the
         // curves; the distance is symmetric, so the other end as the source is the same oracle.
         std::optional<double> cgal;
@@ -124,12 +124,14 @@ std::string restricted_oracle_violation(const TriMesh& T, const partition::Parti
         const double d = *cgal, L = P.paths[e].path.length;
         std::ostringstream why;
         why.precision(17);
-        why << "PART-10: domain edge " << e.idx() << " (CGAL " << d << ", L* " << r.shortest << ", separated " << r.path.length
-            << ", bound " << r.separation_bound << ", delivered " << L << "): ";
+        why << "PART-10: domain edge " << e.idx() << " (CGAL " << d << ", L* " << r.shortest << ", separated "
+            << r.path.length << ", bound " << r.separation_bound << ", delivered " << L << "): ";
         if (r.shortest > d * (1 + 1e-9)) return why.str() + "the restricted shortest length exceeds CGAL's";
-        if (r.path.length > r.shortest + r.separation_bound + 1e-12 * r.shortest) return why.str() + "the separation added more than its bound";
+        if (r.path.length > r.shortest + r.separation_bound + 1e-12 * r.shortest)
+            return why.str() + "the separation added more than its bound";
         if (r.shortest < P.curves[e].geodesic_length * (1 - 1e-12)) return why.str() + "shorter than the geodesic";
-        if (L < P.curves[e].geodesic_length * (1 - 1e-12)) return why.str() + "the delivered curve is shorter than the geodesic";
+        if (L < P.curves[e].geodesic_length * (1 - 1e-12))
+            return why.str() + "the delivered curve is shorter than the geodesic";
         const Outcome<std::monostate> added = region.add(partition::RegionCurve{&r.path, false});
         for (const std::string& refused : {added ? std::string() : added.why(), added ? region.side(4, true).why() : "",
                                            added ? region.side(4, false).why() : ""})
@@ -162,7 +164,7 @@ TEST_CASE("PART-4: a path through another corner breaks (1) and is reported", "[
     auto detoured = [&](EdgeId d) {
         const HalfedgeId h = TriMesh::halfedge(d, 0);
         const HalfedgeId hk = D.mesh.next(h), hm = D.mesh.next(hk);  // v_k -> v_m, v_m -> v_j
-        auto along = [&](HalfedgeId dh) {  // the path of D halfedge dh, in its direction
+        auto along = [&](HalfedgeId dh) {                            // the path of D halfedge dh, in its direction
             geodesic::GeodesicPath p = paths[TriMesh::edge(dh).idx()];
             if (dh.idx() & 1u) std::reverse(p.points.begin(), p.points.end());
             return p;
@@ -187,13 +189,16 @@ TEST_CASE("PART-4: a path through another corner breaks (1) and is reported", "[
         const partition::Network& net = e.network;
         auto nearest = [&](VertexId v) {
             const partition::Origin& o = net.origin[v];
-            return o.vertex.valid() ? o.vertex : o.t < 0.5 ? T.from(TriMesh::halfedge(o.edge, 0)) : T.to(TriMesh::halfedge(o.edge, 0));
+            return o.vertex.valid() ? o.vertex
+                   : o.t < 0.5      ? T.from(TriMesh::halfedge(o.edge, 0))
+                                    : T.to(TriMesh::halfedge(o.edge, 0));
         };
         const std::vector<VertexId>& path = net.path[d];
         std::size_t at = 0;
         for (std::size_t i = 1; i + 1 < path.size(); ++i)
             if (net.corner[path[i]].valid()) at = i;
-        if (at < 2 || at + 2 >= path.size() || nearest(path[at - 2]) == nearest(path[at - 1]) || nearest(path[at + 2]) == nearest(path[at + 1]))
+        if (at < 2 || at + 2 >= path.size() || nearest(path[at - 2]) == nearest(path[at - 1]) ||
+            nearest(path[at + 2]) == nearest(path[at + 1]))
             continue;
         const auto corner = std::find_if(e.conflicts.begin(), e.conflicts.end(), [&](const Conflict& c) {
             return c.kind == Conflict::Kind::through_corner && c.d_edge_a == d;
@@ -227,11 +232,13 @@ TEST_CASE("PART-5: condition (2) at one vertex flags exactly the curves beside a
     CHECK(at({0, 2, 1, 3, 4}) == Flags{1, 1, 1, 1, 0});
     CHECK(at({4, 3, 2, 1, 0}) == Flags{1, 1, 1, 1, 1});  // reversed (a domain turned over)
     CHECK(at({0, 1, 2, 3}) == Flags{1, 1, 1, 1, 1});     // a curve missing at x_j
-    CHECK(partition::out_of_order(d, std::vector<HalfedgeId>{d[0], d[1], d[2], d[3], HalfedgeId(99)}) == Flags{1, 1, 1, 1, 1});
+    CHECK(partition::out_of_order(d, std::vector<HalfedgeId>{d[0], d[1], d[2], d[3], HalfedgeId(99)}) ==
+          Flags{1, 1, 1, 1, 1});
 }
 
-TEST_CASE("PART-5: a domain with its orientation reversed breaks (2) at every corner; without history it cannot be recovered",
-          "[partition][unit]") {
+TEST_CASE(
+    "PART-5: a domain with its orientation reversed breaks (2) at every corner; without history it cannot be recovered",
+    "[partition][unit]") {
     const TriMesh T = fandisk();
     const domain::Domain D = mirrored(domain::decimate(T, {.target_faces = 114}));
     const partition::Embedding e = partition::embed(T, D, test::exact_paths(T, D));
@@ -248,7 +255,8 @@ TEST_CASE("PART-5: a domain with its orientation reversed breaks (2) at every co
     }
 }
 
-TEST_CASE("PART-9, PART-10: a domain made wrong by an edge flip is recovered by decimating again, or kept directly", "[partition][recovery]") {
+TEST_CASE("PART-9, PART-10: a domain made wrong by an edge flip is recovered by decimating again, or kept directly",
+          "[partition][recovery]") {
     const TriMesh T = fandisk();
     const domain::Domain D0 = domain::decimate(T, {.target_faces = 114});
     // Flip D's edges in turn until the flipped domain's paths break (1) or (2): a hand-made bad
@@ -284,7 +292,8 @@ TEST_CASE("PART-9, PART-10: a domain made wrong by an edge flip is recovered by 
     CHECK(found);
 }
 
-TEST_CASE("PART-9: the elephant at 114 faces needs all three remedies and ends far from D = T", "[partition][recovery][real]") {
+TEST_CASE("PART-9: the elephant at 114 faces needs all three remedies and ends far from D = T",
+          "[partition][recovery][real]") {
     // libcgal-demo's elephant (genus 3, 5,558 faces) over a 114-face domain: curves over corners
     // (flips), conflicts at new vertices (decimating again) and conflicts whose vertices would add
     // too much (stepping back) all occur; without stepping back this run would end at D = T.
@@ -322,14 +331,16 @@ TEST_CASE("PART-1..9: random meshes of genus 0–3 and random domain sizes parti
     });
 }
 
-TEST_CASE("PART-10: the elephant at 114 faces keeps its domain, conflicting edges restricted", "[partition][keep][real]") {
+TEST_CASE("PART-10: the elephant at 114 faces keeps its domain, conflicting edges restricted",
+          "[partition][keep][real]") {
     // The run that the paper-only mode ends at 1,184 faces (PART-9 above): kept at 114.
     const TriMesh T = cgal_mesh("elephant.off");
     const domain::Domain D0 = domain::decimate(T, {.target_faces = 114});
     REQUIRE_FALSE(partition::embed(T, D0, test::exact_paths(T, D0)).conflicts.empty());
     const partition::Partition P = partition::partition(T, D0);
-    const auto restricted = std::count_if(P.curves.begin(), P.curves.end(),
-                                          [](const partition::CurveInfo& c) { return c.kind == partition::CurveKind::restricted; });
+    const auto restricted = std::count_if(P.curves.begin(), P.curves.end(), [](const partition::CurveInfo& c) {
+        return c.kind == partition::CurveKind::restricted;
+    });
     CHECK(restricted > 0);
     CHECK(restricted < static_cast<long>(P.curves.size()) / 4);
     CHECK(P.keep_start_faces >= D0.mesh.n_faces());
@@ -338,7 +349,8 @@ TEST_CASE("PART-10: the elephant at 114 faces keeps its domain, conflicting edge
     CHECK(restricted_oracle_violation(T, P, true) == "");
 }
 
-TEST_CASE("PART-10: the direct start takes the cow's kept geodesics as they are, and embeds the elephant's first", "[partition][keep][real]") {
+TEST_CASE("PART-10: the direct start takes the cow's kept geodesics as they are, and embeds the elephant's first",
+          "[partition][keep][real]") {
     // At 300 faces the cow's kept geodesics read in order (no shared node, first steps in D's
     // order around every corner): no embedding of them before the check. The elephant's leave a
     // corner out of order: embedded and checked first, as the rounds need.
@@ -356,8 +368,9 @@ TEST_CASE("PART-10: the direct start takes the cow's kept geodesics as they are,
     }
 }
 
-TEST_CASE("PART-10: a decimated D flipped afterwards, where the direct start does not serve, is changed as PART-9 says why",
-          "[partition][keep][real]") {
+TEST_CASE(
+    "PART-10: a decimated D flipped afterwards, where the direct start does not serve, is changed as PART-9 says why",
+    "[partition][keep][real]") {
     // The elephant at 114 faces needs a finer start (its dropped edges leave an annulus), and a
     // finer start needs D's history, which no longer describes D once an edge is flipped.
     const TriMesh T = cgal_mesh("elephant.off");
@@ -374,7 +387,8 @@ TEST_CASE("PART-10: a decimated D flipped afterwards, where the direct start doe
     REQUIRE_FALSE(partition::embed(T, D, test::exact_paths(T, D)).conflicts.empty());
     const Narrated run = narrated_partition(T, D);
     const partition::Partition& P = run.P;
-    CHECK(std::count(run.lines.begin(), run.lines.end(), "keeping the domain failed (D's history does not describe it); changing D instead") == 1);
+    CHECK(std::count(run.lines.begin(), run.lines.end(),
+                     "keeping the domain failed (D's history does not describe it); changing D instead") == 1);
     CHECK(P.retries >= 1);
     CHECK(test::recovery_violation(T, D, P) == "");
     CHECK(test::partition_violation(T, P) == "");
@@ -388,10 +402,12 @@ TEST_CASE("PART-10: random meshes of genus 0–3 keep their decimated domain", "
         const Narrated run = narrated_partition(T, D);
         const partition::Partition& P = run.P;
         RC_TAG(P.keep_start_faces == 0 ? "geodesics only"
-               : P.keep_start_faces == D.mesh.n_faces() ? "kept directly (restricted paths in the polygons the others leave)"
-                                                        : "kept from a finer start");
-        RC_TAG(run.said("taken as they are") ? "kept geodesics taken as they are"
-               : run.said("embedded and checked first") ? "kept geodesics embedded first" : "");
+               : P.keep_start_faces == D.mesh.n_faces()
+                   ? "kept directly (restricted paths in the polygons the others leave)"
+                   : "kept from a finer start");
+        RC_TAG(run.said("taken as they are")            ? "kept geodesics taken as they are"
+               : run.said("embedded and checked first") ? "kept geodesics embedded first"
+                                                        : "");
         // The direct start's reading of the kept geodesics (nodes, first steps around corners)
         // agrees with the check: what it passes, the embedding accepts (else a second direct
         // start costs time; only snapping could tell them apart).
@@ -402,8 +418,10 @@ TEST_CASE("PART-10: random meshes of genus 0–3 keep their decimated domain", "
     });
 }
 
-TEST_CASE("PART-10: a restricted path through a saddle is snapped to it, leaving the next curve room (./run families finding)",
-          "[partition][keep][regression]") {
+TEST_CASE(
+    "PART-10: a restricted path through a saddle is snapped to it, leaving the next curve room (./run families "
+    "finding)",
+    "[partition][keep][regression]") {
     // `./run families 500`: block 415 (genus 2, three components) and density 483 (genus 3, two
     // holes). A restricted path passed a saddle of T as a point 1e-12 of an edge from it, a
     // rounding error of the exact path through it; the next curve touching it had no room to
@@ -442,23 +460,31 @@ TEST_CASE("PART-10: a restricted path through a saddle is snapped to it, leaving
 
 // ---- Surfaces with boundary and several components (PART-12; paper_notes/boundary.md) ----
 
-TEST_CASE("PART-10, PART-12: surfaces with 1-5 boundary loops and 1-3 components of genus 0-2 keep their domain", "[partition][keep][property][boundary]") {
+TEST_CASE("PART-10, PART-12: surfaces with 1-5 boundary loops and 1-3 components of genus 0-2 keep their domain",
+          "[partition][keep][property][boundary]") {
     // keep_start_faces counts the start's faces on T, without the cones of D̂ (partition.hpp), so
     // that a direct start has exactly D's faces here as on a closed mesh.
     std::size_t restricted_runs = 0, direct_starts = 0;
     rc::prop("the partition of a random surface with boundary keeps its random decimated domain", [&] {
-        const fhr::testing::GeneratedMesh g =
-            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 1, .max_holes = 5, .min_components = 1, .max_components = 3});
+        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh({.min_genus = 0,
+                                                                       .max_genus = 2,
+                                                                       .max_faces = 1200,
+                                                                       .min_holes = 1,
+                                                                       .max_holes = 5,
+                                                                       .min_components = 1,
+                                                                       .max_components = 3});
         const TriMesh& T = g;
         const domain::Domain D = test::random_open_domain(T);
         const Narrated run = narrated_partition(T, D);
         const partition::Partition& P = run.P;
-        RC_TAG(run.said("taken as they are") ? "kept geodesics taken as they are"
-               : run.said("embedded and checked first") ? "kept geodesics embedded first" : "");
+        RC_TAG(run.said("taken as they are")            ? "kept geodesics taken as they are"
+               : run.said("embedded and checked first") ? "kept geodesics embedded first"
+                                                        : "");
         RC_ASSERT(!run.said("refused by the check"));  // as on closed meshes
         RC_TAG(P.keep_start_faces == 0 ? "geodesics only"
-               : P.keep_start_faces == D.mesh.n_faces() ? "kept directly (restricted paths in the polygons the others leave)"
-                                                        : "kept from a finer start");
+               : P.keep_start_faces == D.mesh.n_faces()
+                   ? "kept directly (restricted paths in the polygons the others leave)"
+                   : "kept from a finer start");
         restricted_runs += P.keep_start_faces > 0;
         direct_starts += P.keep_start_faces == D.mesh.n_faces();
         RC_ASSERT(test::partition_violation(T, P) == "");
@@ -470,10 +496,16 @@ TEST_CASE("PART-10, PART-12: surfaces with 1-5 boundary loops and 1-3 components
     CHECK(direct_starts > 0);
 }
 
-TEST_CASE("PART-9, PART-12: surfaces with boundary and components in the paper-only mode recover validly", "[partition][property][boundary]") {
+TEST_CASE("PART-9, PART-12: surfaces with boundary and components in the paper-only mode recover validly",
+          "[partition][property][boundary]") {
     rc::prop("the paper-only partition of a random surface with boundary", [] {
-        const fhr::testing::GeneratedMesh g =
-            *fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 1, .max_holes = 5, .min_components = 1, .max_components = 3});
+        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh({.min_genus = 0,
+                                                                       .max_genus = 2,
+                                                                       .max_faces = 1200,
+                                                                       .min_holes = 1,
+                                                                       .max_holes = 5,
+                                                                       .min_components = 1,
+                                                                       .max_components = 3});
         const TriMesh& T = g;
         const domain::Domain D = test::random_open_domain(T);
         partition::PartitionOptions options;
@@ -485,12 +517,14 @@ TEST_CASE("PART-9, PART-12: surfaces with boundary and components in the paper-o
     });
 }
 
-TEST_CASE("PART-12: lion-head (one boundary loop) keeps a 300-face domain; its boundary edges are arcs of T's boundary", "[partition][keep][real][boundary]") {
+TEST_CASE("PART-12: lion-head (one boundary loop) keeps a 300-face domain; its boundary edges are arcs of T's boundary",
+          "[partition][keep][real][boundary]") {
     const TriMesh T = cgal_mesh("lion-head.off");
     const domain::Domain D0 = domain::decimate(T, {.target_faces = 300});
     const partition::Partition P = partition::partition(T, D0);
-    const auto boundary = std::count_if(P.curves.begin(), P.curves.end(),
-                                        [](const partition::CurveInfo& c) { return c.kind == partition::CurveKind::boundary; });
+    const auto boundary = std::count_if(P.curves.begin(), P.curves.end(), [](const partition::CurveInfo& c) {
+        return c.kind == partition::CurveKind::boundary;
+    });
     std::size_t d_boundary = 0;
     for (EdgeId e : D0.mesh.edges()) d_boundary += D0.mesh.is_boundary(e);
     CHECK(boundary == static_cast<long>(d_boundary));
@@ -499,25 +533,33 @@ TEST_CASE("PART-12: lion-head (one boundary loop) keeps a 300-face domain; its b
     CHECK(test::partition_violation(T, P) == "");
 }
 
-TEST_CASE("PART-4: two paths through one point of an edge, given on the edge's two halfedges, are one node (a shared node, recovered)", "[partition][regression]") {
+TEST_CASE(
+    "PART-4: two paths through one point of an edge, given on the edge's two halfedges, are one node (a shared node, "
+    "recovered)",
+    "[partition][regression]") {
     // Found by the pipeline property over several components: two geodesics of this domain meet
     // an edge of T at one point, one of them with t and the other with 1 − t on the other
     // halfedge; they became two vertices of T′ at one position, and embed threw "a piece of a
     // face has no proper triangulation" instead of reporting condition (1).
-    const TriMesh T = generate::random_mesh({.genus = 0, .faces = 278, .seed = 402034551980990743ull, .noise = 0, .holes = 0, .components = 2});
+    const TriMesh T = generate::random_mesh(
+        {.genus = 0, .faces = 278, .seed = 402034551980990743ull, .noise = 0, .holes = 0, .components = 2});
     const domain::Domain D = domain::decimate(T, {.target_faces = 12});
     for (bool keep : {true, false}) {
         partition::PartitionOptions options;
         options.keep_domain = keep;
         const partition::Partition P = partition::partition(T, D, options);
         CHECK(test::partition_violation(T, P) == "");
-        if (keep) CHECK(test::keep_violation(T, D, P) == "");
-        else CHECK(test::recovery_violation(T, D, P) == "");
+        if (keep)
+            CHECK(test::keep_violation(T, D, P) == "");
+        else
+            CHECK(test::recovery_violation(T, D, P) == "");
     }
 }
 
-TEST_CASE("PART-4..8: embed cuts the faces and extract_patches makes the disks in parallel blocks with the sequential result, conflicts in face order",
-          "[partition][unit]") {
+TEST_CASE(
+    "PART-4..8: embed cuts the faces and extract_patches makes the disks in parallel blocks with the sequential "
+    "result, conflicts in face order",
+    "[partition][unit]") {
     // 40,000 faces: three blocks of embed's parallel loop. A coarse domain (24 faces) has long
     // geodesics that conflict; a finer one (2,000 faces) embeds. Both give the same conflicts, in
     // the same order, and the same T′ on one thread and on three.
@@ -526,17 +568,20 @@ TEST_CASE("PART-4..8: embed cuts the faces and extract_patches makes the disks i
         const domain::Domain D = domain::decimate(T, {.target_faces = faces});
         const std::vector<geodesic::GeodesicPath> paths = test::exact_paths(T, D);
         ThreadPool one(1), three(3);
-        const partition::Embedding a = partition::embed(T, D, paths, {}, &one), b = partition::embed(T, D, paths, {}, &three);
+        const partition::Embedding a = partition::embed(T, D, paths, {}, &one),
+                                   b = partition::embed(T, D, paths, {}, &three);
         INFO(faces << " faces: " << a.conflicts.size() << " conflicts");
         REQUIRE(a.conflicts.size() == b.conflicts.size());
-        for (std::size_t i = 0; i < a.conflicts.size(); ++i) CHECK(a.conflicts[i].describe() == b.conflicts[i].describe());
+        for (std::size_t i = 0; i < a.conflicts.size(); ++i)
+            CHECK(a.conflicts[i].describe() == b.conflicts[i].describe());
         CHECK(a.network.mesh.triangles() == b.network.mesh.triangles());
         CHECK(a.network.t_face.values() == b.network.t_face.values());
         if (faces == 24) CHECK_FALSE(a.conflicts.empty());
         if (faces == 2000) {
             CHECK(a.network.mesh.n_faces() > T.n_faces());
             // PART-6..8: the patches, made in blocks of 125 of D's faces, the same on one thread and on three.
-            const partition::Patches p = partition::extract_patches(D, a.network, &one), q = partition::extract_patches(D, a.network, &three);
+            const partition::Patches p = partition::extract_patches(D, a.network, &one),
+                                     q = partition::extract_patches(D, a.network, &three);
             CHECK(p.patch_of_face.values() == q.patch_of_face.values());
             for (FaceId df : D.mesh.faces()) {
                 CHECK(p.patch[df].vertices == q.patch[df].vertices);

@@ -26,8 +26,13 @@ namespace {
 
 // §5's properties draw from every embedded family: genus 0–2, up to one hole, ≤ 1,200 faces.
 rc::Gen<fhr::testing::GeneratedMesh> small_family_mesh() {
-    return fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 1200, .min_holes = 0, .max_holes = 1,
-                                   .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
+    return fhr::testing::gen_mesh(
+        {.min_genus = 0,
+         .max_genus = 2,
+         .max_faces = 1200,
+         .min_holes = 0,
+         .max_holes = 1,
+         .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
 }
 
 // WAV-15's maxima computed another way, for their tightness: every face of T′ clipped against
@@ -35,8 +40,8 @@ rc::Gen<fhr::testing::GeneratedMesh> small_family_mesh() {
 // |f^J − φ| evaluated at each corner of each piece, both maps by their own barycentric
 // coordinates there. No crossings, no 10⁻¹² margins, no reuse of a vertex: a bound from
 // affine_bounds above these maxima by more than rounding counted a point where it lies in no piece.
-wavelet::AffineBounds clipped_maxima(const wavelet::Refinement& r, std::span<const Vec3> fj, const pipeline::Parameterization& p,
-                                     std::size_t t_faces) {
+wavelet::AffineBounds clipped_maxima(const wavelet::Refinement& r, std::span<const Vec3> fj,
+                                     const pipeline::Parameterization& p, std::size_t t_faces) {
     using P2 = std::array<double, 2>;
     const int J = r.depth();
     const auto children = static_cast<std::uint32_t>(1u << (2 * J));
@@ -54,11 +59,14 @@ wavelet::AffineBounds clipped_maxima(const wavelet::Refinement& r, std::span<con
         for (std::uint32_t g = p.face_patch[i] * children; g < (p.face_patch[i] + 1) * children; ++g) {
             const auto& cb = r.corner_beta[g];
             const std::array<P2, 3> h{P2{cb[0][0], cb[0][1]}, P2{cb[1][0], cb[1][1]}, P2{cb[2][0], cb[2][1]}};
-            const double orientation = (h[1][0] - h[0][0]) * (h[2][1] - h[0][1]) - (h[2][0] - h[0][0]) * (h[1][1] - h[0][1]);
+            const double orientation =
+                (h[1][0] - h[0][0]) * (h[2][1] - h[0][1]) - (h[2][0] - h[0][0]) * (h[1][1] - h[0][1]);
             std::vector<P2> poly(f.begin(), f.end());
             for (int k = 0; k < 3 && !poly.empty(); ++k) {  // keep the side of h's edge k where h lies
                 const P2 &a = h[k], &b = h[(k + 1) % 3];
-                const auto side = [&](const P2& q) { return ((b[0] - a[0]) * (q[1] - a[1]) - (q[0] - a[0]) * (b[1] - a[1])) * orientation; };
+                const auto side = [&](const P2& q) {
+                    return ((b[0] - a[0]) * (q[1] - a[1]) - (q[0] - a[0]) * (b[1] - a[1])) * orientation;
+                };
                 std::vector<P2> kept;
                 for (std::size_t m = 0; m < poly.size(); ++m) {
                     const P2 &x = poly[m], &y = poly[(m + 1) % poly.size()];
@@ -135,7 +143,8 @@ TEST_CASE("GlobalMap: φ maps corners to x_j, is continuous across D's edges, an
         if (w1 + w2 > 1) w1 = 1 - w1, w2 = 1 - w2;
         const std::array<double, 3> w{1 - w1 - w2, w1, w2};
         Vec3 x = Vec3::Zero();
-        for (int k = 0; k < 3; ++k) x += w[static_cast<std::size_t>(k)] * p.refined_positions[p.refined_faces[f][static_cast<std::size_t>(k)]];
+        for (int k = 0; k < 3; ++k)
+            x += w[static_cast<std::size_t>(k)] * p.refined_positions[p.refined_faces[f][static_cast<std::size_t>(k)]];
         const auto [d, beta] = map.psi(f, w);
         worst = std::max(worst, (map.phi(d, beta) - x).norm() / scale);
     }
@@ -144,9 +153,10 @@ TEST_CASE("GlobalMap: φ maps corners to x_j, is continuous across D's edges, an
     CHECK(worst <= 1e-9);
 }
 
-TEST_CASE("WAV-15: on every face of D^J, |f^J − φ| is at most its affine bound, and on every face of T |x − f^J(ψ(x))| "
-          "its bound from T (random points)",
-          "[pipeline][property][wavelet]") {
+TEST_CASE(
+    "WAV-15: on every face of D^J, |f^J − φ| is at most its affine bound, and on every face of T |x − f^J(ψ(x))| "
+    "its bound from T (random points)",
+    "[pipeline][property][wavelet]") {
     // φ from a whole run of §2–§4 on meshes of every embedded family; f^J its samples. Random
     // points of every face of D^J: their φ by point location (GlobalMap), f^J by interpolation;
     // random points x of every face of T′: ψ(x) by GlobalMap, f^J there by the
@@ -160,7 +170,8 @@ TEST_CASE("WAV-15: on every face of D^J, |f^J − φ| is at most its affine boun
         // Only the documented failures of decimate and parameterize discard a case; an InternalError
         // or anything else fails the property.
         try {
-            p.emplace(pipeline::parameterize(T, domain::decimate(T, {.target_faces = std::max<std::size_t>(8, T.n_faces() / 40)}), {}));
+            p.emplace(pipeline::parameterize(
+                T, domain::decimate(T, {.target_faces = std::max<std::size_t>(8, T.n_faces() / 40)}), {}));
         } catch (const fhr::InvalidInput& e) {
             RC_DISCARD(e.what());
         } catch (const fhr::PartitionFailure& e) {
@@ -171,11 +182,13 @@ TEST_CASE("WAV-15: on every face of D^J, |f^J − φ| is at most its affine boun
         RC_PRE(p->certified());
         const pipeline::GlobalMap map(*p);
         const wavelet::Refinement r = wavelet::refine(p->partition.domain.mesh, J);
-        const std::vector<Vec3> fj = wavelet::sample(r, [&](FaceId d, const std::array<double, 3>& b) { return map.phi(d, b); });
+        const std::vector<Vec3> fj =
+            wavelet::sample(r, [&](FaceId d, const std::array<double, 3>& b) { return map.phi(d, b); });
         const wavelet::AffinePieces pieces{p->refined_positions, p->refined_faces.size(),
-                                           [&](std::size_t i, Triangle& c, std::uint32_t& d, std::array<std::array<double, 3>, 3>& beta,
-                                               std::uint32_t& t) {
-                                               c = p->refined_faces[i], d = p->face_patch[i], beta = p->face_beta[i], t = p->face_t[i];
+                                           [&](std::size_t i, Triangle& c, std::uint32_t& d,
+                                               std::array<std::array<double, 3>, 3>& beta, std::uint32_t& t) {
+                                               c = p->refined_faces[i], d = p->face_patch[i], beta = p->face_beta[i],
+                                               t = p->face_t[i];
                                            }};
         const wavelet::AffineBounds bounds = wavelet::affine_bounds(r, fj, pieces, T.n_faces(), 0);
         const double diagonal = (bounding_box(T).max - bounding_box(T).min).norm();
@@ -183,13 +196,15 @@ TEST_CASE("WAV-15: on every face of D^J, |f^J − φ| is at most its affine boun
         const wavelet::AffineBounds exact = clipped_maxima(r, fj, *p, T.n_faces());
         for (std::size_t g = 0; g < exact.remesh.size(); ++g)
             RC_ASSERT(std::abs(bounds.remesh[g] - exact.remesh[g]) <= 1e-9 * diagonal);
-        for (std::size_t t = 0; t < exact.t.size(); ++t) RC_ASSERT(std::abs(bounds.t[t] - exact.t[t]) <= 1e-9 * diagonal);
+        for (std::size_t t = 0; t < exact.t.size(); ++t)
+            RC_ASSERT(std::abs(bounds.t[t] - exact.t[t]) <= 1e-9 * diagonal);
         // How far T′ lies from T (on_t) is added to every bound.
         const double on_t = 1e-3 * diagonal;
         const wavelet::AffineBounds raised = wavelet::affine_bounds(r, fj, pieces, T.n_faces(), on_t);
         for (std::size_t g = 0; g < exact.remesh.size(); ++g)
             RC_ASSERT(std::abs(raised.remesh[g] - on_t - bounds.remesh[g]) <= 1e-12 * diagonal);
-        for (std::size_t t = 0; t < exact.t.size(); ++t) RC_ASSERT(std::abs(raised.t[t] - on_t - bounds.t[t]) <= 1e-12 * diagonal);
+        for (std::size_t t = 0; t < exact.t.size(); ++t)
+            RC_ASSERT(std::abs(raised.t[t] - on_t - bounds.t[t]) <= 1e-12 * diagonal);
         std::mt19937_64 rng(*rc::gen::arbitrary<std::uint64_t>());
         std::uniform_real_distribution<double> u(0, 1);
         const TriMesh& finest = r.finest();
@@ -213,7 +228,8 @@ TEST_CASE("WAV-15: on every face of D^J, |f^J − φ| is at most its affine boun
             for (std::uint32_t g = d.idx() * n; g < (d.idx() + 1) * n; ++g) {
                 const auto& cb = r.corner_beta[g];
                 // β = Σ l_k cb[k]: solve in the first two coordinates (the third follows).
-                const double a = cb[0][0] - cb[2][0], b = cb[1][0] - cb[2][0], c = cb[0][1] - cb[2][1], e = cb[1][1] - cb[2][1];
+                const double a = cb[0][0] - cb[2][0], b = cb[1][0] - cb[2][0], c = cb[0][1] - cb[2][1],
+                             e = cb[1][1] - cb[2][1];
                 const double x = beta[0] - cb[2][0], y = beta[1] - cb[2][1], det = a * e - b * c;
                 const double l0 = (x * e - b * y) / det, l1 = (a * y - c * x) / det, l2 = 1 - l0 - l1;
                 if (std::min({l0, l1, l2}) < -1e-9) continue;
@@ -236,8 +252,9 @@ TEST_CASE("WAV-15: on every face of D^J, |f^J − φ| is at most its affine boun
     });
 }
 
-TEST_CASE("WAV-9, WAV-15: a run's Hausdorff brackets (bounds from φ, priors, refitted trees) overlap brackets from scratch",
-          "[pipeline][property][wavelet]") {
+TEST_CASE(
+    "WAV-9, WAV-15: a run's Hausdorff brackets (bounds from φ, priors, refitted trees) overlap brackets from scratch",
+    "[pipeline][property][wavelet]") {
     // pipeline::run's §5 brackets f^J and each reconstruction with the bounds from φ as priors, the
     // reconstructions' priors from f^J's, their trees refitted from f^J's, and the vertex passes
     // cut short by the priors; wavelet::hausdorff on the same two meshes uses none of that (fresh
@@ -265,8 +282,8 @@ TEST_CASE("WAV-9, WAV-15: a run's Hausdorff brackets (bounds from φ, priors, re
         const std::vector<Triangle> t_faces = T.triangles();
         const double slack = 1e-12 * w.bbox_diagonal;
         const auto overlaps = [&](const std::vector<Vec3>& positions, const wavelet::Hausdorff& reported) {
-            const wavelet::Hausdorff fresh =
-                wavelet::hausdorff(T.positions(), t_faces, positions, w.remesh_faces, {.resolution = reported.resolution});
+            const wavelet::Hausdorff fresh = wavelet::hausdorff(T.positions(), t_faces, positions, w.remesh_faces,
+                                                                {.resolution = reported.resolution});
             RC_ASSERT(reported.lower() <= fresh.upper() * (1 + 1e-9) + slack);
             RC_ASSERT(fresh.lower() <= reported.upper() * (1 + 1e-9) + slack);
             RC_ASSERT(reported.upper() - reported.lower() <= reported.resolution * (1 + 1e-9) + slack);

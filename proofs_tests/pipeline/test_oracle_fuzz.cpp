@@ -36,8 +36,8 @@ int count_of(const std::string& text, const std::string& what) {
 
 TEST_CASE("CLI-ORACLE-1: fhr itself as the program, on block meshes: no failures", "[cli][oracle]") {
     const std::string keep = temp_path("oracle-keep-good");
-    const auto r = run_fhr({"oracle-fuzz", "--cmd", wrapper_command(""), "--count", "12", "--genus-max", "3", "--seed", "7",
-                            "--family", "block", "--keep", keep});
+    const auto r = run_fhr({"oracle-fuzz", "--cmd", wrapper_command(""), "--count", "12", "--genus-max", "3", "--seed",
+                            "7", "--family", "block", "--keep", keep});
     INFO(r.out << r.err);
     CHECK(r.exit_code == 0);
     CHECK(count_of(r.out, ": valid\n") == 12);
@@ -65,7 +65,8 @@ TEST_CASE("CLI-ORACLE-2: a program that flips a triangle fails on every mesh; ea
         const std::string reason = read_file((dir / "reason.txt").string());
         INFO(reason);
         // Swapping two corners' β breaks continuity (PARAM-7) or orientation (PARAM-8) first.
-        CHECK((reason.find("\nreason: PARAM-7: ") != std::string::npos || reason.find("\nreason: PARAM-8: ") != std::string::npos));
+        CHECK((reason.find("\nreason: PARAM-7: ") != std::string::npos ||
+               reason.find("\nreason: PARAM-8: ") != std::string::npos));
         // The shrunk mesh fails the same way and is strictly smaller: the flip breaks any mesh, so
         // shrinking reaches the smallest closed connected mesh the generator makes, the 12-face cube.
         const std::string kind = reason.substr(reason.find("\nreason: ") + 9, 8);
@@ -80,8 +81,8 @@ TEST_CASE("CLI-ORACLE-2: a program that flips a triangle fails on every mesh; ea
 
 TEST_CASE("CLI-ORACLE-3: the program's exit code and stderr are the reason when it fails", "[cli][oracle]") {
     const std::string keep = temp_path("oracle-keep-exit");
-    const auto r = run_fhr({"oracle-fuzz", "--cmd", "echo broken {mesh} >&2; exit 3 # {out}", "--count", "2", "--genus-max",
-                            "0", "--family", "block", "--keep", keep});
+    const auto r = run_fhr({"oracle-fuzz", "--cmd", "echo broken {mesh} >&2; exit 3 # {out}", "--count", "2",
+                            "--genus-max", "0", "--family", "block", "--keep", keep});
     INFO(r.out << r.err);
     CHECK(r.exit_code == 1);
     CHECK(r.out.find("2 meshes, 2 failures\n") != std::string::npos);
@@ -92,7 +93,8 @@ TEST_CASE("CLI-ORACLE-3: the program's exit code and stderr are the reason when 
 
 TEST_CASE("CLI-ORACLE-4: a program that writes nothing, or not a fhr-param file, fails", "[cli][oracle]") {
     const std::string keep = temp_path("oracle-keep-nothing");
-    auto r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "1", "--family", "block", "--keep", keep});
+    auto r =
+        run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "1", "--family", "block", "--keep", keep});
     CHECK(r.exit_code == 1);
     CHECK(r.out.find("wrote no file at {out}") != std::string::npos);
     r = run_fhr({"oracle-fuzz", "--cmd", "cp {mesh} {out}", "--count", "1", "--family", "block", "--keep", keep});
@@ -104,16 +106,18 @@ TEST_CASE("CLI-ORACLE-4: recipes in the ranges asked; block without holes and co
           "[cli][oracle]") {
     // `true` writes nothing: every mesh fails at once ("no output"), so the lines come fast.
     const std::string keep = temp_path("oracle-keep-ranges");
-    auto r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "8", "--holes-max", "0", "--components-max", "1",
-                      "--family", "block", "--keep", keep});
+    auto r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "8", "--holes-max", "0",
+                      "--components-max", "1", "--family", "block", "--keep", keep});
     INFO(r.out << r.err);
     CHECK(count_of(r.out, "FAILED") == 8);
     CHECK(count_of(r.out, " --holes ") == 0);
     CHECK(count_of(r.out, " --components ") == 0);
     // Mesh 0 of seed 1 with closed ranges: the recipe pinned for block meshes (no draw spent on holes or components).
-    CHECK(r.out.find("mesh 0: fhr generate --genus 2 --faces 256 --seed 417422127403058876 --noise 0.05 --out mesh.off: ") == 0);
-    r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "12", "--holes-max", "2", "--components-max", "2",
-                 "--seed", "5", "--family", "block", "--keep", keep});
+    CHECK(r.out.find(
+              "mesh 0: fhr generate --genus 2 --faces 256 --seed 417422127403058876 --noise 0.05 --out mesh.off: ") ==
+          0);
+    r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "12", "--holes-max", "2", "--components-max",
+                 "2", "--seed", "5", "--family", "block", "--keep", keep});
     INFO(r.out);
     CHECK(count_of(r.out, " --holes 1 ") + count_of(r.out, " --holes 2 ") == count_of(r.out, " --holes "));
     CHECK(count_of(r.out, " --components 2 ") == count_of(r.out, " --components "));
@@ -121,11 +125,14 @@ TEST_CASE("CLI-ORACLE-4: recipes in the ranges asked; block without holes and co
     CHECK(count_of(r.out, " --components ") > 0);
 }
 
-TEST_CASE("CLI-ORACLE-5: a program failing only on surfaces with boundary shrinks to one hole and 10 faces", "[cli][oracle]") {
+TEST_CASE("CLI-ORACLE-5: a program failing only on surfaces with boundary shrinks to one hole and 10 faces",
+          "[cli][oracle]") {
     // Exit code 3 on a mesh with boundary, a closed one gets exit code 0 and no output (another kind).
     const std::string keep = temp_path("oracle-keep-open");
-    const std::string cmd = "'" FHR_EXE "' info --json {mesh} | grep -q '\"boundary_loops\": 0' && exit 0; exit 3 # {out}";
-    const auto r = run_fhr({"oracle-fuzz", "--cmd", cmd, "--count", "4", "--seed", "3", "--family", "block", "--keep", keep});
+    const std::string cmd =
+        "'" FHR_EXE "' info --json {mesh} | grep -q '\"boundary_loops\": 0' && exit 0; exit 3 # {out}";
+    const auto r =
+        run_fhr({"oracle-fuzz", "--cmd", cmd, "--count", "4", "--seed", "3", "--family", "block", "--keep", keep});
     INFO(r.out << r.err);
     int open = 0;
     for (int i = 0; i < 4; ++i) {
@@ -146,7 +153,8 @@ TEST_CASE("CLI-ORACLE-5: usage errors", "[cli][oracle]") {
     CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}"}).exit_code == 2);
     CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "0"}).exit_code == 2);
     CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "1", "--holes-max", "-1"}).exit_code == 2);
-    CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "1", "--components-max", "0"}).exit_code == 2);
+    CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "1", "--components-max", "0"}).exit_code ==
+          2);
     CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "1", "--family", "blocks"}).exit_code == 2);
     for (const char* shard : {"0/2", "3/2", "1/0", "2", "a/b", "1/2/3", "-1/2", "01/2"})
         CHECK(run_fhr({"oracle-fuzz", "--cmd", "prog {mesh} {out}", "--count", "1", "--shard", shard}).exit_code == 2);
@@ -160,8 +168,8 @@ TEST_CASE("CLI-ORACLE-5: usage errors", "[cli][oracle]") {
 TEST_CASE("CLI-ORACLE-6: fhr itself as the program, on meshes of every embedded family: no failures", "[cli][oracle]") {
     // Seed 116 draws each of the six embedded families once in its first 6 meshes (--family all, the default).
     const std::string keep = temp_path("oracle-keep-families");
-    const auto r = run_fhr({"oracle-fuzz", "--cmd", wrapper_command(""), "--count", "6", "--genus-max", "3", "--seed", "116",
-                            "--keep", keep});
+    const auto r = run_fhr({"oracle-fuzz", "--cmd", wrapper_command(""), "--count", "6", "--genus-max", "3", "--seed",
+                            "116", "--keep", keep});
     INFO(r.out << r.err);
     CHECK(r.exit_code == 0);
     CHECK(r.out.find("6 meshes, 0 failures\n") != std::string::npos);
@@ -170,12 +178,15 @@ TEST_CASE("CLI-ORACLE-6: fhr itself as the program, on meshes of every embedded 
     CHECK(count_of(r.out, " --family ") == 5);  // and block, which generate_command does not name
 }
 
-TEST_CASE("CLI-ORACLE-6: --family all draws the embedded families from (seed, i); a block draw is --family block's; "
-          "shrinking keeps the family", "[cli][oracle]") {
+TEST_CASE(
+    "CLI-ORACLE-6: --family all draws the embedded families from (seed, i); a block draw is --family block's; "
+    "shrinking keeps the family",
+    "[cli][oracle]") {
     const std::string keep = temp_path("oracle-keep-all");
-    const auto all = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "18", "--seed", "5", "--keep", keep});
-    const auto block = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "18", "--seed", "5", "--family", "block",
-                                "--keep", temp_path("oracle-keep-all-block")});
+    const auto all =
+        run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "18", "--seed", "5", "--keep", keep});
+    const auto block = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "18", "--seed", "5", "--family",
+                                "block", "--keep", temp_path("oracle-keep-all-block")});
     INFO(all.out << all.err);
     CHECK(all.exit_code == 1);
     CHECK(all.out.find("18 meshes, 18 failures\n") != std::string::npos);
@@ -207,8 +218,8 @@ TEST_CASE("CLI-ORACLE-6: --family all draws the embedded families from (seed, i)
 }
 
 TEST_CASE("CLI-ORACLE-6: --family immersed when named", "[cli][oracle]") {
-    const auto r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "2", "--family", "immersed", "--keep",
-                            temp_path("oracle-keep-immersed")});
+    const auto r = run_fhr({"oracle-fuzz", "--cmd", "true {mesh} {out}", "--count", "2", "--family", "immersed",
+                            "--keep", temp_path("oracle-keep-immersed")});
     INFO(r.out << r.err);
     CHECK(r.out.find("2 meshes, 2 failures\n") != std::string::npos);
     CHECK(count_of(r.out, ": fhr generate --family immersed ") == 2);

@@ -42,8 +42,8 @@ TEST_CASE("pipeline: every run on a random mesh of genus 0–3 is certified and 
         domain::Domain D = test::random_domain(T, g.options.genus);
         const std::size_t target = D.mesh.n_faces();
         pipeline::Options options;
-        options.map.weights = *rc::gen::element(param::Weights::shape_preserving, param::Weights::mean_value,
-                                                param::Weights::uniform);
+        options.map.weights =
+            *rc::gen::element(param::Weights::shape_preserving, param::Weights::mean_value, param::Weights::uniform);
         RC_LOG() << "domain faces " << target << ", weights " << param::name(options.map.weights) << "\n";
         const pipeline::Parameterization p = pipeline::parameterize(T, std::move(D), options);
         RC_TAG(p.partition.retries > 0 ? "recovered" : "first try");
@@ -83,8 +83,7 @@ std::vector<Piece> pieces(const TriMesh& m, const Components& c) {
 std::string same_topology(const TriMesh& T, const domain::Domain& D, std::vector<std::size_t>& faces) {
     const Components tc = connected_components(T), dc = connected_components(D.mesh);
     const std::vector<Piece> tp = pieces(T, tc), dp = pieces(D.mesh, dc);
-    if (dc.count != tc.count)
-        return "D has " + std::to_string(dc.count) + " components, T " + std::to_string(tc.count);
+    if (dc.count != tc.count) return "D has " + std::to_string(dc.count) + " components, T " + std::to_string(tc.count);
     std::vector<std::uint32_t> image(dc.count, UINT32_MAX), preimage(tc.count, UINT32_MAX);
     for (VertexId v : D.mesh.vertices()) {
         const std::uint32_t d = dc.vertex_component[v], t = tc.vertex_component[D.t_vertex[v]];
@@ -97,8 +96,8 @@ std::string same_topology(const TriMesh& T, const domain::Domain& D, std::vector
     for (std::uint32_t d = 0; d < dc.count; ++d) {
         const std::uint32_t t = image[d];
         if (preimage[t] != UINT32_MAX)
-            return "components " + std::to_string(preimage[t]) + " and " + std::to_string(d) + " of D both lie in component " +
-                   std::to_string(t) + " of T";
+            return "components " + std::to_string(preimage[t]) + " and " + std::to_string(d) +
+                   " of D both lie in component " + std::to_string(t) + " of T";
         preimage[t] = d;
         if (dp[d].chi != tp[t].chi || dp[d].loops != tp[t].loops)
             return "component " + std::to_string(d) + " of D has χ " + std::to_string(dp[d].chi) + " and " +
@@ -133,14 +132,14 @@ std::string boundary_follows(const TriMesh& T, const partition::Partition& P) {
         corner[D.t_vertex[v].idx()] = 1;
         if (D.mesh.is_boundary(v) != T.is_boundary(D.t_vertex[v]))
             return "vertex " + std::to_string(v.idx()) + " of D is " + (D.mesh.is_boundary(v) ? "" : "not ") +
-                   "on ∂D, its x_j " + std::to_string(D.t_vertex[v].idx()) + (T.is_boundary(D.t_vertex[v]) ? "" : " not") +
-                   " on ∂T";
+                   "on ∂D, its x_j " + std::to_string(D.t_vertex[v].idx()) +
+                   (T.is_boundary(D.t_vertex[v]) ? "" : " not") + " on ∂T";
     }
     for (EdgeId e : D.mesh.edges()) {
         const bool on_boundary = D.mesh.is_boundary(e);
         if (on_boundary != (P.curves[e].kind == partition::CurveKind::boundary))
-            return "edge " + std::to_string(e.idx()) + " of D is " + (on_boundary ? "" : "not ") + "on ∂D but its curve is " +
-                   (on_boundary ? "not " : "") + "a boundary arc";
+            return "edge " + std::to_string(e.idx()) + " of D is " + (on_boundary ? "" : "not ") +
+                   "on ∂D but its curve is " + (on_boundary ? "not " : "") + "a boundary arc";
         if (!on_boundary) continue;
         const HalfedgeId h0 = TriMesh::halfedge(e, 0), h = D.mesh.is_boundary(h0) ? TriMesh::twin(h0) : h0;
         const std::uint32_t a = D.t_vertex[D.mesh.from(h)].idx(), b = D.t_vertex[D.mesh.to(h)].idx();
@@ -149,7 +148,8 @@ std::string boundary_follows(const TriMesh& T, const partition::Partition& P) {
             const auto next = along.find(u);
             if (next == along.end()) return "x_j " + std::to_string(u) + " of a boundary edge of D is not on ∂T";
             u = next->second;
-            if (u != b && corner[u]) return "the arc of ∂T of edge " + std::to_string(e.idx()) + " of D passes x_m " + std::to_string(u);
+            if (u != b && corner[u])
+                return "the arc of ∂T of edge " + std::to_string(e.idx()) + " of D passes x_m " + std::to_string(u);
             arc.push_back(VertexId(u));
         }
         if (h != h0) std::reverse(arc.begin(), arc.end());  // P.network.path runs along (e, 0)
@@ -171,13 +171,14 @@ std::string boundary_follows(const TriMesh& T, const partition::Partition& P) {
 /// and the oracle must then say so (never a wrong certificate); paper_notes/generator.md.
 void run_and_check(const TriMesh& T, bool graded = false) {
     const std::vector<Piece> tp = pieces(T, connected_components(T));
-    const auto closed = static_cast<std::size_t>(std::count_if(tp.begin(), tp.end(), [](const Piece& p) { return p.loops == 0; }));
+    const auto closed =
+        static_cast<std::size_t>(std::count_if(tp.begin(), tp.end(), [](const Piece& p) { return p.loops == 0; }));
     const std::size_t step = closed == tp.size() ? 2 : 1, most = std::max<std::size_t>(1, T.n_faces() / 3 / step);
     const std::size_t target = step * *rc::gen::inRange<std::size_t>(1, most + 1);
     pipeline::RunOptions options;
     options.faces = target;
-    options.method.map.weights = *rc::gen::element(param::Weights::shape_preserving, param::Weights::mean_value,
-                                                   param::Weights::uniform);
+    options.method.map.weights =
+        *rc::gen::element(param::Weights::shape_preserving, param::Weights::mean_value, param::Weights::uniform);
     options.method.keep_domain = *rc::gen::arbitrary<bool>();
     RC_LOG() << "fhr run mesh.off --faces " << target << " --weights " << param::name(options.method.map.weights)
              << (options.method.keep_domain ? "" : " --paths geodesic") << "\n";
@@ -229,31 +230,43 @@ void run_and_check(const TriMesh& T, bool graded = false) {
 
 }  // namespace
 
-TEST_CASE("pipeline: surfaces with 1–5 boundary loops in 1–3 components of genus 0–2 keep their topology and boundary, "
-          "certified and verify-valid",
-          "[pipeline][property][boundary]") {
+TEST_CASE(
+    "pipeline: surfaces with 1–5 boundary loops in 1–3 components of genus 0–2 keep their topology and boundary, "
+    "certified and verify-valid",
+    "[pipeline][property][boundary]") {
     rc::prop("run(T with boundary, --faces N) keeps T's components and boundary", [] {
-        run_and_check(*fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 3000, .min_holes = 1, .max_holes = 5,
-                                               .min_components = 1, .max_components = 3}));
+        run_and_check(*fhr::testing::gen_mesh({.min_genus = 0,
+                                               .max_genus = 2,
+                                               .max_faces = 3000,
+                                               .min_holes = 1,
+                                               .max_holes = 5,
+                                               .min_components = 1,
+                                               .max_components = 3}));
     });
 }
 
 TEST_CASE("pipeline: 2–3 closed components of genus 0–2 in all keep their topology, certified and verify-valid",
           "[pipeline][property][boundary]") {
     rc::prop("run(T of several closed components, --faces N) keeps T's components", [] {
-        run_and_check(*fhr::testing::gen_mesh({.min_genus = 0, .max_genus = 2, .max_faces = 3000, .min_components = 2,
-                                               .max_components = 3}));
+        run_and_check(*fhr::testing::gen_mesh(
+            {.min_genus = 0, .max_genus = 2, .max_faces = 3000, .min_components = 2, .max_components = 3}));
     });
 }
 
-TEST_CASE("pipeline: meshes of every embedded generator family (genus 0–3, 0–2 holes, 1–2 components) are certified and "
-          "verify-valid, keeping their topology",
-          "[pipeline][property][families]") {
+TEST_CASE(
+    "pipeline: meshes of every embedded generator family (genus 0–3, 0–2 holes, 1–2 components) are certified and "
+    "verify-valid, keeping their topology",
+    "[pipeline][property][families]") {
     // The generator's hard families — curved, slivers and needles down to 10⁻⁴°, a
     // valence-64 fan, edge-length ratios of 10⁵, exactly coplanar and collinear neighbours.
     rc::prop("run(T of any embedded family, --faces N) is certified", [] {
         const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh(
-            {.min_genus = 0, .max_genus = 3, .max_faces = 2500, .min_holes = 0, .max_holes = 2, .min_components = 1,
+            {.min_genus = 0,
+             .max_genus = 3,
+             .max_faces = 2500,
+             .min_holes = 0,
+             .max_holes = 2,
+             .min_components = 1,
              .max_components = 2,
              .families = {std::begin(generate::embedded_families), std::end(generate::embedded_families)}});
         RC_TAG(generate::family_name(g.options.family));

@@ -66,8 +66,8 @@ TEST_CASE("LIB-3: pipeline::run takes the fandisk through §2–§5 and reports 
     CHECK(r.parameterization.partition.domain.mesh.n_faces() == 114);
     REQUIRE(r.wavelets);
     CHECK(r.wavelets->kept.size() == 2);
-    CHECK(stages.in_total == std::vector<std::string>{"mesh_reduction", "geodesic_paths", "parameterization", "verification",
-                                                      "refinement", "decomposition", "reconstruction"});
+    CHECK(stages.in_total == std::vector<std::string>{"mesh_reduction", "geodesic_paths", "parameterization",
+                                                      "verification", "refinement", "decomposition", "reconstruction"});
     CHECK(stages.after == std::vector<std::string>{"hausdorff"});
     CHECK(!progress.empty());
 
@@ -113,7 +113,10 @@ TEST_CASE("LIB-3: the tasks run on the caller's executor, bit-identical on 1 and
     CHECK(a.wavelets->remesh_hausdorff.upper() == b.wavelets->remesh_hausdorff.upper());
 }
 
-TEST_CASE("LIB-3: the caller's tasks run beside the oracle on what param.fhrp holds and on §5's result; the files written there are write_outputs' bytes", "[pipeline][library]") {
+TEST_CASE(
+    "LIB-3: the caller's tasks run beside the oracle on what param.fhrp holds and on §5's result; the files written "
+    "there are write_outputs' bytes",
+    "[pipeline][library]") {
     const TriMesh T = generate::random_mesh({1, 2400, 3, 0.1});
     pipeline::RunOptions options;
     options.faces = 80;
@@ -154,7 +157,8 @@ TEST_CASE("LIB-3: the caller's tasks run beside the oracle on what param.fhrp ho
     CHECK(written_at("remesh_L1.off") == remesh_at);
     pipeline::write_outputs(after, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets);
     std::vector<std::string> names;
-    for (const auto& entry : std::filesystem::directory_iterator(after)) names.push_back(entry.path().filename().string());
+    for (const auto& entry : std::filesystem::directory_iterator(after))
+        names.push_back(entry.path().filename().string());
     CHECK(names.size() == 9);  // five of the parameterization, two of §5 (D^1, 20 % kept), the report, the timings
     for (const std::string& name : names) {
         INFO(name);
@@ -167,23 +171,28 @@ TEST_CASE("LIB-3: the caller's tasks run beside the oracle on what param.fhrp ho
     CHECK(test::read_file(after + "/timings.json").find("\"writing_beside_oracle\"") == std::string::npos);
     // One group alone: its seconds alone (the other group written here).
     const std::string one = test::temp_path("run-one-group");
-    pipeline::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets, {.parameterization = 0.25, .wavelets = std::nullopt});
+    pipeline::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets,
+                            {.parameterization = 0.25, .wavelets = std::nullopt});
     CHECK(test::read_file(one + "/timings.json").find("\"writing_beside_oracle\": 0.25\n") != std::string::npos);
     CHECK(std::filesystem::exists(one + "/remesh_L1.off"));
     CHECK_FALSE(std::filesystem::exists(one + "/param.fhrp"));
-    pipeline::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets, {.parameterization = std::nullopt, .wavelets = 0.125});
+    pipeline::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets,
+                            {.parameterization = std::nullopt, .wavelets = 0.125});
     CHECK(test::read_file(one + "/timings.json").find("\"writing_beside_oracle\": 0.125\n") != std::string::npos);
     CHECK(std::filesystem::exists(one + "/param.fhrp"));
 
     // A task that throws: the run throws it, once the oracle and §5 are done.
-    options.beside_oracle = [](const pipeline::Parameterization&, const exchange::ParamFile&) { throw InvalidInput("out", 0, "cannot write"); };
+    options.beside_oracle = [](const pipeline::Parameterization&, const exchange::ParamFile&) {
+        throw InvalidInput("out", 0, "cannot write");
+    };
     CHECK_THROWS_AS(pipeline::run(T, options), InvalidInput);
     options.beside_oracle = nullptr;
     options.after_wavelets = [](const wavelet::WaveletResult&) { throw InvalidInput("out", 0, "cannot write"); };
     CHECK_THROWS_AS(pipeline::run(T, options), InvalidInput);
 }
 
-TEST_CASE("REN-15: write_figures draws the boundary of a surface with holes in both panels of Figs. 6-9", "[pipeline][render]") {
+TEST_CASE("REN-15: write_figures draws the boundary of a surface with holes in both panels of Figs. 6-9",
+          "[pipeline][render]") {
     // Two boundary loops; §2–§5 on it, then the figures.
     const TriMesh T = generate::random_mesh({0, 1200, 5, 0.1, 2});
     pipeline::RunOptions options;
@@ -202,7 +211,8 @@ TEST_CASE("REN-15: write_figures draws the boundary of a surface with holes in b
     pipeline::write_figures(dir, T, r.parameterization, 1, &*r.wavelets);
     for (const char* name : {"fig6", "fig7", "fig8", "fig9"}) {
         INFO(name);
-        const render::Image image = render::reader::decode_png(test::read_file(dir + "/figures/" + name + ".png")).image;
+        const render::Image image =
+            render::reader::decode_png(test::read_file(dir + "/figures/" + name + ".png")).image;
         int left = 0, right = 0;  // pixels of the boundary's green (visible or hidden)
         for (int y = 0; y < image.height; ++y)
             for (int x = 0; x < image.width; ++x) {
@@ -214,7 +224,9 @@ TEST_CASE("REN-15: write_figures draws the boundary of a surface with holes in b
     }
 }
 
-TEST_CASE("LIB-3: from 2^18 faces of T on, the oracle and §5 make their parts of T in their own stages: a certified run", "[pipeline][library]") {
+TEST_CASE(
+    "LIB-3: from 2^18 faces of T on, the oracle and §5 make their parts of T in their own stages: a certified run",
+    "[pipeline][library]") {
     // Below 2^18 faces run() prepares the oracle's side of T and §5's tree of T beside §2's
     // decimation (the other tests); from 2^18 on each stage makes its own, for the memory.
     const TriMesh T = generate::random_mesh({0, std::size_t{1} << 18, 7, 0.1});

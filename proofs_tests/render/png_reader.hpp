@@ -36,7 +36,8 @@ inline std::vector<Chunk> read_chunks(const std::string& png) {
     while (at < png.size()) {
         if (at + 12 > png.size()) throw std::runtime_error("truncated chunk header");
         const std::uint32_t length = be32(png, at);
-        if (length > 0x7FFFFFFFu || at + 12 + length > png.size()) throw std::runtime_error("chunk length out of range");
+        if (length > 0x7FFFFFFFu || at + 12 + length > png.size())
+            throw std::runtime_error("chunk length out of range");
         const std::string typed = png.substr(at + 4, 4 + length);
         const std::uint32_t crc = be32(png, at + 8 + length);
         if (crc != crc32({reinterpret_cast<const std::uint8_t*>(typed.data()), typed.size()}))
@@ -111,11 +112,13 @@ private:
 inline void inflate_block(BitReader& in, const Huffman& literal, const Huffman& distance, std::string& out) {
     static const int length_base[29] = {3,  4,  5,  6,  7,  8,  9,  10, 11,  13,  15,  17,  19,  23, 27,
                                         31, 35, 43, 51, 59, 67, 83, 99, 115, 131, 163, 195, 227, 258};
-    static const int length_extra[29] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
+    static const int length_extra[29] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2,
+                                         2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
     static const int distance_base[30] = {1,    2,    3,    4,    5,    7,    9,    13,    17,    25,
                                           33,   49,   65,   97,   129,  193,  257,  385,   513,   769,
                                           1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
-    static const int distance_extra[30] = {0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
+    static const int distance_extra[30] = {0, 0, 0, 0, 1, 1, 2, 2,  3,  3,  4,  4,  5,  5,  6,
+                                           6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
     for (;;) {
         const int symbol = literal.decode(in);
         if (symbol < 256) {
@@ -151,7 +154,8 @@ inline std::string inflate_zlib(const std::string& stream) {
             if (at + 4 > stream.size()) throw std::runtime_error("inflate: truncated stored block");
             const unsigned len = std::uint8_t(stream[at]) | (unsigned(std::uint8_t(stream[at + 1])) << 8);
             const unsigned nlen = std::uint8_t(stream[at + 2]) | (unsigned(std::uint8_t(stream[at + 3])) << 8);
-            if ((len ^ 0xFFFFu) != nlen || at + 4 + len > stream.size()) throw std::runtime_error("inflate: bad stored block");
+            if ((len ^ 0xFFFFu) != nlen || at + 4 + len > stream.size())
+                throw std::runtime_error("inflate: bad stored block");
             out.append(stream, at + 4, len);
             in.skip_bytes(4 + len);
         } else if (type == 1) {
@@ -167,7 +171,8 @@ inline std::string inflate_zlib(const std::string& stream) {
             std::vector<int> lengths;
             while (lengths.size() < hlit + hdist) {
                 const int s = code_length_code.decode(in);
-                if (s < 16) lengths.push_back(s);
+                if (s < 16)
+                    lengths.push_back(s);
                 else if (s == 16) {
                     if (lengths.empty()) throw std::runtime_error("inflate: repeat with no previous length");
                     const int repeat = 3 + int(in.bits(2)), previous = lengths.back();
@@ -178,7 +183,8 @@ inline std::string inflate_zlib(const std::string& stream) {
                 }
             }
             if (lengths.size() != hlit + hdist) throw std::runtime_error("inflate: code lengths overrun");
-            inflate_block(in, Huffman({lengths.begin(), lengths.begin() + hlit}), Huffman({lengths.begin() + hlit, lengths.end()}), out);
+            inflate_block(in, Huffman({lengths.begin(), lengths.begin() + hlit}),
+                          Huffman({lengths.begin() + hlit, lengths.end()}), out);
         } else {
             throw std::runtime_error("inflate: reserved block type");
         }
@@ -204,11 +210,14 @@ inline DecodedPng decode_png(const std::string& png) {
     d.chunks = read_chunks(png);
     if (d.chunks.empty() || d.chunks.front().type != "IHDR" || d.chunks.front().data.size() != 13)
         throw std::runtime_error("IHDR missing or not first");
-    if (d.chunks.back().type != "IEND" || !d.chunks.back().data.empty()) throw std::runtime_error("IEND missing, not last or not empty");
+    if (d.chunks.back().type != "IEND" || !d.chunks.back().data.empty())
+        throw std::runtime_error("IEND missing, not last or not empty");
     const std::string& h = d.chunks.front().data;
     const std::uint32_t width = be32(h, 0), height = be32(h, 4);
-    if (width == 0 || height == 0 || width > 0x7FFFFFFFu || height > 0x7FFFFFFFu) throw std::runtime_error("IHDR: bad size");
-    if (h.substr(8) != std::string("\x08\x02\x00\x00\x00", 5)) throw std::runtime_error("IHDR: not 8-bit RGB, deflate, filter 0, no interlace");
+    if (width == 0 || height == 0 || width > 0x7FFFFFFFu || height > 0x7FFFFFFFu)
+        throw std::runtime_error("IHDR: bad size");
+    if (h.substr(8) != std::string("\x08\x02\x00\x00\x00", 5))
+        throw std::runtime_error("IHDR: not 8-bit RGB, deflate, filter 0, no interlace");
     std::string stream;
     std::size_t first_idat = 0, last_idat = 0;
     for (std::size_t k = 0; k < d.chunks.size(); ++k)
@@ -233,9 +242,12 @@ inline DecodedPng decode_png(const std::string& png) {
             const int x = std::uint8_t(d.scanlines[at + 1 + i]);
             const int a = i >= 3 ? row[i - 3] : 0, b = previous[i], c = i >= 3 ? previous[i - 3] : 0;
             int predictor = 0;
-            if (type == 1) predictor = a;
-            else if (type == 2) predictor = b;
-            else if (type == 3) predictor = (a + b) / 2;
+            if (type == 1)
+                predictor = a;
+            else if (type == 2)
+                predictor = b;
+            else if (type == 3)
+                predictor = (a + b) / 2;
             else if (type == 4) {
                 const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
                 predictor = (pa <= pb && pa <= pc) ? a : pb <= pc ? b : c;

@@ -32,8 +32,10 @@ std::string compress(const std::string& s) { return zlib_compress(bytes_of(s)); 
 std::string inflate_with_zlib(const std::string& stream) {
     const std::string in = fhr::test::write_temp("zlib-in.bin", stream);
     const std::string out = fhr::test::temp_path("zlib-out.bin");
-    const std::string command = "python3 -c \"import sys, zlib; open(sys.argv[2], 'wb').write(zlib.decompress(open(sys.argv[1], "
-                                "'rb').read()))\" '" + in + "' '" + out + "'";
+    const std::string command =
+        "python3 -c \"import sys, zlib; open(sys.argv[2], 'wb').write(zlib.decompress(open(sys.argv[1], "
+        "'rb').read()))\" '" +
+        in + "' '" + out + "'";
     REQUIRE(std::system(command.c_str()) == 0);
     return fhr::test::read_file(out);
 }
@@ -63,9 +65,10 @@ TEST_CASE("REN-2: CRC-32 and Adler-32 give the published check values", "[unit][
     CHECK(adler32(bytes_of(ff)) == ((b << 16) | a));
 }
 
-TEST_CASE("REN-2: zlib_compress round-trips through an independent inflater, on the edge cases of DEFLATE", "[unit][render]") {
-    std::vector<std::string> inputs = {"", "a", "ab", "abc", "abcabcabcabc", std::string(258, 'x'), std::string(259, 'x'),
-                                       std::string(100000, '\0')};
+TEST_CASE("REN-2: zlib_compress round-trips through an independent inflater, on the edge cases of DEFLATE",
+          "[unit][render]") {
+    std::vector<std::string> inputs = {
+        "", "a", "ab", "abc", "abcabcabcabc", std::string(258, 'x'), std::string(259, 'x'), std::string(100000, '\0')};
     // A match at exactly the largest distance, 32768, and one just beyond the window.
     std::mt19937_64 random(7);
     std::string far(32768, '\0');
@@ -107,7 +110,8 @@ TEST_CASE("REN-2: zlib itself inflates our streams to the original bytes", "[ora
     }
 }
 
-TEST_CASE("REN-1: a PNG has the signature, IHDR, IDAT, IEND with valid CRCs and gives back its pixels", "[unit][render]") {
+TEST_CASE("REN-1: a PNG has the signature, IHDR, IDAT, IEND with valid CRCs and gives back its pixels",
+          "[unit][render]") {
     Image image(5, 3, Rgb8{255, 255, 255});
     image.set(0, 0, {255, 0, 0});
     image.set(4, 2, {0, 0, 255});
@@ -162,11 +166,16 @@ TEST_CASE("REN-1: rows choose different filter types (Sub and Up among them), ea
         for (int x = 0; x < 64; ++x) {
             const int band = y / 8;
             std::uint8_t v = 0;
-            if (band == 0) v = std::uint8_t((x % 2) * 3);                  // tiny values: None
-            else if (band == 1) v = std::uint8_t(100 + 2 * x);             // horizontal ramp: Sub
-            else if (band == 2) v = std::uint8_t((x * 37) % 256);          // repeated rows: Up
-            else if (band == 3) v = std::uint8_t(2 * x + 2 * y);           // plane: Average or Paeth
-            else v = std::uint8_t((x * 91 + y * 53) % 256);                // noise
+            if (band == 0)
+                v = std::uint8_t((x % 2) * 3);  // tiny values: None
+            else if (band == 1)
+                v = std::uint8_t(100 + 2 * x);  // horizontal ramp: Sub
+            else if (band == 2)
+                v = std::uint8_t((x * 37) % 256);  // repeated rows: Up
+            else if (band == 3)
+                v = std::uint8_t(2 * x + 2 * y);  // plane: Average or Paeth
+            else
+                v = std::uint8_t((x * 91 + y * 53) % 256);  // noise
             image.set(x, y, {v, std::uint8_t(v / 2), std::uint8_t(255 - v)});
         }
     const reader::DecodedPng decoded = reader::decode_png(encode_png(image));

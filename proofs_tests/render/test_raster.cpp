@@ -294,7 +294,7 @@ TEST_CASE("REN-4: geometry crossing the near plane is clipped, not mirrored", "[
     camera.near = 0.01;
     const Image image = render_panel(Panel{{ground}, {}}, camera, 80, 60);
     for (int x = 0; x < 80; ++x) {
-        CHECK(white(image.at(x, 2)));     // sky
+        CHECK(white(image.at(x, 2)));         // sky
         CHECK_FALSE(white(image.at(x, 57)));  // ground up to the bottom edge
     }
 }
@@ -402,7 +402,8 @@ TEST_CASE("REN-13: two panels share one camera, and Figures 6–9 are written as
 
     std::vector<Eigen::Vector2d> uv;
     for (std::size_t f = 0; f < t_triangles.size(); ++f) uv.insert(uv.end(), {{0, 0}, {1, 0}, {0, 1}});
-    const std::vector<std::vector<std::uint32_t>> paths{{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10}}, restricted_paths{{300, 301, 302, 303, 304, 305, 306, 307}};
+    const std::vector<std::vector<std::uint32_t>> paths{{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10}},
+        restricted_paths{{300, 301, 302, 303, 304, 305, 306, 307}};
     const PathData network{t.positions(), paths}, restricted{t.positions(), restricted_paths}, no_boundary{};
     const std::string dir = fhr::test::temp_path("figures");
     std::filesystem::create_directories(dir);
@@ -424,8 +425,8 @@ TEST_CASE("REN-13: two panels share one camera, and Figures 6–9 are written as
     for (int y = 0; y < size.height; ++y)
         for (int x = 0; x < size.width; ++x) {
             const Rgb8 c = fig7.at(x, y);
-            const bool is_red = c.r > 150 && c.g < 90 && c.b < 90, is_gold = c.r > 150 && c.g > 110 && c.b < 60,
-                       is_dark = c.b > c.r + 40;
+            const bool is_red =
+                c.r > 150 && c.g < 90 && c.b<90, is_gold = c.r> 150 && c.g > 110 && c.b<60, is_dark = c.b> c.r + 40;
             (x < size.width / 2 ? red_left : red_right) += is_red;
             (x < size.width / 2 ? gold_left : gold_right) += is_gold;
             dark_right += x >= size.width / 2 && is_dark;
@@ -437,7 +438,8 @@ TEST_CASE("REN-13: two panels share one camera, and Figures 6–9 are written as
     CHECK(dark_right > 0);
 }
 
-TEST_CASE("REN-15: the boundary edges are drawn in the boundary colour where they project, and only they", "[unit][render]") {
+TEST_CASE("REN-15: the boundary edges are drawn in the boundary colour where they project, and only they",
+          "[unit][render]") {
     // The square [−1, 1]² seen from the front: its four sides are boundary edges, its diagonal is not.
     const Square square(1, 0);
     const Camera camera = front_camera();
@@ -446,7 +448,8 @@ TEST_CASE("REN-15: the boundary edges are drawn in the boundary colour where the
     with_boundary.boundary = true;
     const Image image = render_panel(Panel{{with_boundary}, {}}, camera, size, size);
     for (int side = 0; side < 4; ++side) {
-        const auto [x, y] = pixel_of(camera, (square.positions[side] + square.positions[(side + 1) % 4]) / 2, size, size);
+        const auto [x, y] =
+            pixel_of(camera, (square.positions[side] + square.positions[(side + 1) % 4]) / 2, size, size);
         CHECK(green(image.at(x, y)));
     }
     const auto [dx, dy] = pixel_of(camera, Vec3(0.3, 0.3, 0), size, size);  // on the diagonal
@@ -480,7 +483,7 @@ TEST_CASE("REN-15: the boundary edges are drawn in the boundary colour where the
     style.hidden_boundary_colour = Colour(1, 0, 1);
     style.hidden_boundary_width_pixels = 3;
     const Image behind = render_panel(Panel{{with_boundary, occluder}, {}}, camera, size, size, style);
-    const auto [hx, hy] = pixel_of(camera, Vec3(0, 1, 0), size, size);   // the top side, behind the occluder
+    const auto [hx, hy] = pixel_of(camera, Vec3(0, 1, 0), size, size);    // the top side, behind the occluder
     const auto [vx, vy] = pixel_of(camera, Vec3(0.8, 1, 0), size, size);  // the top side, in view
     CHECK(behind.at(hx, hy) == (Rgb8{255, 0, 255}));
     CHECK(behind.at(vx, vy) == (Rgb8{0, 255, 0}));
@@ -521,7 +524,8 @@ TEST_CASE("REN-15: Figures 6–9 draw the boundary of a surface with holes, and 
         // Fig. 7's boundary curves: here each boundary edge of T as a path of two points.
         std::vector<std::vector<std::uint32_t>> arcs;
         for (EdgeId e : t.edges())
-            if (t.is_boundary(e)) arcs.push_back({t.from(TriMesh::halfedge(e, 0)).idx(), t.to(TriMesh::halfedge(e, 0)).idx()});
+            if (t.is_boundary(e))
+                arcs.push_back({t.from(TriMesh::halfedge(e, 0)).idx(), t.to(TriMesh::halfedge(e, 0)).idx()});
         CHECK(arcs.empty() == (holes == 0));
         std::vector<Eigen::Vector2d> uv(3 * triangles.size(), Eigen::Vector2d(0.5, 0.5));
         const PathData none{}, boundary{t.positions(), arcs};

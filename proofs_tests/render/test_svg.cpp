@@ -85,7 +85,8 @@ std::vector<ImageTriangle> four_triangles() {
 
 }  // namespace
 
-TEST_CASE("REN-11: the patch SVG is well-formed with one polygon per image triangle plus the domain triangle", "[unit][render]") {
+TEST_CASE("REN-11: the patch SVG is well-formed with one polygon per image triangle plus the domain triangle",
+          "[unit][render]") {
     const std::vector<ImageTriangle> image = four_triangles();
     const std::string svg = patch_svg(equilateral, image, 400);
     CHECK(tag_problem(svg) == "");
@@ -186,7 +187,8 @@ TEST_CASE("REN-11, REN-12: writers are atomic and bad input is refused", "[unit]
     CHECK_THROWS_AS(write_patch_svg(fhr::test::temp_path("no/such/dir/p.svg"), equilateral, image), InvalidInput);
 }
 
-TEST_CASE("REN-16: the anisotropy colours: blue 1, green 10, yellow 100, red from 1000, grey when degenerate", "[unit][render]") {
+TEST_CASE("REN-16: the anisotropy colours: blue 1, green 10, yellow 100, red from 1000, grey when degenerate",
+          "[unit][render]") {
     using fhr::render::anisotropy_colour;
     using fhr::render::Colour;
     const auto near = [](const Colour& a, const Colour& b) { return (a - b).cwiseAbs().maxCoeff() < 1e-12; };
@@ -194,13 +196,16 @@ TEST_CASE("REN-16: the anisotropy colours: blue 1, green 10, yellow 100, red fro
     CHECK(near(anisotropy_colour(10), Colour(0.20, 0.72, 0.38)));
     CHECK(near(anisotropy_colour(100), Colour(0.98, 0.80, 0.15)));
     CHECK(near(anisotropy_colour(1000), Colour(0.80, 0.10, 0.10)));
-    CHECK(near(anisotropy_colour(1e9), anisotropy_colour(1000)));            // clamped above
-    CHECK(near(anisotropy_colour(1 - 1e-15), anisotropy_colour(1)));         // rounding below 1
-    CHECK(near(anisotropy_colour(std::sqrt(10.0)), (Colour(0.19, 0.35, 0.80) + Colour(0.20, 0.72, 0.38)) / 2));  // log-linear
-    for (const double bad : {0.0, -1.0, std::nan(""), HUGE_VAL}) CHECK(near(anisotropy_colour(bad), Colour(0.6, 0.6, 0.6)));
+    CHECK(near(anisotropy_colour(1e9), anisotropy_colour(1000)));     // clamped above
+    CHECK(near(anisotropy_colour(1 - 1e-15), anisotropy_colour(1)));  // rounding below 1
+    CHECK(near(anisotropy_colour(std::sqrt(10.0)),
+               (Colour(0.19, 0.35, 0.80) + Colour(0.20, 0.72, 0.38)) / 2));  // log-linear
+    for (const double bad : {0.0, -1.0, std::nan(""), HUGE_VAL})
+        CHECK(near(anisotropy_colour(bad), Colour(0.6, 0.6, 0.6)));
 }
 
-TEST_CASE("REN-16: the distortion legend is one colour bar with its ticks and the degenerate swatch", "[unit][render]") {
+TEST_CASE("REN-16: the distortion legend is one colour bar with its ticks and the degenerate swatch",
+          "[unit][render]") {
     const std::string svg = fhr::render::anisotropy_legend_svg();
     CHECK(svg.rfind("<?xml", 0) == 0);
     CHECK(svg.find("</svg>") != std::string::npos);

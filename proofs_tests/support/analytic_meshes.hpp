@@ -18,11 +18,11 @@ namespace fhr::test {
 // every vertex projected to the unit sphere. All its triangles are acute.
 inline TriMesh icosphere(int level) {
     const double g = (1 + std::sqrt(5.0)) / 2;
-    std::vector<Vec3> p{{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                        {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-    std::vector<Triangle> t{{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                            {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                            {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    std::vector<Vec3> p{{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
+                        {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
+    std::vector<Triangle> t{{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                            {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                            {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
     for (Vec3& x : p) x.normalize();
     for (int l = 0; l < level; ++l) {
         std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
@@ -67,7 +67,9 @@ inline TriMesh refined_polyhedron(const std::vector<Vec3>& corners, const std::v
                 v = i == n ? f[1] : j == n ? f[2] : f[0];
             } else if (i == 0 || j == 0 || i + j == n) {
                 // An edge point: (end a, end b, steps from a), shared with the neighbouring face.
-                const auto [a, b, k] = j == 0 ? std::tuple{f[0], f[1], i} : i == 0 ? std::tuple{f[0], f[2], j} : std::tuple{f[1], f[2], j};
+                const auto [a, b, k] = j == 0   ? std::tuple{f[0], f[1], i}
+                                       : i == 0 ? std::tuple{f[0], f[2], j}
+                                                : std::tuple{f[1], f[2], j};
                 const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
                 const int from_lo = a == lo ? k : n - k;
                 auto [it, fresh] = on_edge.try_emplace({lo, hi, from_lo}, static_cast<std::uint32_t>(p.size()));

@@ -16,7 +16,8 @@ using CgalShortestPath = CGAL::Surface_mesh_shortest_path<CGAL::Surface_mesh_sho
 
 }  // namespace
 
-std::optional<std::vector<double>> cgal_distances(const TriMesh& m, VertexId source, const FaceData<std::uint8_t>* mask) {
+std::optional<std::vector<double>> cgal_distances(const TriMesh& m, VertexId source,
+                                                  const FaceData<std::uint8_t>* mask) {
     CgalMesh cm;
     std::vector<CgalMesh::Vertex_index> vid;
     for (VertexId v : m.vertices()) {
@@ -26,7 +27,8 @@ std::optional<std::vector<double>> cgal_distances(const TriMesh& m, VertexId sou
     for (FaceId f : m.faces()) {
         if (mask && !(*mask)[f]) continue;
         const auto t = m.face_vertices(f);
-        if (cm.add_face(vid[t[0].idx()], vid[t[1].idx()], vid[t[2].idx()]) == CgalMesh::null_face()) return std::nullopt;
+        if (cm.add_face(vid[t[0].idx()], vid[t[1].idx()], vid[t[2].idx()]) == CgalMesh::null_face())
+            return std::nullopt;
     }
     std::vector<double> d(m.n_vertices(), INFINITY);
     d[source.idx()] = 0;

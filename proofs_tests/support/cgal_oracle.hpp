@@ -15,6 +15,7 @@ namespace fhr::test {
 /// CGAL's exact single-source distances on the faces of `m` that the mask keeps (all without one).
 /// Unreachable vertices (CGAL answers −1) get INFINITY. nullopt when CGAL refuses the sub-mesh (a
 /// vertex where two fans of kept faces touch is not a manifold for Surface_mesh).
-std::optional<std::vector<double>> cgal_distances(const TriMesh& m, VertexId source, const FaceData<std::uint8_t>* mask = nullptr);
+std::optional<std::vector<double>> cgal_distances(const TriMesh& m, VertexId source,
+                                                  const FaceData<std::uint8_t>* mask = nullptr);
 
 }  // namespace fhr::test

@@ -37,22 +37,22 @@ inline constexpr const char* optional_data_absent = "optional data absent: ";
 
 /// The path of shared_mesh(name), or — when it is absent — a skip: the warning above, and the test
 /// case returns. For use in a Catch2 TEST_CASE's body.
-#define FHR_SHARED_MESH_OR_SKIP(path, name)                                                                   \
-    const std::optional<std::string> path##_found = fhr::test::shared_mesh(name);                             \
-    if (!path##_found) {                                                                                       \
-        WARN(std::string(fhr::test::optional_data_absent) + (name) + " is not in ../shared/meshes");          \
-        return;                                                                                                \
-    }                                                                                                          \
+#define FHR_SHARED_MESH_OR_SKIP(path, name)                                                          \
+    const std::optional<std::string> path##_found = fhr::test::shared_mesh(name);                    \
+    if (!path##_found) {                                                                             \
+        WARN(std::string(fhr::test::optional_data_absent) + (name) + " is not in ../shared/meshes"); \
+        return;                                                                                      \
+    }                                                                                                \
     const std::string& path = *path##_found
 
 /// A program of peers/ (the adapters of other programs, and fhr's own: peers/fhr-param).
 std::string peer_path(std::string_view name);
 
 struct RunResult {
-    int exit_code;       ///< the process's exit status, or 128+signal when it was killed
-    std::string out;     ///< everything it wrote to stdout
-    std::string err;     ///< everything it wrote to stderr
-    double seconds;      ///< wall-clock time
+    int exit_code;    ///< the process's exit status, or 128+signal when it was killed
+    std::string out;  ///< everything it wrote to stdout
+    std::string err;  ///< everything it wrote to stderr
+    double seconds;   ///< wall-clock time
 };
 
 /// Runs the built `fhr` executable with `args` (no shell involved) and collects its output.

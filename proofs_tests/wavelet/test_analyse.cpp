@@ -18,7 +18,8 @@
 
 using namespace fhr;
 
-TEST_CASE("WAV-10: analyse: counts, round trip, kept counts, errors and Hausdorff distances on the sphere", "[unit][wavelet]") {
+TEST_CASE("WAV-10: analyse: counts, round trip, kept counts, errors and Hausdorff distances on the sphere",
+          "[unit][wavelet]") {
     const TriMesh D = test::icosphere(0);  // 12 vertices, 30 edges, 20 faces
     const TriMesh T = test::icosphere(4);
     const wavelet::DomainMap phi = [&](FaceId f, const std::array<double, 3>& b) {
@@ -61,19 +62,23 @@ TEST_CASE("WAV-10: analyse: counts, round trip, kept counts, errors and Hausdorf
     const wavelet::TriangleTree t_tree(T.positions(), t_faces);
     const wavelet::WaveletResult with_tree = wavelet::analyse(D, phi, 3, keep, T, {}, nullptr, nullptr, &t_tree);
     const auto same_bracket = [](const wavelet::Hausdorff& a, const wavelet::Hausdorff& b) {
-        return a.a_to_b.lower == b.a_to_b.lower && a.a_to_b.upper == b.a_to_b.upper && a.b_to_a.lower == b.b_to_a.lower &&
-               a.b_to_a.upper == b.b_to_a.upper && a.a_to_b.samples == b.a_to_b.samples && a.b_to_a.samples == b.b_to_a.samples;
+        return a.a_to_b.lower == b.a_to_b.lower && a.a_to_b.upper == b.a_to_b.upper &&
+               a.b_to_a.lower == b.b_to_a.lower && a.b_to_a.upper == b.b_to_a.upper &&
+               a.a_to_b.samples == b.a_to_b.samples && a.b_to_a.samples == b.b_to_a.samples;
     };
     CHECK(same_bracket(with_tree.remesh_hausdorff, w.remesh_hausdorff));
     REQUIRE(with_tree.kept.size() == w.kept.size());
-    for (std::size_t i = 0; i < w.kept.size(); ++i) CHECK(same_bracket(with_tree.kept[i].hausdorff, w.kept[i].hausdorff));
-    const wavelet::WaveletResult given = wavelet::analyse(D, phi, 1, std::array<double, 1>{50}, T, {.resolution = 0.002});
+    for (std::size_t i = 0; i < w.kept.size(); ++i)
+        CHECK(same_bracket(with_tree.kept[i].hausdorff, w.kept[i].hausdorff));
+    const wavelet::WaveletResult given =
+        wavelet::analyse(D, phi, 1, std::array<double, 1>{50}, T, {.resolution = 0.002});
     CHECK(given.remesh_hausdorff.resolution == 0.002);
     CHECK(given.kept[0].hausdorff.resolution == 0.002);
     CHECK_THROWS_AS(wavelet::analyse(D, phi, 1, std::array<double, 1>{120}, T), InvalidInput);
 }
 
-TEST_CASE("WAV-14: analyse with boundary and two components: two icosahedral bands on their spheres", "[unit][wavelet]") {
+TEST_CASE("WAV-14: analyse with boundary and two components: two icosahedral bands on their spheres",
+          "[unit][wavelet]") {
     // D: twice the icosahedron without the triangles at two opposite vertices (an annulus: V = 10,
     // E = 20, F = 10, two boundary loops), the second copy at x + 4. φ: the central projection of
     // each band onto the unit sphere about its own centre. T: f⁴(Ω_D), the same bands one level finer.

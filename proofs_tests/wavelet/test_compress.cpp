@@ -61,14 +61,16 @@ TEST_CASE("WAV-7: kept_count is ⌊p·N/100⌋: 179 and 718 of the fandisk's 3,5
     CHECK_THROWS_AS(wavelet::kept_count(10, std::nan("")), InvalidInput);
 }
 
-TEST_CASE("WAV-7, WAV-14: keeping 100 % reconstructs exactly, 0 % gives f^0; the kept ones are the largest", "[property][wavelet]") {
+TEST_CASE("WAV-7, WAV-14: keeping 100 % reconstructs exactly, 0 % gives f^0; the kept ones are the largest",
+          "[property][wavelet]") {
     rc::prop("random D (closed, or with boundary and several components), J, f", [] {
         const int J = *rc::gen::inRange(1, 4);
         const bool open = *rc::gen::arbitrary<bool>();
         const TriMesh D = test::draw_domain(open, J == 3 ? (open ? 60 : 150) : (open ? 130 : 400));
         const Refinement r = wavelet::refine(D, J);
         const FilterBank bank(r);
-        const std::vector<Vec3> f = test::random_points(r.finest().n_vertices(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30));
+        const std::vector<Vec3> f =
+            test::random_points(r.finest().n_vertices(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30));
         const Decomposition d = bank.decompose(f);
         const std::size_t N = d.coefficient_count();
         // 100 %: the same coefficients, so the same reconstruction bit for bit.
@@ -146,9 +148,10 @@ TEST_CASE("WAV-8, WAV-14: keeping whole levels: ‖f − f^k‖² = Σ_{j ≥ k}
     });
 }
 
-TEST_CASE("WAV-8, WAV-14: keeping the largest k: the error is within the Riesz bounds of Σ_{dropped} (|d_u|‖ψ_u‖)², "
-          "which never increases with k",
-          "[property][wavelet]") {
+TEST_CASE(
+    "WAV-8, WAV-14: keeping the largest k: the error is within the Riesz bounds of Σ_{dropped} (|d_u|‖ψ_u‖)², "
+    "which never increases with k",
+    "[property][wavelet]") {
     // With the levels orthogonal, ‖f − f_K‖² = Σ_j ‖Σ_{u ∉ K, level j} d_u ψ_u‖², and on level j
     // ρ_j⁻ Σ (|d_u|‖ψ_u‖)² ≤ ‖Σ d_u ψ_u‖² ≤ ρ_j⁺ Σ (|d_u|‖ψ_u‖)² with ρ_j^± the extreme eigenvalues
     // of the prewavelets' normalized Gram matrix (computed here, dense). So k ↦ error can only grow
@@ -209,7 +212,8 @@ TEST_CASE("WAV-8: regression: greedy keeping is not monotone in general (why WAV
     const Decomposition d = bank.decompose(f);
     const wavelet::SparseRows G = wavelet::gram(r.finest(), 1);
     auto error = [&](double p) {
-        return paper_norm_distance(G, f, bank.reconstruct(wavelet::keep_largest(bank, d, wavelet::kept_count(d.coefficient_count(), p))));
+        return paper_norm_distance(
+            G, f, bank.reconstruct(wavelet::keep_largest(bank, d, wavelet::kept_count(d.coefficient_count(), p))));
     };
     CHECK(error(35) > error(30));
     CHECK(error(100) < 1e-12);

@@ -48,7 +48,8 @@ std::size_t max_component_faces_for(int J) { return J <= 1 ? 200 : J == 2 ? 100 
 // κ(T_t) ≤ 14/3).
 Eigen::MatrixXd closed_form(const TriMesh& coarse, int j) {
     const double s = std::ldexp(1.0, j - 1);
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(coarse.n_edges()), static_cast<Eigen::Index>(coarse.n_edges()));
+    Eigen::MatrixXd A =
+        Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(coarse.n_edges()), static_cast<Eigen::Index>(coarse.n_edges()));
     for (VertexId v : coarse.vertices()) {
         std::vector<Eigen::Index> ring;
         coarse.for_each_outgoing(v, [&](HalfedgeId h) { ring.push_back(TriMesh::edge(h).idx()); });
@@ -72,15 +73,17 @@ Eigen::MatrixXd closed_form(const TriMesh& coarse, int j) {
 }
 
 // A domain for level J: closed, or with boundary and several components.
-TriMesh domain_for(bool open, int J) { return test::draw_domain(open, open ? max_component_faces_for(J) : max_faces_for(J)); }
+TriMesh domain_for(bool open, int J) {
+    return test::draw_domain(open, open ? max_component_faces_for(J) : max_faces_for(J));
+}
 
 // WAV-4, WAV-13: the round trip within 1e−12 of ‖f‖_∞ and every solve within its τ_j.
 void check_round_trip(const TriMesh& D, int J) {
     const Refinement r = wavelet::refine(D, J);
     const FilterBank bank(r);
     const double offset = *rc::gen::element(0.0, 1.0, 1e3);
-    const std::vector<Vec3> f =
-        test::random_points(r.finest().n_vertices(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30), 1.0, Vec3::Constant(offset));
+    const std::vector<Vec3> f = test::random_points(
+        r.finest().n_vertices(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30), 1.0, Vec3::Constant(offset));
     const Decomposition d = bank.decompose(f);
     RC_ASSERT(d.coarse.size() == D.n_vertices());
     RC_ASSERT(d.coefficient_count() == r.finest().n_vertices() - D.n_vertices());
@@ -100,7 +103,8 @@ void check_round_trip(const TriMesh& D, int J) {
 void check_projection(const TriMesh& D, int j) {
     const Refinement r = wavelet::refine(D, j);
     const FilterBank bank(r);
-    const std::vector<Vec3> c = test::random_points(r.levels[j].n_vertices(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30));
+    const std::vector<Vec3> c =
+        test::random_points(r.levels[j].n_vertices(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30));
     std::vector<Vec3> coarse, detail;
     bank.decompose_level(j, c, coarse, detail);
     const wavelet::SparseRows G = wavelet::gram(r.levels[j], j);
@@ -124,7 +128,8 @@ void check_decomposition_matrix(const TriMesh& D, int j, double upper) {
     // entries of size ≤ 1 differ by a few ulps times κ(T_t) ≤ 14/3: 1e−14·s.
     RC_ASSERT((dense - expected).cwiseAbs().maxCoeff() <= (D.is_closed() ? 1e-15 : 1e-14) * s);
     const Eigen::VectorXd lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(dense).eigenvalues();
-    RC_LOG() << "m = " << dense.rows() << ", spectrum [" << lambda.minCoeff() << ", " << lambda.maxCoeff() << "], s = " << s << "\n";
+    RC_LOG() << "m = " << dense.rows() << ", spectrum [" << lambda.minCoeff() << ", " << lambda.maxCoeff()
+             << "], s = " << s << "\n";
     // Eigenvalues of a symmetric matrix move by at most ‖perturbation‖ ≈ 1e−15·s under rounding.
     RC_ASSERT(lambda.minCoeff() >= 2 * s / 7 - 1e-12 * s);
     RC_ASSERT(lambda.maxCoeff() <= upper * s + 1e-12 * s);
@@ -136,7 +141,8 @@ void check_decomposition_matrix(const TriMesh& D, int j, double upper) {
 void check_coarse_function(const TriMesh& D, int J, int k) {
     const Refinement r = wavelet::refine(D, J);
     const FilterBank bank(r);
-    const std::vector<Vec3> ck = test::random_points(r.levels[k].n_vertices(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30));
+    const std::vector<Vec3> ck =
+        test::random_points(r.levels[k].n_vertices(), *rc::gen::inRange<std::uint64_t>(0, 1u << 30));
     std::vector<Vec3> f = ck;
     for (int j = k + 1; j <= J; ++j) {
         const std::vector<Vec3> zero(bank.level(j).m(), Vec3::Zero());
@@ -164,15 +170,18 @@ TEST_CASE("WAV-4: reconstruct(decompose(f)) = f to 1e-12 relative, random f on r
     });
 }
 
-TEST_CASE("WAV-13: the round trip to 1e-12 relative with boundary and several components, levels 1..4", "[property][wavelet]") {
+TEST_CASE("WAV-13: the round trip to 1e-12 relative with boundary and several components, levels 1..4",
+          "[property][wavelet]") {
     rc::prop("random D (1..5 boundary loops, 1..3 components), J, f (up to 10^3 away from the origin)", [] {
         const int J = *rc::gen::inRange(1, 5);
         check_round_trip(domain_for(true, J), J);
     });
 }
 
-TEST_CASE("WAV-13: the round trip on open fans with a boundary vertex of t = 1..12 triangles, J = 3", "[property][wavelet]") {
-    rc::prop("open fan of t = 1..12 triangles, f", [] { check_round_trip(test::open_fan(*rc::gen::inRange(1u, 13u)), 3); });
+TEST_CASE("WAV-13: the round trip on open fans with a boundary vertex of t = 1..12 triangles, J = 3",
+          "[property][wavelet]") {
+    rc::prop("open fan of t = 1..12 triangles, f",
+             [] { check_round_trip(test::open_fan(*rc::gen::inRange(1u, 13u)), 3); });
 }
 
 TEST_CASE("WAV-4: the coarse part is the orthogonal projection of f^j onto S^{j−1}", "[property][wavelet]") {
@@ -182,30 +191,36 @@ TEST_CASE("WAV-4: the coarse part is the orthogonal projection of f^j onto S^{j�
     });
 }
 
-TEST_CASE("WAV-13: the coarse part is the orthogonal projection with boundary and several components", "[property][wavelet]") {
+TEST_CASE("WAV-13: the coarse part is the orthogonal projection with boundary and several components",
+          "[property][wavelet]") {
     rc::prop("random D (1..5 boundary loops, 1..3 components), one level", [] {
         const test::OpenDomain D = *test::gen_open_domain(150);
         check_projection(D, *rc::gen::inRange(1, 3));
     });
 }
 
-TEST_CASE("WAV-5: the decomposition matrix is symmetric positive definite, spectrum in [2s/7, 2s]", "[property][wavelet]") {
+TEST_CASE("WAV-5: the decomposition matrix is symmetric positive definite, spectrum in [2s/7, 2s]",
+          "[property][wavelet]") {
     rc::prop("random D and bipyramids of valence 3..12, levels 1..2", [] {
         const bool random = *rc::gen::arbitrary<bool>();
-        const TriMesh D = random ? static_cast<TriMesh>(*test::gen_domain(120)) : test::bipyramid(*rc::gen::inRange(3u, 13u));
+        const TriMesh D =
+            random ? static_cast<TriMesh>(*test::gen_domain(120)) : test::bipyramid(*rc::gen::inRange(3u, 13u));
         check_decomposition_matrix(D, *rc::gen::inRange(1, 3), 2);
     });
 }
 
-TEST_CASE("WAV-13: with boundary the decomposition matrix is s Σ_v E_v B_v E_vᵀ, spectrum in [2s/7, 4s]", "[property][wavelet]") {
+TEST_CASE("WAV-13: with boundary the decomposition matrix is s Σ_v E_v B_v E_vᵀ, spectrum in [2s/7, 4s]",
+          "[property][wavelet]") {
     rc::prop("random D with boundary and several components, and open fans of t = 1..12, levels 1..2", [] {
         const bool random = *rc::gen::arbitrary<bool>();
-        const TriMesh D = random ? static_cast<TriMesh>(*test::gen_open_domain(60)) : test::open_fan(*rc::gen::inRange(1u, 13u));
+        const TriMesh D =
+            random ? static_cast<TriMesh>(*test::gen_open_domain(60)) : test::open_fan(*rc::gen::inRange(1u, 13u));
         check_decomposition_matrix(D, *rc::gen::inRange(1, 3), 4);
     });
 }
 
-TEST_CASE("WAV-13: one triangle: A = s(2I + ⅔𝟙𝟙ᵀ) at j = 1, spectrum {2s, 2s, 4s}: the bound 4s is attained", "[unit][wavelet]") {
+TEST_CASE("WAV-13: one triangle: A = s(2I + ⅔𝟙𝟙ᵀ) at j = 1, spectrum {2s, 2s, 4s}: the bound 4s is attained",
+          "[unit][wavelet]") {
     // By hand: each corner has t = 1 and B = 6/7 𝟙𝟙ᵀ + T_1⁻¹, T_1 = [5/2 1; 1 5/2], T_1⁻¹ =
     // [10 −4; −4 10]/21, so B = [4/3 2/3; 2/3 4/3]; every new vertex is in two corners' rings and
     // every pair of new vertices in one: A = 8/3 on the diagonal, 2/3 off it (s = 1).
@@ -220,7 +235,8 @@ TEST_CASE("WAV-13: one triangle: A = s(2I + ⅔𝟙𝟙ᵀ) at j = 1, spectrum {
     CHECK(lambda.minCoeff() == Approx(2).epsilon(1e-14));
 }
 
-TEST_CASE("WAV-6: a function already in S^k has every wavelet coefficient at levels ≥ k exactly zero", "[property][wavelet]") {
+TEST_CASE("WAV-6: a function already in S^k has every wavelet coefficient at levels ≥ k exactly zero",
+          "[property][wavelet]") {
     rc::prop("random D, J, k < J, c^k", [] {
         const int J = *rc::gen::inRange(1, 4);
         const int k = *rc::gen::inRange(0, J);
@@ -228,7 +244,8 @@ TEST_CASE("WAV-6: a function already in S^k has every wavelet coefficient at lev
     });
 }
 
-TEST_CASE("WAV-13: with boundary too, a function already in S^k has no wavelet coefficients at levels ≥ k", "[property][wavelet]") {
+TEST_CASE("WAV-13: with boundary too, a function already in S^k has no wavelet coefficients at levels ≥ k",
+          "[property][wavelet]") {
     rc::prop("random D (1..5 boundary loops, 1..3 components), J, k < J, c^k", [] {
         const int J = *rc::gen::inRange(1, 4);
         const int k = *rc::gen::inRange(0, J);
@@ -236,7 +253,8 @@ TEST_CASE("WAV-13: with boundary too, a function already in S^k has no wavelet c
     });
 }
 
-TEST_CASE("WAV-4: the fandisk-sized domain (114 faces) at J = 3 decomposes with 3,591 coefficients", "[unit][wavelet]") {
+TEST_CASE("WAV-4: the fandisk-sized domain (114 faces) at J = 3 decomposes with 3,591 coefficients",
+          "[unit][wavelet]") {
     const TriMesh D = generate::random_closed_mesh({.genus = 0, .faces = 114, .seed = 3, .noise = 0.1});
     const Refinement r = wavelet::refine(D, 3);
     const FilterBank bank(r);
@@ -256,7 +274,8 @@ TEST_CASE("WAV-4: the fandisk-sized domain (114 faces) at J = 3 decomposes with 
     CHECK(err <= 1e-12 * max_abs(f));
 }
 
-TEST_CASE("WAV-4: the bank, decompose and reconstruct give the same numbers bit for bit on one and on three threads", "[unit][wavelet]") {
+TEST_CASE("WAV-4: the bank, decompose and reconstruct give the same numbers bit for bit on one and on three threads",
+          "[unit][wavelet]") {
     // 20,482 vertices at J = 6: the finest level's rows make two blocks of 16,384 and more.
     const Refinement r = wavelet::refine(test::bipyramid(5), 6);
     REQUIRE(r.finest().n_vertices() > 16384);
@@ -286,7 +305,8 @@ TEST_CASE("WAV-4: the bank, decompose and reconstruct give the same numbers bit 
         for (std::size_t i = 0; i < detail.size(); ++i) Dt.row(static_cast<Eigen::Index>(i)) = detail[i].transpose();
         const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> whole = L.P * C + L.Q * Dt;
         const std::vector<Vec3> level = bank.reconstruct_level(j, c, detail, &three);
-        for (std::size_t i = 0; i < level.size(); ++i) REQUIRE(level[i] == whole.row(static_cast<Eigen::Index>(i)).transpose());
+        for (std::size_t i = 0; i < level.size(); ++i)
+            REQUIRE(level[i] == whole.row(static_cast<Eigen::Index>(i)).transpose());
         c = level;
     }
     CHECK(c == a);

@@ -21,7 +21,8 @@ namespace {
 // Brute force: the smallest distance from p to any triangle.
 double brute_distance(const Vec3& p, const std::vector<Vec3>& x, const std::vector<Triangle>& t) {
     double best = INFINITY;
-    for (const Triangle& f : t) best = std::min(best, (closest_point_on_triangle(p, x[f[0]], x[f[1]], x[f[2]]) - p).norm());
+    for (const Triangle& f : t)
+        best = std::min(best, (closest_point_on_triangle(p, x[f[0]], x[f[1]], x[f[2]]) - p).norm());
     return best;
 }
 
@@ -38,7 +39,8 @@ std::tuple<TriMesh, std::vector<Triangle>, std::vector<Vec3>> noisy_sphere() {
 
 }  // namespace
 
-TEST_CASE("WAV-9: the closest point lies on the triangle and no point of a dense sample is closer", "[property][wavelet]") {
+TEST_CASE("WAV-9: the closest point lies on the triangle and no point of a dense sample is closer",
+          "[property][wavelet]") {
     rc::prop("random triangles (some nearly degenerate) and points", [] {
         std::mt19937_64 rng(*rc::gen::inRange<std::uint64_t>(0, 1u << 30));
         std::uniform_real_distribution<double> u(-1, 1);
@@ -59,7 +61,7 @@ TEST_CASE("WAV-9: the closest point lies on the triangle and no point of a dense
                 nearest_sample_to_q = std::min(nearest_sample_to_q, (s - q).norm());
             }
         const double L = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-        RC_ASSERT(d <= dense + 1e-14);                           // no sample of the triangle is closer
+        RC_ASSERT(d <= dense + 1e-14);                                       // no sample of the triangle is closer
         RC_ASSERT(nearest_sample_to_q <= L / (k * std::sqrt(3.0)) + 1e-14);  // q is on the triangle
     });
 }
@@ -82,7 +84,8 @@ TEST_CASE("WAV-9: the tree's closest point equals brute force over all triangles
     });
 }
 
-TEST_CASE("WAV-9: a tree refitted to moved vertices answers as brute force over the moved triangles", "[property][wavelet]") {
+TEST_CASE("WAV-9: a tree refitted to moved vertices answers as brute force over the moved triangles",
+          "[property][wavelet]") {
     rc::prop("random closed meshes, every vertex moved by up to a chosen amount, random queries", [] {
         const fhr::testing::GeneratedMesh m = *test::gen_domain(600);
         const std::vector<Triangle> t = m.triangles();
@@ -120,8 +123,9 @@ TEST_CASE("WAV-9: parallel squares at distance h: h in both directions, bracket 
     CHECK(Z.upper() <= 0.01);
 }
 
-TEST_CASE("WAV-9: lower ≤ h ≤ upper: lower is at least the vertices' brute-force distance, upper at least a denser sample's",
-          "[property][wavelet]") {
+TEST_CASE(
+    "WAV-9: lower ≤ h ≤ upper: lower is at least the vertices' brute-force distance, upper at least a denser sample's",
+    "[property][wavelet]") {
     rc::prop("a sphere against a noisy copy", [] {
         const auto [A, t, bx] = noisy_sphere();
         const double delta = *rc::gen::element(0.05, 0.02);
@@ -157,13 +161,16 @@ TEST_CASE("WAV-9: a directed search told a known lower bound still brackets h, �
         // Narrow where it matters: above known.
         RC_ASSERT(std::max(told.upper, known) - std::max(told.lower, known) <= delta * (1 + 1e-12));
         // Nothing known: the same search.
-        const wavelet::DirectedHausdorff zero = wavelet::directed_hausdorff(A.positions(), t, B, {.resolution = delta, .known = 0});
+        const wavelet::DirectedHausdorff zero =
+            wavelet::directed_hausdorff(A.positions(), t, B, {.resolution = delta, .known = 0});
         RC_ASSERT(zero.lower == full.lower && zero.upper == full.upper && zero.samples == full.samples);
     });
 }
 
-TEST_CASE("WAV-9: triangle_upper bounds the distance on each triangle; priors from it plus a displacement give the same h, δ-narrow, and every vertex counts",
-          "[property][wavelet]") {
+TEST_CASE(
+    "WAV-9: triangle_upper bounds the distance on each triangle; priors from it plus a displacement give the same h, "
+    "δ-narrow, and every vertex counts",
+    "[property][wavelet]") {
     rc::prop("a noisy sphere B, its copy B′ moved again, and A, the sphere", [] {
         const auto [A, t, bx] = noisy_sphere();
         const double delta = *rc::gen::element(0.02, 0.005);
@@ -189,7 +196,8 @@ TEST_CASE("WAV-9: triangle_upper bounds the distance on each triangle; priors fr
         for (std::size_t i = 0; i < t.size(); ++i)
             prior[i] = (f.triangle_upper[i] + std::max({shift[t[i][0]], shift[t[i][1]], shift[t[i][2]]})) * (1 + 1e-12);
         const double known = *rc::gen::element(0.0, f.lower);
-        const wavelet::DirectedHausdorff plain = wavelet::directed_hausdorff(moved, t, a_tree, {.resolution = delta, .known = known});
+        const wavelet::DirectedHausdorff plain =
+            wavelet::directed_hausdorff(moved, t, a_tree, {.resolution = delta, .known = known});
         const wavelet::DirectedHausdorff told =
             wavelet::directed_hausdorff(moved, t, a_tree, {.resolution = delta, .known = known, .prior = prior});
         RC_ASSERT(told.lower <= told.upper);
@@ -211,50 +219,60 @@ TEST_CASE("WAV-9: triangle_upper bounds the distance on each triangle; priors fr
     });
 }
 
-TEST_CASE("WAV-9, WAV-14: the two-triangle and vertex-fan bounds are upper bounds of the distance on a piece, inside and at the boundary",
-          "[property][wavelet]") {
-    rc::prop("pieces near the vertices and edges of an irregular flat-faced octahedron or its open upper half, slightly off it", [] {
-        const int n = *rc::gen::inRange(2, 9);
-        const double jitter = *rc::gen::element(0.0, 0.1, 0.25);
-        const bool open = *rc::gen::arbitrary<bool>();
-        const std::vector<Vec3> corners(test::octahedron_corners.begin(), test::octahedron_corners.begin() + (open ? 5 : 6));
-        const std::vector<Triangle> faces(test::octahedron_faces.begin(), test::octahedron_faces.begin() + (open ? 4 : 8));
-        const TriMesh B = test::refined_polyhedron(corners, faces, n, jitter, *rc::gen::inRange(0u, 1000u));
-        const std::vector<Vec3>& x = B.positions();
-        const std::vector<Triangle> t = B.triangles();
-        const TriangleTree tree(x, t);
-        std::mt19937_64 rng(*rc::gen::inRange<std::uint64_t>(0, 1u << 30));
-        const auto v = *rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(x.size()));
-        const double step = 1.0 / n, off = *rc::gen::element(0.0, 1e-6, 1e-3, 0.05);
-        std::uniform_real_distribution<double> u(-1.5 * step, 1.5 * step), lift(-off, off);
-        Vec3 piece[3];
-        for (Vec3& p : piece) p = x[v] + Vec3(u(rng), u(rng), u(rng)) + Vec3::Constant(lift(rng));
-        // The triangles at v, and one edge's two triangles.
-        std::vector<Triangle> fan, pair;
-        std::uint32_t first = 0, second = 0;
-        auto has = [&](const Triangle& f, std::uint32_t w) { return f[0] == w || f[1] == w || f[2] == w; };
-        for (std::uint32_t i = 0; i < t.size(); ++i)
-            if (has(t[i], v)) {
-                if (fan.empty()) first = i;
-                fan.push_back(t[i]);
-            }
-        for (std::uint32_t i = 0; i < t.size(); ++i)  // a neighbour of `first` across one of its edges
-            if (i != first && (has(t[first], t[i][0]) + has(t[first], t[i][1]) + has(t[first], t[i][2])) == 2) second = i;
-        for (std::uint32_t i : {first, second}) pair.push_back(t[i]);
-        const double fan_bound = tree.fan_bound(piece, v), pair_bound = tree.pair_bound(piece, first, second);
-        RC_TAG(B.is_boundary(VertexId(v)) ? "boundary vertex" : "inner vertex", std::isfinite(fan_bound) ? "fan bound finite" : "fan bound infinite",
-               std::isfinite(pair_bound) ? "pair bound finite" : "pair bound infinite");
-        const int k = 24;
-        double fan_sup = 0, pair_sup = 0;
-        for (int i = 0; i <= k; ++i)
-            for (int j = 0; i + j <= k; ++j) {
-                const Vec3 p = piece[0] + (double(i) / k) * (piece[1] - piece[0]) + (double(j) / k) * (piece[2] - piece[0]);
-                fan_sup = std::max(fan_sup, brute_distance(p, x, fan));
-                pair_sup = std::max(pair_sup, brute_distance(p, x, pair));
-            }
-        RC_ASSERT(fan_sup <= fan_bound + 1e-14);
-        RC_ASSERT(pair_sup <= pair_bound + 1e-14);
-    });
+TEST_CASE(
+    "WAV-9, WAV-14: the two-triangle and vertex-fan bounds are upper bounds of the distance on a piece, inside and at "
+    "the boundary",
+    "[property][wavelet]") {
+    rc::prop(
+        "pieces near the vertices and edges of an irregular flat-faced octahedron or its open upper half, slightly off "
+        "it",
+        [] {
+            const int n = *rc::gen::inRange(2, 9);
+            const double jitter = *rc::gen::element(0.0, 0.1, 0.25);
+            const bool open = *rc::gen::arbitrary<bool>();
+            const std::vector<Vec3> corners(test::octahedron_corners.begin(),
+                                            test::octahedron_corners.begin() + (open ? 5 : 6));
+            const std::vector<Triangle> faces(test::octahedron_faces.begin(),
+                                              test::octahedron_faces.begin() + (open ? 4 : 8));
+            const TriMesh B = test::refined_polyhedron(corners, faces, n, jitter, *rc::gen::inRange(0u, 1000u));
+            const std::vector<Vec3>& x = B.positions();
+            const std::vector<Triangle> t = B.triangles();
+            const TriangleTree tree(x, t);
+            std::mt19937_64 rng(*rc::gen::inRange<std::uint64_t>(0, 1u << 30));
+            const auto v = *rc::gen::inRange<std::uint32_t>(0, static_cast<std::uint32_t>(x.size()));
+            const double step = 1.0 / n, off = *rc::gen::element(0.0, 1e-6, 1e-3, 0.05);
+            std::uniform_real_distribution<double> u(-1.5 * step, 1.5 * step), lift(-off, off);
+            Vec3 piece[3];
+            for (Vec3& p : piece) p = x[v] + Vec3(u(rng), u(rng), u(rng)) + Vec3::Constant(lift(rng));
+            // The triangles at v, and one edge's two triangles.
+            std::vector<Triangle> fan, pair;
+            std::uint32_t first = 0, second = 0;
+            auto has = [&](const Triangle& f, std::uint32_t w) { return f[0] == w || f[1] == w || f[2] == w; };
+            for (std::uint32_t i = 0; i < t.size(); ++i)
+                if (has(t[i], v)) {
+                    if (fan.empty()) first = i;
+                    fan.push_back(t[i]);
+                }
+            for (std::uint32_t i = 0; i < t.size(); ++i)  // a neighbour of `first` across one of its edges
+                if (i != first && (has(t[first], t[i][0]) + has(t[first], t[i][1]) + has(t[first], t[i][2])) == 2)
+                    second = i;
+            for (std::uint32_t i : {first, second}) pair.push_back(t[i]);
+            const double fan_bound = tree.fan_bound(piece, v), pair_bound = tree.pair_bound(piece, first, second);
+            RC_TAG(B.is_boundary(VertexId(v)) ? "boundary vertex" : "inner vertex",
+                   std::isfinite(fan_bound) ? "fan bound finite" : "fan bound infinite",
+                   std::isfinite(pair_bound) ? "pair bound finite" : "pair bound infinite");
+            const int k = 24;
+            double fan_sup = 0, pair_sup = 0;
+            for (int i = 0; i <= k; ++i)
+                for (int j = 0; i + j <= k; ++j) {
+                    const Vec3 p =
+                        piece[0] + (double(i) / k) * (piece[1] - piece[0]) + (double(j) / k) * (piece[2] - piece[0]);
+                    fan_sup = std::max(fan_sup, brute_distance(p, x, fan));
+                    pair_sup = std::max(pair_sup, brute_distance(p, x, pair));
+                }
+            RC_ASSERT(fan_sup <= fan_bound + 1e-14);
+            RC_ASSERT(pair_sup <= pair_bound + 1e-14);
+        });
 }
 
 // The two-triangle bound's premise: τ₁ = (a, b, c) and τ₂ = (b, a, d) share ab, and Q = a d' b c
@@ -265,7 +283,7 @@ TEST_CASE("WAV-9, WAV-14: the two-triangle and vertex-fan bounds are upper bound
 TEST_CASE("WAV-9: the two-triangle bound applies exactly where Q is convex, and is tight there", "[unit][wavelet]") {
     const Vec3 a(0, 0, 0), b(2, 0, 0), c(1, 1, 0);
     const std::vector<Triangle> t{{0, 1, 2}, {1, 0, 3}};
-    auto bound = [&](const Vec3& d, const Vec3 (&piece)[3]) {
+    auto bound = [&](const Vec3& d, const Vec3(&piece)[3]) {
         const std::vector<Vec3> x{a, b, c, d};
         return TriangleTree(x, t).pair_bound(piece, 0, 1);
     };
@@ -287,7 +305,8 @@ TEST_CASE("WAV-9: the two-triangle bound applies exactly where Q is convex, and 
     CHECK(std::isinf(TriangleTree(y, u).pair_bound(across, 0, 3)));
 }
 
-TEST_CASE("WAV-9: two triangulations of one flat-faced surface: the bracket closes at δ with few samples", "[unit][wavelet]") {
+TEST_CASE("WAV-9: two triangulations of one flat-faced surface: the bracket closes at δ with few samples",
+          "[unit][wavelet]") {
     // Where A lies on B, the one-triangle bound settles a piece across an edge of B only once the
     // piece is about δ small; the two-triangle and fan bounds settle it at once (WAV-9; the search
     // in wavelet/hausdorff.hpp).
@@ -298,13 +317,15 @@ TEST_CASE("WAV-9: two triangulations of one flat-faced surface: the bracket clos
     const wavelet::Hausdorff H = wavelet::hausdorff(A.positions(), a, B.positions(), b, {.resolution = delta});
     CHECK(H.lower() <= 1e-15);
     CHECK(H.upper() <= delta);
-    INFO("samples " << H.a_to_b.samples << " + " << H.b_to_a.samples << " for " << a.size() << " + " << b.size() << " triangles");
+    INFO("samples " << H.a_to_b.samples << " + " << H.b_to_a.samples << " for " << a.size() << " + " << b.size()
+                    << " triangles");
     CHECK(H.a_to_b.samples + H.b_to_a.samples <= 40 * (a.size() + b.size()));
 }
 
-TEST_CASE("WAV-14: two triangulations of one flat-faced surface with boundary and two components: the bracket closes at δ "
-          "with few samples",
-          "[unit][wavelet]") {
+TEST_CASE(
+    "WAV-14: two triangulations of one flat-faced surface with boundary and two components: the bracket closes at δ "
+    "with few samples",
+    "[unit][wavelet]") {
     // The octahedron's upper half (an open square pyramid, its boundary loop the equator) and,
     // translated, its lower half: A and B triangulate the same two disks. At the boundary vertices
     // of B the vertex fan is an open path (WAV-14), flattened the same way.
@@ -325,18 +346,21 @@ TEST_CASE("WAV-14: two triangulations of one flat-faced surface with boundary an
     const wavelet::Hausdorff H = wavelet::hausdorff(ax, a, bx, b, {.resolution = delta});
     CHECK(H.lower() <= 1e-15);
     CHECK(H.upper() <= delta);
-    INFO("samples " << H.a_to_b.samples << " + " << H.b_to_a.samples << " for " << a.size() << " + " << b.size() << " triangles");
+    INFO("samples " << H.a_to_b.samples << " + " << H.b_to_a.samples << " for " << a.size() << " + " << b.size()
+                    << " triangles");
     CHECK(H.a_to_b.samples + H.b_to_a.samples <= 40 * (a.size() + b.size()));
 }
 
-TEST_CASE("WAV-14: at a boundary vertex of B the open fan's bound settles a piece across it at once", "[unit][wavelet]") {
+TEST_CASE("WAV-14: at a boundary vertex of B the open fan's bound settles a piece across it at once",
+          "[unit][wavelet]") {
     // B: the flat half disk as an open fan of 6 triangles around v = 0 (v on the straight side);
     // A: the same half disk triangulated from the rim point r_0, so v lies inside A's edge r_6 r_0
     // and the corners of A's pieces at v are nearest to different triangles of v's fan. The
     // bound of a piece through v must come from the whole fan, or the piece is split down to δ.
     const unsigned t = 6;
     std::vector<Vec3> x{{0, 0, 0}};
-    for (unsigned k = 0; k <= t; ++k) x.emplace_back(std::cos(std::numbers::pi * k / t), std::sin(std::numbers::pi * k / t), 0);
+    for (unsigned k = 0; k <= t; ++k)
+        x.emplace_back(std::cos(std::numbers::pi * k / t), std::sin(std::numbers::pi * k / t), 0);
     std::vector<Triangle> b, a;
     for (unsigned k = 1; k <= t; ++k) b.push_back({0, k, k + 1});
     for (unsigned k = 2; k <= t; ++k) a.push_back({1, k, k + 1});

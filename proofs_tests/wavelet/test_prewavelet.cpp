@@ -111,7 +111,8 @@ Orthogonality orthogonality(const TriMesh& coarse, const TriMesh& fine, int j) {
 
 }  // namespace
 
-TEST_CASE("WAV-3: θ_n is the inverse of the circulant (1, 5, 1), n = 3..12, in double and 100 digits", "[unit][wavelet]") {
+TEST_CASE("WAV-3: θ_n is the inverse of the circulant (1, 5, 1), n = 3..12, in double and 100 digits",
+          "[unit][wavelet]") {
     for (std::size_t n = 3; n <= 12; ++n) {
         for (std::size_t k = 0; k < n; ++k) {
             // Row k of C_n θ_n: θ(k−1, l) + 5θ(k, l) + θ(k+1, l) against δ_kl, for l = 0.
@@ -126,8 +127,9 @@ TEST_CASE("WAV-3: θ_n is the inverse of the circulant (1, 5, 1), n = 3..12, in 
     }
 }
 
-TEST_CASE("WAV-12: θ^∂_t is the inverse of the tridiagonal (1, 5, 1) with corners 5/2, t = 1..12, in double and 100 digits",
-          "[unit][wavelet]") {
+TEST_CASE(
+    "WAV-12: θ^∂_t is the inverse of the tridiagonal (1, 5, 1) with corners 5/2, t = 1..12, in double and 100 digits",
+    "[unit][wavelet]") {
     for (std::size_t t = 1; t <= 12; ++t) {
         for (std::size_t k = 0; k <= t; ++k) {
             // Row k of T_t θ^∂_t against δ_kl, for every column l.
@@ -152,8 +154,9 @@ TEST_CASE("WAV-12: θ^∂_t is the inverse of the tridiagonal (1, 5, 1) with cor
     }
 }
 
-TEST_CASE("WAV-3, WAV-12: the Gram matrix and P match the per-triangle mass matrix and the coarse hats, closed and open",
-          "[unit][wavelet]") {
+TEST_CASE(
+    "WAV-3, WAV-12: the Gram matrix and P match the per-triangle mass matrix and the coarse hats, closed and open",
+    "[unit][wavelet]") {
     const TriMesh D = GENERATE(test::bipyramid(7), test::open_fan(5));
     const wavelet::Refinement r = wavelet::refine(D, 2);
     const TriMesh &coarse = r.levels[1], &fine = r.levels[2];
@@ -201,7 +204,8 @@ void check_levels_1_to_3(const TriMesh& D) {
 
 }  // namespace
 
-TEST_CASE("WAV-3: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on bipyramids of valence 3..12, levels 1..3", "[property][wavelet]") {
+TEST_CASE("WAV-3: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on bipyramids of valence 3..12, levels 1..3",
+          "[property][wavelet]") {
     // Double: each inner product sums about 40 products of coefficients known to a few ulps, so
     // its error relative to ‖ψ_u‖‖φ_w‖ is a few times 40·2⁻⁵³ ≈ 4.4e−15: 1e−14 bounds it.
     // 100 digits: the same argument with 2^−332 ≈ 1e−100 leaves 40 orders of magnitude below 1e−60.
@@ -211,7 +215,8 @@ TEST_CASE("WAV-3: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on bipyramids of v
     }
 }
 
-TEST_CASE("WAV-3: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on random domains, in double and 100 digits", "[property][wavelet]") {
+TEST_CASE("WAV-3: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on random domains, in double and 100 digits",
+          "[property][wavelet]") {
     rc::prop("random closed D (genus 0..2), levels 1..2", [] {
         const fhr::testing::GeneratedMesh D = *test::gen_domain(160);
         const int j = *rc::gen::inRange(1, 3);
@@ -225,8 +230,10 @@ TEST_CASE("WAV-3: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on random domains,
     });
 }
 
-TEST_CASE("WAV-12: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on open fans with a boundary vertex of t = 1..12 triangles, levels 1..3",
-          "[property][wavelet]") {
+TEST_CASE(
+    "WAV-12: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on open fans with a boundary vertex of t = 1..12 triangles, levels "
+    "1..3",
+    "[property][wavelet]") {
     // The same bounds as on the bipyramids (each inner product sums at most about 40 products).
     for (unsigned t = 1; t <= 12; ++t) {
         INFO("t = " << t);
@@ -234,8 +241,9 @@ TEST_CASE("WAV-12: ⟨ψ_u, φ^{j−1}_w⟩ = 0 for every pair on open fans with
     }
 }
 
-TEST_CASE("WAV-12: ⟨ψ_u, φ^{j−1}_w⟩ = 0 on random domains with boundary and several components, in double and 100 digits",
-          "[property][wavelet]") {
+TEST_CASE(
+    "WAV-12: ⟨ψ_u, φ^{j−1}_w⟩ = 0 on random domains with boundary and several components, in double and 100 digits",
+    "[property][wavelet]") {
     rc::prop("random D: 1..5 boundary loops, 1..3 components of genus 0..2, levels 1..2", [] {
         const test::OpenDomain D = *test::gen_open_domain(100);
         const int j = *rc::gen::inRange(1, 3);

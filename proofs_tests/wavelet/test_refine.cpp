@@ -126,7 +126,8 @@ void check_locations(const TriMesh& D, const Refinement& r) {
 
 }  // namespace
 
-TEST_CASE("WAV-1, WAV-2: refinement counts, numbering and exact locations on random domains, J = 0..3", "[property][wavelet]") {
+TEST_CASE("WAV-1, WAV-2: refinement counts, numbering and exact locations on random domains, J = 0..3",
+          "[property][wavelet]") {
     rc::prop("random closed D (genus 0..2)", [] {
         const fhr::testing::GeneratedMesh D = *test::gen_domain(200);
         const int J = *rc::gen::inRange(0, 4);
@@ -150,7 +151,8 @@ TEST_CASE("WAV-11: refinement counts, numbering and exact locations with boundar
     });
 }
 
-TEST_CASE("WAV-11: one triangle gives D² with 15 vertices, 16 faces and a boundary loop of 12 edges", "[unit][wavelet]") {
+TEST_CASE("WAV-11: one triangle gives D² with 15 vertices, 16 faces and a boundary loop of 12 edges",
+          "[unit][wavelet]") {
     // (V, E, F) = (3, 3, 1) → (6, 9, 4) → (15, 30, 16); the boundary's 3 edges → 6 → 12.
     const TriMesh D = TriMesh::from_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, std::vector<Triangle>{{0, 1, 2}});
     const Refinement r = wavelet::refine(D, 2);
@@ -181,7 +183,8 @@ TEST_CASE("WAV-1: a closed genus-0 domain with 114 faces (the fandisk's D) gives
     CHECK(r.finest().n_vertices() - D.n_vertices() == 3591);
 }
 
-TEST_CASE("WAV-2: sample() evaluates φ at each vertex's location; the first #V(D^j) samples are f^j", "[unit][wavelet]") {
+TEST_CASE("WAV-2: sample() evaluates φ at each vertex's location; the first #V(D^j) samples are f^j",
+          "[unit][wavelet]") {
     const TriMesh D = test::bipyramid(5);
     const Refinement r = wavelet::refine(D, 2);
     std::atomic<std::size_t> calls = 0;
@@ -195,7 +198,8 @@ TEST_CASE("WAV-2: sample() evaluates φ at each vertex's location; the first #V(
     }
 }
 
-TEST_CASE("WAV-2: sample() on several threads calls φ once per vertex and gives the one-thread samples", "[unit][wavelet]") {
+TEST_CASE("WAV-2: sample() on several threads calls φ once per vertex and gives the one-thread samples",
+          "[unit][wavelet]") {
     const Refinement r = wavelet::refine(test::bipyramid(5), 5);  // 5,122 vertices: two blocks of 4,096 and more
     REQUIRE(r.finest().n_vertices() > 4096);
     std::atomic<std::size_t> calls = 0;

@@ -108,7 +108,8 @@ inline std::vector<std::uint32_t> disjoint_rings(const TriMesh& m, std::size_t w
 
 /// Builds the OpenDomain of these components and holes (see OpenDomain).
 /// \pre holes.size() == components.size(); the holes of each component from disjoint_rings.
-inline OpenDomain open_domain(std::vector<generate::RandomMeshOptions> components, std::vector<std::vector<std::uint32_t>> holes) {
+inline OpenDomain open_domain(std::vector<generate::RandomMeshOptions> components,
+                              std::vector<std::vector<std::uint32_t>> holes) {
     std::vector<Vec3> points;
     std::vector<Triangle> triangles;
     for (std::size_t c = 0; c < components.size(); ++c) {
@@ -131,7 +132,8 @@ inline OpenDomain open_domain(std::vector<generate::RandomMeshOptions> component
 /// A random domain with 1..max_holes boundary loops (as many as fit, at least one) and
 /// 1..max_components components of genus 0..2, each with at most `max_faces` faces before the holes.
 /// \pre max_faces ≥ 12, max_holes ≥ 1, max_components ≥ 1.
-inline rc::Gen<OpenDomain> gen_open_domain(std::size_t max_faces, std::size_t max_holes = 5, std::size_t max_components = 3) {
+inline rc::Gen<OpenDomain> gen_open_domain(std::size_t max_faces, std::size_t max_holes = 5,
+                                           std::size_t max_components = 3) {
     return rc::gen::exec([=] {
         int genus = 2;
         while (genus > 0 && generate::min_faces(genus) > max_faces) --genus;
@@ -160,7 +162,8 @@ inline TriMesh draw_domain(bool open, std::size_t max_faces) {
 }
 
 /// n random points with coordinates uniform in [−1, 1] (scaled by `scale`, shifted by `offset`).
-inline std::vector<Vec3> random_points(std::size_t n, std::uint64_t seed, double scale = 1, const Vec3& offset = Vec3::Zero()) {
+inline std::vector<Vec3> random_points(std::size_t n, std::uint64_t seed, double scale = 1,
+                                       const Vec3& offset = Vec3::Zero()) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(-1, 1);
     std::vector<Vec3> f(n);

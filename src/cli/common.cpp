@@ -82,8 +82,8 @@ double Args::real(const std::string& name, double fallback, double min, double m
     double x = 0;
     const auto r = std::from_chars(v->data(), v->data() + v->size(), x);
     if (r.ec != std::errc() || r.ptr != v->data() + v->size() || !(x >= min && x <= max))
-        usage_error("option --" + name + " needs a number in [" + std::to_string(min) + ", " +
-                    std::to_string(max) + "], got '" + *v + "'");
+        usage_error("option --" + name + " needs a number in [" + std::to_string(min) + ", " + std::to_string(max) +
+                    "], got '" + *v + "'");
     return x;
 }
 
@@ -98,6 +98,8 @@ TriMesh load_mesh(const std::string& path, const BuildOptions& options) {
     return mesh;
 }
 
-void save_mesh(const std::string& path, const TriMesh& mesh) { io::write_mesh(path, mesh.positions(), mesh.triangles()); }
+void save_mesh(const std::string& path, const TriMesh& mesh) {
+    io::write_mesh(path, mesh.positions(), mesh.triangles());
+}
 
 }  // namespace fhr::cli

@@ -46,9 +46,17 @@ int run_geodesic(const std::vector<std::string>& argv) {
     for (const SurfacePoint& p : r.path.points) {
         const Vec3 x = position(T, p);
         j.begin_object().key("kind").value(kind_name(p.kind));
-        if (p.kind == SurfacePoint::Kind::vertex) j.key("vertex").value(p.vertex.idx());
-        else j.key("edge").value(TriMesh::edge(p.halfedge).idx()).key("from").value(T.from(p.halfedge).idx())
-                 .key("to").value(T.to(p.halfedge).idx()).key("t").value(p.t);
+        if (p.kind == SurfacePoint::Kind::vertex)
+            j.key("vertex").value(p.vertex.idx());
+        else
+            j.key("edge")
+                .value(TriMesh::edge(p.halfedge).idx())
+                .key("from")
+                .value(T.from(p.halfedge).idx())
+                .key("to")
+                .value(T.to(p.halfedge).idx())
+                .key("t")
+                .value(p.t);
         j.key("xyz").begin_array().value(x.x()).value(x.y()).value(x.z()).end_array().end_object();
     }
     j.end_array().end_object();
@@ -56,16 +64,17 @@ int run_geodesic(const std::vector<std::string>& argv) {
         std::fputs(j.str().c_str(), stdout);
         return 0;
     }
-    std::printf("geodesic %u -> %u: length %.17g\n  K %g after %zu ellipse(s) of which the last has %zu faces; "
-                "%zu windows\n  %zu points:\n",
-                a.idx(), b.idx(), r.path.length, r.K, r.attempts, r.ellipse_faces, r.windows_created, r.path.points.size());
+    std::printf(
+        "geodesic %u -> %u: length %.17g\n  K %g after %zu ellipse(s) of which the last has %zu faces; "
+        "%zu windows\n  %zu points:\n",
+        a.idx(), b.idx(), r.path.length, r.K, r.attempts, r.ellipse_faces, r.windows_created, r.path.points.size());
     for (const SurfacePoint& p : r.path.points) {
         const Vec3 x = position(T, p);
         if (p.kind == SurfacePoint::Kind::vertex)
             std::printf("    vertex %u  (%.17g, %.17g, %.17g)\n", p.vertex.idx(), x.x(), x.y(), x.z());
         else
-            std::printf("    edge %u-%u t=%.17g  (%.17g, %.17g, %.17g)\n", T.from(p.halfedge).idx(), T.to(p.halfedge).idx(),
-                        p.t, x.x(), x.y(), x.z());
+            std::printf("    edge %u-%u t=%.17g  (%.17g, %.17g, %.17g)\n", T.from(p.halfedge).idx(),
+                        T.to(p.halfedge).idx(), p.t, x.x(), x.y(), x.z());
     }
     return 0;
 }

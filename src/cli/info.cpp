@@ -22,9 +22,7 @@ struct Facts {
     BuildLog log;
 };
 
-void write_vec(io::JsonWriter& j, const Vec3& v) {
-    j.begin_array().value(v.x()).value(v.y()).value(v.z()).end_array();
-}
+void write_vec(io::JsonWriter& j, const Vec3& v) { j.begin_array().value(v.x()).value(v.y()).value(v.z()).end_array(); }
 
 std::string print_human(const std::string& path, const Facts& f) {
     std::string s = path + "\n";
@@ -52,11 +50,11 @@ std::string print_human(const std::string& path, const Facts& f) {
         line("boundary loops", std::to_string(boundary_loops(m).size()));
         const BoundingBox b = bounding_box(m);
         line("bounding box", "[" + num(b.min.x()) + ", " + num(b.min.y()) + ", " + num(b.min.z()) + "] .. [" +
-                                 num(b.max.x()) + ", " + num(b.max.y()) + ", " + num(b.max.z()) +
-                                 "], diagonal " + num(b.diagonal()));
+                                 num(b.max.x()) + ", " + num(b.max.y()) + ", " + num(b.max.z()) + "], diagonal " +
+                                 num(b.diagonal()));
         const EdgeLengthStats e = edge_length_stats(m);
-        line("edge length", "min " + num(e.min) + ", mean " + num(e.mean) + ", median " + num(e.median) +
-                                ", max " + num(e.max) + ", max/min " + num(e.max / e.min));
+        line("edge length", "min " + num(e.min) + ", mean " + num(e.mean) + ", median " + num(e.median) + ", max " +
+                                num(e.max) + ", max/min " + num(e.max / e.min));
         const ShapeStats q = shape_stats(m);
         line("corner angle", "min " + num(q.min_angle * 180 / std::numbers::pi) + " deg, max " +
                                  num(q.max_angle * 180 / std::numbers::pi) + " deg");
@@ -93,8 +91,10 @@ std::string print_json(const std::string& path, const Facts& f) {
     j.key("dropped_isolated_vertices").value(f.log.dropped_vertices);
     j.key("reoriented_faces").value(f.log.reoriented_faces);
     j.key("valid").value(f.reason.empty());
-    if (f.reason.empty()) j.key("reason").null();
-    else j.key("reason").value(f.reason);
+    if (f.reason.empty())
+        j.key("reason").null();
+    else
+        j.key("reason").value(f.reason);
     j.end_object();
     return j.str();
 }

@@ -83,10 +83,10 @@ exit codes: 0 ok, 2 invalid input or usage, 3 partition failure, 4 numerical fai
 }  // namespace
 
 namespace fhr::cli {
-int run_verify(const std::vector<std::string>& args);  // src/cli/verify.cpp
-int run_run(const std::vector<std::string>& args);     // src/cli/run.cpp
+int run_verify(const std::vector<std::string>& args);       // src/cli/verify.cpp
+int run_run(const std::vector<std::string>& args);          // src/cli/run.cpp
 int run_oracle_fuzz(const std::vector<std::string>& args);  // src/cli/oracle_fuzz.cpp
-}
+}  // namespace fhr::cli
 
 int main(int argc, char** argv) {
     const std::vector<std::string> args(argv + (argc > 1 ? 2 : argc), argv + argc);
@@ -112,7 +112,8 @@ int main(int argc, char** argv) {
         fhr::cli::usage_error(command.empty() ? "no command given" : "unknown command '" + command + "'");
     } catch (const fhr::Error& e) {
         const int code = fhr::cli::exit_code_of(e);
-        std::fprintf(stderr, code == 70 ? "fhr: internal error (a bug, please report it): %s\n" : "fhr: error: %s\n", e.what());
+        std::fprintf(stderr, code == 70 ? "fhr: internal error (a bug, please report it): %s\n" : "fhr: error: %s\n",
+                     e.what());
         return code;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "fhr: error: out of memory\n");

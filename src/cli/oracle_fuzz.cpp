@@ -166,18 +166,22 @@ struct Judging {
 /// recipes with no draw spent on holes or components), faces in [least_faces, least_faces + 600] (even without
 /// holes), a seed that `fhr generate --seed` accepts (< 2^63), for block noise 0, 0.05, 0.1 or
 /// 0.25; the family's knobs at their defaults.
-Recipe draw_recipe(std::uint64_t seed, std::uint64_t i, const Ranges& ranges, const Family* family, std::size_t faces_min) {
+Recipe draw_recipe(std::uint64_t seed, std::uint64_t i, const Ranges& ranges, const Family* family,
+                   std::size_t faces_min) {
     const std::uint64_t stream = SplitMix(seed).next() ^ (i * 0xD1B54A32D192ED03ull);
     SplitMix r(stream);
     Recipe o;
     o.family = family ? *family
-                      : generate::embedded_families[SplitMix(stream ^ 0x6A09E667F3BCC909ull).below(std::size(generate::embedded_families))];
+                      : generate::embedded_families[SplitMix(stream ^ 0x6A09E667F3BCC909ull)
+                                                        .below(std::size(generate::embedded_families))];
     o.genus = static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.genus) + 1));
     if (ranges.holes > ranges.holes_min)
-        o.holes = ranges.holes_min + static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.holes - ranges.holes_min) + 1));
+        o.holes = ranges.holes_min +
+                  static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.holes - ranges.holes_min) + 1));
     else
         o.holes = ranges.holes_min;
-    if (ranges.components > 1) o.components = 1 + static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.components)));
+    if (ranges.components > 1)
+        o.components = 1 + static_cast<int>(r.below(static_cast<std::uint64_t>(ranges.components)));
     const std::uint64_t step = o.holes == 0 ? 2 : 1;  // F is even without holes
     o.faces = least_faces(o, faces_min) + step * r.below(extra_faces_max / step + 1);
     o.seed = r.next() >> 1;
@@ -202,7 +206,8 @@ std::string shell_quote(const std::string& s) {
 }
 
 std::string substitute(std::string cmd, const std::string& mesh, const std::string& out) {
-    for (const auto& [key, value] : {std::pair<std::string, std::string>{"{mesh}", shell_quote(mesh)}, {"{out}", shell_quote(out)}}) {
+    for (const auto& [key, value] :
+         {std::pair<std::string, std::string>{"{mesh}", shell_quote(mesh)}, {"{out}", shell_quote(out)}}) {
         for (std::size_t at = cmd.find(key); at != std::string::npos; at = cmd.find(key, at + value.size()))
             cmd.replace(at, key.size(), value);
     }
@@ -211,8 +216,8 @@ std::string substitute(std::string cmd, const std::string& mesh, const std::stri
 
 struct Outcome {
     bool ok = true;
-    std::string kind;    ///< what "fails the same way" compares: "PARAM-8", "exit 3", "signal 11", "timeout", "no output"
-    std::string reason;  ///< one line (the program's stderr tail follows on further lines)
+    std::string kind;  ///< what "fails the same way" compares: "PARAM-8", "exit 3", "signal 11", "timeout", "no output"
+    std::string reason;            ///< one line (the program's stderr tail follows on further lines)
     std::string distortion = "-";  ///< the output's figures when the oracle read it (TableRow::distortion)
 };
 
@@ -295,7 +300,8 @@ Outcome judge(const Recipe& recipe, const Judging& how, const fs::path& dir) {
         return o;
     }
     const bool folder = how.kind == OutputKind::vertex_map;
-    if (folder ? !fs::is_regular_file(out / "map.vmap") || !fs::is_regular_file(out / "D.off") : !fs::is_regular_file(out)) {
+    if (folder ? !fs::is_regular_file(out / "map.vmap") || !fs::is_regular_file(out / "D.off")
+               : !fs::is_regular_file(out)) {
         o.kind = "no output";
         o.reason = std::string("the program exited with code 0 but wrote no ") +
                    (folder ? "map.vmap and D.off in the folder {out}" : "file at {out}") + err_lines;
@@ -411,7 +417,8 @@ void keep_failure(const fs::path& keep, std::uint64_t i, const Recipe& recipe, c
     fs::create_directories(dir);
     fs::copy_file(run_dir / "mesh.off", dir / "mesh.off", fs::copy_options::overwrite_existing);
     if (fs::exists(run_dir / how.out_name()))
-        fs::copy(run_dir / how.out_name(), dir / how.out_name(), fs::copy_options::overwrite_existing | fs::copy_options::recursive);
+        fs::copy(run_dir / how.out_name(), dir / how.out_name(),
+                 fs::copy_options::overwrite_existing | fs::copy_options::recursive);
     save_mesh((dir / "smaller.off").string(), generate::random_mesh(shrunk.recipe));
     std::string text = "command: " + cmd + "\n";
     text += "mesh.off: " + generate::generate_command(recipe) + " (" + size_of(recipe) + ")\n";
@@ -441,16 +448,16 @@ struct TempDir {
 /// `fhr oracle-fuzz --merge FILE... [--table OUT]`: the shards' tables as the unsharded run's
 /// (CLI-ORACLE-9); its failures and summary on stdout, the exit code of that run.
 int merge(const Args& args) {
-    for (const char* name : {"cmd", "count", "family", "genus-max", "holes-max", "components-max", "seed", "keep", "timeout", "shard",
-                             "topology", "kind", "faces-min"})
+    for (const char* name : {"cmd", "count", "family", "genus-max", "holes-max", "components-max", "seed", "keep",
+                             "timeout", "shard", "topology", "kind", "faces-min"})
         if (args.get(name)) usage_error(std::string("--merge takes table files and --table only (not --") + name + ")");
     const oracle::Table merged = oracle::merge_tables(args.positional());
     std::uint64_t failures = 0;
     for (const oracle::TableRow& row : merged.rows) {
         if (!row.failed()) continue;
         ++failures;
-        std::printf("mesh %llu: %s: FAILED: %s; smaller: %s\n", static_cast<unsigned long long>(row.index), row.recipe.c_str(),
-                    row.reason.c_str(), row.smaller.c_str());
+        std::printf("mesh %llu: %s: FAILED: %s; smaller: %s\n", static_cast<unsigned long long>(row.index),
+                    row.recipe.c_str(), row.reason.c_str(), row.smaller.c_str());
     }
     if (const auto out = args.get("table")) io::write_file_atomically(*out, oracle::table_text(merged));
     std::printf("%llu meshes, %llu failures\n", static_cast<unsigned long long>(merged.rows.size()),
@@ -461,10 +468,12 @@ int merge(const Args& args) {
 }  // namespace
 
 int run_oracle_fuzz(const std::vector<std::string>& argv) {
-    const Args args(argv, {"merge"}, {"cmd", "count", "family", "genus-max", "holes-max", "components-max", "seed", "keep", "timeout",
-                                      "shard", "table", "topology", "kind", "faces-min"});
+    const Args args(argv, {"merge"},
+                    {"cmd", "count", "family", "genus-max", "holes-max", "components-max", "seed", "keep", "timeout",
+                     "shard", "table", "topology", "kind", "faces-min"});
     if (args.flag("merge")) return merge(args);
-    if (!args.positional().empty()) usage_error("fhr oracle-fuzz takes no positional arguments (but table files with --merge)");
+    if (!args.positional().empty())
+        usage_error("fhr oracle-fuzz takes no positional arguments (but table files with --merge)");
     const std::string cmd = args.require("cmd");
     if (cmd.find("{mesh}") == std::string::npos || cmd.find("{out}") == std::string::npos)
         usage_error("--cmd must contain {mesh} and {out}");
@@ -473,9 +482,11 @@ int run_oracle_fuzz(const std::vector<std::string>& argv) {
     const std::string family_arg = args.get("family").value_or("all");
     const Family named = family_arg == "all" ? Family::block : generate::parse_family(family_arg);
     const Family* family = family_arg == "all" ? nullptr : &named;
-    Ranges ranges{static_cast<int>(args.integer("genus-max", 2, 0, 20)), static_cast<int>(args.integer("holes-max", 5, 0, 100)),
+    Ranges ranges{static_cast<int>(args.integer("genus-max", 2, 0, 20)),
+                  static_cast<int>(args.integer("holes-max", 5, 0, 100)),
                   static_cast<int>(args.integer("components-max", 3, 1, 20))};
-    const std::string topology_arg = args.get("topology").value_or("any"), kind_arg = args.get("kind").value_or("param");
+    const std::string topology_arg = args.get("topology").value_or("any"),
+                      kind_arg = args.get("kind").value_or("param");
     Judging how;
     if (topology_arg == "closed") {
         how.topology = Topology::closed;
@@ -489,7 +500,9 @@ int run_oracle_fuzz(const std::vector<std::string>& argv) {
     }
     if (kind_arg != "param" && kind_arg != "atlas" && kind_arg != "vertex-map")
         usage_error("--kind must be param, atlas or vertex-map, not '" + kind_arg + "'");
-    how.kind = kind_arg == "atlas" ? OutputKind::atlas : kind_arg == "vertex-map" ? OutputKind::vertex_map : OutputKind::param;
+    how.kind = kind_arg == "atlas"        ? OutputKind::atlas
+               : kind_arg == "vertex-map" ? OutputKind::vertex_map
+                                          : OutputKind::param;
     const auto seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, INT64_MAX));
     const fs::path keep = args.get("keep").value_or("oracle-fuzz-failures");
     const double timeout = args.real("timeout", 60.0, 0.1, 86400.0);
@@ -500,8 +513,8 @@ int run_oracle_fuzz(const std::vector<std::string>& argv) {
     std::string timeout_text;  // the shortest decimal that reads back as the timeout: 60 and 60.0 alike
     io::append_number(timeout_text, timeout);
     oracle::Table table{{cmd, std::to_string(count), std::to_string(seed), family_arg, std::to_string(ranges.genus),
-                         std::to_string(ranges.holes), std::to_string(ranges.components), timeout_text, topology_arg, kind_arg,
-                         std::to_string(how.faces_min)},
+                         std::to_string(ranges.holes), std::to_string(ranges.components), timeout_text, topology_arg,
+                         kind_arg, std::to_string(how.faces_min)},
                         shard,
                         {}};
 
@@ -511,7 +524,13 @@ int run_oracle_fuzz(const std::vector<std::string>& argv) {
     for (std::uint64_t i = shard.k - 1; i < count; i += shard.n) {
         const Recipe recipe = draw_recipe(seed, i, ranges, family, how.faces_min);
         const Outcome outcome = judge(recipe, how, run_dir);
-        oracle::TableRow row{i, generate::family_name(recipe.family), generate::generate_command(recipe), "", "", "", outcome.distortion};
+        oracle::TableRow row{i,
+                             generate::family_name(recipe.family),
+                             generate::generate_command(recipe),
+                             "",
+                             "",
+                             "",
+                             outcome.distortion};
         std::printf("mesh %llu: %s: ", static_cast<unsigned long long>(i), row.recipe.c_str());
         if (outcome.ok) {
             std::printf("valid\n");
@@ -531,7 +550,8 @@ int run_oracle_fuzz(const std::vector<std::string>& argv) {
     if (const auto out = args.get("table")) io::write_file_atomically(*out, oracle::table_text(table));
     std::printf("%llu meshes, %llu failures", static_cast<unsigned long long>(table.rows.size()),
                 static_cast<unsigned long long>(failures));
-    if (shard.n > 1) std::printf(" (shard %s of %llu meshes)", shard.text().c_str(), static_cast<unsigned long long>(count));
+    if (shard.n > 1)
+        std::printf(" (shard %s of %llu meshes)", shard.text().c_str(), static_cast<unsigned long long>(count));
     std::printf("\n");
     return failures == 0 ? 0 : 1;
 }

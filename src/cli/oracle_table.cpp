@@ -75,8 +75,8 @@ std::vector<std::string> split_tabs(const std::string& line) {
 Shard parse_shard(const std::string& text) {
     const std::size_t slash = text.find('/');
     Shard s;
-    if (slash == std::string::npos || !parse_count(text.substr(0, slash), s.k) || !parse_count(text.substr(slash + 1), s.n) ||
-        s.k < 1 || s.k > s.n || s.n > 1'000'000)
+    if (slash == std::string::npos || !parse_count(text.substr(0, slash), s.k) ||
+        !parse_count(text.substr(slash + 1), s.n) || s.k < 1 || s.k > s.n || s.n > 1'000'000)
         usage_error("--shard must be K/N with 1 <= K <= N <= 1000000 (got '" + text + "')");
     return s;
 }
@@ -89,12 +89,14 @@ std::uint64_t Table::count() const {
 
 std::string table_text(const Table& table) {
     std::string s = std::string(magic) + "\n";
-    for (std::size_t k = 0; k < std::size(setting_keys); ++k) s += std::string("# ") + setting_keys[k] + "\t" + escape(table.settings[k]) + "\n";
+    for (std::size_t k = 0; k < std::size(setting_keys); ++k)
+        s += std::string("# ") + setting_keys[k] + "\t" + escape(table.settings[k]) + "\n";
     s += "# shard\t" + table.shard.text() + "\n";
     s += std::string(columns) + "\n";
     for (const TableRow& r : table.rows) {
         s += std::to_string(r.index) + "\t" + escape(r.family) + "\t" + escape(r.recipe) + "\t";
-        s += r.failed() ? "FAILED\t" + escape(r.check) + "\t" + escape(r.reason) + "\t" + escape(r.smaller) : std::string("valid\t-\t-\t-");
+        s += r.failed() ? "FAILED\t" + escape(r.check) + "\t" + escape(r.reason) + "\t" + escape(r.smaller)
+                        : std::string("valid\t-\t-\t-");
         s += "\t" + escape(r.distortion) + "\n";
     }
     return s;
@@ -108,10 +110,12 @@ Table read_table(const std::string& path) {
         lines.push_back(bytes.substr(from, at - from));
         from = at + 1;
     }
-    if (from != bytes.size()) throw InvalidInput(path, lines.size() + 1, "the last line does not end with a line break (a table cut short?)");
+    if (from != bytes.size())
+        throw InvalidInput(path, lines.size() + 1, "the last line does not end with a line break (a table cut short?)");
     const auto fail = [&](std::size_t line, const std::string& what) { throw InvalidInput(path, line + 1, what); };
     const std::size_t header = std::size(setting_keys) + 3;  // magic, settings, shard, columns
-    if (lines.empty() || lines[0] != magic) fail(0, std::string("not a fhr oracle-fuzz table (the first line is not '") + magic + "')");
+    if (lines.empty() || lines[0] != magic)
+        fail(0, std::string("not a fhr oracle-fuzz table (the first line is not '") + magic + "')");
     if (lines.size() < header) fail(lines.size() - 1, "the header is incomplete");
     Table t;
     for (std::size_t k = 0; k < std::size(setting_keys); ++k) {
@@ -145,7 +149,8 @@ Table read_table(const std::string& path) {
         if (f[3] == "valid") {
             ok = ok && f[4] == "-" && f[5] == "-" && f[6] == "-";
         } else if (f[3] == "FAILED") {
-            ok = ok && unescape(f[4], r.check) && unescape(f[5], r.reason) && unescape(f[6], r.smaller) && !r.check.empty();
+            ok = ok && unescape(f[4], r.check) && unescape(f[5], r.reason) && unescape(f[6], r.smaller) &&
+                 !r.check.empty();
         } else {
             fail(n, "the outcome is 'valid' or 'FAILED' (got '" + f[3] + "')");
         }
@@ -154,7 +159,8 @@ Table read_table(const std::string& path) {
         t.rows.push_back(std::move(r));
     }
     if (expected < count)
-        throw InvalidInput(path, 0, "shard " + t.shard.text() + " lacks mesh " + std::to_string(expected) + " (a table cut short?)");
+        throw InvalidInput(
+            path, 0, "shard " + t.shard.text() + " lacks mesh " + std::to_string(expected) + " (a table cut short?)");
     return t;
 }
 
@@ -168,22 +174,26 @@ Table merge_tables(const std::vector<std::string>& paths) {
             const Table& first = tables.front();
             for (std::size_t k = 0; k < std::size(setting_keys); ++k)
                 if (t.settings[k] != first.settings[k])
-                    throw InvalidInput(path, 0, std::string(setting_keys[k]) + " '" + escape(t.settings[k]) + "' where " + paths[0] +
-                                                    " has '" + escape(first.settings[k]) + "': not the same campaign");
+                    throw InvalidInput(path, 0,
+                                       std::string(setting_keys[k]) + " '" + escape(t.settings[k]) + "' where " +
+                                           paths[0] + " has '" + escape(first.settings[k]) +
+                                           "': not the same campaign");
             if (t.shard.n != first.shard.n)
-                throw InvalidInput(path, 0, "shard " + t.shard.text() + " where " + paths[0] + " is shard " + first.shard.text() +
-                                                ": the shards of one campaign share N");
+                throw InvalidInput(path, 0,
+                                   "shard " + t.shard.text() + " where " + paths[0] + " is shard " +
+                                       first.shard.text() + ": the shards of one campaign share N");
         }
         if (const auto [at, fresh] = by_k.emplace(t.shard.k, tables.size()); !fresh)
-            throw InvalidInput(path, 0, "shard " + t.shard.text() + " again (so is " + paths[at->second] +
-                                            "): its meshes would be counted twice");
+            throw InvalidInput(path, 0,
+                               "shard " + t.shard.text() + " again (so is " + paths[at->second] +
+                                   "): its meshes would be counted twice");
         tables.push_back(std::move(t));
     }
     const std::uint64_t n = tables.front().shard.n, count = tables.front().count();
     for (std::uint64_t k = 1; k <= n && k - 1 < count; ++k)
         if (!by_k.count(k))
-            throw InvalidInput("shard " + std::to_string(k) + "/" + std::to_string(n) + " is missing (mesh " + std::to_string(k - 1) +
-                                          " is in none of the tables)");
+            throw InvalidInput("shard " + std::to_string(k) + "/" + std::to_string(n) + " is missing (mesh " +
+                               std::to_string(k - 1) + " is in none of the tables)");
     // Every table holds exactly its shard's rows in order (read_table), so row ⌊i/N⌋ of shard
     // (i mod N) + 1, for i = 0, 1, ..., gives every mesh once, by index.
     Table merged{tables.front().settings, Shard{}, {}};

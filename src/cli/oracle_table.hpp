@@ -40,8 +40,9 @@ Shard parse_shard(const std::string& text);
 
 /// The settings that decide the rows, in the table's order: the shards of one campaign have the
 /// same values (compared as written).
-inline constexpr const char* setting_keys[] = {"cmd",       "count",          "seed",    "family",   "genus-max", "holes-max",
-                                               "components-max", "timeout", "topology", "kind", "faces-min"};
+inline constexpr const char* setting_keys[] = {"cmd",       "count",     "seed",           "family",
+                                               "genus-max", "holes-max", "components-max", "timeout",
+                                               "topology",  "kind",      "faces-min"};
 
 struct TableRow {
     std::uint64_t index = 0;
@@ -56,7 +57,7 @@ struct TableRow {
 struct Table {
     std::vector<std::string> settings;  ///< one value per setting_keys entry
     Shard shard;
-    std::vector<TableRow> rows;  ///< by increasing index
+    std::vector<TableRow> rows;   ///< by increasing index
     std::uint64_t count() const;  ///< the setting "count": the campaign's meshes, all shards together
 };
 

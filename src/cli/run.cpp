@@ -21,7 +21,9 @@ namespace fhr::cli {
 
 int run_run(const std::vector<std::string>& argv) {
     // Parse.
-    const Args args(argv, {"figures", "html"}, {"faces", "domain", "correspondence", "out", "weights", "solver", "up", "levels", "keep", "paths", "corner-angle", "threads", "page-faces"});
+    const Args args(argv, {"figures", "html"},
+                    {"faces", "domain", "correspondence", "out", "weights", "solver", "up", "levels", "keep", "paths",
+                     "corner-angle", "threads", "page-faces"});
     const std::string& mesh_path = args.single_positional("MESH");
     const std::string out = args.require("out");
     const bool by_faces = args.get("faces").has_value(), by_domain = args.get("domain").has_value();
@@ -31,7 +33,8 @@ int run_run(const std::vector<std::string>& argv) {
     if (const auto w = args.get("weights")) method.map.weights = param::parse_weights(*w);
     if (const auto s = args.get("solver")) method.map.solver = param::parse_solver(*s);
     if (const auto paths = args.get("paths")) {
-        if (*paths != "keep" && *paths != "geodesic") usage_error("--paths must be keep or geodesic, not '" + *paths + "'");
+        if (*paths != "keep" && *paths != "geodesic")
+            usage_error("--paths must be keep or geodesic, not '" + *paths + "'");
         method.keep_domain = *paths == "keep";
     }
     options.corner_angle_deg = args.real("corner-angle", options.corner_angle_deg, 0.0, 180.0);
@@ -51,14 +54,16 @@ int run_run(const std::vector<std::string>& argv) {
     }
     if (args.get("page-faces") && !args.flag("html")) usage_error("--page-faces N needs --html");
     if (args.flag("html") && !pipeline::page_available())
-        usage_error("--html: this fhr was built without its page; install web/'s npm packages (npm ci --prefix web, "
-                    "as ./run does) and reconfigure with -Dpage=enabled");
+        usage_error(
+            "--html: this fhr was built without its page; install web/'s npm packages (npm ci --prefix web, "
+            "as ./run does) and reconfigure with -Dpage=enabled");
     const std::string up = args.get("up").value_or("y");
     if (up != "x" && up != "y" && up != "z") usage_error("--up must be x, y or z, not '" + up + "'");
     // --threads N: the pool that runs the independent tasks (0: as many as the hardware has); the
     // outputs are the same bytes on any count (CLI-RUN-4).
     std::optional<ThreadPool> pool;
-    if (args.get("threads")) method.executor = &pool.emplace(static_cast<unsigned>(args.integer("threads", 0, 0, 1024)));
+    if (args.get("threads"))
+        method.executor = &pool.emplace(static_cast<unsigned>(args.integer("threads", 0, 0, 1024)));
     method.progress = [](const std::string& line) { std::fprintf(stderr, "fhr run: %s\n", line.c_str()); };
     pipeline::Timings timings;
     method.observer = &timings;
@@ -67,20 +72,25 @@ int run_run(const std::vector<std::string>& argv) {
     auto start = detail::Clock::now();
     TriMesh T = load_mesh(mesh_path, BuildOptions{});
     timings.stage("reading", detail::seconds_since(start), true);
-    pipeline::InputInfo input{.path = mesh_path, .vertices = T.n_vertices(), .faces = T.n_faces(), .genus = genus(T),
-                              .boundary_loops = boundary_loops(T).size(), .components = connected_components(T).count};
-    method.progress("read " + mesh_path + ": " + std::to_string(T.n_vertices()) + " vertices, " + std::to_string(T.n_faces()) +
-                    " faces, genus " + std::to_string(input.genus) +
-                    (input.boundary_loops ? ", " + std::to_string(input.boundary_loops) + " boundary loops" : std::string()) +
-                    (input.components > 1 ? ", " + std::to_string(input.components) + " components" : std::string()));
+    pipeline::InputInfo input{.path = mesh_path,
+                              .vertices = T.n_vertices(),
+                              .faces = T.n_faces(),
+                              .genus = genus(T),
+                              .boundary_loops = boundary_loops(T).size(),
+                              .components = connected_components(T).count};
+    method.progress(
+        "read " + mesh_path + ": " + std::to_string(T.n_vertices()) + " vertices, " + std::to_string(T.n_faces()) +
+        " faces, genus " + std::to_string(input.genus) +
+        (input.boundary_loops ? ", " + std::to_string(input.boundary_loops) + " boundary loops" : std::string()) +
+        (input.components > 1 ? ", " + std::to_string(input.components) + " components" : std::string()));
     if (by_faces) {
         options.faces = static_cast<std::size_t>(args.integer("faces", 0, 0, INT32_MAX));
     } else {
         start = detail::Clock::now();
         const domain::DomainSources sources{args.require("domain"), args.require("correspondence")};
         TriMesh user = load_mesh(sources.domain_file, BuildOptions{});
-        const auto x = io::parse_correspondence(io::read_bytes(sources.correspondence_file), sources.correspondence_file,
-                                                T.n_vertices(), T.n_faces());
+        const auto x = io::parse_correspondence(io::read_bytes(sources.correspondence_file),
+                                                sources.correspondence_file, T.n_vertices(), T.n_faces());
         options.domain = domain::attach_domain(T, std::move(user), x, sources);
         timings.stage("mesh_reduction", detail::seconds_since(start), true);
     }
@@ -105,28 +115,33 @@ int run_run(const std::vector<std::string>& argv) {
     input.domain_faces_requested = result.domain_faces_requested;
 
     // Write.
-    const pipeline::RunTexts texts = pipeline::write_outputs(out, input, p, result.oracle, timings, method, wavelets, written);
+    const pipeline::RunTexts texts =
+        pipeline::write_outputs(out, input, p, result.oracle, timings, method, wavelets, written);
     std::vector<pipeline::RateStep> rate;  // §6's curve, for the figures and the page
-    if (wavelets && (args.flag("figures") || args.flag("html"))) rate = pipeline::rate_steps(T, p.partition.domain.mesh, *wavelets);
+    if (wavelets && (args.flag("figures") || args.flag("html")))
+        rate = pipeline::rate_steps(T, p.partition.domain.mesh, *wavelets);
     if (args.flag("figures")) {
         pipeline::write_figures(out, T, p, up[0] - 'x', wavelets, rate);
         method.progress("figures: " + out + "/figures/");
     }
     if (args.flag("html")) {
         const std::string name = std::filesystem::path(mesh_path).stem().string();
-        const auto display = static_cast<std::size_t>(args.integer("page-faces", pipeline::page_display_faces, 1000, INT64_MAX));
-        pipeline::write_page(out + "/index.html", T, p, {name, texts.report, texts.timings, up[0] - 'x', wavelets, std::move(rate), display});
+        const auto display =
+            static_cast<std::size_t>(args.integer("page-faces", pipeline::page_display_faces, 1000, INT64_MAX));
+        pipeline::write_page(out + "/index.html", T, p,
+                             {name, texts.report, texts.timings, up[0] - 'x', wavelets, std::move(rate), display});
         method.progress("page: " + out + "/index.html");
     }
 
     // Print.
     std::printf("%s: %zu faces -> domain %zu faces (%zu retries) -> %zu patches, T' %zu faces; %s\n", mesh_path.c_str(),
-                T.n_faces(), p.partition.domain.mesh.n_faces(), p.partition.retries, p.disks.size(), p.refined_faces.size(),
-                result.certified() ? "certified one-to-one" : "NOT certified");
+                T.n_faces(), p.partition.domain.mesh.n_faces(), p.partition.retries, p.disks.size(),
+                p.refined_faces.size(), result.certified() ? "certified one-to-one" : "NOT certified");
     if (!result.certified()) {
         const exchange::CheckResult* bad = result.oracle.first_failure();
-        throw NumericalFailure("the parameterization is not certified: " +
-                               (bad ? bad->id + ": " + bad->first_failure : std::string("a patch certificate failed (see report.json)")));
+        throw NumericalFailure(
+            "the parameterization is not certified: " +
+            (bad ? bad->id + ": " + bad->first_failure : std::string("a patch certificate failed (see report.json)")));
     }
     return 0;
 }

@@ -27,7 +27,8 @@ namespace {
 
 /// PARAM-1 (ATLAS-1) is decided by the reader: a file that is read satisfies it. `sizes` is the
 /// line under the verdict.
-std::string print_human(const std::string& path, const std::string& sizes, const std::vector<exchange::CheckResult>& checks) {
+std::string print_human(const std::string& path, const std::string& sizes,
+                        const std::vector<exchange::CheckResult>& checks) {
     const exchange::CheckResult* first = exchange::first_judged_failure(checks);
     std::string s = path + ": " + (first ? "INVALID: " + first->id + ": " + first->first_failure : "valid") + "\n";
     s += "  " + sizes + "\n";
@@ -36,21 +37,24 @@ std::string print_human(const std::string& path, const std::string& sizes, const
         std::snprintf(head, sizeof head, "  %-9s %-8s ", c.id.c_str(), exchange::to_string(c.status));
         s += head + c.title;
         if (c.status == exchange::CheckStatus::info)  // reported, not judged (PARAM-10, ATLAS-7)
-            s += ": " + std::to_string(c.failures) + " of " + std::to_string(c.checked) + " (reported, not judged); first: " +
-                 c.first_failure;
-        else if (c.status == exchange::CheckStatus::pass) s += " (" + std::to_string(c.checked) + " checked)";
+            s += ": " + std::to_string(c.failures) + " of " + std::to_string(c.checked) +
+                 " (reported, not judged); first: " + c.first_failure;
+        else if (c.status == exchange::CheckStatus::pass)
+            s += " (" + std::to_string(c.checked) + " checked)";
         else if (c.status == exchange::CheckStatus::fail)
-            s += ": " + std::to_string(c.failures) + " of " + std::to_string(c.checked) + " fail; first: " + c.first_failure;
-        else s += ": " + c.first_failure;
+            s += ": " + std::to_string(c.failures) + " of " + std::to_string(c.checked) +
+                 " fail; first: " + c.first_failure;
+        else
+            s += ": " + c.first_failure;
         s += "\n";
     }
     return s;
 }
 
 std::string atlas_sizes(const exchange::Atlas& atlas, const exchange::AtlasReport& report) {
-    return "atlas: " + std::to_string(report.vertices) + " vertices, " + std::to_string(atlas.faces.size()) + " faces, " +
-           std::to_string(report.charts) + " charts (" + std::to_string(report.mirrored_charts) + " mirrored), " +
-           std::to_string(report.textures) + (report.textures == 1 ? " texture" : " textures");
+    return "atlas: " + std::to_string(report.vertices) + " vertices, " + std::to_string(atlas.faces.size()) +
+           " faces, " + std::to_string(report.charts) + " charts (" + std::to_string(report.mirrored_charts) +
+           " mirrored), " + std::to_string(report.textures) + (report.textures == 1 ? " texture" : " textures");
 }
 
 /// `--json`'s verdict on a file (or mesh) that cannot be read (CLI-VERIFY-4); exit 2 follows.
@@ -77,8 +81,9 @@ int run_verify_vertex_map(const Args& args) {
     const std::string& domain_path = args.require("domain");
     const std::string& mesh_path = args.require("mesh");
     if (const auto rule = args.get("rule"); rule && *rule != "adjacent")
-        usage_error(*rule == "geodesic" ? std::string("--rule geodesic is not implemented (spec/vertex_map.md); use adjacent")
-                                        : "--rule must be adjacent, not '" + *rule + "'");
+        usage_error(*rule == "geodesic"
+                        ? std::string("--rule geodesic is not implemented (spec/vertex_map.md); use adjacent")
+                        : "--rule must be adjacent, not '" + *rule + "'");
     std::optional<exchange::VertexMapFormat> format;
     if (const auto name = args.get("format")) {
         format = exchange::vertex_map_format_named(*name);
@@ -99,10 +104,10 @@ int run_verify_vertex_map(const Args& args) {
     const std::string out =
         json ? exchange::verdict_json(path, domain_path, mesh_path, map, D, T, report, args.flag("list"))
              : print_human(path,
-                           std::string("vertex map (") + exchange::to_string(map.format) + ", rule adjacent) of T: " +
-                               std::to_string(T.points.size()) + " vertices, " + std::to_string(T.polygon_count()) +
-                               " faces onto D: " + std::to_string(D.points.size()) + " vertices, " +
-                               std::to_string(D.polygon_count()) + " faces",
+                           std::string("vertex map (") + exchange::to_string(map.format) +
+                               ", rule adjacent) of T: " + std::to_string(T.points.size()) + " vertices, " +
+                               std::to_string(T.polygon_count()) + " faces onto D: " + std::to_string(D.points.size()) +
+                               " vertices, " + std::to_string(D.polygon_count()) + " faces",
                            report.checks);
     std::fputs(out.c_str(), stdout);
     return report.valid() ? 0 : 1;
@@ -111,7 +116,8 @@ int run_verify_vertex_map(const Args& args) {
 }  // namespace
 
 int run_verify(const std::vector<std::string>& argv) {
-    const Args args(argv, {"json", "no-mirror", "strict", "list", "paper"}, {"mesh", "kind", "vertex-map", "domain", "rule", "format"});
+    const Args args(argv, {"json", "no-mirror", "strict", "list", "paper"},
+                    {"mesh", "kind", "vertex-map", "domain", "rule", "format"});
     if (args.get("vertex-map")) return run_verify_vertex_map(args);
     for (const char* option : {"domain", "rule", "format"})
         if (args.get(option)) usage_error(std::string("--") + option + " is for --vertex-map");
@@ -124,8 +130,10 @@ int run_verify(const std::vector<std::string>& argv) {
     std::optional<TriMesh> mesh;
     try {
         kind = kind_of(path, args.get("kind"));
-        if (kind == "param") file = exchange::read_param(path);
-        else atlas = exchange::read_atlas(path);
+        if (kind == "param")
+            file = exchange::read_param(path);
+        else
+            atlas = exchange::read_atlas(path);
         // T may have boundary and several components, like D and T′ (spec/param.md PARAM-11).
         if (mesh_path) mesh = load_mesh(*mesh_path, {});
     } catch (const InvalidInput& e) {  // unreadable: exit 2 through main, with the one-line error
@@ -142,8 +150,8 @@ int run_verify(const std::vector<std::string>& argv) {
         out = json ? exchange::verdict_json(path, mesh_path, file, checks, report.distortion)
                    : print_human(path,
                                  "D: " + std::to_string(file.domain_vertices.size()) + " vertices, " +
-                                     std::to_string(file.domain_faces.size()) + " faces; T': " +
-                                     std::to_string(file.surface_vertices.size()) + " vertices, " +
+                                     std::to_string(file.domain_faces.size()) +
+                                     " faces; T': " + std::to_string(file.surface_vertices.size()) + " vertices, " +
                                      std::to_string(file.surface_faces.size()) + " faces",
                                  checks);
     } else {

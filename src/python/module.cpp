@@ -33,7 +33,7 @@ void require_shape(const py::array& a, py::ssize_t cols, const char* what) {
         std::string shape = "(";
         for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
         throw InvalidInput(std::string(what) + " must have shape (n, " + std::to_string(cols) + "), not " + shape +
-                                      (a.ndim() == 1 ? ",)" : ")"));
+                           (a.ndim() == 1 ? ",)" : ")"));
     }
 }
 
@@ -41,15 +41,18 @@ void require_shape(const py::array& a, py::ssize_t cols, const char* what) {
 std::vector<Vec3> points_of(const py::array& V) {
     require_shape(V, 3, "V");
     const char kind = V.dtype().kind();
-    if (kind != 'f' && kind != 'i' && kind != 'u') throw InvalidInput("V must hold numbers (its dtype is " + std::string(py::str(V.dtype())) + ")");
-    if (kind == 'f' && V.dtype().itemsize() > 8) throw InvalidInput("V's dtype " + std::string(py::str(V.dtype())) + " does not fit float64 without loss");
+    if (kind != 'f' && kind != 'i' && kind != 'u')
+        throw InvalidInput("V must hold numbers (its dtype is " + std::string(py::str(V.dtype())) + ")");
+    if (kind == 'f' && V.dtype().itemsize() > 8)
+        throw InvalidInput("V's dtype " + std::string(py::str(V.dtype())) + " does not fit float64 without loss");
     const auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(V);
     const auto r = v.unchecked<2>();
     std::vector<Vec3> points(static_cast<std::size_t>(r.shape(0)));
     for (py::ssize_t i = 0; i < r.shape(0); ++i) {
         for (py::ssize_t k = 0; k < 3; ++k) {
             const double x = r(i, k);
-            if (!std::isfinite(x)) throw InvalidInput("V[" + std::to_string(i) + "] is not finite (vertex " + std::to_string(i) + ")");
+            if (!std::isfinite(x))
+                throw InvalidInput("V[" + std::to_string(i) + "] is not finite (vertex " + std::to_string(i) + ")");
             if (kind != 'f' && std::abs(x) > 9007199254740992.0)
                 throw InvalidInput("V[" + std::to_string(i) + "] does not fit float64 without loss");
         }
@@ -62,7 +65,8 @@ std::vector<Vec3> points_of(const py::array& V) {
 std::vector<Triangle> triangles_of(const py::array& F, std::size_t n) {
     require_shape(F, 3, "F");
     const char kind = F.dtype().kind();
-    if (kind != 'i' && kind != 'u') throw InvalidInput("F must hold integers (its dtype is " + std::string(py::str(F.dtype())) + ")");
+    if (kind != 'i' && kind != 'u')
+        throw InvalidInput("F must hold integers (its dtype is " + std::string(py::str(F.dtype())) + ")");
     std::vector<Triangle> faces(static_cast<std::size_t>(F.shape(0)));
     auto fill = [&](auto typed) {
         const auto r = typed.template unchecked<2>();
@@ -71,7 +75,7 @@ std::vector<Triangle> triangles_of(const py::array& F, std::size_t n) {
                 const auto x = r(i, k);
                 if (x < 0 || static_cast<std::uint64_t>(x) >= n)
                     throw InvalidInput("face " + std::to_string(i) + " has vertex index " + std::to_string(x) +
-                                                  ", outside [0, " + std::to_string(n) + ")");
+                                       ", outside [0, " + std::to_string(n) + ")");
                 faces[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(x);
             }
     };
@@ -113,7 +117,9 @@ Faces faces_array(std::span<const Triangle> triangles) {
     return F;
 }
 
-py::tuple mesh_arrays(const TriMesh& m) { return py::make_tuple(vertices_array(m.positions()), faces_array(m.triangles())); }
+py::tuple mesh_arrays(const TriMesh& m) {
+    return py::make_tuple(vertices_array(m.positions()), faces_array(m.triangles()));
+}
 
 /// A verdict of `fhr verify --json` (exchange::verdict_json) as a dict, without the file names
 /// (`file`, `mesh`) the command adds.
@@ -174,9 +180,11 @@ std::vector<exchange::UV> uv_of(const py::array& UV) {
 
 /// Points given as faces (k,) and coordinates (k, 3), for phi and psi: each face checked against
 /// n_faces, InvalidInput naming the call and the array otherwise.
-std::vector<std::pair<std::size_t, std::array<double, 3>>> points_in_faces(const py::array& faces, const py::array& coords,
-                                                                           std::size_t n_faces, const std::string& call,
-                                                                           const std::string& coords_name, const std::string& face_kind) {
+std::vector<std::pair<std::size_t, std::array<double, 3>>> points_in_faces(const py::array& faces,
+                                                                           const py::array& coords, std::size_t n_faces,
+                                                                           const std::string& call,
+                                                                           const std::string& coords_name,
+                                                                           const std::string& face_kind) {
     const auto f = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(faces);
     const auto c = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(coords);
     if (!f || f.ndim() != 1 || !c || c.ndim() != 2 || c.shape(1) != 3 || c.shape(0) != f.shape(0))
@@ -185,7 +193,8 @@ std::vector<std::pair<std::size_t, std::array<double, 3>>> points_in_faces(const
     for (py::ssize_t i = 0; i < f.shape(0); ++i) {
         if (f.at(i) < 0 || static_cast<std::size_t>(f.at(i)) >= n_faces)
             throw InvalidInput(face_kind + " " + std::to_string(f.at(i)) + " is out of range");
-        points.emplace_back(static_cast<std::size_t>(f.at(i)), std::array<double, 3>{c.at(i, 0), c.at(i, 1), c.at(i, 2)});
+        points.emplace_back(static_cast<std::size_t>(f.at(i)),
+                            std::array<double, 3>{c.at(i, 0), c.at(i, 1), c.at(i, 2)});
     }
     return points;
 }
@@ -261,9 +270,14 @@ void translate(std::exception_ptr error) {
 
 // What report.json says of the input of a run made from arrays.
 pipeline::InputInfo input_info(const Result& r) {
-    return {.path = "(arrays)", .vertices = r.T().n_vertices(), .faces = r.T().n_faces(), .genus = genus(r.T()),
-            .boundary_loops = boundary_loops(r.T()).size(), .components = connected_components(r.T()).count,
-            .domain_faces_asked = r.run().domain_faces_asked, .domain_faces_requested = r.run().domain_faces_requested};
+    return {.path = "(arrays)",
+            .vertices = r.T().n_vertices(),
+            .faces = r.T().n_faces(),
+            .genus = genus(r.T()),
+            .boundary_loops = boundary_loops(r.T()).size(),
+            .components = connected_components(r.T()).count,
+            .domain_faces_asked = r.run().domain_faces_asked,
+            .domain_faces_requested = r.run().domain_faces_requested};
 }
 
 }  // namespace
@@ -277,10 +291,12 @@ PYBIND11_MODULE(_fhr, m) {
     py::register_exception_translator(&translate);
 
     m.def("page_available", &pipeline::page_available,
-          "page_available() -> bool: whether this build holds the run's page (Parameterization.write_html; meson option page).");
-    m.def("read_mesh", [](const std::string& path) { return mesh_arrays(io::read_mesh(path)); }, py::arg("path"),
-          "read_mesh(path) -> (V, F): a closed, connected triangle mesh (.off, .obj, .ply, .stl) through every "
-          "input rule of spec/mesh.md. V: (n, 3) float64, F: (m, 3) int64.");
+          "page_available() -> bool: whether this build holds the run's page (Parameterization.write_html; meson "
+          "option page).");
+    m.def(
+        "read_mesh", [](const std::string& path) { return mesh_arrays(io::read_mesh(path)); }, py::arg("path"),
+        "read_mesh(path) -> (V, F): a closed, connected triangle mesh (.off, .obj, .ply, .stl) through every "
+        "input rule of spec/mesh.md. V: (n, 3) float64, F: (m, 3) int64.");
     m.def(
         "write_mesh",
         [](const std::string& path, const py::array& V, const py::array& F) {
@@ -288,7 +304,8 @@ PYBIND11_MODULE(_fhr, m) {
             io::write_mesh(path, mesh.positions(), mesh.triangles());
         },
         py::arg("path"), py::arg("V"), py::arg("F"),
-        "write_mesh(path, V, F): validates (V, F) and writes it (.off, .obj or .ply) atomically, coordinates bit-exact.");
+        "write_mesh(path, V, F): validates (V, F) and writes it (.off, .obj or .ply) atomically, coordinates "
+        "bit-exact.");
     m.def(
         "info",
         [](const py::array& V, const py::array& F) {
@@ -320,7 +337,8 @@ PYBIND11_MODULE(_fhr, m) {
         "generate",
         [recipe](int genus, std::size_t faces, std::uint64_t seed, double noise, int holes, int components,
                  const std::string& family, const py::kwargs& knobs) {
-            return mesh_arrays(generate::random_mesh(recipe(genus, faces, seed, noise, holes, components, family, knobs)));
+            return mesh_arrays(
+                generate::random_mesh(recipe(genus, faces, seed, noise, holes, components, family, knobs)));
         },
         py::arg("genus"), py::arg("faces"), py::arg("seed") = 0, py::arg("noise") = 0.0, py::arg("holes") = 0,
         py::arg("components") = 1, py::arg("family") = "block",
@@ -360,7 +378,8 @@ PYBIND11_MODULE(_fhr, m) {
             const TriMesh T = mesh_of(V, F);
             for (const std::int64_t v : {source, target})
                 if (v < 0 || static_cast<std::uint64_t>(v) >= T.n_vertices())
-                    throw InvalidInput("vertex " + std::to_string(v) + " is out of range (the mesh has " + std::to_string(T.n_vertices()) + " vertices)");
+                    throw InvalidInput("vertex " + std::to_string(v) + " is out of range (the mesh has " +
+                                       std::to_string(T.n_vertices()) + " vertices)");
             geodesic::EllipsePath path;
             {
                 py::gil_scoped_release unlocked;
@@ -384,61 +403,89 @@ PYBIND11_MODULE(_fhr, m) {
         "surface: the same k points as ('vertex', v) or ('edge', a, b, t), the point (1 − t)·V[a] + t·V[b].");
 
     py::class_<Result>(m, "Parameterization", "The result of fhr.parameterize.")
-        .def_property_readonly("certified", [](const Result& r) { return r.run().certified(); },
-                               "Every patch certified one-to-one (Prop. 1) and the independent oracle says valid.")
-        .def_property_readonly("domain", [](const Result& r) { return mesh_arrays(r.p().partition.domain.mesh); },
-                               "(DV, DF): the domain D (after §3, equal to the requested one when D was kept).")
-        .def_property_readonly("refined", [](const Result& r) {
+        .def_property_readonly(
+            "certified", [](const Result& r) { return r.run().certified(); },
+            "Every patch certified one-to-one (Prop. 1) and the independent oracle says valid.")
+        .def_property_readonly(
+            "domain", [](const Result& r) { return mesh_arrays(r.p().partition.domain.mesh); },
+            "(DV, DF): the domain D (after §3, equal to the requested one when D was kept).")
+        .def_property_readonly(
+            "refined",
+            [](const Result& r) {
                 return py::make_tuple(vertices_array(r.p().refined_positions), faces_array(r.p().refined_faces));
-            }, "(V', F'): the final T′; its first #V(T) vertices are T's, in T's order.")
-        .def_property_readonly("face_patch", [](const Result& r) {
+            },
+            "(V', F'): the final T′; its first #V(T) vertices are T's, in T's order.")
+        .def_property_readonly(
+            "face_patch",
+            [](const Result& r) {
                 py::array_t<std::int64_t> a(static_cast<py::ssize_t>(r.p().face_patch.size()));
                 auto w = a.mutable_unchecked<1>();
-                for (std::size_t f = 0; f < r.p().face_patch.size(); ++f) w(static_cast<py::ssize_t>(f)) = r.p().face_patch[f];
+                for (std::size_t f = 0; f < r.p().face_patch.size(); ++f)
+                    w(static_cast<py::ssize_t>(f)) = r.p().face_patch[f];
                 return a;
-            }, "(m',) int64: for each face of T′, the domain face whose patch holds it.")
-        .def_property_readonly("face_beta", [](const Result& r) {
+            },
+            "(m',) int64: for each face of T′, the domain face whose patch holds it.")
+        .def_property_readonly(
+            "face_beta",
+            [](const Result& r) {
                 const auto& beta = r.p().face_beta;
                 py::array_t<double> a({static_cast<py::ssize_t>(beta.size()), py::ssize_t{3}, py::ssize_t{3}});
                 auto w = a.mutable_unchecked<3>();
                 for (std::size_t f = 0; f < beta.size(); ++f)
                     for (int k = 0; k < 3; ++k)
-                        for (int c = 0; c < 3; ++c) w(static_cast<py::ssize_t>(f), k, c) = beta[f][static_cast<std::size_t>(k)][static_cast<std::size_t>(c)];
+                        for (int c = 0; c < 3; ++c)
+                            w(static_cast<py::ssize_t>(f), k, c) =
+                                beta[f][static_cast<std::size_t>(k)][static_cast<std::size_t>(c)];
                 return a;
-            }, "(m', 3, 3) float64: for each face of T′ and each of its corners, the barycentric coordinates of ψ "
-               "at the corner in its domain face (corner order of DF).")
-        .def_property_readonly("oracle", [](const Result& r) {
+            },
+            "(m', 3, 3) float64: for each face of T′ and each of its corners, the barycentric coordinates of ψ "
+            "at the corner in its domain face (corner order of DF).")
+        .def_property_readonly(
+            "oracle",
+            [](const Result& r) {
                 const exchange::ParamFile file = r.file();
                 return verdict(file, &r.T(), true);
-            }, "The independent oracle's verdict on this parameterization against T (as fhr.verify with paper=True: "
-               "fhr's map is the paper's).")
-        .def("phi", [](Result& r, const py::array& faces, const py::array& beta) {
+            },
+            "The independent oracle's verdict on this parameterization against T (as fhr.verify with paper=True: "
+            "fhr's map is the paper's).")
+        .def(
+            "phi",
+            [](Result& r, const py::array& faces, const py::array& beta) {
                 const pipeline::GlobalMap& g = r.global();
                 std::vector<Vec3> out;
-                for (const auto& [d, b] : points_in_faces(faces, beta, r.p().partition.domain.mesh.n_faces(), "phi", "beta", "domain face"))
+                for (const auto& [d, b] :
+                     points_in_faces(faces, beta, r.p().partition.domain.mesh.n_faces(), "phi", "beta", "domain face"))
                     out.push_back(g.phi(FaceId(static_cast<FaceId::Index>(d)), b));
                 return vertices_array(out);
-            }, py::arg("faces"), py::arg("beta"),
+            },
+            py::arg("faces"), py::arg("beta"),
             "phi(faces, beta) -> (k, 3) float64: the points φ(d, β) of the surface for domain faces d and barycentric "
             "coordinates β (corner order of DF).")
-        .def("psi", [](Result& r, const py::array& faces, const py::array& weights) {
+        .def(
+            "psi",
+            [](Result& r, const py::array& faces, const py::array& weights) {
                 const pipeline::GlobalMap& g = r.global();
-                const auto points = points_in_faces(faces, weights, r.p().refined_faces.size(), "psi", "weights", "face of T′");
+                const auto points =
+                    points_in_faces(faces, weights, r.p().refined_faces.size(), "psi", "weights", "face of T′");
                 const auto k = static_cast<py::ssize_t>(points.size());
                 py::array_t<std::int64_t> d(k);
                 py::array_t<double> beta({k, py::ssize_t{3}});
                 auto dw = d.mutable_unchecked<1>();
                 auto bw = beta.mutable_unchecked<2>();
                 for (py::ssize_t i = 0; i < k; ++i) {
-                    const auto [face, b] = g.psi(points[static_cast<std::size_t>(i)].first, points[static_cast<std::size_t>(i)].second);
+                    const auto [face, b] =
+                        g.psi(points[static_cast<std::size_t>(i)].first, points[static_cast<std::size_t>(i)].second);
                     dw(i) = face.idx();
                     for (int c = 0; c < 3; ++c) bw(i, c) = b[static_cast<std::size_t>(c)];
                 }
                 return py::make_tuple(d, beta);
-            }, py::arg("faces"), py::arg("weights"),
+            },
+            py::arg("faces"), py::arg("weights"),
             "psi(faces, weights) -> (domain_faces, beta): ψ of the points Σ weights[:, k]·(corner k of face f of T′): "
             "(k,) int64 domain faces and (k, 3) float64 barycentric coordinates in them.")
-        .def_property_readonly("wavelets", [](const Result& r) -> py::object {
+        .def_property_readonly(
+            "wavelets",
+            [](const Result& r) -> py::object {
                 if (!r.run().wavelets) return py::none();
                 const wavelet::WaveletResult& w = *r.run().wavelets;
                 py::dict d;
@@ -459,33 +506,46 @@ PYBIND11_MODULE(_fhr, m) {
                 }
                 d["kept"] = kept;
                 return d;
-            }, "§5 with levels ≥ 1, else None: the remesh (V, F) of D^J sampled through φ, the number of prewavelet "
-               "coefficients, its Hausdorff bracket to T, the round trip's largest error, and per kept percentage the "
-               "reconstruction V (faces: the remesh's), its L2 error and Hausdorff bracket.")
-        .def("write_param", [](const Result& r, const std::string& path) { exchange::write_param(path, r.file()); },
-             py::arg("path"), "write_param(path): the `fhr-param 1` file (spec/param.md), as `fhr run` writes it.")
-        .def("write", [](const Result& r, const std::string& dir, bool figures) {
+            },
+            "§5 with levels ≥ 1, else None: the remesh (V, F) of D^J sampled through φ, the number of prewavelet "
+            "coefficients, its Hausdorff bracket to T, the round trip's largest error, and per kept percentage the "
+            "reconstruction V (faces: the remesh's), its L2 error and Hausdorff bracket.")
+        .def(
+            "write_param", [](const Result& r, const std::string& path) { exchange::write_param(path, r.file()); },
+            py::arg("path"), "write_param(path): the `fhr-param 1` file (spec/param.md), as `fhr run` writes it.")
+        .def(
+            "write",
+            [](const Result& r, const std::string& dir, bool figures) {
                 const pipeline::InputInfo input = input_info(r);
                 const wavelet::WaveletResult* wavelets = r.run().wavelets ? &*r.run().wavelets : nullptr;
                 py::gil_scoped_release unlocked;
                 pipeline::write_outputs(dir, input, r.p(), r.run().oracle, r.timings, r.options, wavelets);
                 if (figures) pipeline::write_figures(dir, r.T(), r.p(), 2, wavelets);
-            }, py::arg("dir"), py::arg("figures") = false,
+            },
+            py::arg("dir"), py::arg("figures") = false,
             "write(dir, figures=False): all of `fhr run`'s outputs into dir (spec/cli.md CLI-RUN-*): domain.off, "
             "geodesics.obj, refined.ply, param.fhrp, textured.obj, report.json, timings.json, §5's meshes; with "
             "figures, figures/ as `fhr run --figures` (z up).")
-        .def("write_html", [](const Result& r, const std::string& path, const std::string& up, std::size_t page_faces) {
-                if (up != "x" && up != "y" && up != "z") throw InvalidInput("up must be 'x', 'y' or 'z', not '" + up + "'");
+        .def(
+            "write_html",
+            [](const Result& r, const std::string& path, const std::string& up, std::size_t page_faces) {
+                if (up != "x" && up != "y" && up != "z")
+                    throw InvalidInput("up must be 'x', 'y' or 'z', not '" + up + "'");
                 const pipeline::InputInfo input = input_info(r);
                 const wavelet::WaveletResult* wavelets = r.run().wavelets ? &*r.run().wavelets : nullptr;
                 py::gil_scoped_release unlocked;
-                pipeline::PageContent content{.title = std::filesystem::path(path).stem().string(),
-                                              .report_json = pipeline::report_json(input, r.p(), r.run().oracle, r.options, wavelets),
-                                              .timings_json = pipeline::timings_json(r.timings), .up_axis = up[0] - 'x',
-                                              .wavelets = wavelets, .rate = {}, .display_faces = page_faces};
+                pipeline::PageContent content{
+                    .title = std::filesystem::path(path).stem().string(),
+                    .report_json = pipeline::report_json(input, r.p(), r.run().oracle, r.options, wavelets),
+                    .timings_json = pipeline::timings_json(r.timings),
+                    .up_axis = up[0] - 'x',
+                    .wavelets = wavelets,
+                    .rate = {},
+                    .display_faces = page_faces};
                 if (wavelets) content.rate = pipeline::rate_steps(r.T(), r.p().partition.domain.mesh, *wavelets);
                 pipeline::write_page(path, r.T(), r.p(), content);
-            }, py::arg("path"), py::arg("up") = "y", py::arg("page_faces") = pipeline::page_display_faces,
+            },
+            py::arg("path"), py::arg("up") = "y", py::arg("page_faces") = pipeline::page_display_faces,
             "write_html(path, up='y', page_faces=2000000): the run's interactive page, as `fhr run --html` writes it "
             "(spec/page.md), into the file path; T′ drawn as is up to page_faces faces, beyond a display copy. "
             "ValueError when this build holds no page (meson option page).");
@@ -508,12 +568,14 @@ PYBIND11_MODULE(_fhr, m) {
                 std::vector<io::CorrespondenceEntry> entries;
                 for (py::ssize_t j = 0; j < xs.shape(0); ++j) {
                     if (xs.at(j) < 0 || static_cast<std::uint64_t>(xs.at(j)) >= T.n_vertices())
-                        throw InvalidInput("t_vertex[" + std::to_string(j) + "] = " + std::to_string(xs.at(j)) + " is not a vertex of T");
+                        throw InvalidInput("t_vertex[" + std::to_string(j) + "] = " + std::to_string(xs.at(j)) +
+                                           " is not a vertex of T");
                     entries.push_back({SurfacePoint::at_vertex(VertexId(static_cast<VertexId::Index>(xs.at(j)))),
                                        static_cast<std::uint64_t>(j + 1)});
                 }
-                options.domain = domain::attach_domain(T, mesh_of(py::array::ensure((*domain)[0]), py::array::ensure((*domain)[1])),
-                                                       entries, {"domain", "t_vertex"});
+                options.domain =
+                    domain::attach_domain(T, mesh_of(py::array::ensure((*domain)[0]), py::array::ensure((*domain)[1])),
+                                          entries, {"domain", "t_vertex"});
             }
             options.method.map.weights = param::parse_weights(weights);
             options.method.progress = [&](const std::string& text) { interruptible.line(text); };
@@ -530,10 +592,12 @@ PYBIND11_MODULE(_fhr, m) {
             kept.observer = nullptr;
             return Result(std::move(T), std::move(result), std::move(interruptible.timings), std::move(kept));
         },
-        py::arg("V"), py::arg("F"), py::arg("faces") = 0, py::arg("domain") = py::none(), py::arg("weights") = "shape-preserving", py::arg("levels") = 0,
-        py::arg("keep") = std::vector<double>{}, py::arg("progress") = py::none(),
+        py::arg("V"), py::arg("F"), py::arg("faces") = 0, py::arg("domain") = py::none(),
+        py::arg("weights") = "shape-preserving", py::arg("levels") = 0, py::arg("keep") = std::vector<double>{},
+        py::arg("progress") = py::none(),
         "parameterize(V, F, faces=0, domain=None, weights='shape-preserving', levels=0, keep=[], progress=None) -> "
-        "Parameterization: the paper's method (§2 decimation to `faces`, or a given domain=(DV, DF, t_vertex) with domain "
+        "Parameterization: the paper's method (§2 decimation to `faces`, or a given domain=(DV, DF, t_vertex) with "
+        "domain "
         "vertex j at vertex t_vertex[j] of T; §3 partition keeping D; §4 certified patch maps; the oracle; §5 with "
         "levels ≥ 1). progress(line) is called with each progress line; Ctrl-C interrupts between steps "
         "(KeyboardInterrupt).");
@@ -557,21 +621,23 @@ PYBIND11_MODULE(_fhr, m) {
             const std::string bytes = io::read_bytes(path);
             if (exchange::kind_of_content(bytes, path) == exchange::MapKind::param)
                 return verdict(exchange::parse_param(bytes, path), T ? &*T : nullptr, paper);
-            return verdict(exchange::parse_atlas(bytes, path), T ? &*T : nullptr, {.no_mirror = no_mirror, .strict = strict},
-                           false);
+            return verdict(exchange::parse_atlas(bytes, path), T ? &*T : nullptr,
+                           {.no_mirror = no_mirror, .strict = strict}, false);
         },
         py::arg("path"), py::arg("mesh") = py::none(), py::arg("no_mirror") = false, py::arg("strict") = false,
         py::arg("paper") = false,
-        "verify(path, mesh=None, no_mirror=False, strict=False, paper=False) -> dict: the oracle's checks of a `fhr-param 1` file "
+        "verify(path, mesh=None, no_mirror=False, strict=False, paper=False) -> dict: the oracle's checks of a "
+        "`fhr-param 1` file "
         "(PARAM-1..11) or a UV atlas, OBJ or PLY (ATLAS-1..8; the kind by content, as `fhr verify`), against the "
         "surface (V, F) when given: the keys and values of `fhr verify --json` without file names (kind, valid, "
         "first_failure: the first check id that did not pass, counts, checks: id, title, result, checked, failures, "
-        "first_failure, face, vertex, patch; distortion; an atlas's charts, folds, overlaps, contacts, seams, packing).");
+        "first_failure, face, vertex, patch; distortion; an atlas's charts, folds, overlaps, contacts, seams, "
+        "packing).");
     m.def(
         "verify_atlas",
         [](const py::array& V, const py::array& F, const py::array& UV, std::optional<py::array> FUV,
-           std::optional<py::array> textures, std::optional<std::pair<py::array, py::array>> mesh, bool no_mirror, bool strict,
-           bool lists) {
+           std::optional<py::array> textures, std::optional<std::pair<py::array, py::array>> mesh, bool no_mirror,
+           bool strict, bool lists) {
             exchange::Atlas a;
             a.source = "atlas";
             a.points = points_of(V);
@@ -580,14 +646,15 @@ PYBIND11_MODULE(_fhr, m) {
             a.face_uv = FUV ? triangles_of(*FUV, a.uv.size()) : triangles_of(F, a.uv.size());
             if (a.face_uv.size() != a.faces.size())
                 throw InvalidInput("FUV has " + std::to_string(a.face_uv.size()) + " rows but F has " +
-                                              std::to_string(a.faces.size()));
+                                   std::to_string(a.faces.size()));
             a.face_texture.assign(a.faces.size(), 0);
             if (textures) {
                 const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(*textures);
                 if (!t || t.ndim() != 1 || static_cast<std::size_t>(t.shape(0)) != a.faces.size())
                     throw InvalidInput("textures must have shape (" + std::to_string(a.faces.size()) + ",)");
                 for (py::ssize_t i = 0; i < t.shape(0); ++i) {
-                    if (t.at(i) < 0 || t.at(i) > 0xffffffffLL) throw InvalidInput("texture " + std::to_string(t.at(i)) + " is out of range");
+                    if (t.at(i) < 0 || t.at(i) > 0xffffffffLL)
+                        throw InvalidInput("texture " + std::to_string(t.at(i)) + " is out of range");
                     a.face_texture[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(t.at(i));
                 }
             }
@@ -597,7 +664,8 @@ PYBIND11_MODULE(_fhr, m) {
         },
         py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("FUV") = py::none(), py::arg("textures") = py::none(),
         py::arg("mesh") = py::none(), py::arg("no_mirror") = false, py::arg("strict") = false, py::arg("lists") = false,
-        "verify_atlas(V, F, UV, FUV=None, textures=None, mesh=None, no_mirror=False, strict=False, lists=False) -> dict: "
+        "verify_atlas(V, F, UV, FUV=None, textures=None, mesh=None, no_mirror=False, strict=False, lists=False) -> "
+        "dict: "
         "the atlas oracle (spec/atlas.md) on arrays: positions V (n, 3), triangles F (m, 3), texture coordinates UV "
         "(k, 2) indexed per corner by FUV (m, 3), or per vertex like F when FUV is None (then k = n); textures (m,) a "
         "texture number per face. The dict of `fhr verify --json` without file names; with lists, the folded faces, "
@@ -610,7 +678,8 @@ PYBIND11_MODULE(_fhr, m) {
             const auto f = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(faces);
             const auto w = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(weights);
             const auto n = static_cast<py::ssize_t>(T.points.size());
-            if (!f || f.ndim() != 1 || f.shape(0) != n) throw InvalidInput("faces must have shape (" + std::to_string(n) + ",)");
+            if (!f || f.ndim() != 1 || f.shape(0) != n)
+                throw InvalidInput("faces must have shape (" + std::to_string(n) + ",)");
             if (!w || w.ndim() != 2 || w.shape(0) != n || w.shape(1) != 3)
                 throw InvalidInput("weights must have shape (" + std::to_string(n) + ", 3)");
             exchange::VertexMapFile map;
@@ -626,15 +695,17 @@ PYBIND11_MODULE(_fhr, m) {
             }
             return verdict(map, T, D, lists);
         },
-        py::arg("V"), py::arg("F"), py::arg("DV"), py::arg("DF"), py::arg("faces"), py::arg("weights"), py::arg("lists") = false,
-        "verify_vertex_map(V, F, DV, DF, faces, weights, lists=False) -> dict: the per-vertex map oracle (spec/vertex_map.md, "
+        py::arg("V"), py::arg("F"), py::arg("DV"), py::arg("DF"), py::arg("faces"), py::arg("weights"),
+        py::arg("lists") = false,
+        "verify_vertex_map(V, F, DV, DF, faces, weights, lists=False) -> dict: the per-vertex map oracle "
+        "(spec/vertex_map.md, "
         "rule adjacent) on arrays: T = (V, F), D = (DV, DF), and per vertex of T a face of D (faces (n,), -1 for none) "
         "and the weights of its corners (weights (n, 3)). The dict of `fhr verify --vertex-map --json` without file "
         "names; with lists, the folded faces and the edges without an image.");
     m.def(
         "verify_vertex_map",
-        [](const std::string& path, const std::pair<py::array, py::array>& mesh, const std::pair<py::array, py::array>& domain,
-           std::optional<std::string> format, bool lists) {
+        [](const std::string& path, const std::pair<py::array, py::array>& mesh,
+           const std::pair<py::array, py::array>& domain, std::optional<std::string> format, bool lists) {
             const PolygonSoup T = soup_of(mesh.first, mesh.second), D = soup_of(domain.first, domain.second);
             std::optional<exchange::VertexMapFormat> f;
             if (format) {
@@ -644,6 +715,7 @@ PYBIND11_MODULE(_fhr, m) {
             return verdict(exchange::read_vertex_map(path, f, T.points.size(), D.points.size()), T, D, lists);
         },
         py::arg("path"), py::arg("mesh"), py::arg("domain"), py::arg("format") = py::none(), py::arg("lists") = false,
-        "verify_vertex_map(path, mesh, domain, format=None, lists=False) -> dict: the same on a map file (.vmap, .corr, "
+        "verify_vertex_map(path, mesh, domain, format=None, lists=False) -> dict: the same on a map file (.vmap, "
+        ".corr, "
         ".vtpm, .ijv, or format=) of T = mesh (V, F) onto D = domain (DV, DF).");
 }

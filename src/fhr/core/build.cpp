@@ -55,11 +55,11 @@ private:
     const PolygonSoup& soup_;
     const BuildOptions& options_;
     BuildLog& log_;
-    std::vector<Triangle> tris_;             // in soup point numbering until drop_isolated_vertices
-    std::vector<std::uint32_t> tri_polygon_; // soup polygon of each triangle
+    std::vector<Triangle> tris_;              // in soup point numbering until drop_isolated_vertices
+    std::vector<std::uint32_t> tri_polygon_;  // soup polygon of each triangle
     std::vector<Vec3> positions_;
-    std::vector<std::uint32_t> origin_;      // soup point of each kept vertex
-    std::size_t components_ = 0;             // connected components, counted by orient()
+    std::vector<std::uint32_t> origin_;  // soup point of each kept vertex
+    std::size_t components_ = 0;         // connected components, counted by orient()
 
     [[noreturn]] void fail(std::uint64_t line, const std::string& what) const {
         throw InvalidInput(soup_.source, line, what);
@@ -97,7 +97,8 @@ private:
             const std::uint32_t n = soup_.polygon_size(p);
             const std::uint32_t* idx = soup_.polygon(p);
             const auto name = [p] { return "face " + std::to_string(p); };
-            if (n < 3) fail(polygon_line(p), name() + " has " + std::to_string(n) + " vertices (at least 3 are needed)");
+            if (n < 3)
+                fail(polygon_line(p), name() + " has " + std::to_string(n) + " vertices (at least 3 are needed)");
             for (std::uint32_t i = 0; i < n; ++i)
                 for (std::uint32_t j = i + 1; j < n; ++j)
                     if (idx[i] == idx[j]) fail(polygon_line(p), name() + " repeats vertex " + std::to_string(idx[i]));
@@ -138,8 +139,9 @@ private:
             for (std::size_t i = 1; i < around.size(); ++i)
                 if (around[i].first == around[i - 1].first) {
                     const std::uint32_t a = around[i - 1].second, b = around[i].second;
-                    fail_face(b, "faces " + std::to_string(tri_polygon_[a]) + " and " + std::to_string(tri_polygon_[b]) +
-                                     " are duplicates (vertices " + tri_vertices(b) + ")");
+                    fail_face(b, "faces " + std::to_string(tri_polygon_[a]) + " and " +
+                                     std::to_string(tri_polygon_[b]) + " are duplicates (vertices " + tri_vertices(b) +
+                                     ")");
                 }
         }
     }
@@ -207,7 +209,10 @@ private:
                 const std::uint32_t f = queue[qi];
                 for (std::uint32_t k = 0; k < 3; ++k) {
                     const std::uint32_t c = 3 * f + k, e = table.corner_edge[c];
-                    if (table.edge_degree(e) == 1) { closed = false; continue; }
+                    if (table.edge_degree(e) == 1) {
+                        closed = false;
+                        continue;
+                    }
                     const std::uint32_t* pair = &table.edge_corners[table.edge_offsets[e]];
                     const std::uint32_t o = pair[0] == c ? pair[1] : pair[0], g = o / 3;
                     const bool same_direction = detail::corner_tail(tris_, c) == detail::corner_tail(tris_, o);
@@ -217,9 +222,10 @@ private:
                         queue.push_back(g);
                     } else if (flip[g] != want) {
                         fail_face(g, "the surface is not orientable (contradiction at edge (" +
-                                         vname(detail::corner_tail(tris_, c)) + ", " + vname(detail::corner_head(tris_, c)) +
-                                         ") between faces " + std::to_string(tri_polygon_[f]) + " and " +
-                                         std::to_string(tri_polygon_[g]) + ")");
+                                         vname(detail::corner_tail(tris_, c)) + ", " +
+                                         vname(detail::corner_head(tris_, c)) + ") between faces " +
+                                         std::to_string(tri_polygon_[f]) + " and " + std::to_string(tri_polygon_[g]) +
+                                         ")");
                     }
                 }
             }
@@ -293,16 +299,18 @@ private:
             const std::uint32_t c = comp.vertex_component[v];
             if (open[c] || off_plane[c]) continue;
             const auto corners = mesh.face_vertices(first[c]);
-            off_plane[c] = orient3d(mesh.position(corners[0]), mesh.position(corners[1]), mesh.position(corners[2]), mesh.position(v)) != 0;
+            off_plane[c] = orient3d(mesh.position(corners[0]), mesh.position(corners[1]), mesh.position(corners[2]),
+                                    mesh.position(v)) != 0;
         }
         for (std::uint32_t c = 0; c < comp.count; ++c) {
             if (open[c] || off_plane[c]) continue;
             std::size_t n = 0, lowest = comp.vertex_component.size();
             for (std::size_t v = comp.vertex_component.size(); v-- > 0;)
                 if (comp.vertex_component[VertexId(static_cast<VertexId::Index>(v))] == c) ++n, lowest = v;
-            fail(0, (comp.count == 1 ? std::string("the closed surface") : "the closed component at vertex " + vname(static_cast<std::uint32_t>(lowest))) +
-                        " is flat: all " + std::to_string(n) + " vertices lie in the plane of face " + std::to_string(first[c].idx()) +
-                        ", so its faces cover a flat region twice");
+            fail(0, (comp.count == 1 ? std::string("the closed surface")
+                                     : "the closed component at vertex " + vname(static_cast<std::uint32_t>(lowest))) +
+                        " is flat: all " + std::to_string(n) + " vertices lie in the plane of face " +
+                        std::to_string(first[c].idx()) + ", so its faces cover a flat region twice");
         }
     }
 };

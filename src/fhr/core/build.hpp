@@ -23,10 +23,10 @@ struct BuildOptions {
 
 /// What the builder changed, for the report and the CLI's warnings.
 struct BuildLog {
-    std::vector<std::string> warnings;   ///< one line each, without "fhr: warning: "
-    std::size_t dropped_vertices = 0;    ///< isolated vertices removed (INV-IN-12)
-    std::size_t reoriented_faces = 0;    ///< faces turned to agree with their component (INV-IN-8)
-    VertexData<std::uint32_t> vertex_origin;   ///< #V: index in the soup of each mesh vertex
+    std::vector<std::string> warnings;        ///< one line each, without "fhr: warning: "
+    std::size_t dropped_vertices = 0;         ///< isolated vertices removed (INV-IN-12)
+    std::size_t reoriented_faces = 0;         ///< faces turned to agree with their component (INV-IN-8)
+    VertexData<std::uint32_t> vertex_origin;  ///< #V: index in the soup of each mesh vertex
 };
 
 /// Checks the soup against spec/mesh.md in a fixed order and builds the mesh.

@@ -18,9 +18,9 @@ namespace fhr {
 
 /// T̂: T closed by one cone per boundary loop.
 struct Coned {
-    TriMesh mesh;                    ///< T̂. T's vertices, halfedges and faces keep their ids
-    std::size_t real_vertices = 0;   ///< #V(T): the apex of loop i (boundary_loops(T)[i]) is vertex #V(T) + i
-    std::size_t real_faces = 0;      ///< #F(T): the cone faces follow T's faces
+    TriMesh mesh;                   ///< T̂. T's vertices, halfedges and faces keep their ids
+    std::size_t real_vertices = 0;  ///< #V(T): the apex of loop i (boundary_loops(T)[i]) is vertex #V(T) + i
+    std::size_t real_faces = 0;     ///< #F(T): the cone faces follow T's faces
     bool is_apex(VertexId v) const { return v.idx() >= real_vertices; }
 };
 

@@ -18,9 +18,11 @@ namespace fhr {
 struct Disk {
     std::vector<Vec3> positions;                          ///< 3-D positions of the disk's vertices (#V)
     std::vector<std::array<std::uint32_t, 3>> triangles;  ///< counter-clockwise seen from outside the surface
-    std::vector<std::uint32_t> boundary;                  ///< the boundary loop, in the orientation induced by the triangles, starting at corner 0
-    std::array<std::size_t, 3> corners;                   ///< positions IN `boundary` of the corners x_j, x_k, x_l; corners[0] == 0, increasing
-    std::size_t midpoints = 0;                            ///< the last `midpoints` vertices are split_dividing_edges' (MAP-4), not T′'s
+    std::vector<std::uint32_t>
+        boundary;  ///< the boundary loop, in the orientation induced by the triangles, starting at corner 0
+    std::array<std::size_t, 3>
+        corners;                ///< positions IN `boundary` of the corners x_j, x_k, x_l; corners[0] == 0, increasing
+    std::size_t midpoints = 0;  ///< the last `midpoints` vertices are split_dividing_edges' (MAP-4), not T′'s
 };
 
 }  // namespace fhr

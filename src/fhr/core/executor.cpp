@@ -15,7 +15,7 @@ struct ThreadPool::Call {
     std::size_t n;
     const std::function<void(std::size_t)>* task;
     std::atomic<std::size_t> next{0};
-    std::size_t places;  // helpers that may still join (under lock_)
+    std::size_t places;      // helpers that may still join (under lock_)
     std::size_t inside = 0;  // helpers working on it (under lock_)
     std::mutex error_lock;
     std::exception_ptr error;

@@ -72,7 +72,8 @@ inline Executor& executor_or_default(Executor* executor) { return executor ? *ex
 /// `executor`: range(first, end) for each block. \pre block > 0.
 inline void for_each_block(Executor& executor, std::size_t n, std::size_t block, std::size_t grain,
                            const std::function<void(std::size_t, std::size_t)>& range) {
-    executor.for_each((n + block - 1) / block, grain, [&](std::size_t b) { range(b * block, std::min(n, (b + 1) * block)); });
+    executor.for_each((n + block - 1) / block, grain,
+                      [&](std::size_t b) { range(b * block, std::min(n, (b + 1) * block)); });
 }
 
 }  // namespace fhr

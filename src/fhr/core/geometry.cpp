@@ -209,7 +209,8 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
     Vec3 n = ab.cross(ac);
     const double ab2 = ab.squaredNorm(), ac2 = ac.squaredNorm(), bc2 = bc.squaredNorm();
     const bool shaped = 16 * n.squaredNorm() >= std::max({ab2 * ac2, ab2 * bc2, ac2 * bc2});  // every sine ≥ 1/4
-    if (!shaped) n = cross_accurate(ab, ac) + (ab.cross(difference_error(c, a, ac)) + difference_error(b, a, ab).cross(ac));
+    if (!shaped)
+        n = cross_accurate(ab, ac) + (ab.cross(difference_error(c, a, ac)) + difference_error(b, a, ab).cross(ac));
     const double nn = n.squaredNorm();
     Vec3 q;
     if (!(nn > 0)) {

@@ -41,14 +41,19 @@ public:
     public:
         constexpr explicit iterator(typename IdT::Index i) : i_(i) {}
         constexpr IdT operator*() const { return IdT(i_); }
-        constexpr iterator& operator++() { ++i_; return *this; }
+        constexpr iterator& operator++() {
+            ++i_;
+            return *this;
+        }
         constexpr bool operator==(const iterator&) const = default;
+
     private:
         typename IdT::Index i_;
     };
     constexpr explicit IdRange(std::size_t n) : n_(static_cast<typename IdT::Index>(n)) {}
     constexpr iterator begin() const { return iterator(0); }
     constexpr iterator end() const { return iterator(n_); }
+
 private:
     typename IdT::Index n_;
 };
@@ -76,7 +81,9 @@ public:
     void push_back(const T& value) { data_.push_back(value); }
     void push_back(T&& value) { data_.push_back(std::move(value)); }
     template <class... Args>
-    T& emplace_back(Args&&... args) { return data_.emplace_back(std::forward<Args>(args)...); }
+    T& emplace_back(Args&&... args) {
+        return data_.emplace_back(std::forward<Args>(args)...);
+    }
     T& back() { return data_.back(); }
     const T& back() const { return data_.back(); }
     IdRange<IdT> ids() const { return IdRange<IdT>(data_.size()); }
@@ -92,10 +99,14 @@ private:
     std::vector<T> data_;
 };
 
-template <class T> using VertexData = IdVector<VertexId, T>;
-template <class T> using HalfedgeData = IdVector<HalfedgeId, T>;
-template <class T> using EdgeData = IdVector<EdgeId, T>;
-template <class T> using FaceData = IdVector<FaceId, T>;
+template <class T>
+using VertexData = IdVector<VertexId, T>;
+template <class T>
+using HalfedgeData = IdVector<HalfedgeId, T>;
+template <class T>
+using EdgeData = IdVector<EdgeId, T>;
+template <class T>
+using FaceData = IdVector<FaceId, T>;
 
 }  // namespace fhr
 

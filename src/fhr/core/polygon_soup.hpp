@@ -40,15 +40,15 @@ struct SoupTexture {
 /// Polygons in compressed-row form: polygon p has the 0-based point indices
 /// `indices[offsets[p] .. offsets[p+1])`. offsets.size() == polygon count + 1.
 struct PolygonSoup {
-    std::string source;                    ///< file name for messages ("" if in memory)
-    std::vector<Vec3> points;              ///< #P, all finite
-    std::vector<std::uint32_t> offsets{0}; ///< #F+1
-    std::vector<std::uint32_t> indices;    ///< each < points.size()
+    std::string source;                     ///< file name for messages ("" if in memory)
+    std::vector<Vec3> points;               ///< #P, all finite
+    std::vector<std::uint32_t> offsets{0};  ///< #F+1
+    std::vector<std::uint32_t> indices;     ///< each < points.size()
     /// 1-based source line of each point / polygon in a text file; empty for binary files
     /// (messages then name the element by index only).
     std::vector<std::uint64_t> point_line;
     std::vector<std::uint64_t> polygon_line;
-    SoupTexture texture;                   ///< empty unless the reader was asked for texture coordinates
+    SoupTexture texture;  ///< empty unless the reader was asked for texture coordinates
 
     std::size_t polygon_count() const { return offsets.size() - 1; }
     std::uint32_t polygon_size(std::size_t p) const { return offsets[p + 1] - offsets[p]; }

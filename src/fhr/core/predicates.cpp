@@ -21,8 +21,7 @@ int sign_of(const mpq_class& q) { return sgn(q); }
 constexpr double smallest_trusted_permanent = 1e-200;
 
 bool decided_by_filter(double det, double permanent, double bound) {
-    return std::isfinite(permanent) && permanent >= smallest_trusted_permanent &&
-           std::abs(det) > bound * permanent;
+    return std::isfinite(permanent) && permanent >= smallest_trusted_permanent && std::abs(det) > bound * permanent;
 }
 
 // Error-free transformations, exact in round-to-nearest when nothing overflows or underflows:
@@ -78,8 +77,8 @@ int orient2d_exact(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eig
         expansion_safe(c.x()) && expansion_safe(c.y()))
         return orient2d_expansion(a, b, c);
     const mpq_class ax(a.x()), ay(a.y());
-    const mpq_class det = (mpq_class(b.x()) - ax) * (mpq_class(c.y()) - ay) -
-                          (mpq_class(b.y()) - ay) * (mpq_class(c.x()) - ax);
+    const mpq_class det =
+        (mpq_class(b.x()) - ax) * (mpq_class(c.y()) - ay) - (mpq_class(b.y()) - ay) * (mpq_class(c.x()) - ax);
     return sign_of(det);
 }
 
@@ -99,8 +98,7 @@ int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
     return s != 0 ? s : orient2d_exact(a, b, c);
 }
 
-int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-             const Eigen::Vector3d& d) {
+int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
     const Eigen::Vector3d ad = a - d, bd = b - d, cd = c - d;
     const double bdxcdy = bd.x() * cd.y(), cdxbdy = cd.x() * bd.y();
     const double cdxady = cd.x() * ad.y(), adxcdy = ad.x() * cd.y();

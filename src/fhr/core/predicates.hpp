@@ -19,8 +19,7 @@ int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
 
 /// Sign of det[a−d, b−d, c−d]: +1 iff d lies below the plane through a, b, c seen
 /// counter-clockwise from above (Shewchuk's convention). Exact.
-int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-             const Eigen::Vector3d& d);
+int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d);
 
 /// True iff the three points are exactly collinear (or coincide): (b−a) × (c−a) = 0 exactly.
 bool collinear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);

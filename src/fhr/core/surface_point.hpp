@@ -14,11 +14,11 @@ namespace fhr {
 struct SurfacePoint {
     enum class Kind { vertex, edge, face };
     Kind kind = Kind::vertex;
-    VertexId vertex;                ///< kind == vertex
-    HalfedgeId halfedge;            ///< kind == edge: the point (1 − t)·from + t·to of this halfedge
-    double t = 0;                   ///< kind == edge, in [0, 1]
-    FaceId face;                    ///< kind == face
-    std::array<double, 3> bary{};   ///< kind == face: weights of face_vertices(face), summing to 1
+    VertexId vertex;               ///< kind == vertex
+    HalfedgeId halfedge;           ///< kind == edge: the point (1 − t)·from + t·to of this halfedge
+    double t = 0;                  ///< kind == edge, in [0, 1]
+    FaceId face;                   ///< kind == face
+    std::array<double, 3> bary{};  ///< kind == face: weights of face_vertices(face), summing to 1
 
     static SurfacePoint at_vertex(VertexId v) {
         SurfacePoint p;

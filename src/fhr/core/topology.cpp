@@ -34,7 +34,8 @@ Components connected_components(const TriMesh& m) {
         return v;
     };
     for (EdgeId e : m.edges()) {
-        const std::uint32_t a = root(m.to(TriMesh::halfedge(e, 0)).idx()), b = root(m.to(TriMesh::halfedge(e, 1)).idx());
+        const std::uint32_t a = root(m.to(TriMesh::halfedge(e, 0)).idx()),
+                            b = root(m.to(TriMesh::halfedge(e, 1)).idx());
         if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the lower root stays
     }
     Components c;

@@ -17,7 +17,7 @@ std::vector<HalfedgeId> boundary_loops(const TriMesh& mesh);
 
 struct Components {
     std::size_t count = 0;
-    VertexData<std::uint32_t> vertex_component;   ///< #V, numbered by lowest vertex index
+    VertexData<std::uint32_t> vertex_component;  ///< #V, numbered by lowest vertex index
 };
 Components connected_components(const TriMesh& mesh);
 

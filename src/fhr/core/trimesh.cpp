@@ -215,8 +215,8 @@ VertexId TriMesh::split_edge(EdgeId e, const Vec3& p) {
     const VertexId m = new_vertex(p);
     const FaceId f2 = side_h ? new_face() : FaceId(), f3 = side_o ? new_face() : FaceId();
     const HalfedgeId x = halfedge(new_edge(m, b), 0);  // m -> b; twin b -> m
-    to_[h.idx()] = m;  // h: a -> m, o: m -> a
-    if (side_h) {  // (a, b, c) -> (a, m, c), (m, b, c)
+    to_[h.idx()] = m;                                  // h: a -> m, o: m -> a
+    if (side_h) {                                      // (a, b, c) -> (a, m, c), (m, b, c)
         const HalfedgeId h2 = next(h1);
         const HalfedgeId y = halfedge(new_edge(m, to(h1)), 0);
         set_face_loop(face(h), h, y, h2);
@@ -261,7 +261,8 @@ bool TriMesh::is_collapse_ok(HalfedgeId h) const {
     });
     const std::span<const VertexId> gathered(ring.data(), std::min(valence, ring.size()));
     const auto adjacent_to_v1 = [&](VertexId w) {
-        return valence <= ring.size() ? std::find(gathered.begin(), gathered.end(), w) != gathered.end() : find_halfedge(v1, w).valid();
+        return valence <= ring.size() ? std::find(gathered.begin(), gathered.end(), w) != gathered.end()
+                                      : find_halfedge(v1, w).valid();
     };
     bool ok = true;
     for_each_outgoing(v0, [&](HalfedgeId g) {
@@ -321,15 +322,15 @@ VertexId TriMesh::split_vertex(VertexId v1, VertexId va, VertexId vb, const Vec3
     const VertexId v0 = new_vertex(p);
     // Outgoing halfedges of v1 strictly inside the wedge (ha, hb) now leave v0.
     for (HalfedgeId g = ccw_rotated(ha); g != hb; g = ccw_rotated(g)) to_[twin(g).idx()] = v0;
-    const HalfedgeId h = halfedge(new_edge(v0, v1), 0);    // h: v0 -> v1, twin: v1 -> v0
-    const HalfedgeId na = halfedge(new_edge(v0, va), 0);   // v0 -> va
-    const HalfedgeId nb = halfedge(new_edge(v0, vb), 0);   // v0 -> vb
+    const HalfedgeId h = halfedge(new_edge(v0, v1), 0);   // h: v0 -> v1, twin: v1 -> v0
+    const HalfedgeId na = halfedge(new_edge(v0, va), 0);  // v0 -> va
+    const HalfedgeId nb = halfedge(new_edge(v0, vb), 0);  // v0 -> vb
     // In the wedge, v0 -> va replaces v1 -> va, and vb -> v0 replaces vb -> v1.
     const HalfedgeId hb_twin = twin(hb);
     take_place(na, ha);
     take_place(twin(nb), hb_twin);
-    set_face_loop(new_face(), h, ha, twin(na));            // (v0, v1, va)
-    set_face_loop(new_face(), twin(h), nb, hb_twin);       // (v1, v0, vb)
+    set_face_loop(new_face(), h, ha, twin(na));       // (v0, v1, va)
+    set_face_loop(new_face(), twin(h), nb, hb_twin);  // (v1, v0, vb)
     out_[v0.idx()] = na;
     out_[v1.idx()] = ha;
     out_[vb.idx()] = hb_twin;
@@ -342,9 +343,9 @@ VertexId TriMesh::split_face(FaceId f, const Vec3& p) {
     const VertexId m = new_vertex(p);
     const HalfedgeId ma = halfedge(new_edge(m, va), 0), mb = halfedge(new_edge(m, vb), 0),
                      mc = halfedge(new_edge(m, vc), 0);
-    set_face_loop(f, a, twin(mb), ma);               // (va, vb, m)
-    set_face_loop(new_face(), b, twin(mc), mb);      // (vb, vc, m)
-    set_face_loop(new_face(), c, twin(ma), mc);      // (vc, va, m)
+    set_face_loop(f, a, twin(mb), ma);           // (va, vb, m)
+    set_face_loop(new_face(), b, twin(mc), mb);  // (vb, vc, m)
+    set_face_loop(new_face(), c, twin(ma), mc);  // (vc, va, m)
     out_[m.idx()] = ma;
     return m;
 }
@@ -410,7 +411,8 @@ void TriMesh::validate() const {
     for (HalfedgeId h : halfedges()) ++degree[from(h).idx()];
     for (VertexId v : vertices()) {
         const HalfedgeId h = out(v);
-        if (!h.valid() || h.idx() >= nh || from(h) != v) broken("INV-MESH-6: out of " + vname(v) + " does not leave it");
+        if (!h.valid() || h.idx() >= nh || from(h) != v)
+            broken("INV-MESH-6: out of " + vname(v) + " does not leave it");
         std::uint32_t n = 0, boundary = 0;
         HalfedgeId g = h;
         do {
@@ -426,8 +428,7 @@ void TriMesh::validate() const {
     for (VertexId v : vertices()) {
         for_each_outgoing(v, [&](HalfedgeId g) {
             for_each_outgoing(v, [&](HalfedgeId k) {
-                if (g < k && to(g) == to(k))
-                    broken("INV-MESH-8: two edges join " + vname(v) + " and " + vname(to(g)));
+                if (g < k && to(g) == to(k)) broken("INV-MESH-8: two edges join " + vname(v) + " and " + vname(to(g)));
             });
         });
     }

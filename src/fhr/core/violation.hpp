@@ -10,7 +10,7 @@ namespace fhr {
 
 /// The kind of element a broken invariant names.
 enum class Element : std::uint8_t {
-    whole,              ///< the object as a whole (index -1)
+    whole,  ///< the object as a whole (index -1)
     vertex,
     edge,
     face,
@@ -19,10 +19,10 @@ enum class Element : std::uint8_t {
 };
 
 struct Violation {
-    std::string invariant;   ///< e.g. "MAP-1"
+    std::string invariant;  ///< e.g. "MAP-1"
     Element element = Element::whole;
-    std::int64_t index = -1; ///< the element's index, -1 when it names none
-    std::string what;        ///< one line, naming the element
+    std::int64_t index = -1;  ///< the element's index, -1 when it names none
+    std::string what;         ///< one line, naming the element
     std::string describe() const { return invariant + ": " + what; }
 };
 

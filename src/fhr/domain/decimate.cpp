@@ -48,7 +48,8 @@ Quadric face_quadric(const TriMesh& m, FaceId f) {
     const Vec3 n = face_normal(m, f);
     const double a = n.x(), b = n.y(), c = n.z(), d = -n.dot(m.position(m.face_vertices(f)[0]));
     const double w = face_area(m, f);
-    return {{w * a * a, w * a * b, w * a * c, w * a * d, w * b * b, w * b * c, w * b * d, w * c * c, w * c * d, w * d * d}};
+    return {
+        {w * a * a, w * a * b, w * a * c, w * a * d, w * b * b, w * b * c, w * b * d, w * c * c, w * c * d, w * d * d}};
 }
 
 // True when every corner angle of triangle (a, b, c) is at least `min_angle` (< 90°), where
@@ -103,7 +104,8 @@ public:
     void assign(std::vector<Candidate> candidates) {
         heap_.clear();
         rest_ = std::move(candidates);
-        for (std::size_t i = 0; i < rest_.size(); ++i) place_[rest_[i].halfedge / 2] = in_rest | static_cast<std::uint32_t>(i);
+        for (std::size_t i = 0; i < rest_.size(); ++i)
+            place_[rest_[i].halfedge / 2] = in_rest | static_cast<std::uint32_t>(i);
         bound_ = Candidate{-INFINITY, -INFINITY, 0};
     }
     /// The least candidate. \pre !empty()
@@ -141,10 +143,11 @@ public:
 private:
     static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
     static constexpr std::uint32_t in_rest = 1u << 31;  // place_ of a candidate in rest_
-    std::vector<Candidate> heap_;  // a binary min-heap of the candidates ≤ bound_
-    std::vector<Candidate> rest_;  // the candidates > bound_, in no order
+    std::vector<Candidate> heap_;                       // a binary min-heap of the candidates ≤ bound_
+    std::vector<Candidate> rest_;                       // the candidates > bound_, in no order
     Candidate bound_{};
-    std::vector<std::uint32_t> place_;  // per edge: its candidate's index in heap_, or in_rest | index in rest_, or none
+    std::vector<std::uint32_t>
+        place_;  // per edge: its candidate's index in heap_, or in_rest | index in rest_, or none
 
     // The least part of the rest into the (empty) heap: those at or below the 1/16-quantile of 1,024
     // evenly spaced samples (all of them when few are left), found in one pass from the back, each
@@ -175,7 +178,7 @@ private:
         place_[c.halfedge / 2] = in_rest | static_cast<std::uint32_t>(rest_.size());
         rest_.push_back(c);
     }
-    void remove_placed(std::uint32_t at) { at & in_rest ? remove_from_rest(at & ~in_rest) : remove_from_heap(at); }
+    void remove_placed(std::uint32_t at) { at& in_rest ? remove_from_rest(at & ~in_rest) : remove_from_heap(at); }
     void remove_from_rest(std::size_t i) {
         place_[rest_[i].halfedge / 2] = none;
         if (i + 1 < rest_.size()) {
@@ -243,8 +246,9 @@ std::vector<Quadric> vertex_quadrics(const TriMesh& T, std::size_t real_faces) {
             const Vec3 &a = T.position(T.from(h)), &b = T.position(T.to(h));
             const Vec3 n = (b - a).cross(face_normal(T, f)).normalized();
             const double d = -n.dot(a), w = (b - a).squaredNorm();
-            const Quadric side{{w * n.x() * n.x(), w * n.x() * n.y(), w * n.x() * n.z(), w * n.x() * d, w * n.y() * n.y(),
-                                w * n.y() * n.z(), w * n.y() * d, w * n.z() * n.z(), w * n.z() * d, w * d * d}};
+            const Quadric side{{w * n.x() * n.x(), w * n.x() * n.y(), w * n.x() * n.z(), w * n.x() * d,
+                                w * n.y() * n.y(), w * n.y() * n.z(), w * n.y() * d, w * n.z() * n.z(), w * n.z() * d,
+                                w * d * d}};
             q[T.from(h).idx()] += side;
             q[T.to(h).idx()] += side;
         }
@@ -255,7 +259,9 @@ std::vector<Quadric> vertex_quadrics(const TriMesh& T, std::size_t real_faces) {
 std::size_t reachable_request(const TriMesh& T, const std::vector<std::size_t>& reached, std::size_t from);
 
 // decimate's regime for a request of `faces` faces: the pass over the cells first, or not.
-bool cells_first(const TriMesh& T, std::size_t faces, const DecimateOptions& o) { return T.n_faces() > o.cells_from && 4 * faces <= T.n_faces(); }
+bool cells_first(const TriMesh& T, std::size_t faces, const DecimateOptions& o) {
+    return T.n_faces() > o.cells_from && 4 * faces <= T.n_faces();
+}
 
 // Decimates `start`, a decimation of T̂ (T with cones; T itself when closed) after the collapses
 // `start.history` (T̂ itself with none),
@@ -264,10 +270,17 @@ bool cells_first(const TriMesh& T, std::size_t faces, const DecimateOptions& o) 
 // connected_components) is decimated to targets[c] faces of T (cone faces not counted).
 class Decimator {
 public:
-    Decimator(const TriMesh& T, Domain start, const Components& comps, const TriMesh& t_hat, std::vector<Quadric> quadrics,
-              const DecimateOptions& o, std::size_t real_vertices, std::vector<std::size_t> targets)
-        : T_(T), m_(std::move(start.mesh)), history_(std::move(start.history)), options_(o),
-          rejected_(m_.n_halfedges(), false), rejection_(m_.n_halfedges()), real_(real_vertices), target_(std::move(targets)),
+    Decimator(const TriMesh& T, Domain start, const Components& comps, const TriMesh& t_hat,
+              std::vector<Quadric> quadrics, const DecimateOptions& o, std::size_t real_vertices,
+              std::vector<std::size_t> targets)
+        : T_(T),
+          m_(std::move(start.mesh)),
+          history_(std::move(start.history)),
+          options_(o),
+          rejected_(m_.n_halfedges(), false),
+          rejection_(m_.n_halfedges()),
+          real_(real_vertices),
+          target_(std::move(targets)),
           queue_(m_.n_edges()) {
         // One pass over the vertices and one over the faces fill the records and the counts
         // (at 10⁶ faces each pass over the records is some 15 ms).
@@ -340,19 +353,22 @@ public:
                 // A component with boundary may stop above its share (its loops and corners may need
                 // more faces); a closed one may not, unless best_effort.
                 bool closed_above = false;
-                for (std::size_t c = 0; c < faces_.size(); ++c) closed_above = closed_above || (!open_[c] && faces_[c] > target_[c]);
+                for (std::size_t c = 0; c < faces_.size(); ++c)
+                    closed_above = closed_above || (!open_[c] && faces_[c] > target_[c]);
                 if (options_.best_effort || !closed_above) break;
                 std::size_t faces = 0;
                 for (std::size_t f : faces_) faces += f;
                 // The theorem behind the named request holds within one regime (reachable_request).
                 std::size_t reachable = reachable_request(T_, faces_, faces);
                 if (cells_first(T_, reachable, options_) != d.by_cells) reachable = 0;
-                throw InvalidInput("decimation stopped at " + std::to_string(faces) + " faces (target " +
-                                              std::to_string(options_.target_faces) +
-                                              "): no further half-edge collapse keeps the domain valid under "
-                                              "min angle " + fmt(options_.min_angle_deg) + "° and normal deviation " +
-                                              fmt(options_.max_normal_deviation_deg) + "°; ask for more faces" +
-                                              (reachable ? " (--faces " + std::to_string(reachable) + " succeeds)" : std::string()));
+                throw InvalidInput(
+                    "decimation stopped at " + std::to_string(faces) + " faces (target " +
+                    std::to_string(options_.target_faces) +
+                    "): no further half-edge collapse keeps the domain valid under "
+                    "min angle " +
+                    fmt(options_.min_angle_deg) + "° and normal deviation " + fmt(options_.max_normal_deviation_deg) +
+                    "°; ask for more faces" +
+                    (reachable ? " (--faces " + std::to_string(reachable) + " succeeds)" : std::string()));
             }
             step(d.history);
         }
@@ -371,9 +387,9 @@ private:
         const HalfedgeId h(c.halfedge);
         FHR_DCHECK(!m_.is_deleted(TriMesh::edge(h)));
         const std::uint32_t comp = component(m_.from(h));
-        if (faces_[comp] <= target_[comp]) return false;                  // this component is done
-        if (cell_ != no_cell && quota_[comp] == 0) return false;         // or done with this cell
-        if (!valid(h)) {  // try the edge's other direction at its own cost
+        if (faces_[comp] <= target_[comp]) return false;          // this component is done
+        if (cell_ != no_cell && quota_[comp] == 0) return false;  // or done with this cell
+        if (!valid(h)) {                                          // try the edge's other direction at its own cost
             rejected_[h.idx()] = true;
             vertex_[m_.from(h).idx()].suspect = vertex_[m_.to(h).idx()].suspect = true;
             // A twin known to be invalid as things stand is rejected at once: queued, it would
@@ -452,7 +468,8 @@ private:
             std::vector<Candidate> inside;
             for (std::size_t i = first[c]; i < first[c + 1]; ++i)
                 m_.for_each_outgoing(by_cell[i], [&](HalfedgeId g) {
-                    if (m_.to(g).idx() > m_.from(g).idx() && in_cell(TriMesh::edge(g))) inside.push_back(edge_candidate(TriMesh::edge(g)));
+                    if (m_.to(g).idx() > m_.from(g).idx() && in_cell(TriMesh::edge(g)))
+                        inside.push_back(edge_candidate(TriMesh::edge(g)));
                 });
             queue_.assign(std::move(inside));
             // Per component, so that a component's collapses depend on it alone (reachable_request).
@@ -466,9 +483,9 @@ private:
         cell_ = no_cell;
     }
 
-    const TriMesh& T_;                // the input, whose components' shares the targets are
+    const TriMesh& T_;  // the input, whose components' shares the targets are
     TriMesh m_;
-    std::vector<Collapse> history_;   // the collapses that made `start` from T̂
+    std::vector<Collapse> history_;  // the collapses that made `start` from T̂
     const DecimateOptions& options_;
     // What the collapse loop reads of a vertex, in one record of two cache lines: each
     // collapse reads it for every neighbour of the survivor, at random places in arrays of T's
@@ -477,16 +494,16 @@ private:
     struct alignas(64) VertexState {
         Vec3 position;
         Quadric quadric;
-        std::uint32_t changed = 0;    // the collapses made when its star last changed (valid())
-        std::uint32_t component = 0;  // of connected_components(m_)
-        VertexId t;                   // its vertex of T̂
-        bool keep = false;            // never removed (DecimateOptions::keep, apexes)
-        bool suspect = false;         // false when no edge at it has a rejected direction
+        std::uint32_t changed = 0;     // the collapses made when its star last changed (valid())
+        std::uint32_t component = 0;   // of connected_components(m_)
+        VertexId t;                    // its vertex of T̂
+        bool keep = false;             // never removed (DecimateOptions::keep, apexes)
+        bool suspect = false;          // false when no edge at it has a rejected direction
         std::uint32_t cell = no_cell;  // of the pass over the cells: that of its first face in m_
     };
     static_assert(sizeof(VertexState) == 128);
     std::vector<VertexState> vertex_;
-    std::vector<bool> rejected_;        // per halfedge: popped, found invalid, and not queued since
+    std::vector<bool> rejected_;  // per halfedge: popped, found invalid, and not queued since
     // For valid(): per halfedge, 1 + the collapses made when it was last found invalid by the
     // local rules (0: not so) and a halfedge whose face failed its rule then (none_: not so); per
     // vertex (VertexState::changed), the collapses made when its star last changed.
@@ -496,11 +513,11 @@ private:
     };
     std::vector<Rejection> rejection_;
     std::uint32_t collapses_ = 0;
-    std::size_t real_;                  // vertices of T̂ from here on are apexes
-    bool cones_ = false;                // T has boundary: m_ is a decimation of T̂
+    std::size_t real_;                         // vertices of T̂ from here on are apexes
+    bool cones_ = false;                       // T has boundary: m_ is a decimation of T̂
     std::vector<std::size_t> faces_, target_;  // per component: faces of T now, and asked
     std::vector<std::uint8_t> open_;           // per component: 1 when it has boundary (an apex of T̂)
-    std::size_t excess_ = 0;            // Σ over the components of the faces above their target
+    std::size_t excess_ = 0;                   // Σ over the components of the faces above their target
     CandidateQueue queue_;
     double cos_max_turn_ = 0, tan_min_angle_ = 0;
     // Per component: D's signed volume, kept above min_volume_ (a small part of T's) so that a
@@ -611,7 +628,8 @@ private:
     // Neither end of h's edge changed its star since `found` (1 + the collapses made then; 0:
     // never found invalid).
     bool unchanged_since(std::uint32_t found, HalfedgeId h) const {
-        return !options_.recheck_rejected && found > vertex_[m_.from(h).idx()].changed && found > vertex_[m_.to(h).idx()].changed;
+        return !options_.recheck_rejected && found > vertex_[m_.from(h).idx()].changed &&
+               found > vertex_[m_.to(h).idx()].changed;
     }
 
     // The collapse from(h) -> to(h) is allowed when it keeps D a closed 2-manifold of the same
@@ -720,7 +738,7 @@ namespace {
 // What the shares of the faces depend on, per component of T.
 struct ComponentMeasures {
     std::vector<double> area;
-    std::vector<std::size_t> own;    // T's faces
+    std::vector<std::size_t> own;  // T's faces
     std::vector<long> chi, loops;
 };
 
@@ -765,10 +783,12 @@ ComponentTargets shares_of(const ComponentMeasures& m, std::size_t faces) {
     }
     std::vector<std::size_t> order(n);
     for (std::size_t c = 0; c < n; ++c) order[c] = c;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return remainder[a] > remainder[b]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return remainder[a] > remainder[b]; });
     const bool any_boundary = std::any_of(loops.begin(), loops.end(), [](long b) { return b > 0; });
     if (!any_boundary && faces % 2 != 0)
-        throw InvalidInput("--faces " + std::to_string(faces) + " is odd: closed triangulations have an even number of faces");
+        throw InvalidInput("--faces " + std::to_string(faces) +
+                           " is odd: closed triangulations have an even number of faces");
     while (given < faces) {
         for (std::size_t c : order) {
             const std::size_t step = loops[c] ? 1 : 2;
@@ -780,7 +800,8 @@ ComponentTargets shares_of(const ComponentMeasures& m, std::size_t faces) {
     }
     for (std::size_t c = 0; c < n; ++c) {
         const long g = (2 - loops[c] - chi[c]) / 2;
-        const std::size_t least = loops[c] ? static_cast<std::size_t>(std::max(1L, 5 * loops[c] + 4 * g - 4)) : min_closed_faces(g);
+        const std::size_t least =
+            loops[c] ? static_cast<std::size_t>(std::max(1L, 5 * loops[c] + 4 * g - 4)) : min_closed_faces(g);
         const std::size_t want = std::min(own[c], std::max(out.faces[c], least));
         if (want > out.faces[c]) out.raised += want - out.faces[c];
         out.faces[c] = want;
@@ -792,7 +813,8 @@ ComponentTargets shares_of(const ComponentMeasures& m, std::size_t faces) {
 
 ComponentTargets component_targets(const TriMesh& T, std::size_t faces) {
     if (faces == 0 || faces > T.n_faces())
-        throw InvalidInput("--faces " + std::to_string(faces) + " must be between 1 and the mesh's " + std::to_string(T.n_faces()));
+        throw InvalidInput("--faces " + std::to_string(faces) + " must be between 1 and the mesh's " +
+                           std::to_string(T.n_faces()));
     return shares_of(measure_components(T), faces);
 }
 
@@ -803,13 +825,14 @@ std::vector<std::size_t> targets_of(const TriMesh& T, const Components& comps, s
     if (T.is_closed() && comps.count == 1) {
         const long g = genus(T, comps);
         if (target % 2 != 0)
-            throw InvalidInput("--faces " + std::to_string(target) + " is odd: a closed triangulation has an even number of faces");
+            throw InvalidInput("--faces " + std::to_string(target) +
+                               " is odd: a closed triangulation has an even number of faces");
         if (target > T.n_faces())
             throw InvalidInput("--faces " + std::to_string(target) + " is more than the mesh has (" +
-                                          std::to_string(T.n_faces()) + ")");
+                               std::to_string(T.n_faces()) + ")");
         if (target < min_closed_faces(g))
             throw InvalidInput("--faces " + std::to_string(target) + " is fewer than a closed surface of genus " +
-                                          std::to_string(g) + " needs (at least " + std::to_string(min_closed_faces(g)) + ")");
+                               std::to_string(g) + " needs (at least " + std::to_string(min_closed_faces(g)) + ")");
         return {target};
     }
     return component_targets(T, target).faces;
@@ -874,12 +897,13 @@ Domain decimate_from_t(const TriMesh& T, const DecimateOptions& options, bool by
     const Components comps = connected_components(T);
     std::vector<std::size_t> targets = targets_of(T, comps, options.target_faces);
     if (T.is_closed())
-        return Decimator(T, identity(T), comps, T, vertex_quadrics(T, T.n_faces()), options, T.n_vertices(), std::move(targets))
+        return Decimator(T, identity(T), comps, T, vertex_quadrics(T, T.n_faces()), options, T.n_vertices(),
+                         std::move(targets))
             .run(by_cells);
     const Coned C = add_cones(T);
     const DecimateOptions o = with_corners(T, options);
-    Domain closed = Decimator(T, identity(C.mesh), connected_components(C.mesh), C.mesh, vertex_quadrics(C.mesh, C.real_faces), o,
-                              C.real_vertices, std::move(targets))
+    Domain closed = Decimator(T, identity(C.mesh), connected_components(C.mesh), C.mesh,
+                              vertex_quadrics(C.mesh, C.real_faces), o, C.real_vertices, std::move(targets))
                         .run(by_cells);
     return open_domain(std::move(closed), C.real_vertices);
 }
@@ -914,7 +938,9 @@ Domain decimate_again(const TriMesh& T, const Domain& previous, const DecimateOp
     for (std::size_t i = 0; i < reuse; ++i) merged[prev.history[i].kept.idx()] += merged[prev.history[i].removed.idx()];
     std::vector<Quadric> quadrics;
     for (VertexId x : start.t_vertex) quadrics.push_back(merged[x.idx()]);
-    Domain d = Decimator(T, start, connected_components(start.mesh), C.mesh, std::move(quadrics), o, C.real_vertices, std::move(targets)).run(false);
+    Domain d = Decimator(T, start, connected_components(start.mesh), C.mesh, std::move(quadrics), o, C.real_vertices,
+                         std::move(targets))
+                   .run(false);
     // Number D's vertices in T's order, as decimate does (DOM-4): the undone prefix appended its
     // vertices at the end.
     std::vector<std::uint32_t> order(d.t_vertex.size()), rank(d.t_vertex.size());
@@ -953,7 +979,8 @@ Outcome<Domain> replay_collapses(const Domain& d, const TriMesh& T, std::size_t 
         const Collapse& c = d.history[i];
         const VertexId kept = current[c.kept.idx()], left = current[c.left.idx()], right = current[c.right.idx()];
         if (left == right || !r.mesh.find_halfedge(kept, left).valid() || !r.mesh.find_halfedge(kept, right).valid())
-            return Outcome<Domain>::failure("collapse " + std::to_string(i) + " cannot be undone: its neighbours are not there");
+            return Outcome<Domain>::failure("collapse " + std::to_string(i) +
+                                            " cannot be undone: its neighbours are not there");
         current[c.removed.idx()] = r.mesh.split_vertex(kept, left, right, T.position(c.removed));
         r.t_vertex.push_back(c.removed);
     }
@@ -964,7 +991,8 @@ Outcome<Domain> replay_collapses(const Domain& d, const TriMesh& T, std::size_t 
 
 Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count) {
     FHR_DCHECK(count <= d.history.size());
-    if (!T.is_closed()) return open_domain(undo_collapses(close_domain(d, T), add_cones(T).mesh, count), T.n_vertices());
+    if (!T.is_closed())
+        return open_domain(undo_collapses(close_domain(d, T), add_cones(T).mesh, count), T.n_vertices());
     Outcome<Domain> r = replay_collapses(d, T, count);
     if (!r) throw ContractViolation("undo_collapses: the history does not describe the domain: " + r.why());
     return std::move(r).value();
@@ -1009,7 +1037,10 @@ Domain close_domain(const Domain& D, const TriMesh& T) {
             loop_of[T.from(g).idx()] = i;
             place[T.from(g).idx()] = length[i]++;
         }
-    auto vertex = [&](VertexId v) { return "domain vertex " + std::to_string(v.idx()) + " (mesh vertex " + std::to_string(D.t_vertex[v].idx()) + ")"; };
+    auto vertex = [&](VertexId v) {
+        return "domain vertex " + std::to_string(v.idx()) + " (mesh vertex " + std::to_string(D.t_vertex[v].idx()) +
+               ")";
+    };
     // Each loop of D: on one loop of T, its boundary halfedges (which run as T's do) stepping
     // forward along it, once around in all.
     std::vector<HalfedgeId> d_loop_of(t_loops.size());
@@ -1021,20 +1052,22 @@ Domain close_domain(const Domain& D, const TriMesh& T) {
             for (VertexId v : {a, b})
                 if (loop_of[D.t_vertex[v].idx()] != loop)
                     throw InvalidInput(vertex(v) + " is on the domain's boundary but " +
-                                                  (loop_of[D.t_vertex[v].idx()] == UINT32_MAX ? std::string("not on the mesh's boundary")
-                                                                                              : "on another boundary loop of the mesh than its neighbour"));
+                                       (loop_of[D.t_vertex[v].idx()] == UINT32_MAX
+                                            ? std::string("not on the mesh's boundary")
+                                            : "on another boundary loop of the mesh than its neighbour"));
             steps += (place[D.t_vertex[b].idx()] + length[loop] - place[D.t_vertex[a].idx()]) % length[loop];
         }
         if (steps != length[loop] || d_loop_of[loop].valid())
             throw InvalidInput("the domain's boundary loop through " + vertex(D.mesh.from(h)) +
-                                          " does not go once around the mesh's boundary loop in the mesh's orientation");
+                               " does not go once around the mesh's boundary loop in the mesh's orientation");
         d_loop_of[loop] = h;
     }
     Domain out = D;
     for (std::uint32_t i = 0; i < t_loops.size(); ++i) {
         if (!d_loop_of[i].valid())
-            throw InvalidInput("the mesh's boundary loop through mesh vertex " + std::to_string(T.from(t_loops[i]).idx()) +
-                                          " has no boundary loop of the domain along it");
+            throw InvalidInput("the mesh's boundary loop through mesh vertex " +
+                               std::to_string(T.from(t_loops[i]).idx()) +
+                               " has no boundary loop of the domain along it");
         out.mesh.fill_hole(d_loop_of[i], apexes[i]);
         out.t_vertex.emplace_back(static_cast<VertexId::Index>(T.n_vertices() + i));
     }

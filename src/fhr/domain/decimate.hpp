@@ -48,8 +48,8 @@ struct DecimateOptions {
     /// A boundary vertex where T's boundary turns by more than this angle (between the directions
     /// of its two boundary edges) is a corner of the boundary: D keeps it.
     double corner_angle_deg = 60.0;
-    std::vector<VertexId> keep{};            ///< vertices of T that D must keep (§3 recovery)
-    bool best_effort = false;                ///< stop above the target instead of throwing when no collapse is valid
+    std::vector<VertexId> keep{};  ///< vertices of T that D must keep (§3 recovery)
+    bool best_effort = false;      ///< stop above the target instead of throwing when no collapse is valid
     /// Check every collapse in full each time it is tried, as the plain loop above does, instead
     /// of remembering which were found invalid by rules whose inputs have not changed since, or
     /// whose failing face still fails: slower, and the same D (DOM-22); for tests.
@@ -63,8 +63,8 @@ struct DecimateOptions {
 
 /// D together with its correspondence to T (paper §2).
 struct Domain {
-    TriMesh mesh;                     ///< D: compact, with T's topology (components, genus, boundary loops)
-    VertexData<VertexId> t_vertex;    ///< #V(D): the vertex x_j of T at vertex v_j of D
+    TriMesh mesh;                   ///< D: compact, with T's topology (components, genus, boundary loops)
+    VertexData<VertexId> t_vertex;  ///< #V(D): the vertex x_j of T at vertex v_j of D
     /// The collapses, in the order they were made, in the numbering of T̂ (core/cones.hpp): on a
     /// surface with boundary, `left` or `right` of a collapse along the boundary is the apex of
     /// its loop's cone, vertex #V(T) + (the loop's place in boundary_loops(T)).
@@ -93,8 +93,8 @@ std::size_t min_closed_faces(long genus);
 /// component's own faces. paper_notes/boundary.md.
 /// \throws InvalidInput when `faces` is 0 or more than T has, or odd with every component closed.
 struct ComponentTargets {
-    std::vector<std::size_t> faces;   ///< per component
-    std::size_t raised = 0;           ///< how many faces the minima added to the request
+    std::vector<std::size_t> faces;  ///< per component
+    std::size_t raised = 0;          ///< how many faces the minima added to the request
 };
 ComponentTargets component_targets(const TriMesh& T, std::size_t faces);
 
@@ -150,6 +150,5 @@ bool history_describes(const Domain& d, const TriMesh& T);
 /// the collapses are undone on D̂ and T̂ and the cones taken off again.
 /// \pre count <= d.history.size().
 Domain undo_collapses(const Domain& d, const TriMesh& T, std::size_t count);
-
 
 }  // namespace fhr::domain

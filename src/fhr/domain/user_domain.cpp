@@ -98,14 +98,13 @@ public:
 
 private:
     TriMesh& T_;
-    std::vector<FaceId> pieces_;                   // the faces the root face is split into
-    std::map<VertexId, Eigen::Vector3d> bary_;     // root-face barycentric coordinates of their corners
+    std::vector<FaceId> pieces_;                // the faces the root face is split into
+    std::map<VertexId, Eigen::Vector3d> bary_;  // root-face barycentric coordinates of their corners
 };
 
 }  // namespace
 
-Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<NamedSurfacePoint>& x,
-                     const DomainSources& sources) {
+Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<NamedSurfacePoint>& x, const DomainSources& sources) {
     if (x.size() != D.n_vertices())
         throw InvalidInput(sources.correspondence_file, 0,
                            "has " + std::to_string(x.size()) + " entries but the domain " + sources.domain_file +
@@ -120,9 +119,9 @@ Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<NamedSurfacePoint>
     const std::size_t parts_d = connected_components(D).count, parts_t = connected_components(T).count;
     if (loops_d != loops_t || parts_d != parts_t)
         throw InvalidInput(sources.domain_file, 0,
-                           "the domain has " + std::to_string(loops_d) + " boundary loops in " + std::to_string(parts_d) +
-                               " components but the mesh has " + std::to_string(loops_t) + " in " + std::to_string(parts_t) +
-                               ": they must have the same topology");
+                           "the domain has " + std::to_string(loops_d) + " boundary loops in " +
+                               std::to_string(parts_d) + " components but the mesh has " + std::to_string(loops_t) +
+                               " in " + std::to_string(parts_t) + ": they must have the same topology");
     const std::size_t n = x.size();
     std::vector<SurfacePoint> p(n);
     std::vector<Vec3> pos(n);
@@ -133,7 +132,8 @@ Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<NamedSurfacePoint>
     // DOM-12: no two domain vertices on one point.
     std::vector<std::size_t> order(n);
     for (std::size_t j = 0; j < n; ++j) order[j] = j;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return std::pair(key(p[a]), a) < std::pair(key(p[b]), b); });
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return std::pair(key(p[a]), a) < std::pair(key(p[b]), b); });
     for (std::size_t i = 1; i < n; ++i)
         if (key(p[order[i]]) == key(p[order[i - 1]]))
             throw InvalidInput(sources.correspondence_file, x[order[i]].line,
@@ -171,8 +171,10 @@ Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<NamedSurfacePoint>
             continue;
         }
         std::size_t end = i;
-        while (end < n && p[order[end]].kind == SurfacePoint::Kind::edge && p[order[end]].halfedge == p[j0].halfedge) ++end;
-        for (std::size_t k = end; k-- > i;) d.t_vertex[v_of(order[k])] = T.split_edge(TriMesh::edge(p[j0].halfedge), pos[order[k]]);
+        while (end < n && p[order[end]].kind == SurfacePoint::Kind::edge && p[order[end]].halfedge == p[j0].halfedge)
+            ++end;
+        for (std::size_t k = end; k-- > i;)
+            d.t_vertex[v_of(order[k])] = T.split_edge(TriMesh::edge(p[j0].halfedge), pos[order[k]]);
         i = end;
     }
     // DOM-21: D's boundary follows T's (each boundary edge of D an arc of T's boundary between its ends).

@@ -26,7 +26,6 @@ struct DomainSources {
 ///         count; D's Euler characteristic, boundary loops or components differ from T's; two
 ///         entries name the same point (or points closer than 1e−12 in barycentric terms within a
 ///         face); D's boundary does not follow T's (close_domain).
-Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<NamedSurfacePoint>& x,
-                     const DomainSources& sources);
+Domain attach_domain(TriMesh& T, TriMesh D, const std::vector<NamedSurfacePoint>& x, const DomainSources& sources);
 
 }  // namespace fhr::domain

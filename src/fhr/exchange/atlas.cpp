@@ -128,14 +128,14 @@ private:
     const AtlasOptions& options_;
     Executor& executor_;
     AtlasReport report_;
-    std::vector<std::uint32_t> weld_;  // point → welded vertex
-    std::vector<Vec3> welded_;         // welded vertex positions
-    std::vector<Triangle> w_faces_;    // faces over welded vertices
-    std::optional<TriMesh> surface_;   // S, when ATLAS-2 holds
-    std::vector<Edge> edges_;          // interior edges of S
-    std::vector<std::uint32_t> chart_; // per face: its chart (numbered by lowest face)
+    std::vector<std::uint32_t> weld_;          // point → welded vertex
+    std::vector<Vec3> welded_;                 // welded vertex positions
+    std::vector<Triangle> w_faces_;            // faces over welded vertices
+    std::optional<TriMesh> surface_;           // S, when ATLAS-2 holds
+    std::vector<Edge> edges_;                  // interior edges of S
+    std::vector<std::uint32_t> chart_;         // per face: its chart (numbered by lowest face)
     std::vector<std::uint32_t> chart_number_;  // chart root → 0, 1, … in order of lowest face
-    std::vector<int> sign_;            // per face: exact orient2d of its UV triangle
+    std::vector<int> sign_;                    // per face: exact orient2d of its UV triangle
 
     std::size_t n() const { return a_.faces.size(); }
     const UV& uv(std::uint32_t f, int k) const { return a_.uv[a_.face_uv[f][k]]; }
@@ -252,13 +252,19 @@ CheckResult AtlasVerifier::check_surface() {
         std::vector<std::int8_t> turned(components.count, -1);  // per component: unknown, no, yes
         for (std::uint32_t f = 0; f < n(); ++f) {
             const Triangle &t = w_faces_[f], &b = built[f];
-            const bool same = (b[0] == t[0] && b[1] == t[1]) || (b[0] == t[1] && b[1] == t[2]) || (b[0] == t[2] && b[1] == t[0]);
+            const bool same =
+                (b[0] == t[0] && b[1] == t[1]) || (b[0] == t[1] && b[1] == t[2]) || (b[0] == t[2] && b[1] == t[0]);
             std::int8_t& c = turned[components.vertex_component[VertexId(t[0])]];
-            if (c < 0) c = same ? 0 : 1;
+            if (c < 0)
+                c = same ? 0 : 1;
             else if (c != (same ? 0 : 1))
-                rec.fail([&] { return "face " + std::to_string(f) + " is wound against its neighbours: the surface is not "
-                                      "consistently oriented"; },
-                         f);
+                rec.fail(
+                    [&] {
+                        return "face " + std::to_string(f) +
+                               " is wound against its neighbours: the surface is not "
+                               "consistently oriented";
+                    },
+                    f);
         }
         if (rec.failures() == 0) surface_.emplace(std::move(mesh));
     } catch (const InvalidInput& e) {
@@ -273,9 +279,12 @@ CheckResult AtlasVerifier::check_degenerate() {
     sign_.resize(n());
     for (std::uint32_t f = 0; f < n(); ++f) {
         sign_[f] = orient2d(uv2(f, 0), uv2(f, 1), uv2(f, 2));
-        if (sign_[f] == 0 && rec.fail([&] { return "face " + std::to_string(f) + ": its UV triangle " + str(uv(f, 0)) + " " +
-                                                   str(uv(f, 1)) + " " + str(uv(f, 2)) + " is degenerate"; },
-                                      f))
+        if (sign_[f] == 0 && rec.fail(
+                                 [&] {
+                                     return "face " + std::to_string(f) + ": its UV triangle " + str(uv(f, 0)) + " " +
+                                            str(uv(f, 1)) + " " + str(uv(f, 2)) + " is degenerate";
+                                 },
+                                 f))
             rec.locate(-1, uv(f, 0));
     }
     rec.examined(n());
@@ -353,11 +362,14 @@ CheckResult AtlasVerifier::check_folds() {
         const std::int64_t c = chart_of(f);
         if (sign_[f] == chart_sign[c]) continue;
         report_.folded.push_back(f);
-        if (rec.fail([&] { return "face " + std::to_string(f) + " of chart " + std::to_string(c) + " is folded: its UV triangle " +
-                                  str(uv(f, 0)) + " " + str(uv(f, 1)) + " " + str(uv(f, 2)) + " is " +
-                                  (sign_[f] > 0 ? "counter-clockwise" : "clockwise") + ", its chart " +
-                                  (chart_sign[c] > 0 ? "counter-clockwise" : "clockwise"); },
-                     f))
+        if (rec.fail(
+                [&] {
+                    return "face " + std::to_string(f) + " of chart " + std::to_string(c) +
+                           " is folded: its UV triangle " + str(uv(f, 0)) + " " + str(uv(f, 1)) + " " + str(uv(f, 2)) +
+                           " is " + (sign_[f] > 0 ? "counter-clockwise" : "clockwise") + ", its chart " +
+                           (chart_sign[c] > 0 ? "counter-clockwise" : "clockwise");
+                },
+                f))
             rec.locate(c, uv(f, 0));
     }
     if (options_.no_mirror) {
@@ -366,9 +378,12 @@ CheckResult AtlasVerifier::check_folds() {
             const std::int64_t c = chart_of(f);
             if (chart_sign[c] > 0 || named[c]) continue;
             named[c] = 1;
-            if (rec.fail([&] { return "chart " + std::to_string(c) + " (face " + std::to_string(f) +
-                                      ") is mirrored: clockwise in UV (--no-mirror)"; },
-                         f))
+            if (rec.fail(
+                    [&] {
+                        return "chart " + std::to_string(c) + " (face " + std::to_string(f) +
+                               ") is mirrored: clockwise in UV (--no-mirror)";
+                    },
+                    f))
                 rec.locate(c, uv(f, 0));
         }
     }
@@ -423,12 +438,16 @@ CheckResult AtlasVerifier::check_cracks() {
                 const std::uint32_t a = boundary[it->second].first, b = boundary[it->second].second;
                 if (a == v || b == v) continue;
                 const Vec3 &x = welded_[a], &y = welded_[b];
-                const bool inside = (p.array() >= x.cwiseMin(y).array()).all() && (p.array() <= x.cwiseMax(y).array()).all();
+                const bool inside =
+                    (p.array() >= x.cwiseMin(y).array()).all() && (p.array() <= x.cwiseMax(y).array()).all();
                 if (inside && p != x && p != y && collinear(x, p, y))
-                    rec.fail([&] { return "vertex " + std::to_string(v) + " " + detail::str(p) +
-                                          " lies inside the boundary edge (" + std::to_string(a) + ", " + std::to_string(b) +
-                                          ") without being its vertex: a T-vertex"; },
-                             -1, v);
+                    rec.fail(
+                        [&] {
+                            return "vertex " + std::to_string(v) + " " + detail::str(p) +
+                                   " lies inside the boundary edge (" + std::to_string(a) + ", " + std::to_string(b) +
+                                   ") without being its vertex: a T-vertex";
+                        },
+                        -1, v);
             }
         }
     }
@@ -459,10 +478,13 @@ CheckResult AtlasVerifier::check_cracks() {
         const int f_end = same_a ? fb : fa, g_end = same_a ? gb : ga;
         const double gap = (uv2(e.f, f_end) - uv2(e.g, g_end)).norm();
         if (gap <= eps[a_.face_texture[e.f]] &&
-            rec.fail([&] { return "the edge (" + std::to_string(w_faces_[e.f][fa]) + ", " + std::to_string(w_faces_[e.f][fb]) +
-                                  ") of faces " + std::to_string(e.f) + " and " + std::to_string(e.g) +
-                                  " is torn in UV: its images meet at one end and miss at the other by " + num(gap); },
-                     e.f, w_faces_[e.f][f_end]))
+            rec.fail(
+                [&] {
+                    return "the edge (" + std::to_string(w_faces_[e.f][fa]) + ", " + std::to_string(w_faces_[e.f][fb]) +
+                           ") of faces " + std::to_string(e.f) + " and " + std::to_string(e.g) +
+                           " is torn in UV: its images meet at one end and miss at the other by " + num(gap);
+                },
+                e.f, w_faces_[e.f][f_end]))
             rec.locate(chart_of(e.f), uv(e.f, f_end));
     }
     rec.examined(edges_.size() + boundary.size());
@@ -509,7 +531,8 @@ bool in_cone(const Vec2& p, const Vec2& x, const Vec2& y, const Vec2& c) {
 // counting sort on the cell (row-major, nx columns).
 class UvGrid {
 public:
-    UvGrid(const std::vector<std::uint32_t>& faces, const std::function<Vec2(std::uint32_t, int)>& uv2) : box(faces.size()) {
+    UvGrid(const std::vector<std::uint32_t>& faces, const std::function<Vec2(std::uint32_t, int)>& uv2)
+        : box(faces.size()) {
         Vec2 lo_ = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo_;
         for (std::size_t i = 0; i < faces.size(); ++i) {
             box[i] = {uv2(faces[i], 0).cwiseMin(uv2(faces[i], 1)).cwiseMin(uv2(faces[i], 2)),
@@ -584,7 +607,8 @@ void AtlasVerifier::judge_pair(std::uint32_t f, std::uint32_t g, Pairs& found_ov
         };
         const auto [fx, fy] = others(tf);
         const auto [gx, gy] = others(tg);
-        contact = in_cone(pf, fx, fy, gx) || in_cone(pf, fx, fy, gy) || in_cone(pf, gx, gy, fx) || in_cone(pf, gx, gy, fy);
+        contact =
+            in_cone(pf, fx, fy, gx) || in_cone(pf, fx, fy, gy) || in_cone(pf, gx, gy, fx) || in_cone(pf, gx, gy, fy);
     }
     if (contact) found_contact.emplace_back(f, g);
 }
@@ -601,12 +625,13 @@ void AtlasVerifier::find_pairs_in(const std::vector<std::uint32_t>& faces, Pairs
             for (std::size_t x = grid.start[c]; x < grid.start[c + 1]; ++x)
                 for (std::size_t y = x + 1; y < grid.start[c + 1]; ++y) {
                     const std::uint32_t i = grid.listed[x], j = grid.listed[y];
-                    const Vec2 blo = grid.box[i][0].cwiseMax(grid.box[j][0]), bhi = grid.box[i][1].cwiseMin(grid.box[j][1]);
+                    const Vec2 blo = grid.box[i][0].cwiseMax(grid.box[j][0]),
+                               bhi = grid.box[i][1].cwiseMin(grid.box[j][1]);
                     if ((blo.array() > bhi.array()).any()) continue;  // boxes apart
                     const auto corner_cell = grid.cell(blo);
                     if (corner_cell[1] * grid.nx + corner_cell[0] != c) continue;
-                    judge_pair(std::min(faces[i], faces[j]), std::max(faces[i], faces[j]), block_overlap[first_cell / block],
-                               block_contact[first_cell / block]);
+                    judge_pair(std::min(faces[i], faces[j]), std::max(faces[i], faces[j]),
+                               block_overlap[first_cell / block], block_contact[first_cell / block]);
                 }
     });
     for (auto& v : block_overlap) found_overlap.insert(found_overlap.end(), v.begin(), v.end());
@@ -628,13 +653,15 @@ void AtlasVerifier::find_pairs(Recorder& overlaps, Recorder& contacts) {
     std::sort(found_overlap.begin(), found_overlap.end());
     std::sort(found_contact.begin(), found_contact.end());
     const auto pair_text = [&](std::uint32_t f, std::uint32_t g) {
-        return "faces " + std::to_string(f) + " (chart " + std::to_string(chart_of(f)) + ") and " + std::to_string(g) + " (chart " +
-               std::to_string(chart_of(g)) + ")";
+        return "faces " + std::to_string(f) + " (chart " + std::to_string(chart_of(f)) + ") and " + std::to_string(g) +
+               " (chart " + std::to_string(chart_of(g)) + ")";
     };
     for (const auto& [f, g] : found_overlap)
-        if (overlaps.fail([&, f = f, g = g] { return pair_text(f, g) + " overlap in UV"; }, f)) overlaps.locate(chart_of(f), uv(f, 0));
+        if (overlaps.fail([&, f = f, g = g] { return pair_text(f, g) + " overlap in UV"; }, f))
+            overlaps.locate(chart_of(f), uv(f, 0));
     for (const auto& [f, g] : found_contact)
-        if (contacts.fail([&, f = f, g = g] { return pair_text(f, g) + " touch in UV beyond their shared corners"; }, f))
+        if (contacts.fail([&, f = f, g = g] { return pair_text(f, g) + " touch in UV beyond their shared corners"; },
+                          f))
             contacts.locate(chart_of(f), uv(f, 0));
     overlaps.examined(n());
     contacts.examined(n());
@@ -643,18 +670,70 @@ void AtlasVerifier::find_pairs(Recorder& overlaps, Recorder& contacts) {
 }
 
 // ---- ATLAS-8 ---------------------------------------------------------------------------------
+// ATLAS-8: every vertex of T within δ of a vertex of the atlas (`welded`), found through a grid
+// of the atlas's vertices in cells 2δ wide (or coarser).
+void t_vertices_in_atlas(const TriMesh& t, const std::vector<Vec3>& welded, double delta, Recorder& rec) {
+    Vec3 lo = welded.front(), hi = lo;
+    for (const Vec3& p : welded) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    const double cell = std::max({2 * delta, (hi - lo).maxCoeff() / 1048575.0, std::numeric_limits<double>::min()});
+    const auto coord = [&](double x, int k) {
+        return static_cast<std::int64_t>(std::floor(std::clamp((x - lo[k]) / cell, -1.0, 1048576.0)));
+    };
+    const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {  // cells from −1: shifted by one
+        return cell_key(static_cast<std::uint64_t>(x + 1), static_cast<std::uint64_t>(y + 1),
+                        static_cast<std::uint64_t>(z + 1));
+    };
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> grid;
+    grid.reserve(welded.size());
+    for (std::uint32_t v = 0; v < welded.size(); ++v)
+        grid.emplace_back(key(coord(welded[v][0], 0), coord(welded[v][1], 1), coord(welded[v][2], 2)), v);
+    std::sort(grid.begin(), grid.end());
+    for (VertexId v : t.vertices()) {
+        const Vec3& p = t.position(v);
+        bool found = false;
+        const std::int64_t cx = coord(p[0], 0), cy = coord(p[1], 1), cz = coord(p[2], 2);
+        for (std::int64_t dx = -1; dx <= 1 && !found; ++dx)
+            for (std::int64_t dy = -1; dy <= 1 && !found; ++dy)
+                for (std::int64_t dz = -1; dz <= 1 && !found; ++dz) {
+                    const std::int64_t x = cx + dx, y = cy + dy, z = cz + dz;
+                    if (std::min({x, y, z}) < -1 || std::max({x, y, z}) > 1048576) continue;
+                    const std::uint64_t k = key(x, y, z);
+                    for (auto it =
+                             std::lower_bound(grid.begin(), grid.end(), std::pair<std::uint64_t, std::uint32_t>(k, 0));
+                         it != grid.end() && it->first == k && !found; ++it)
+                        found = (welded[it->second] - p).norm() <= delta;
+                }
+        if (!found)
+            rec.fail(
+                [&] {
+                    return "vertex " + std::to_string(v.idx()) + " of T " + detail::str(p) +
+                           " has no vertex of the atlas within " + num(delta);
+                },
+                -1, v.idx());
+    }
+}
+
 CheckResult AtlasVerifier::check_input() {
     Recorder rec("ATLAS-8", title_8);
     const TriMesh& t = *input_;
     const TriMesh& s = *surface_;
     const Topology tt = topology_of(t), ts = topology_of(s);
     if (tt.total_chi() != ts.total_chi())
-        rec.fail([&] { return "chi(atlas) = " + std::to_string(ts.total_chi()) + " but chi(T) = " + std::to_string(tt.total_chi()); });
+        rec.fail([&] {
+            return "chi(atlas) = " + std::to_string(ts.total_chi()) + " but chi(T) = " + std::to_string(tt.total_chi());
+        });
     if (tt.total_loops() != ts.total_loops())
-        rec.fail([&] { return "the atlas has " + loops_text(ts.total_loops()) + " but T has " + loops_text(tt.total_loops()); });
+        rec.fail([&] {
+            return "the atlas has " + loops_text(ts.total_loops()) + " but T has " + loops_text(tt.total_loops());
+        });
     if (tt.count() != ts.count())
-        rec.fail([&] { return "the atlas has " + std::to_string(ts.count()) + " components but T has " +
-                              std::to_string(tt.count()); });
+        rec.fail([&] {
+            return "the atlas has " + std::to_string(ts.count()) + " components but T has " +
+                   std::to_string(tt.count());
+        });
     const InputSide side(t, 2 * a_.rounding);
     const double delta = side.tolerance;
     // Every vertex of S on T, and on ∂T when it is on ∂S.
@@ -664,68 +743,40 @@ CheckResult AtlasVerifier::check_input() {
             const Vec3& p = s.position(VertexId(static_cast<VertexId::Index>(v)));
             distance[v] = side.faces.distance(p);
             if (s.is_boundary(VertexId(static_cast<VertexId::Index>(v))))
-                boundary_distance[v] = side.boundary ? side.boundary->distance(p) : std::numeric_limits<double>::infinity();
+                boundary_distance[v] =
+                    side.boundary ? side.boundary->distance(p) : std::numeric_limits<double>::infinity();
         }
     });
     for (VertexId v : s.vertices()) {
         const double d = distance[v.idx()], b = boundary_distance[v.idx()];
         if (!(d <= delta))
-            rec.fail([&] { return "vertex " + std::to_string(v.idx()) + " " + detail::str(s.position(v)) +
-                                  " of the atlas is not on T (distance " + (std::isinf(d) ? "> " + num(delta) : num(d)) +
-                                  ", tolerance " + num(delta) + ")"; },
-                     -1, v.idx());
+            rec.fail(
+                [&] {
+                    return "vertex " + std::to_string(v.idx()) + " " + detail::str(s.position(v)) +
+                           " of the atlas is not on T (distance " + (std::isinf(d) ? "> " + num(delta) : num(d)) +
+                           ", tolerance " + num(delta) + ")";
+                },
+                -1, v.idx());
         else if (!(b <= delta))
-            rec.fail([&] { return "vertex " + std::to_string(v.idx()) + " " + detail::str(s.position(v)) +
-                                  " is on the atlas's boundary but not on T's (distance " +
-                                  (std::isinf(b) ? "> " + num(delta) : num(b)) + ", tolerance " + num(delta) + ")"; },
-                     -1, v.idx());
+            rec.fail(
+                [&] {
+                    return "vertex " + std::to_string(v.idx()) + " " + detail::str(s.position(v)) +
+                           " is on the atlas's boundary but not on T's (distance " +
+                           (std::isinf(b) ? "> " + num(delta) : num(b)) + ", tolerance " + num(delta) + ")";
+                },
+                -1, v.idx());
     }
-    // Every vertex of T at a vertex of S: S's vertices in a grid of cells 2δ wide (or coarser).
-    {
-        Vec3 lo = welded_.front(), hi = lo;
-        for (const Vec3& p : welded_) {
-            lo = lo.cwiseMin(p);
-            hi = hi.cwiseMax(p);
-        }
-        const double cell = std::max({2 * delta, (hi - lo).maxCoeff() / 1048575.0, std::numeric_limits<double>::min()});
-        const auto coord = [&](double x, int k) {
-            return static_cast<std::int64_t>(std::floor(std::clamp((x - lo[k]) / cell, -1.0, 1048576.0)));
-        };
-        const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {  // cells from −1: shifted by one
-            return cell_key(static_cast<std::uint64_t>(x + 1), static_cast<std::uint64_t>(y + 1), static_cast<std::uint64_t>(z + 1));
-        };
-        std::vector<std::pair<std::uint64_t, std::uint32_t>> grid;
-        grid.reserve(welded_.size());
-        for (std::uint32_t v = 0; v < welded_.size(); ++v)
-            grid.emplace_back(key(coord(welded_[v][0], 0), coord(welded_[v][1], 1), coord(welded_[v][2], 2)), v);
-        std::sort(grid.begin(), grid.end());
-        for (VertexId v : t.vertices()) {
-            const Vec3& p = t.position(v);
-            bool found = false;
-            const std::int64_t cx = coord(p[0], 0), cy = coord(p[1], 1), cz = coord(p[2], 2);
-            for (std::int64_t dx = -1; dx <= 1 && !found; ++dx)
-                for (std::int64_t dy = -1; dy <= 1 && !found; ++dy)
-                    for (std::int64_t dz = -1; dz <= 1 && !found; ++dz) {
-                        const std::int64_t x = cx + dx, y = cy + dy, z = cz + dz;
-                        if (std::min({x, y, z}) < -1 || std::max({x, y, z}) > 1048576) continue;
-                        const std::uint64_t k = key(x, y, z);
-                        for (auto it = std::lower_bound(grid.begin(), grid.end(), std::pair<std::uint64_t, std::uint32_t>(k, 0));
-                             it != grid.end() && it->first == k && !found; ++it)
-                            found = (welded_[it->second] - p).norm() <= delta;
-                    }
-            if (!found)
-                rec.fail([&] { return "vertex " + std::to_string(v.idx()) + " of T " + detail::str(p) +
-                                      " has no vertex of the atlas within " + num(delta); },
-                         -1, v.idx());
-        }
-    }
+    // Every vertex of T at a vertex of S.
+    t_vertices_in_atlas(t, welded_, delta, rec);
     // The same area, up to the rounding of the atlas's points.
     double edge_length = 0;
     for (HalfedgeId h : s.halfedges()) edge_length += (s.position(s.to(h)) - s.position(s.from(h))).norm();
     const double area_s = total_area(s), allowed = geometry_tolerance * side.area + delta * edge_length;
     if (!(std::fabs(area_s - side.area) <= allowed))
-        rec.fail([&] { return "the atlas's area is " + num(area_s) + " but T's is " + num(side.area) + " (difference " +
-                              num(area_s - side.area) + ", allowed " + num(allowed) + ")"; });
+        rec.fail([&] {
+            return "the atlas's area is " + num(area_s) + " but T's is " + num(side.area) + " (difference " +
+                   num(area_s - side.area) + ", allowed " + num(allowed) + ")";
+        });
     rec.examined(3 + s.n_vertices() + t.n_vertices());
     return rec.done();
 }
@@ -765,8 +816,9 @@ double area_in_unit_square(const std::array<Vec2, 3>& t) {
 /// overlapping, which needs their edges to cross) — the union's height is linear in x, so its
 /// value at the slab's middle times the width is exact up to rounding. The triangles whose x-range
 /// holds the slab are kept in an active list as the slabs advance.
-double union_area(const std::vector<std::array<Vec2, 3>>& ts, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
-                  double x0, double x1, double y0, double y1) {
+double union_area(const std::vector<std::array<Vec2, 3>>& ts,
+                  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, double x0, double x1, double y0,
+                  double y1) {
     std::vector<double> xs{x0, x1};
     for (const auto& t : ts)
         for (int e = 0; e < 3; ++e) {
@@ -838,7 +890,8 @@ void AtlasVerifier::figures() {
     double seams = 0, area = 0;
     for (const Edge& e : edges_)
         if (!joined(e)) seams += (welded_[w_faces_[e.f][e.cf]] - welded_[w_faces_[e.f][(e.cf + 1) % 3]]).norm();
-    for (const Triangle& t : w_faces_) area += 0.5 * (welded_[t[1]] - welded_[t[0]]).cross(welded_[t[2]] - welded_[t[0]]).norm();
+    for (const Triangle& t : w_faces_)
+        area += 0.5 * (welded_[t[1]] - welded_[t[0]]).cross(welded_[t[2]] - welded_[t[0]]).norm();
     if (area > 0) report_.seam_length = seams / std::sqrt(area);
     // Packing: per texture, the union of its UV triangles; faces that overlap others are grouped
     // (connected by ATLAS-6's pairs) and each group's union computed by slabs.
@@ -933,14 +986,16 @@ AtlasReport AtlasVerifier::run() {
     report_.distortion = summarize(n(), [&](std::size_t f) {
         const auto i = static_cast<std::uint32_t>(f);
         const Vec3 q0(uv(i, 0)[0], uv(i, 0)[1], 0), q1(uv(i, 1)[0], uv(i, 1)[1], 0), q2(uv(i, 2)[0], uv(i, 2)[1], 0);
-        return face_stretch(q0, q1, q2, a_.points[a_.faces[f][0]], a_.points[a_.faces[f][1]], a_.points[a_.faces[f][2]]);
+        return face_stretch(q0, q1, q2, a_.points[a_.faces[f][0]], a_.points[a_.faces[f][1]],
+                            a_.points[a_.faces[f][2]]);
     });
     return std::move(report_);
 }
 
 }  // namespace
 
-AtlasReport verify_atlas(const Atlas& atlas, const TriMesh* input_mesh, const AtlasOptions& options, Executor* executor) {
+AtlasReport verify_atlas(const Atlas& atlas, const TriMesh* input_mesh, const AtlasOptions& options,
+                         Executor* executor) {
     return AtlasVerifier(atlas, input_mesh, options, executor_or_default(executor)).run();
 }
 

@@ -27,14 +27,14 @@ using UV = std::array<double, 2>;
 
 /// An atlas as read (ATLAS-1): triangles over the file's points, each corner with a UV record.
 struct Atlas {
-    std::string source;                           ///< the file name, for messages
-    std::vector<Vec3> points;                     ///< as in the file, before welding
-    std::vector<Triangle> faces;                  ///< into points
-    std::vector<UV> uv;                           ///< texture coordinate records
-    std::vector<Triangle> face_uv;                ///< per face, per corner: its record in uv
-    std::vector<std::uint32_t> face_texture;      ///< per face: its texture (0 when the file has one)
-    std::vector<std::string> texture_names;       ///< by texture number (OBJ `usemtl`; may be empty)
-    double rounding = 0;                          ///< ATLAS-8's ρ: the coordinates' largest rounding as written
+    std::string source;                       ///< the file name, for messages
+    std::vector<Vec3> points;                 ///< as in the file, before welding
+    std::vector<Triangle> faces;              ///< into points
+    std::vector<UV> uv;                       ///< texture coordinate records
+    std::vector<Triangle> face_uv;            ///< per face, per corner: its record in uv
+    std::vector<std::uint32_t> face_texture;  ///< per face: its texture (0 when the file has one)
+    std::vector<std::string> texture_names;   ///< by texture number (OBJ `usemtl`; may be empty)
+    double rounding = 0;                      ///< ATLAS-8's ρ: the coordinates' largest rounding as written
 };
 
 /// ATLAS-1 on a polygon soup read with texture coordinates (io::parse_obj / parse_ply with

@@ -24,7 +24,8 @@ Gram gram(const Vec3& a, const Vec3& b) { return {a.dot(a), a.dot(b), b.dot(b)};
 
 }  // namespace
 
-FaceStretch face_stretch(const Vec3& q0, const Vec3& q1, const Vec3& q2, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+FaceStretch face_stretch(const Vec3& q0, const Vec3& q1, const Vec3& q2, const Vec3& p0, const Vec3& p1,
+                         const Vec3& p2) {
     // DIST-1: M = G_Q⁻¹ G_P, its eigenvalues σ₁², σ₂².
     const Gram gq = gram(q1 - q0, q2 - q0), gp = gram(p1 - p0, p2 - p0);
     // Each area from the cross product: it keeps its accuracy where det G = |a|²|b|² − (a·b)² cancels.
@@ -50,7 +51,8 @@ FaceStretch face_stretch(const Vec3& q0, const Vec3& q1, const Vec3& q2, const V
 namespace {
 
 /// DIST-9 for several p (ascending) with one sort of (value, weight) pairs.
-std::vector<double> weighted_percentiles(std::vector<std::pair<double, double>> sorted, std::initializer_list<double> ps) {
+std::vector<double> weighted_percentiles(std::vector<std::pair<double, double>> sorted,
+                                         std::initializer_list<double> ps) {
     std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     double total = 0;
     for (const auto& [value, weight] : sorted) total += weight;

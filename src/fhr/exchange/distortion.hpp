@@ -19,13 +19,14 @@ namespace fhr::exchange {
 
 /// DIST-1: one face's affine map from its image triangle q onto its surface triangle p.
 struct FaceStretch {
-    double sigma1 = 0, sigma2 = 0;         ///< singular values, σ₁ ≥ σ₂, before normalisation
+    double sigma1 = 0, sigma2 = 0;            ///< singular values, σ₁ ≥ σ₂, before normalisation
     double image_area = 0, surface_area = 0;  ///< unsigned areas A_Q, A_P
-    bool degenerate = true;                ///< DIST-2: left out of every figure
+    bool degenerate = true;                   ///< DIST-2: left out of every figure
 };
 
 /// DIST-1 for image corners q (3D: a 2D image has z = 0) and surface corners p, corner k onto corner k.
-FaceStretch face_stretch(const Vec3& q0, const Vec3& q1, const Vec3& q2, const Vec3& p0, const Vec3& p1, const Vec3& p2);
+FaceStretch face_stretch(const Vec3& q0, const Vec3& q1, const Vec3& q2, const Vec3& p0, const Vec3& p1,
+                         const Vec3& p2);
 
 /// DIST-4..8; every value is empty (JSON null) when every face is degenerate.
 struct Distortion {

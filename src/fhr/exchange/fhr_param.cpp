@@ -146,7 +146,8 @@ ParamFile parse_param(std::string_view bytes, const std::string& name) {
         in.fail({"header"}, "PARAM-1: not a fhr-param file: the first token is " + io::detail::quoted(magic) +
                                 " (expected 'fhr-param 1')");
     const std::string_view version = in.next({"header"}, "the version '1'");
-    if (version != "1") in.fail({"header"}, "PARAM-1: unsupported version " + io::detail::quoted(version) + " (expected 1)");
+    if (version != "1")
+        in.fail({"header"}, "PARAM-1: unsupported version " + io::detail::quoted(version) + " (expected 1)");
 
     ParamFile file;
     in.keyword("domain_vertices");
@@ -232,6 +233,8 @@ io::FileParts param_parts(const ParamFile& file) {
 
 std::string format_param(const ParamFile& file) { return param_parts(file).joined(); }
 
-void write_param(const std::string& path, const ParamFile& file, Executor* executor) { param_parts(file).write(path, executor); }
+void write_param(const std::string& path, const ParamFile& file, Executor* executor) {
+    param_parts(file).write(path, executor);
+}
 
 }  // namespace fhr::exchange

@@ -36,10 +36,10 @@ struct ParamFace {
 /// The whole file as values. Indices are 0-based and not checked against the counts (PARAM-2 is
 /// the oracle's job, so that it can be reported as a broken invariant).
 struct ParamFile {
-    std::vector<Vec3> domain_vertices;      ///< #N: vertices of D
-    std::vector<Triangle> domain_faces;     ///< #M: faces (i, j, k) of D, counter-clockwise from outside
-    std::vector<Vec3> surface_vertices;     ///< #P: vertices of T′
-    std::vector<ParamFace> surface_faces;   ///< #Q: faces of T′ with patch and β
+    std::vector<Vec3> domain_vertices;     ///< #N: vertices of D
+    std::vector<Triangle> domain_faces;    ///< #M: faces (i, j, k) of D, counter-clockwise from outside
+    std::vector<Vec3> surface_vertices;    ///< #P: vertices of T′
+    std::vector<ParamFace> surface_faces;  ///< #Q: faces of T′ with patch and β
     bool operator==(const ParamFile&) const = default;
 };
 

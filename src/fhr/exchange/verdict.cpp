@@ -9,14 +9,18 @@ namespace {
 
 void index_or_null(io::JsonWriter& j, const char* key, std::int64_t index) {
     j.key(key);
-    if (index < 0) j.null();
-    else j.value(index);
+    if (index < 0)
+        j.null();
+    else
+        j.value(index);
 }
 
 void optional_value(io::JsonWriter& j, const char* key, const std::optional<double>& x) {
     j.key(key);
-    if (x) j.value(*x);
-    else j.null();
+    if (x)
+        j.value(*x);
+    else
+        j.null();
 }
 
 }  // namespace
@@ -45,14 +49,20 @@ void write_head(io::JsonWriter& j, const std::string& path, const std::optional<
                 const std::vector<CheckResult>& checks, const char* rule = nullptr) {
     const CheckResult* first = first_judged_failure(checks);
     j.begin_object().key("file").value(path).key("mesh");
-    if (mesh) j.value(*mesh);
-    else j.null();
+    if (mesh)
+        j.value(*mesh);
+    else
+        j.null();
     j.key("kind").value(kind).key("rule");
-    if (rule) j.value(rule);
-    else j.null();
+    if (rule)
+        j.value(rule);
+    else
+        j.null();
     j.key("readable").value(true).key("valid").value(first == nullptr).key("first_failure");
-    if (first) j.value(first->id);
-    else j.null();
+    if (first)
+        j.value(first->id);
+    else
+        j.null();
 }
 
 /// The `checks` array (CLI-VERIFY-4); an atlas check's entry also has `chart`, `u` and `v`.
@@ -63,8 +73,10 @@ void write_checks(io::JsonWriter& j, const std::vector<CheckResult>& checks) {
         j.key("result").value(to_string(c.status));
         j.key("checked").value(c.checked).key("failures").value(c.failures);
         j.key("first_failure");
-        if (c.first_failure.empty()) j.null();
-        else j.value(c.first_failure);
+        if (c.first_failure.empty())
+            j.null();
+        else
+            j.value(c.first_failure);
         index_or_null(j, "face", c.face);
         index_or_null(j, "vertex", c.vertex);
         index_or_null(j, "patch", c.patch);
@@ -94,7 +106,7 @@ MapKind kind_of_content(std::string_view bytes, std::string_view name) {
 }
 
 std::string verdict_json(const std::string& path, const std::optional<std::string>& mesh, const ParamFile& file,
-                       const std::vector<CheckResult>& checks, const Distortion& distortion) {
+                         const std::vector<CheckResult>& checks, const Distortion& distortion) {
     io::JsonWriter j;
     write_head(j, path, mesh, "param", checks);
     j.key("domain").begin_object().key("vertices").value(file.domain_vertices.size());
@@ -110,7 +122,7 @@ std::string verdict_json(const std::string& path, const std::optional<std::strin
 }
 
 std::string verdict_json(const std::string& path, const std::optional<std::string>& mesh, const Atlas& atlas,
-                       const AtlasReport& report, bool lists) {
+                         const AtlasReport& report, bool lists) {
     io::JsonWriter j;
     write_head(j, path, mesh, "atlas", report.checks);
     j.key("domain").null();
@@ -137,8 +149,9 @@ std::string verdict_json(const std::string& path, const std::optional<std::strin
     return j.str();
 }
 
-std::string verdict_json(const std::string& path, const std::string& domain, const std::string& mesh, const VertexMapFile& map,
-                         const PolygonSoup& D, const PolygonSoup& T, const VertexMapReport& report, bool lists) {
+std::string verdict_json(const std::string& path, const std::string& domain, const std::string& mesh,
+                         const VertexMapFile& map, const PolygonSoup& D, const PolygonSoup& T,
+                         const VertexMapReport& report, bool lists) {
     io::JsonWriter j;
     write_head(j, path, mesh, "vertex_map", report.checks, "adjacent");
     j.key("format").value(to_string(map.format)).key("domain_file").value(domain);

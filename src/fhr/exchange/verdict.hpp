@@ -42,7 +42,8 @@ std::string verdict_json(const std::string& path, const std::optional<std::strin
 
 /// A per-vertex map's verdict (spec/vertex_map.md): `kind` vertex_map, `rule`, `format`, the
 /// domain's file, the figures; with `lists`, the folded faces and the edges without an image.
-std::string verdict_json(const std::string& path, const std::string& domain, const std::string& mesh, const VertexMapFile& map,
-                         const PolygonSoup& D, const PolygonSoup& T, const VertexMapReport& report, bool lists);
+std::string verdict_json(const std::string& path, const std::string& domain, const std::string& mesh,
+                         const VertexMapFile& map, const PolygonSoup& D, const PolygonSoup& T,
+                         const VertexMapReport& report, bool lists);
 
 }  // namespace fhr::exchange

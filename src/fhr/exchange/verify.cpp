@@ -76,7 +76,7 @@ const CheckResult* VerifyReport::first_failure() const { return first_judged_fai
 namespace {
 
 using namespace detail;  // the checks' shared parts (detail/checks.hpp)
-using detail::str;      // overloaded below for β
+using detail::str;       // overloaded below for β
 
 std::string str(const Beta& b) { return "(" + num(b[0]) + ", " + num(b[1]) + ", " + num(b[2]) + ")"; }
 
@@ -108,7 +108,8 @@ struct SideRun {
 
 class Verifier {
 public:
-    Verifier(const ParamFile& file, const TriMesh* input, const detail::InputSide* prepared, Executor& executor, bool paper)
+    Verifier(const ParamFile& file, const TriMesh* input, const detail::InputSide* prepared, Executor& executor,
+             bool paper)
         : f_(file), input_(input), prepared_(prepared), executor_(executor), paper_(paper) {}
 
     VerifyReport run();
@@ -118,7 +119,7 @@ private:
     const TriMesh* input_;
     const detail::InputSide* prepared_;  // T's side of PARAM-11 when the caller prepared it (PreparedInput)
     Executor& executor_;
-    bool paper_;  // PARAM-10 judged (the paper's map) or reported
+    bool paper_;                               // PARAM-10 judged (the paper's map) or reported
     std::optional<Surface> domain_, surface_;  // built by PARAM-3 when valid
     std::vector<std::uint32_t> run_vertex_;    // PARAM-9 → PARAM-10
     std::vector<double> run_t_;
@@ -146,37 +147,54 @@ private:
         const std::size_t n = f_.domain_vertices.size(), m = f_.domain_faces.size(), p = f_.surface_vertices.size();
         for (std::size_t i = 0; i < n; ++i)
             if (bad_point(f_.domain_vertices[i]))
-                rec.fail([&] { return "domain vertex " + std::to_string(i) + " " + str(f_.domain_vertices[i]) +
-                                      " is not finite or exceeds 1e150 in magnitude"; });
+                rec.fail([&] {
+                    return "domain vertex " + std::to_string(i) + " " + str(f_.domain_vertices[i]) +
+                           " is not finite or exceeds 1e150 in magnitude";
+                });
         for (std::size_t i = 0; i < p; ++i)
             if (bad_point(f_.surface_vertices[i]))
-                rec.fail([&] { return "surface vertex " + std::to_string(i) + " " + str(f_.surface_vertices[i]) +
-                                      " is not finite or exceeds 1e150 in magnitude"; },
-                         -1, static_cast<std::int64_t>(i));
+                rec.fail(
+                    [&] {
+                        return "surface vertex " + std::to_string(i) + " " + str(f_.surface_vertices[i]) +
+                               " is not finite or exceeds 1e150 in magnitude";
+                    },
+                    -1, static_cast<std::int64_t>(i));
         for (std::size_t d = 0; d < m; ++d)
             for (std::uint32_t v : f_.domain_faces[d])
                 if (v >= n)
-                    rec.fail([&] { return "domain face " + std::to_string(d) + ": vertex index " + std::to_string(v) +
-                                          " out of range (" + std::to_string(n) + " domain vertices)"; },
-                             -1, -1, static_cast<std::int64_t>(d));
+                    rec.fail(
+                        [&] {
+                            return "domain face " + std::to_string(d) + ": vertex index " + std::to_string(v) +
+                                   " out of range (" + std::to_string(n) + " domain vertices)";
+                        },
+                        -1, -1, static_cast<std::int64_t>(d));
         for (std::size_t f = 0; f < f_.surface_faces.size(); ++f) {
             const ParamFace& face = f_.surface_faces[f];
             const auto fi = static_cast<std::int64_t>(f);
             for (std::uint32_t v : face.v)
                 if (v >= p)
-                    rec.fail([&] { return "surface face " + std::to_string(f) + ": vertex index " + std::to_string(v) +
-                                          " out of range (" + std::to_string(p) + " surface vertices)"; },
-                             fi);
+                    rec.fail(
+                        [&] {
+                            return "surface face " + std::to_string(f) + ": vertex index " + std::to_string(v) +
+                                   " out of range (" + std::to_string(p) + " surface vertices)";
+                        },
+                        fi);
             if (face.patch >= m)
-                rec.fail([&] { return "surface face " + std::to_string(f) + ": patch " + std::to_string(face.patch) +
-                                      " out of range (" + std::to_string(m) + " domain faces)"; },
-                         fi);
+                rec.fail(
+                    [&] {
+                        return "surface face " + std::to_string(f) + ": patch " + std::to_string(face.patch) +
+                               " out of range (" + std::to_string(m) + " domain faces)";
+                    },
+                    fi);
             for (int c = 0; c < 3; ++c)
                 for (double x : face.beta[c])
                     if (!std::isfinite(x))
-                        rec.fail([&] { return "surface face " + std::to_string(f) + ", corner " + std::to_string(c) +
-                                              ": beta " + str(face.beta[c]) + " is not finite"; },
-                                 fi, face.v[c]);
+                        rec.fail(
+                            [&] {
+                                return "surface face " + std::to_string(f) + ", corner " + std::to_string(c) +
+                                       ": beta " + str(face.beta[c]) + " is not finite";
+                            },
+                            fi, face.v[c]);
         }
         rec.examined(n + m + p + f_.surface_faces.size());
         return rec.done();
@@ -185,7 +203,8 @@ private:
     // ---- PARAM-3 ---------------------------------------------------------------------------
     /// PARAM-3's build_surface of the file's points and `count` triangles, `triangle(i)` the i-th.
     static std::optional<Surface> build(const std::vector<Vec3>& points, std::size_t count,
-                                        const std::function<const Triangle&(std::size_t)>& triangle, const char* what, Recorder& rec) {
+                                        const std::function<const Triangle&(std::size_t)>& triangle, const char* what,
+                                        Recorder& rec) {
         PolygonSoup soup;
         soup.points = points;
         soup.indices.reserve(3 * count);
@@ -196,12 +215,14 @@ private:
 
     CheckResult check_manifolds() {
         Recorder rec("PARAM-3", title_3);
-        domain_ = build(f_.domain_vertices, f_.domain_faces.size(), [&](std::size_t i) -> const Triangle& { return f_.domain_faces[i]; },
-                        "domain D", rec);
+        domain_ = build(
+            f_.domain_vertices, f_.domain_faces.size(),
+            [&](std::size_t i) -> const Triangle& { return f_.domain_faces[i]; }, "domain D", rec);
         // T′'s triangles straight from the file's faces (at 10⁶ faces a copy of them would be 20 MB
         // more at the run's peak).
-        surface_ = build(f_.surface_vertices, f_.surface_faces.size(),
-                         [&](std::size_t i) -> const Triangle& { return f_.surface_faces[i].v; }, "surface T'", rec);
+        surface_ = build(
+            f_.surface_vertices, f_.surface_faces.size(),
+            [&](std::size_t i) -> const Triangle& { return f_.surface_faces[i].v; }, "surface T'", rec);
         rec.examined(2);
         return rec.done();
     }
@@ -216,13 +237,17 @@ private:
         const Topology &td = domain_->topology, &tt = surface_->topology;
         const bool single = td.count() == 1 && tt.count() == 1;
         auto name_t = [&](std::uint32_t c) {
-            return single ? std::string("T'") : "the component of T' at surface vertex " + std::to_string(tt.first_vertex[c]);
+            return single ? std::string("T'")
+                          : "the component of T' at surface vertex " + std::to_string(tt.first_vertex[c]);
         };
         auto name_d = [&](std::uint32_t e) {
-            return single ? std::string("D") : "the component of D at domain vertex " + std::to_string(td.first_vertex[e]);
+            return single ? std::string("D")
+                          : "the component of D at domain vertex " + std::to_string(td.first_vertex[e]);
         };
         if (td.count() != tt.count())
-            rec.fail([&] { return "T' has " + std::to_string(tt.count()) + " components but D has " + std::to_string(td.count()); });
+            rec.fail([&] {
+                return "T' has " + std::to_string(tt.count()) + " components but D has " + std::to_string(td.count());
+            });
         // image[c]: the component of D of the patches of T′'s component c (from its first face).
         std::vector<std::uint32_t> image(tt.count(), none), image_face(tt.count(), none), preimage(td.count(), none);
         std::vector<std::uint8_t> spans(tt.count(), 0), held(td.count(), 0);
@@ -238,35 +263,46 @@ private:
             } else if (image[c] != e && !spans[c]) {
                 spans[c] = 1;
                 const std::uint32_t f0 = image_face[c];
-                rec.fail([&] { return name_t(c) + " has faces in two components of D: face " + std::to_string(f0) +
-                                      " in patch " + std::to_string(f_.surface_faces[f0].patch) + " (" + name_d(image[c]) +
-                                      ") and face " + std::to_string(f) + " in patch " + std::to_string(face.patch) + " (" +
-                                      name_d(e) + ")"; },
-                         f, tt.first_vertex[c], face.patch);
+                rec.fail(
+                    [&] {
+                        return name_t(c) + " has faces in two components of D: face " + std::to_string(f0) +
+                               " in patch " + std::to_string(f_.surface_faces[f0].patch) + " (" + name_d(image[c]) +
+                               ") and face " + std::to_string(f) + " in patch " + std::to_string(face.patch) + " (" +
+                               name_d(e) + ")";
+                    },
+                    f, tt.first_vertex[c], face.patch);
             }
         }
         for (std::uint32_t c = 0; c < tt.count(); ++c) {
             if (spans[c]) continue;
             const std::uint32_t e = image[c], f = image_face[c], d = f_.surface_faces[f].patch;
             if (preimage[e] != none) {
-                rec.fail([&] { return name_t(preimage[e]) + " and " + name_t(c) + " both lie in patches of " + name_d(e) +
-                                      ": the components do not correspond one to one"; },
-                         f, tt.first_vertex[c], d);
+                rec.fail(
+                    [&] {
+                        return name_t(preimage[e]) + " and " + name_t(c) + " both lie in patches of " + name_d(e) +
+                               ": the components do not correspond one to one";
+                    },
+                    f, tt.first_vertex[c], d);
                 continue;
             }
             preimage[e] = c;
             if (tt.chi[c] != td.chi[e])
-                rec.fail([&] { return "chi(" + name_t(c) + ") = " + std::to_string(tt.chi[c]) + " but chi(" + name_d(e) +
-                                      ") = " + std::to_string(td.chi[e]); },
-                         single ? -1 : f, single ? -1 : tt.first_vertex[c], single ? -1 : d);
+                rec.fail(
+                    [&] {
+                        return "chi(" + name_t(c) + ") = " + std::to_string(tt.chi[c]) + " but chi(" + name_d(e) +
+                               ") = " + std::to_string(td.chi[e]);
+                    },
+                    single ? -1 : f, single ? -1 : tt.first_vertex[c], single ? -1 : d);
             else if (tt.loops[c] != td.loops[e])
-                rec.fail([&] { return name_t(c) + " has " + loops_text(tt.loops[c]) + " but " + name_d(e) + " has " +
-                                      loops_text(td.loops[e]); },
-                         single ? -1 : f, single ? -1 : tt.first_vertex[c], single ? -1 : d);
+                rec.fail(
+                    [&] {
+                        return name_t(c) + " has " + loops_text(tt.loops[c]) + " but " + name_d(e) + " has " +
+                               loops_text(td.loops[e]);
+                    },
+                    single ? -1 : f, single ? -1 : tt.first_vertex[c], single ? -1 : d);
         }
         for (std::uint32_t e = 0; e < td.count(); ++e)
-            if (!held[e])
-                rec.fail([&] { return name_d(e) + " holds no face of T'"; });
+            if (!held[e]) rec.fail([&] { return name_d(e) + " holds no face of T'"; });
         rec.examined(tt.count());
         return rec.done();
     }
@@ -283,11 +319,14 @@ private:
                 const bool in_range = b[0] >= 0 && b[0] <= 1 && b[1] >= 0 && b[1] <= 1 && b[2] >= 0 && b[2] <= 1;
                 const double sum = b[0] + b[1] + b[2];
                 if (!in_range || std::fabs(sum - 1) > beta_sum_tolerance)
-                    rec.fail([&] { return "surface face " + std::to_string(f) + " (patch " + std::to_string(face.patch) +
-                                          "), vertex " + std::to_string(face.v[c]) + ": beta " + str(b) +
-                                          (in_range ? " sums to " + num(sum) + " (1 within 1e-12 is required)"
-                                                    : " has a component outside [0, 1]"); },
-                             static_cast<std::int64_t>(f), face.v[c], face.patch);
+                    rec.fail(
+                        [&] {
+                            return "surface face " + std::to_string(f) + " (patch " + std::to_string(face.patch) +
+                                   "), vertex " + std::to_string(face.v[c]) + ": beta " + str(b) +
+                                   (in_range ? " sums to " + num(sum) + " (1 within 1e-12 is required)"
+                                             : " has a component outside [0, 1]");
+                        },
+                        static_cast<std::int64_t>(f), face.v[c], face.patch);
             }
         }
         rec.examined(3 * f_.surface_faces.size());
@@ -324,8 +363,10 @@ private:
             }
             const FaceId f0 = mesh.face(h0), f1 = mesh.face(h1);
             --chi[patch(f0)];
-            if (patch(f0) == patch(f1)) parent[find(f0.idx())] = find(f1.idx());
-            else --chi[patch(f1)];
+            if (patch(f0) == patch(f1))
+                parent[find(f0.idx())] = find(f1.idx());
+            else
+                --chi[patch(f1)];
         }
         for (FaceId f : mesh.faces())
             if (find(f.idx()) == f.idx()) ++components[patch(f)];
@@ -334,14 +375,17 @@ private:
         for (VertexId v : mesh.vertices()) {
             ring.clear();
             // The patches of v's faces in turning order; `none` for the gap of a vertex of ∂T′.
-            mesh.for_each_outgoing(v, [&](HalfedgeId h) { ring.push_back(mesh.is_boundary(h) ? none : patch(mesh.face(h))); });
+            mesh.for_each_outgoing(
+                v, [&](HalfedgeId h) { ring.push_back(mesh.is_boundary(h) ? none : patch(mesh.face(h))); });
             fans.clear();
             for (std::size_t k = 0; k < ring.size(); ++k) {
                 const std::uint32_t d = ring[k], before = ring[(k + ring.size() - 1) % ring.size()];
                 if (d == none || d == before) continue;  // the gap, or not the start of a fan of d
                 auto it = std::find_if(fans.begin(), fans.end(), [&](const auto& x) { return x.first == d; });
-                if (it == fans.end()) fans.emplace_back(d, 1);
-                else ++it->second;
+                if (it == fans.end())
+                    fans.emplace_back(d, 1);
+                else
+                    ++it->second;
             }
             if (fans.empty()) ++chi[ring[0]];  // interior vertex of one patch (no gap: ring[0] is a patch)
             for (const auto& [d, count] : fans) {
@@ -355,15 +399,26 @@ private:
             if (first_face[d] == none)
                 rec.fail([&] { return "patch " + std::to_string(d) + " holds no face of T'"; }, -1, -1, pd);
             else if (components[d] != 1)
-                rec.fail([&] { return "patch " + std::to_string(d) + " is not connected: its faces form " +
-                                      std::to_string(components[d]) + " pieces"; }, face, -1, pd);
+                rec.fail(
+                    [&] {
+                        return "patch " + std::to_string(d) + " is not connected: its faces form " +
+                               std::to_string(components[d]) + " pieces";
+                    },
+                    face, -1, pd);
             else if (pinch[d] != none)
-                rec.fail([&] { return "patch " + std::to_string(d) + " is pinched at surface vertex " +
-                                      std::to_string(pinch[d]) + ": its faces there form several fans"; },
-                         face, pinch[d], pd);
+                rec.fail(
+                    [&] {
+                        return "patch " + std::to_string(d) + " is pinched at surface vertex " +
+                               std::to_string(pinch[d]) + ": its faces there form several fans";
+                    },
+                    face, pinch[d], pd);
             else if (chi[d] != 1)
-                rec.fail([&] { return "patch " + std::to_string(d) + " has Euler characteristic " + std::to_string(chi[d]) +
-                                      " (a disk has 1): it has holes or handles"; }, face, -1, pd);
+                rec.fail(
+                    [&] {
+                        return "patch " + std::to_string(d) + " has Euler characteristic " + std::to_string(chi[d]) +
+                               " (a disk has 1): it has holes or handles";
+                    },
+                    face, -1, pd);
         }
         rec.examined(m);
         return rec.done();
@@ -423,15 +478,18 @@ private:
                 if (diff > continuity_tolerance) {
                     broken[v] = 1;
                     const std::uint64_t f0 = first[v] / 3;
-                    rec.fail([&] {
-                        return "surface vertex " + std::to_string(v) + ": face " + std::to_string(f0) + " (patch " +
-                               std::to_string(f_.surface_faces[f0].patch) + ") maps it to " + point_of(first[v]) +
-                               ", face " + std::to_string(f) + " (patch " + std::to_string(f_.surface_faces[f].patch) +
-                               ") to " + point_of(here) +
-                               (std::isinf(diff) ? std::string(": not the same vertex, edge or face of D (the non-zero "
-                                                               "weights must be on the same domain vertices)")
-                                                 : ": they differ by " + num(diff) + " (more than 1e-12)");
-                    }, static_cast<std::int64_t>(f), v, f_.surface_faces[f].patch);
+                    rec.fail(
+                        [&] {
+                            return "surface vertex " + std::to_string(v) + ": face " + std::to_string(f0) + " (patch " +
+                                   std::to_string(f_.surface_faces[f0].patch) + ") maps it to " + point_of(first[v]) +
+                                   ", face " + std::to_string(f) + " (patch " +
+                                   std::to_string(f_.surface_faces[f].patch) + ") to " + point_of(here) +
+                                   (std::isinf(diff)
+                                        ? std::string(": not the same vertex, edge or face of D (the non-zero "
+                                                      "weights must be on the same domain vertices)")
+                                        : ": they differ by " + num(diff) + " (more than 1e-12)");
+                        },
+                        static_cast<std::int64_t>(f), v, f_.surface_faces[f].patch);
                 }
             }
         }
@@ -454,10 +512,13 @@ private:
             // Theorem (Floater 2003, Thm 6.1 / Prop. 1): one-to-one needs every image triangle
             // strictly counter-clockwise; exact predicate, so round-off cannot hide a fold.
             if (const int o = orient2d(a, b, c); o <= 0)
-                rec.fail([&] { return "surface face " + std::to_string(f) + " (patch " + std::to_string(face.patch) +
-                                      "): its image is " + (o < 0 ? "clockwise" : "degenerate") +
-                                      " (exact orient2d = " + std::to_string(o) + ")"; },
-                         static_cast<std::int64_t>(f), -1, face.patch);
+                rec.fail(
+                    [&] {
+                        return "surface face " + std::to_string(f) + " (patch " + std::to_string(face.patch) +
+                               "): its image is " + (o < 0 ? "clockwise" : "degenerate") +
+                               " (exact orient2d = " + std::to_string(o) + ")";
+                    },
+                    static_cast<std::int64_t>(f), -1, face.patch);
             const double t1 = (b.x() - a.x()) * (c.y() - a.y()), t2 = (b.y() - a.y()) * (c.x() - a.x());
             area[face.patch].add(t1 - t2);
             magnitude[face.patch] += std::fabs(t1) + std::fabs(t2);
@@ -470,9 +531,12 @@ private:
             const double s = area[d].value();
             const double tolerance = area_tolerance + 4 * unit_roundoff * magnitude[d] + 3 * unit_roundoff;
             if (!(std::fabs(s - 1) <= tolerance))
-                rec.fail([&] { return "patch " + std::to_string(d) + ": its image triangles cover " + num(s) +
-                                      " times the domain triangle's area (overlap or gap)"; },
-                         -1, -1, static_cast<std::int64_t>(d));
+                rec.fail(
+                    [&] {
+                        return "patch " + std::to_string(d) + ": its image triangles cover " + num(s) +
+                               " times the domain triangle's area (overlap or gap)";
+                    },
+                    -1, -1, static_cast<std::int64_t>(d));
         }
         rec.examined(f_.surface_faces.size() + m);
         return rec.done();
@@ -512,8 +576,10 @@ private:
             for (EdgeId e : mesh.edges()) {
                 const HalfedgeId h0 = TriMesh::halfedge(e, 0), h1 = TriMesh::halfedge(e, 1);
                 const FaceId f0 = mesh.face(h0), f1 = mesh.face(h1);
-                if (!f0.valid()) visit(h1, patch(f1));
-                else if (!f1.valid()) visit(h0, patch(f0));
+                if (!f0.valid())
+                    visit(h1, patch(f1));
+                else if (!f1.valid())
+                    visit(h0, patch(f0));
                 else if (const std::uint32_t d0 = patch(f0), d1 = patch(f1); d0 != d1) {
                     visit(h0, d0);
                     visit(h1, d1);
@@ -557,6 +623,44 @@ private:
         return rec.done();
     }
 
+    /// The boundary vertices of patch d at its three corners (β exactly e_r), each found once.
+    /// False at a failure.
+    bool find_corners(std::uint32_t d, const std::uint32_t* boundary, std::size_t count, std::uint32_t (&corner)[3],
+                      Recorder& rec) {
+        const TriMesh& mesh = surface_->mesh;
+        const auto pd = static_cast<std::int64_t>(d);
+        const Triangle& dv = f_.domain_faces[d];
+        for (std::size_t i = 0; i < count; ++i) {
+            const HalfedgeId h(boundary[i]);
+            const std::uint32_t v = mesh.from(h).idx(), f = mesh.face(h).idx();
+            for (int r = 0; r < 3; ++r) {
+                if (!is_corner(beta_at(f, v), r)) continue;
+                if (corner[r] != none) {
+                    rec.fail(
+                        [&] {
+                            return "patch " + std::to_string(d) + ": surface vertices " + std::to_string(corner[r]) +
+                                   " and " + std::to_string(v) + " both map to its corner " + std::to_string(r) +
+                                   " (domain vertex " + std::to_string(dv[r]) + ")";
+                        },
+                        f, v, pd);
+                    return false;
+                }
+                corner[r] = v;
+            }
+        }
+        for (int r = 0; r < 3; ++r)
+            if (corner[r] == none) {
+                rec.fail(
+                    [&] {
+                        return "patch " + std::to_string(d) + ": no boundary vertex maps to its corner " +
+                               std::to_string(r) + " (domain vertex " + std::to_string(dv[r]) + ")";
+                    },
+                    -1, -1, pd);
+                return false;
+            }
+        return true;
+    }
+
     /// Walks the boundary loop of patch d from its corner 0 (counter-clockwise, the orientation of
     /// T′'s faces): side 0 → 1, corner 1, side 1 → 2, corner 2, side 2 → 0, back to corner 0.
     /// Each vertex strictly inside side r → s has β_o = 0 exactly (o the opposite corner),
@@ -566,29 +670,8 @@ private:
                        const std::vector<std::uint32_t>& out, std::vector<std::uint8_t>& place, Recorder& rec) {
         const TriMesh& mesh = surface_->mesh;
         const auto pd = static_cast<std::int64_t>(d);
-        const Triangle& dv = f_.domain_faces[d];
         std::uint32_t corner[3] = {none, none, none};
-        for (std::size_t i = 0; i < count; ++i) {
-            const HalfedgeId h(boundary[i]);
-            const std::uint32_t v = mesh.from(h).idx(), f = mesh.face(h).idx();
-            for (int r = 0; r < 3; ++r) {
-                if (!is_corner(beta_at(f, v), r)) continue;
-                if (corner[r] != none) {
-                    rec.fail([&] { return "patch " + std::to_string(d) + ": surface vertices " + std::to_string(corner[r]) +
-                                          " and " + std::to_string(v) + " both map to its corner " + std::to_string(r) +
-                                          " (domain vertex " + std::to_string(dv[r]) + ")"; }, f, v, pd);
-                    return false;
-                }
-                corner[r] = v;
-            }
-        }
-        for (int r = 0; r < 3; ++r)
-            if (corner[r] == none) {
-                rec.fail([&] { return "patch " + std::to_string(d) + ": no boundary vertex maps to its corner " +
-                                      std::to_string(r) + " (domain vertex " + std::to_string(dv[r]) + ")"; },
-                         -1, -1, pd);
-                return false;
-            }
+        if (!find_corners(d, boundary, count, corner, rec)) return false;
         int side = 0;
         double t_previous = 0;
         std::uint32_t v = corner[0];
@@ -603,11 +686,14 @@ private:
             const int r = side, s = (side + 1) % 3, o = (side + 2) % 3;
             const auto fi = static_cast<std::int64_t>(f);
             if (const bool on_t = mesh.is_boundary(TriMesh::twin(h)); on_t != (domain_boundary_side_[3 * d + r] != 0)) {
-                rec.fail([&] { return "patch " + std::to_string(d) + ": edge (" + std::to_string(v) + ", " + std::to_string(w) +
-                                      ") of its " + side_name(d, r) +
-                                      (on_t ? " lies on the boundary of T', but the side is an interior edge of D"
-                                            : " is not on the boundary of T', but the side is a boundary edge of D"); },
-                         fi, v, pd);
+                rec.fail(
+                    [&] {
+                        return "patch " + std::to_string(d) + ": edge (" + std::to_string(v) + ", " +
+                               std::to_string(w) + ") of its " + side_name(d, r) +
+                               (on_t ? " lies on the boundary of T', but the side is an interior edge of D"
+                                     : " is not on the boundary of T', but the side is a boundary edge of D");
+                    },
+                    fi, v, pd);
                 return false;
             }
             if (is_corner(b, s)) {
@@ -616,8 +702,8 @@ private:
                 runs_.back().end = run_vertex_.size();
                 if (s == 0) {
                     if (steps == count) return true;
-                    rec.fail([&] { return "patch " + std::to_string(d) + ": its boundary has more than one loop"; },
-                             fi, w, pd);
+                    rec.fail([&] { return "patch " + std::to_string(d) + ": its boundary has more than one loop"; }, fi,
+                             w, pd);
                     return false;
                 }
                 side = s;
@@ -627,20 +713,35 @@ private:
                 run_vertex_.push_back(w);
                 run_t_.push_back(0);
             } else if (is_corner(b, r) || is_corner(b, o)) {
-                rec.fail([&] { return "patch " + std::to_string(d) + ": walking its boundary counter-clockwise from "
-                                      "corner 0, surface vertex " + std::to_string(w) + " maps to a corner out of order "
-                                      "(beta " + str(b) + " after corner " + std::to_string(r) + ")"; }, fi, w, pd);
+                rec.fail(
+                    [&] {
+                        return "patch " + std::to_string(d) +
+                               ": walking its boundary counter-clockwise from "
+                               "corner 0, surface vertex " +
+                               std::to_string(w) +
+                               " maps to a corner out of order "
+                               "(beta " +
+                               str(b) + " after corner " + std::to_string(r) + ")";
+                    },
+                    fi, w, pd);
                 return false;
             } else if (b[o] != 0 || !(b[r] > 0) || !(b[s] > 0)) {
-                rec.fail([&] { return "patch " + std::to_string(d) + ": boundary vertex " + std::to_string(w) +
-                                      " is not on the " + side_name(d, r) + " of the triangle (beta " + str(b) +
-                                      " in face " + std::to_string(f) + "; its coordinate " + std::to_string(o) +
-                                      " must be exactly 0)"; }, fi, w, pd);
+                rec.fail(
+                    [&] {
+                        return "patch " + std::to_string(d) + ": boundary vertex " + std::to_string(w) +
+                               " is not on the " + side_name(d, r) + " of the triangle (beta " + str(b) + " in face " +
+                               std::to_string(f) + "; its coordinate " + std::to_string(o) + " must be exactly 0)";
+                    },
+                    fi, w, pd);
                 return false;
             } else if (!(b[s] > t_previous)) {
-                rec.fail([&] { return "patch " + std::to_string(d) + ": boundary vertex " + std::to_string(w) + " on the " +
-                                      side_name(d, r) + " is not monotone: its parameter " + num(b[s]) +
-                                      " does not exceed the previous one, " + num(t_previous); }, fi, w, pd);
+                rec.fail(
+                    [&] {
+                        return "patch " + std::to_string(d) + ": boundary vertex " + std::to_string(w) + " on the " +
+                               side_name(d, r) + " is not monotone: its parameter " + num(b[s]) +
+                               " does not exceed the previous one, " + num(t_previous);
+                    },
+                    fi, w, pd);
                 return false;
             } else {
                 t_previous = b[s];
@@ -650,13 +751,15 @@ private:
             }
             v = w;
         }
-        rec.fail([&] { return "patch " + std::to_string(d) + ": its boundary does not return to corner 0"; }, -1, -1, pd);
+        rec.fail([&] { return "patch " + std::to_string(d) + ": its boundary does not return to corner 0"; }, -1, -1,
+                 pd);
         return false;
     }
 
     /// Every face of patch d gives each boundary vertex the β the walk found: exactly e_r at
     /// corner r, and exactly 0 at the corner opposite the vertex's side. False at a failure.
-    bool check_incidences(std::uint32_t d, std::uint32_t f, const std::vector<std::uint8_t>& place, Recorder& rec) const {
+    bool check_incidences(std::uint32_t d, std::uint32_t f, const std::vector<std::uint8_t>& place,
+                          Recorder& rec) const {
         const ParamFace& face = f_.surface_faces[f];
         for (int c = 0; c < 3; ++c) {
             const std::uint8_t where = place[face.v[c]];
@@ -664,12 +767,15 @@ private:
             const Beta& b = face.beta[c];
             const bool ok = where >= 3 ? is_corner(b, where - 3) : b[(where + 2) % 3] == 0;
             if (!ok)
-                rec.fail([&] { return "patch " + std::to_string(d) + ": boundary vertex " + std::to_string(face.v[c]) +
-                                      (where >= 3 ? " is its corner " + std::to_string(where - 3)
-                                                  : " lies on the " + side_name(d, where)) +
-                                      ", but face " + std::to_string(f) + " gives it beta " + str(b) + ", off that " +
-                                      (where >= 3 ? "corner" : "side"); },
-                         f, face.v[c], d);
+                rec.fail(
+                    [&] {
+                        return "patch " + std::to_string(d) + ": boundary vertex " + std::to_string(face.v[c]) +
+                               (where >= 3 ? " is its corner " + std::to_string(where - 3)
+                                           : " lies on the " + side_name(d, where)) +
+                               ", but face " + std::to_string(f) + " gives it beta " + str(b) + ", off that " +
+                               (where >= 3 ? "corner" : "side");
+                    },
+                    f, face.v[c], d);
             if (!ok) return false;
         }
         return true;
@@ -693,11 +799,14 @@ private:
                 const double lambda = length[i - run.begin] / total, t = run_t_[i];
                 rec.examined(1);
                 if (std::fabs(t - lambda) > chord_tolerance)
-                    rec.fail([&] { return "patch " + std::to_string(run.patch) + ": boundary vertex " +
-                                          std::to_string(run_vertex_[i]) + " on the " + side_name(run.patch, run.side) +
-                                          " has parameter " + num(t) + " but chord length " + num(lambda) +
-                                          " (difference " + num(t - lambda) + ", more than 1e-9)"; },
-                             -1, run_vertex_[i], run.patch);
+                    rec.fail(
+                        [&] {
+                            return "patch " + std::to_string(run.patch) + ": boundary vertex " +
+                                   std::to_string(run_vertex_[i]) + " on the " + side_name(run.patch, run.side) +
+                                   " has parameter " + num(t) + " but chord length " + num(lambda) + " (difference " +
+                                   num(t - lambda) + ", more than 1e-9)";
+                        },
+                        -1, run_vertex_[i], run.patch);
             }
         }
         return rec.done();
@@ -726,51 +835,70 @@ private:
 
 // ---- PARAM-11: Ω_T′ = Ω_T ------------------------------------------------------------------
 
-CheckResult Verifier::check_geometry(std::optional<detail::InputSide>& t_side) const {
-    Recorder rec("PARAM-11", title_11);
-    const TriMesh& t = *input_;
-    const TriMesh& refined = surface_->mesh;
-    // §3: T′ refines T, so it has T's topology: χ, and with boundary or several components also
-    // the number of boundary loops and of components (a refinement keeps each component's
-    // topology; PARAM-4 already matched T′'s components with D's) ...
+// PARAM-11, first: §3's T′ refines T, so it has T's topology: χ, and with boundary or several
+// components also the number of boundary loops and of components (a refinement keeps each
+// component's topology; PARAM-4 already matched T′'s components with D's).
+void same_topology(const TriMesh& t, const Topology& topology_r, Recorder& rec) {
     const Topology topology_t = topology_of(t);
-    const Topology& topology_r = surface_->topology;
     const long chi_t = topology_t.total_chi(), chi_r = topology_r.total_chi();
     if (chi_t != chi_r)
         rec.fail([&] { return "chi(T') = " + std::to_string(chi_r) + " but chi(T) = " + std::to_string(chi_t); });
     if (topology_t.total_loops() != topology_r.total_loops())
-        rec.fail([&] { return "T' has " + loops_text(topology_r.total_loops()) + " but T has " +
-                              loops_text(topology_t.total_loops()); });
+        rec.fail([&] {
+            return "T' has " + loops_text(topology_r.total_loops()) + " but T has " +
+                   loops_text(topology_t.total_loops());
+        });
     if (topology_t.count() != topology_r.count())
-        rec.fail([&] { return "T' has " + std::to_string(topology_r.count()) + " components but T has " +
-                              std::to_string(topology_t.count()); });
-    // ... keeps every vertex of T where it is (T′ only inserts points; bitwise, as written), on
-    // T′'s boundary when it is on T's ...
+        rec.fail([&] {
+            return "T' has " + std::to_string(topology_r.count()) + " components but T has " +
+                   std::to_string(topology_t.count());
+        });
+}
+
+// PARAM-11, then: T′ keeps every vertex of T where it is (T′ only inserts points; bitwise, as
+// written), on T′'s boundary when it is on T's. Returns, per vertex of T′, whether it is at a
+// vertex of T: a point of T, its distance to T exactly 0, spared the search (on the horse 48,485
+// of T′'s 84,206).
+std::vector<std::uint8_t> vertices_of_t_kept(const TriMesh& t, const TriMesh& refined, Recorder& rec) {
     std::vector<std::pair<Bits, std::uint32_t>> refined_bits;
     refined_bits.reserve(refined.n_vertices());
     for (VertexId w : refined.vertices()) refined_bits.emplace_back(bits(refined.position(w)), w.idx());
     std::sort(refined_bits.begin(), refined_bits.end());
-    // A vertex of T′ at a vertex of T (bitwise) is a point of T: its distance to T is exactly 0,
-    // and the search below is spared for it (on the horse 48,485 of T′'s 84,206).
     std::vector<std::uint8_t> at_t_vertex(refined.n_vertices(), 0);
     for (VertexId v : t.vertices()) {
         const Bits b = bits(t.position(v));
         auto it = std::lower_bound(refined_bits.begin(), refined_bits.end(), std::pair<Bits, std::uint32_t>(b, 0));
         if (it == refined_bits.end() || it->first != b)
-            rec.fail([&] { return "vertex " + std::to_string(v.idx()) + " of T " + str(t.position(v)) +
-                                  " is not a vertex of T' (no vertex with bitwise-identical coordinates)"; },
-                     -1, v.idx());
+            rec.fail(
+                [&] {
+                    return "vertex " + std::to_string(v.idx()) + " of T " + str(t.position(v)) +
+                           " is not a vertex of T' (no vertex with bitwise-identical coordinates)";
+                },
+                -1, v.idx());
         for (; it != refined_bits.end() && it->first == b; ++it) {
             const std::uint32_t w = it->second;
             at_t_vertex[w] = 1;
             if (t.is_boundary(v) && !refined.is_boundary(VertexId(w)))
-                rec.fail([&] { return "vertex " + std::to_string(v.idx()) + " of T " + str(t.position(v)) +
-                                      " is on T's boundary, but surface vertex " + std::to_string(w) +
-                                      " at the same point is not on the boundary of T'"; },
-                         -1, v.idx());
+                rec.fail(
+                    [&] {
+                        return "vertex " + std::to_string(v.idx()) + " of T " + str(t.position(v)) +
+                               " is on T's boundary, but surface vertex " + std::to_string(w) +
+                               " at the same point is not on the boundary of T'";
+                    },
+                    -1, v.idx());
         }
     }
-    std::vector<std::pair<Bits, std::uint32_t>>().swap(refined_bits);  // freed before T's grid is built here
+    return at_t_vertex;
+}
+
+CheckResult Verifier::check_geometry(std::optional<detail::InputSide>& t_side) const {
+    Recorder rec("PARAM-11", title_11);
+    const TriMesh& t = *input_;
+    const TriMesh& refined = surface_->mesh;
+    same_topology(t, surface_->topology, rec);
+    // ... keeps every vertex of T where it is, on T′'s boundary when it is on T's (the vertex
+    // list freed before T's grid is built here) ...
+    const std::vector<std::uint8_t> at_t_vertex = vertices_of_t_kept(t, refined, rec);
     // ... inserts points only on T (InputSide: the tolerance) ...
     const detail::InputSide& side = prepared_ ? *prepared_ : t_side ? *t_side : t_side.emplace(t);
     const double tolerance = side.tolerance, area_t = side.area, area_r = total_area(refined);
@@ -779,15 +907,21 @@ CheckResult Verifier::check_geometry(std::optional<detail::InputSide>& t_side) c
         std::vector<double> distance(refined.n_vertices());
         for_each_block(executor_, distance.size(), 4096, 4, [&](std::size_t first, std::size_t end) {
             for (std::size_t v = first; v < end; ++v)
-                distance[v] = at_t_vertex[v] ? 0.0 : side.faces.distance(refined.position(VertexId(static_cast<VertexId::Index>(v))));
+                distance[v] = at_t_vertex[v]
+                                  ? 0.0
+                                  : side.faces.distance(refined.position(VertexId(static_cast<VertexId::Index>(v))));
         });
         for (VertexId v : refined.vertices()) {
             const double d = distance[v.idx()];
             if (!(d <= tolerance))
-                rec.fail([&] { return "surface vertex " + std::to_string(v.idx()) + " " + str(refined.position(v)) +
-                                      " is not on T (distance " + (std::isinf(d) ? std::string("> ") + num(tolerance) : num(d)) +
-                                      ", tolerance " + num(tolerance) + ")"; },
-                         -1, v.idx());
+                rec.fail(
+                    [&] {
+                        return "surface vertex " + std::to_string(v.idx()) + " " + str(refined.position(v)) +
+                               " is not on T (distance " +
+                               (std::isinf(d) ? std::string("> ") + num(tolerance) : num(d)) + ", tolerance " +
+                               num(tolerance) + ")";
+                    },
+                    -1, v.idx());
         }
     }
     // ... with its boundary on T's boundary, within the same tolerance (a point inserted on a
@@ -800,18 +934,23 @@ CheckResult Verifier::check_geometry(std::optional<detail::InputSide>& t_side) c
             const Vec3& p = refined.position(VertexId(w));
             const double d = side.boundary ? side.boundary->distance(p) : std::numeric_limits<double>::infinity();
             if (!(d <= tolerance))
-                rec.fail([&] { return "surface vertex " + std::to_string(w) + " " + str(p) +
-                                      " is on the boundary of T' but not on T's boundary (distance " +
-                                      (std::isinf(d) ? std::string("> ") + num(tolerance) : num(d)) + ", tolerance " +
-                                      num(tolerance) + ")"; },
-                         -1, w);
+                rec.fail(
+                    [&] {
+                        return "surface vertex " + std::to_string(w) + " " + str(p) +
+                               " is on the boundary of T' but not on T's boundary (distance " +
+                               (std::isinf(d) ? std::string("> ") + num(tolerance) : num(d)) + ", tolerance " +
+                               num(tolerance) + ")";
+                    },
+                    -1, w);
         }
     }
     // ... and covers the same area. Both sums are compensated; the difference comes from the
     // rounding of the inserted points (≈ u·|x| each, times an edge length), far below 1e-9.
     if (!(std::fabs(area_r - area_t) <= geometry_tolerance * area_t))
-        rec.fail([&] { return "the area of T' is " + num(area_r) + " but T's is " + num(area_t) + " (relative difference " +
-                              num((area_r - area_t) / area_t) + ", more than 1e-9)"; });
+        rec.fail([&] {
+            return "the area of T' is " + num(area_r) + " but T's is " + num(area_t) + " (relative difference " +
+                   num((area_r - area_t) / area_t) + ", more than 1e-9)";
+        });
     rec.examined(2 + t.n_vertices() + refined.n_vertices() + refined_boundary.size());
     return rec.done();
 }
@@ -825,8 +964,7 @@ VerifyReport Verifier::run() {
         const std::initializer_list<std::pair<const char*, const char*>> later{
             {"PARAM-3", title_3}, {"PARAM-4", title_4}, {"PARAM-5", title_5}, {"PARAM-6", title_6},
             {"PARAM-7", title_7}, {"PARAM-8", title_8}, {"PARAM-9", title_9}, {"PARAM-10", title_10}};
-        for (const auto& [id, title] : later)
-            checks.push_back(skipped(id, title, why));
+        for (const auto& [id, title] : later) checks.push_back(skipped(id, title, why));
         if (input_) checks.push_back(skipped("PARAM-11", title_11, why));
         return report;
     }
@@ -852,24 +990,26 @@ VerifyReport Verifier::run() {
          });
     const std::string needs_surface = "needs PARAM-3 (T' a manifold)";
     CheckResult geometry;
-    both([&] {
-        checks.push_back(domain_ && surface_ ? check_topology() : skipped("PARAM-4", title_4, "needs PARAM-3"));
-        checks.push_back(check_betas());
-        checks.push_back(surface_ ? check_disks() : skipped("PARAM-6", title_6, needs_surface));
-        const bool disks = checks.back().status == CheckStatus::pass;
-        checks.push_back(check_continuity());
-        checks.push_back(check_orientation());
-        checks.push_back(disks ? check_boundaries() : skipped("PARAM-9", title_9, "needs PARAM-6 (patches are disks)"));
-        const bool sides = checks.back().status == CheckStatus::pass;
-        checks.push_back(sides ? check_chord_lengths()
-                               : skipped("PARAM-10", title_10, "needs PARAM-9 (the sides of every patch)"));
-        // Chord length is the paper's boundary map, not a condition of a homeomorphism: judged
-        // only when asked for (`paper`), otherwise reported.
-        if (!paper_ && checks.back().status == CheckStatus::fail) checks.back().status = CheckStatus::info;
-    },
-         [&] {
-             if (input_) geometry = surface_ ? check_geometry(input_side) : skipped("PARAM-11", title_11, needs_surface);
-         });
+    both(
+        [&] {
+            checks.push_back(domain_ && surface_ ? check_topology() : skipped("PARAM-4", title_4, "needs PARAM-3"));
+            checks.push_back(check_betas());
+            checks.push_back(surface_ ? check_disks() : skipped("PARAM-6", title_6, needs_surface));
+            const bool disks = checks.back().status == CheckStatus::pass;
+            checks.push_back(check_continuity());
+            checks.push_back(check_orientation());
+            checks.push_back(disks ? check_boundaries()
+                                   : skipped("PARAM-9", title_9, "needs PARAM-6 (patches are disks)"));
+            const bool sides = checks.back().status == CheckStatus::pass;
+            checks.push_back(sides ? check_chord_lengths()
+                                   : skipped("PARAM-10", title_10, "needs PARAM-9 (the sides of every patch)"));
+            // Chord length is the paper's boundary map, not a condition of a homeomorphism: judged
+            // only when asked for (`paper`), otherwise reported.
+            if (!paper_ && checks.back().status == CheckStatus::fail) checks.back().status = CheckStatus::info;
+        },
+        [&] {
+            if (input_) geometry = surface_ ? check_geometry(input_side) : skipped("PARAM-11", title_11, needs_surface);
+        });
     if (input_) checks.push_back(std::move(geometry));
     report.distortion = measure_distortion();
     return report;
@@ -895,7 +1035,8 @@ CheckResult grammar_check(const ParamFile& file) {
     r.id = "PARAM-1";
     r.title = "the grammar: header, sections, counts";
     r.status = CheckStatus::pass;
-    r.checked = file.domain_vertices.size() + file.domain_faces.size() + file.surface_vertices.size() + file.surface_faces.size();
+    r.checked = file.domain_vertices.size() + file.domain_faces.size() + file.surface_vertices.size() +
+                file.surface_faces.size();
     return r;
 }
 

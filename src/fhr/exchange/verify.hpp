@@ -46,8 +46,8 @@ const char* to_string(CheckStatus status);
 
 /// The result of one invariant.
 struct CheckResult {
-    std::string id;              ///< "PARAM-7"
-    std::string title;           ///< what it checks, a few words
+    std::string id;     ///< "PARAM-7"
+    std::string title;  ///< what it checks, a few words
     CheckStatus status = CheckStatus::skipped;
     std::uint64_t checked = 0;   ///< elements examined (faces, vertices, patches, …; see spec/param.md)
     std::uint64_t failures = 0;  ///< elements that break the invariant
@@ -74,11 +74,11 @@ struct VerifyReport {
 };
 
 /// Tolerances of spec/param.md (each derived there and at its use in verify.cpp).
-inline constexpr double beta_sum_tolerance = 1e-12;     ///< PARAM-5
-inline constexpr double continuity_tolerance = 1e-12;   ///< PARAM-7
-inline constexpr double area_tolerance = 1e-12;         ///< PARAM-8 (relative)
-inline constexpr double chord_tolerance = 1e-9;         ///< PARAM-10
-inline constexpr double geometry_tolerance = 1e-9;      ///< PARAM-11 (relative to T's bounding box)
+inline constexpr double beta_sum_tolerance = 1e-12;    ///< PARAM-5
+inline constexpr double continuity_tolerance = 1e-12;  ///< PARAM-7
+inline constexpr double area_tolerance = 1e-12;        ///< PARAM-8 (relative)
+inline constexpr double chord_tolerance = 1e-9;        ///< PARAM-10
+inline constexpr double geometry_tolerance = 1e-9;     ///< PARAM-11 (relative to T's bounding box)
 
 /// PARAM-1 for a file that parse_param accepted: passed, with the number of records read. (A file
 /// that breaks the grammar is refused by the reader with InvalidInput and never gets here.)
@@ -122,6 +122,7 @@ private:
 };
 
 /// verify(file, &input.mesh(), executor), the same report, with T's side already prepared.
-VerifyReport verify(const ParamFile& file, const PreparedInput& input, Executor* executor = nullptr, bool paper = false);
+VerifyReport verify(const ParamFile& file, const PreparedInput& input, Executor* executor = nullptr,
+                    bool paper = false);
 
 }  // namespace fhr::exchange

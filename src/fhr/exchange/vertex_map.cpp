@@ -155,16 +155,17 @@ private:
     const VertexMapFile& map_;
     const PolygonSoup &ts_, &ds_;
     std::optional<Surface> d_, t_;
-    std::vector<Ring> rings_;                // per vertex of D
-    std::vector<Point> image_;               // per vertex of T
-    std::vector<std::array<Q, 3>> exact_;    // rational weights of crossings
-    std::vector<Tangent> tangent_;           // per halfedge of T: the first piece from its tail
-    std::vector<double> length_;             // per edge of T: its image's length
+    std::vector<Ring> rings_;              // per vertex of D
+    std::vector<Point> image_;             // per vertex of T
+    std::vector<std::array<Q, 3>> exact_;  // rational weights of crossings
+    std::vector<Tangent> tangent_;         // per halfedge of T: the first piece from its tail
+    std::vector<double> length_;           // per edge of T: its image's length
     std::vector<Piece> pieces_;
 
     static std::vector<std::pair<const char*, const char*>> later(int first) {
-        const std::vector<std::pair<const char*, const char*>> all{{"VMAP-4", title_4}, {"VMAP-5", title_5}, {"VMAP-6", title_6},
-                                                                   {"VMAP-7", title_7}, {"VMAP-8", title_8}, {"VMAP-9", title_9}};
+        const std::vector<std::pair<const char*, const char*>> all{{"VMAP-4", title_4}, {"VMAP-5", title_5},
+                                                                   {"VMAP-6", title_6}, {"VMAP-7", title_7},
+                                                                   {"VMAP-8", title_8}, {"VMAP-9", title_9}};
         return {all.begin() + (first - 4), all.end()};
     }
 
@@ -212,15 +213,16 @@ private:
         for (int k = 0; k < 3; ++k)  // three points of one edge of the face: a zero column
             if (zero(a, k) && zero(b, k) && zero(c, k)) return 0;
         if (!a.exact && !b.exact && !c.exact)
-            return fhr::orient3d(Vec3(a.d[0], a.d[1], a.d[2]), Vec3(b.d[0], b.d[1], b.d[2]), Vec3(c.d[0], c.d[1], c.d[2]),
-                                 Vec3::Zero());
+            return fhr::orient3d(Vec3(a.d[0], a.d[1], a.d[2]), Vec3(b.d[0], b.d[1], b.d[2]),
+                                 Vec3(c.d[0], c.d[1], c.d[2]), Vec3::Zero());
         // A filter on the rounded weights: each is within u of its rational (relative), and the
         // determinant's six products of three and their sum add at most 8u of the permanent; 1e-14
         // of it (about 90u) decides, else the rationals do.
         const auto& x = a.d;
         const auto& y = b.d;
         const auto& z = c.d;
-        const double det = x[0] * (y[1] * z[2] - y[2] * z[1]) - x[1] * (y[0] * z[2] - y[2] * z[0]) + x[2] * (y[0] * z[1] - y[1] * z[0]);
+        const double det = x[0] * (y[1] * z[2] - y[2] * z[1]) - x[1] * (y[0] * z[2] - y[2] * z[0]) +
+                           x[2] * (y[0] * z[1] - y[1] * z[0]);
         const double permanent = std::fabs(x[0]) * (std::fabs(y[1] * z[2]) + std::fabs(y[2] * z[1])) +
                                  std::fabs(x[1]) * (std::fabs(y[0] * z[2]) + std::fabs(y[2] * z[0])) +
                                  std::fabs(x[2]) * (std::fabs(y[0] * z[1]) + std::fabs(y[1] * z[0]));
@@ -335,12 +337,19 @@ private:
         const std::size_t n = ts_.points.size(), nd = ds_.points.size(), md = ds_.polygon_count();
         image_.assign(n, Point{});
         if (map_.records.size() != n)
-            rec.fail([&] { return "the map has " + std::to_string(map_.records.size()) + " records but T has " + std::to_string(n) + " vertices"; });
+            rec.fail([&] {
+                return "the map has " + std::to_string(map_.records.size()) + " records but T has " +
+                       std::to_string(n) + " vertices";
+            });
         for (std::uint32_t u = 0; u < std::min(n, map_.records.size()); ++u) {
             const VertexImageRecord& r = map_.records[u];
             auto fail = [&](const std::string& what) {
-                rec.fail([&] { return "vertex " + std::to_string(u) + " of T (" + map_.source + " line " + std::to_string(r.line) + "): " + what; },
-                         -1, u);
+                rec.fail(
+                    [&] {
+                        return "vertex " + std::to_string(u) + " of T (" + map_.source + " line " +
+                               std::to_string(r.line) + "): " + what;
+                    },
+                    -1, u);
             };
             auto vertex_ok = [&](std::int64_t v) { return v >= 0 && static_cast<std::uint64_t>(v) < nd; };
             std::uint32_t face = none;
@@ -357,10 +366,12 @@ private:
                     break;
                 case VertexImageRecord::Ref::halfedge: {
                     if (!vertex_ok(r.a) || !vertex_ok(r.b)) {
-                        fail("halfedge " + std::to_string(r.a) + " -> " + std::to_string(r.b) + ": vertex of D out of range (" + std::to_string(nd) + " vertices)");
+                        fail("halfedge " + std::to_string(r.a) + " -> " + std::to_string(r.b) +
+                             ": vertex of D out of range (" + std::to_string(nd) + " vertices)");
                         continue;
                     }
-                    const HalfedgeId h = dm().find_halfedge(VertexId(static_cast<std::uint32_t>(r.a)), VertexId(static_cast<std::uint32_t>(r.b)));
+                    const HalfedgeId h = dm().find_halfedge(VertexId(static_cast<std::uint32_t>(r.a)),
+                                                            VertexId(static_cast<std::uint32_t>(r.b)));
                     if (!h.valid() || dm().is_boundary(h)) {
                         fail("no face of D has the halfedge " + std::to_string(r.a) + " -> " + std::to_string(r.b));
                         continue;
@@ -401,7 +412,8 @@ private:
                 fail("weights " + str(Vec3(w[0], w[1], w[2])) + " are not finite");
                 continue;
             }
-            if (std::min({w[0], w[1], w[2]}) < -weight_tolerance || std::abs(w[0] + w[1] + w[2] - 1) > weight_tolerance) {
+            if (std::min({w[0], w[1], w[2]}) < -weight_tolerance ||
+                std::abs(w[0] + w[1] + w[2] - 1) > weight_tolerance) {
                 fail("weights " + str(Vec3(w[0], w[1], w[2])) + " on face " + std::to_string(face) +
                      " are not barycentric (each >= -1e-12, sum 1 within 1e-12)");
                 continue;
@@ -450,12 +462,16 @@ private:
         std::vector<std::uint8_t> spans(tt.count(), 0);
         for (std::uint32_t u = 0; u < image_.size(); ++u) {
             const std::uint32_t c = tt.of(u), e = td.of(image_[u].v[0]);
-            if (image[c] == none) image[c] = e;
+            if (image[c] == none)
+                image[c] = e;
             else if (image[c] != e && !spans[c]) {
                 spans[c] = 1;
-                rec.fail([&] { return "the component of T at vertex " + std::to_string(tt.first_vertex[c]) +
-                                      " has images in two components of D (vertex " + std::to_string(u) + ")"; },
-                         -1, u);
+                rec.fail(
+                    [&] {
+                        return "the component of T at vertex " + std::to_string(tt.first_vertex[c]) +
+                               " has images in two components of D (vertex " + std::to_string(u) + ")";
+                    },
+                    -1, u);
             }
         }
         for (std::uint32_t c = 0; c < tt.count(); ++c) {
@@ -469,15 +485,25 @@ private:
             }
             preimage[e] = c;
             if (tt.chi[c] != td.chi[e])
-                rec.fail([&] { return "chi = " + std::to_string(tt.chi[c]) + " for " + tc + " but " + std::to_string(td.chi[e]) + " for " + dc; },
-                         -1, tt.first_vertex[c]);
+                rec.fail(
+                    [&] {
+                        return "chi = " + std::to_string(tt.chi[c]) + " for " + tc + " but " +
+                               std::to_string(td.chi[e]) + " for " + dc;
+                    },
+                    -1, tt.first_vertex[c]);
             else if (tt.loops[c] != td.loops[e])
-                rec.fail([&] { return tc + " has " + loops_text(tt.loops[c]) + " but " + dc + " has " + loops_text(td.loops[e]); },
-                         -1, tt.first_vertex[c]);
+                rec.fail(
+                    [&] {
+                        return tc + " has " + loops_text(tt.loops[c]) + " but " + dc + " has " +
+                               loops_text(td.loops[e]);
+                    },
+                    -1, tt.first_vertex[c]);
         }
         for (std::uint32_t e = 0; e < td.count(); ++e)
             if (preimage[e] == none && std::find(image.begin(), image.end(), e) == image.end())
-                rec.fail([&] { return "the component of D at vertex " + std::to_string(td.first_vertex[e]) + " holds no image"; });
+                rec.fail([&] {
+                    return "the component of D at vertex " + std::to_string(td.first_vertex[e]) + " holds no image";
+                });
         rec.examined(tt.count() + td.count());
         return rec.done();
     }
@@ -491,14 +517,17 @@ private:
             const Vec3& a = dpos(ring.spoke(i + t));
             return std::array<double, 3>{a.x() - o.x(), a.y() - o.y(), a.z() - o.z()};
         };
-        auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+        auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+            return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        };
         std::vector<std::array<double, 2>> P(m + 2);
         std::array<double, 3> ei = e(0);
         P[0] = {std::sqrt(dot(ei, ei)), 0.0};
         for (std::size_t t = 0; t <= m; ++t) {
             const std::array<double, 3> ej = e(t + 1);
             const double d = dot(ei, ej);
-            const std::array<double, 3> c{ei[1] * ej[2] - ei[2] * ej[1], ei[2] * ej[0] - ei[0] * ej[2], ei[0] * ej[1] - ei[1] * ej[0]};
+            const std::array<double, 3> c{ei[1] * ej[2] - ei[2] * ej[1], ei[2] * ej[0] - ei[0] * ej[2],
+                                          ei[0] * ej[1] - ei[1] * ej[0]};
             const double k = std::sqrt(dot(c, c)), l = dot(ei, ei);
             const double x = P[t][0], y = P[t][1];
             P[t + 1] = {(d * x - k * y) / l, (d * y + k * x) / l};
@@ -514,9 +543,12 @@ private:
         Q ws = 0, wa = 0, wb = 0;
         for (int k = 0; k < p.size(); ++k) {
             const Q w = weight_q(p, k);
-            if (p.v[k] == s) ws = w;
-            else if (p.v[k] == a) wa = w;
-            else if (p.v[k] == b) wb = w;
+            if (p.v[k] == s)
+                ws = w;
+            else if (p.v[k] == a)
+                wa = w;
+            else if (p.v[k] == b)
+                wb = w;
         }
         const Q sum = ws + wa + wb;
         return {(wa * Q(P[t][0]) + wb * Q(P[t + 1][0])) / sum, (wa * Q(P[t][1]) + wb * Q(P[t + 1][1])) / sum};
@@ -555,10 +587,13 @@ private:
             const std::uint32_t u = t.from(h).idx(), v = t.to(h).idx();
             if (!map_edge(e, h, image_[u], image_[v])) {
                 report.edges_without_image.emplace_back(std::min(u, v), std::max(u, v));
-                rec.fail([&] { return "edge (" + std::to_string(u) + ", " + std::to_string(v) +
-                                      ") of T: its ends' images share no face of D and no fan around a vertex of D "
-                                      "in which the straight segment stays"; },
-                         -1, u);
+                rec.fail(
+                    [&] {
+                        return "edge (" + std::to_string(u) + ", " + std::to_string(v) +
+                               ") of T: its ends' images share no face of D and no fan around a vertex of D "
+                               "in which the straight segment stays";
+                    },
+                    -1, u);
             }
         }
         std::sort(report.edges_without_image.begin(), report.edges_without_image.end());
@@ -718,14 +753,19 @@ private:
             std::erase_if(groups, [&](const auto& g) {
                 return image_[g.first].v != p.v || std::get<1>(key(u)) - std::get<1>(key(g.first)) > 1e-9;
             });
-            auto same = std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return equal(image_[g.first], p); });
+            auto same =
+                std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return equal(image_[g.first], p); });
             if (same == groups.end()) {
                 groups.emplace_back(u, 1);
                 continue;
             }
             const std::uint32_t x = std::min(same->first, u), y = std::max(same->first, u);
             for (std::uint64_t k = 0; k < same->second; ++k)  // a pair with each vertex of the group
-                rec.fail([&] { return "vertices " + std::to_string(x) + " and " + std::to_string(y) + " of T have one image"; }, -1, x, p.face);
+                rec.fail(
+                    [&] {
+                        return "vertices " + std::to_string(x) + " and " + std::to_string(y) + " of T have one image";
+                    },
+                    -1, x, p.face);
             coincident += same->second++;
         }
         // The pieces of each face of D in a grid over the face's affine chart [0,1]².
@@ -735,7 +775,8 @@ private:
         std::vector<std::uint64_t> offset(md + 1, 0);
         std::vector<std::uint32_t> side(md);
         for (std::size_t g = 0; g < md; ++g) {
-            side[g] = static_cast<std::uint32_t>(std::clamp(std::sqrt(static_cast<double>(per_face[g]) / 2), 1.0, 4096.0));
+            side[g] =
+                static_cast<std::uint32_t>(std::clamp(std::sqrt(static_cast<double>(per_face[g]) / 2), 1.0, 4096.0));
             offset[g + 1] = offset[g] + std::uint64_t{side[g]} * side[g];
         }
         std::vector<std::pair<std::uint64_t, std::uint32_t>> cells;
@@ -769,10 +810,13 @@ private:
         pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
         for (const auto& [e1, e2] : pairs) {
             const HalfedgeId h1 = TriMesh::halfedge(EdgeId(e1), 0), h2 = TriMesh::halfedge(EdgeId(e2), 0);
-            rec.fail([&] { return "the images of edges (" + std::to_string(t.from(h1).idx()) + ", " + std::to_string(t.to(h1).idx()) +
-                                  ") and (" + std::to_string(t.from(h2).idx()) + ", " + std::to_string(t.to(h2).idx()) +
-                                  ") of T meet beyond a common end"; },
-                     -1, t.from(h1).idx());
+            rec.fail(
+                [&] {
+                    return "the images of edges (" + std::to_string(t.from(h1).idx()) + ", " +
+                           std::to_string(t.to(h1).idx()) + ") and (" + std::to_string(t.from(h2).idx()) + ", " +
+                           std::to_string(t.to(h2).idx()) + ") of T meet beyond a common end";
+                },
+                -1, t.from(h1).idx());
         }
         report.crossing_pairs = pairs.size() + coincident;
         rec.examined(image_.size() + t.n_edges());
@@ -812,7 +856,12 @@ private:
                 // Along the edge: toward b when q and b lie on one side of p (ordered from the
                 // third corner of face `left`).
                 const auto t = dtri(left);
-                const int ib = t[0] == b ? 0 : t[1] == b ? 1 : 2, ir = t[0] != a && t[0] != b ? 0 : t[1] != a && t[1] != b ? 1 : 2;
+                const int ib = t[0] == b   ? 0
+                               : t[1] == b ? 1
+                                           : 2,
+                          ir = t[0] != a && t[0] != b   ? 0
+                               : t[1] != a && t[1] != b ? 1
+                                                        : 2;
                 const Bary o = coords(p, left), y = coords(q, left);
                 return orient(corners[ir], o, y) == orient(corners[ir], o, corners[ib]) ? 0 : 2;
             }
@@ -822,7 +871,9 @@ private:
         const int side = orient(o, corners[0], y);
         if (side > 0) return 0;
         if (side < 0) return 1;
-        return orient(o, corners[1], y) == orient(o, corners[1], corners[0]) ? 0 : 1;  // on the line: toward the first corner or away
+        return orient(o, corners[1], y) == orient(o, corners[1], corners[0])
+                   ? 0
+                   : 1;  // on the line: toward the first corner or away
     }
 
     /// The edge (a, b) of D holding p, oriented so that face `left` has a → b; `right` the other face or none.
@@ -830,7 +881,8 @@ private:
         HalfedgeId h = dm().find_halfedge(VertexId(p.v[0]), VertexId(p.v[1]));
         if (dm().is_boundary(h)) h = TriMesh::twin(h);
         const HalfedgeId o = TriMesh::twin(h);
-        return {dm().from(h).idx(), dm().to(h).idx(), dm().face(h).idx(), dm().is_boundary(o) ? none : dm().face(o).idx()};
+        return {dm().from(h).idx(), dm().to(h).idx(), dm().face(h).idx(),
+                dm().is_boundary(o) ? none : dm().face(o).idx()};
     }
 
     /// Whether tangent y comes strictly after tangent x counter-clockwise, within one turn
@@ -864,16 +916,19 @@ private:
             const std::uint32_t s = p.v[0];
             const Ring& ring = rings_[s];
             const auto k = static_cast<int>(ring.k());
-            const int i = sx / 2;                                  // the face after a spoke, or x's face
-            const int j = sy % 2 == 1 ? sy / 2 : sy / 2 - 1;       // the face before a spoke, or y's face
+            const int i = sx / 2;                             // the face after a spoke, or x's face
+            const int j = sy % 2 == 1 ? sy / 2 : sy / 2 - 1;  // the face before a spoke, or y's face
             int m = j - i;
-            if (ring.closed) m = ((m % k) + k) % k;
-            else if (m < 0) return false;  // the sweep would leave D
+            if (ring.closed)
+                m = ((m % k) + k) % k;
+            else if (m < 0)
+                return false;  // the sweep would leave D
             const auto P = unfold(ring, s, static_cast<std::size_t>(i), static_cast<std::size_t>(m));
             const Q2 X = chart(x.q, ring, s, static_cast<std::size_t>(i), 0, P),
                      Y = chart(y.q, ring, s, static_cast<std::size_t>(i), static_cast<std::size_t>(m), P);
             for (int t = 1; t <= m; ++t)
-                if (sign(cross(X, Q2{P[static_cast<std::size_t>(t)][0], P[static_cast<std::size_t>(t)][1]})) <= 0) return false;
+                if (sign(cross(X, Q2{P[static_cast<std::size_t>(t)][0], P[static_cast<std::size_t>(t)][1]})) <= 0)
+                    return false;
             return sign(cross(X, Y)) > 0;
         }
         // On an edge (a, b): the two faces unfolded as the fan of ring(a) around the spoke b.
@@ -911,14 +966,18 @@ private:
             const auto c = ttri(f);
             for (int k = 0; k < 3; ++k) {
                 const std::uint32_t u = c[k], v = c[(k + 1) % 3], w = c[(k + 2) % 3];
-                const HalfedgeId hv = t.find_halfedge(VertexId(u), VertexId(v)), hw = t.find_halfedge(VertexId(u), VertexId(w));
+                const HalfedgeId hv = t.find_halfedge(VertexId(u), VertexId(v)),
+                                 hw = t.find_halfedge(VertexId(u), VertexId(w));
                 const Tangent &x = tangent_[hv.idx()], &y = tangent_[hw.idx()];
                 if (x.face == none || y.face == none || convex(image_[u], x, y)) continue;
                 report.folded.push_back(f);
-                rec.fail([&] { return "face " + std::to_string(f) + " (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " +
-                                      std::to_string(c[2]) + ") of T is folded: at vertex " + std::to_string(u) +
-                                      " its edges' images do not turn counter-clockwise by less than pi"; },
-                         f, u, image_[u].face);
+                rec.fail(
+                    [&] {
+                        return "face " + std::to_string(f) + " (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) +
+                               ", " + std::to_string(c[2]) + ") of T is folded: at vertex " + std::to_string(u) +
+                               " its edges' images do not turn counter-clockwise by less than pi";
+                    },
+                    f, u, image_[u].face);
                 break;
             }
         }
@@ -934,7 +993,8 @@ private:
             const bool boundary = t.is_boundary(u);
             if (boundary != on_boundary(p)) continue;  // VMAP-9's failure
             const std::vector<HalfedgeId> hs = rotation(u);
-            if (std::any_of(hs.begin(), hs.end(), [&](HalfedgeId h) { return tangent_[h.idx()].face == none; })) continue;
+            if (std::any_of(hs.begin(), hs.end(), [&](HalfedgeId h) { return tangent_[h.idx()].face == none; }))
+                continue;
             std::vector<int> sectors;
             for (HalfedgeId h : hs) sectors.push_back(sector(p, tangent_[h.idx()]));
             std::size_t turns = 0;
@@ -944,10 +1004,15 @@ private:
                 if (!before(p, tangent_[hs[i].idx()], sectors[i], tangent_[hs[j].idx()], sectors[j])) ++turns;
             }
             if (turns == (boundary ? 0u : 1u)) continue;
-            rec.fail([&] { return "around vertex " + std::to_string(u.idx()) + " of T the images of its " + std::to_string(n) + " edges " +
-                                  (boundary ? "turn back " + std::to_string(turns) + " times" : "wind " + std::to_string(turns) + " times") +
-                                  " (" + (boundary ? "0" : "1") + " expected)"; },
-                     -1, u.idx(), p.face);
+            rec.fail(
+                [&] {
+                    return "around vertex " + std::to_string(u.idx()) + " of T the images of its " + std::to_string(n) +
+                           " edges " +
+                           (boundary ? "turn back " + std::to_string(turns) + " times"
+                                     : "wind " + std::to_string(turns) + " times") +
+                           " (" + (boundary ? "0" : "1") + " expected)";
+                },
+                -1, u.idx(), p.face);
         }
         rec.examined(t.n_vertices());
         return rec.done();
@@ -958,8 +1023,12 @@ private:
         const TriMesh& t = tm();
         for (VertexId u : t.vertices())
             if (!t.is_boundary(u) && on_boundary(image_[u.idx()]))
-                rec.fail([&] { return "interior vertex " + std::to_string(u.idx()) + " of T has its image on the boundary of D"; }, -1, u.idx(),
-                         image_[u.idx()].face);
+                rec.fail(
+                    [&] {
+                        return "interior vertex " + std::to_string(u.idx()) +
+                               " of T has its image on the boundary of D";
+                    },
+                    -1, u.idx(), image_[u.idx()].face);
         for (EdgeId e : t.edges()) {
             if (!t.is_boundary(e)) continue;
             const HalfedgeId h = TriMesh::halfedge(e, 0);
@@ -971,11 +1040,15 @@ private:
             vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
             Point span;
             for (std::size_t k = 0; k < std::min<std::size_t>(vs.size(), 3); ++k) span.v[k] = vs[k];
-            const bool inside = vs.size() == 1 ? dm().is_boundary(VertexId(vs[0])) : vs.size() == 2 && on_boundary(span);
+            const bool inside =
+                vs.size() == 1 ? dm().is_boundary(VertexId(vs[0])) : vs.size() == 2 && on_boundary(span);
             if (!inside)
-                rec.fail([&] { return "boundary edge (" + std::to_string(t.from(h).idx()) + ", " + std::to_string(t.to(h).idx()) +
-                                      ") of T has an image off the boundary of D"; },
-                         -1, t.from(h).idx());
+                rec.fail(
+                    [&] {
+                        return "boundary edge (" + std::to_string(t.from(h).idx()) + ", " +
+                               std::to_string(t.to(h).idx()) + ") of T has an image off the boundary of D";
+                    },
+                    -1, t.from(h).idx());
         }
         rec.examined(t.n_vertices() + t.n_edges());
         return rec.done();

@@ -75,8 +75,8 @@ struct VertexMapReport {
     const CheckResult* first_failure() const;
 
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges_without_image;  ///< VMAP-5, (u < v), ascending
-    std::uint64_t crossing_pairs = 0;                                           ///< VMAP-6's failures
-    std::vector<std::uint32_t> folded;                                          ///< VMAP-7, ascending
+    std::uint64_t crossing_pairs = 0;                                          ///< VMAP-6's failures
+    std::vector<std::uint32_t> folded;                                         ///< VMAP-7, ascending
     Distortion distortion;  ///< in D's metric (spec/vertex_map.md "Figures"); empty unless VMAP-5 holds
 };
 

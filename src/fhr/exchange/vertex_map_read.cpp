@@ -63,7 +63,8 @@ std::vector<VertexImageRecord> read_plain(TextScanner& s, std::size_t n) {
     if (!s.next_line()) s.fail(Where{"header"}, "expected the number of vertices");
     const std::uint64_t count = s.count(Where{"header"});
     s.expect_end_of_line(Where{"header"});
-    if (count != n) s.fail(Where{"header"}, "the map has " + std::to_string(count) + " vertices but T has " + std::to_string(n));
+    if (count != n)
+        s.fail(Where{"header"}, "the map has " + std::to_string(count) + " vertices but T has " + std::to_string(n));
     std::vector<VertexImageRecord> records;
     records.reserve(n);
     while (records.size() < n && s.next_line()) records.push_back(face_record(s, Where{"vertex", records.size()}, 0));
@@ -76,7 +77,8 @@ std::vector<VertexImageRecord> read_corr(TextScanner& s, std::size_t n) {
     std::vector<VertexImageRecord> records;
     records.reserve(n);
     while (s.next_line()) {
-        if (records.size() == n) s.fail(Where{"vertex", records.size()}, "more records than the " + std::to_string(n) + " vertices of T");
+        if (records.size() == n)
+            s.fail(Where{"vertex", records.size()}, "more records than the " + std::to_string(n) + " vertices of T");
         records.push_back(face_record(s, Where{"vertex", records.size()}, 1));
     }
     expect_records(s, records.size(), n);
@@ -90,8 +92,8 @@ std::vector<VertexImageRecord> read_vtpm(TextScanner& s, std::size_t n, std::siz
     const std::uint64_t nd = s.count(Where{"header"});
     s.expect_end_of_line(Where{"header"});
     if (nt != n || nd != m)
-        s.fail(Where{"header"}, "the map is of " + std::to_string(nt) + " onto " + std::to_string(nd) + " vertices, but T has " +
-                                    std::to_string(n) + " and D " + std::to_string(m));
+        s.fail(Where{"header"}, "the map is of " + std::to_string(nt) + " onto " + std::to_string(nd) +
+                                    " vertices, but T has " + std::to_string(n) + " and D " + std::to_string(m));
     std::vector<VertexImageRecord> records;
     records.reserve(n);
     while (records.size() < n && s.next_line()) {
@@ -106,7 +108,8 @@ std::vector<VertexImageRecord> read_vtpm(TextScanner& s, std::size_t n, std::siz
             records.push_back(r);
             continue;
         }
-        if (r.a < 0 || r.b < 0) s.fail(where, "halfedge " + std::to_string(r.a) + " -> " + std::to_string(r.b) + " (-1 -1 means no image)");
+        if (r.a < 0 || r.b < 0)
+            s.fail(where, "halfedge " + std::to_string(r.a) + " -> " + std::to_string(r.b) + " (-1 -1 means no image)");
         r.ref = VertexImageRecord::Ref::halfedge;
         r.weights = {1 - alpha - beta, alpha, beta};
         records.push_back(r);
@@ -128,7 +131,8 @@ std::vector<VertexImageRecord> read_ijv(TextScanner& s, std::size_t n) {
             s.fail(where, "vertex " + std::to_string(i) + " of T out of range 1.." + std::to_string(n));
         VertexImageRecord& r = records[static_cast<std::size_t>(i - 1)];
         const Where vertex{"vertex", static_cast<std::uint64_t>(i - 1)};
-        const auto used = static_cast<std::size_t>(std::count_if(r.corners.begin(), r.corners.end(), [](std::int64_t c) { return c >= 0; }));
+        const auto used = static_cast<std::size_t>(
+            std::count_if(r.corners.begin(), r.corners.end(), [](std::int64_t c) { return c >= 0; }));
         if (std::find(r.corners.begin(), r.corners.end(), j - 1) != r.corners.end() && j >= 1)
             s.fail(vertex, "vertex " + std::to_string(j) + " of D named twice");
         if (used == 3) s.fail(vertex, "more than three weights");
@@ -154,7 +158,8 @@ const char* to_string(VertexMapFormat format) {
 }
 
 std::optional<VertexMapFormat> vertex_map_format_named(std::string_view name) {
-    for (VertexMapFormat f : {VertexMapFormat::plain, VertexMapFormat::corr, VertexMapFormat::vtpm, VertexMapFormat::ijv})
+    for (VertexMapFormat f :
+         {VertexMapFormat::plain, VertexMapFormat::corr, VertexMapFormat::vtpm, VertexMapFormat::ijv})
         if (name == to_string(f)) return f;
     return std::nullopt;
 }
@@ -172,8 +177,8 @@ std::optional<VertexMapFormat> vertex_map_format_of(std::string_view path) {
     return std::nullopt;
 }
 
-VertexMapFile parse_vertex_map(std::string_view bytes, const std::string& name, VertexMapFormat format, std::size_t t_vertices,
-                               std::size_t d_vertices) {
+VertexMapFile parse_vertex_map(std::string_view bytes, const std::string& name, VertexMapFormat format,
+                               std::size_t t_vertices, std::size_t d_vertices) {
     io::detail::check_input_size(bytes, name);
     TextScanner s(bytes, name, format == VertexMapFormat::plain ? '#' : '\0');
     VertexMapFile file{name, format, {}};
@@ -190,7 +195,8 @@ VertexMapFile read_vertex_map(const std::string& path, std::optional<VertexMapFo
                               std::size_t d_vertices) {
     if (!format) format = vertex_map_format_of(path);
     if (!format)
-        throw InvalidInput(path, 0, "cannot tell the map's format from its name (.vmap, .corr, .vtpm, .ijv); name it with --format");
+        throw InvalidInput(
+            path, 0, "cannot tell the map's format from its name (.vmap, .corr, .vtpm, .ijv); name it with --format");
     return parse_vertex_map(io::read_bytes(path), path, *format, t_vertices, d_vertices);
 }
 

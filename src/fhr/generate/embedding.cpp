@@ -139,8 +139,10 @@ double default_cell(const TriMesh& m) {
 /// meet (nor share a vertex), so meet_improperly is false for them. Exact comparisons.
 bool boxes_overlap(const TriangleAt& a, const TriangleAt& b) {
     for (int k = 0; k < 3; ++k) {
-        const double a_lo = std::min({a.p[0][k], a.p[1][k], a.p[2][k]}), a_hi = std::max({a.p[0][k], a.p[1][k], a.p[2][k]});
-        const double b_lo = std::min({b.p[0][k], b.p[1][k], b.p[2][k]}), b_hi = std::max({b.p[0][k], b.p[1][k], b.p[2][k]});
+        const double a_lo = std::min({a.p[0][k], a.p[1][k], a.p[2][k]}),
+                     a_hi = std::max({a.p[0][k], a.p[1][k], a.p[2][k]});
+        const double b_lo = std::min({b.p[0][k], b.p[1][k], b.p[2][k]}),
+                     b_hi = std::max({b.p[0][k], b.p[1][k], b.p[2][k]});
         if (a_hi < b_lo || b_hi < a_lo) return false;
     }
     return true;
@@ -222,7 +224,8 @@ std::optional<std::array<FaceId, 2>> find_self_intersection(const TriMesh& m) {
         }
         std::sort(candidates.begin(), candidates.end());
         for (std::uint32_t g : candidates)
-            if (boxes_overlap(tri[f], tri[g]) && meet_improperly(tri[f], tri[g])) return std::array<FaceId, 2>{FaceId(f), FaceId(g)};
+            if (boxes_overlap(tri[f], tri[g]) && meet_improperly(tri[f], tri[g]))
+                return std::array<FaceId, 2>{FaceId(f), FaceId(g)};
     }
     return std::nullopt;
 }
@@ -260,7 +263,8 @@ void EmbeddingGuard::remove(const TriMesh& m, FaceId f) {
     });
 }
 
-bool EmbeddingGuard::accepts(const TriMesh& m, std::span<const FaceId> removed, std::span<const TriangleAt> added) const {
+bool EmbeddingGuard::accepts(const TriMesh& m, std::span<const FaceId> removed,
+                             std::span<const TriangleAt> added) const {
     for (const TriangleAt& t : added)
         if (is_degenerate(t)) return false;
     for (std::size_t i = 0; i < added.size(); ++i)

@@ -91,9 +91,9 @@ constexpr double cos_max_tilt = 0.5;
 
 struct Block {
     int genus;
-    int holes;       // boundary loops cut into this block
-    bool keep_half;  // hole 0 keeps one triangle of its corner pixel: an odd face count
-    std::uint64_t H, W;  // unit cells along y and x; the block is 1 unit thick (z)
+    int holes;                                // boundary loops cut into this block
+    bool keep_half;                           // hole 0 keeps one triangle of its corner pixel: an odd face count
+    std::uint64_t H, W;                       // unit cells along y and x; the block is 1 unit thick (z)
     std::array<std::uint64_t, 3> n{1, 1, 1};  // lattice boxes per unit cell along x, y, z
 
     Block(int g, int b, bool half) : genus(g), holes(b), keep_half(half), H(g == 0 ? 1 : 3), W(width(g, b, H)) {}
@@ -124,7 +124,8 @@ struct Block {
     std::uint64_t px() const { return W * n[0]; }  // pixels of the footprint along x
     std::uint64_t py() const { return H * n[1]; }
     bool solid_pixel(std::int64_t i, std::int64_t j) const {
-        return i >= 0 && j >= 0 && solid_cell(static_cast<std::uint64_t>(i) / n[0], static_cast<std::uint64_t>(j) / n[1]);
+        return i >= 0 && j >= 0 &&
+               solid_cell(static_cast<std::uint64_t>(i) / n[0], static_cast<std::uint64_t>(j) / n[1]);
     }
     /// Lattice rectangles on the surface, holes excluded: top and bottom, outer walls, hole walls.
     /// A sum of monomials of degree <= 1 in each of m[0], m[1], m[2] with non-negative
@@ -204,10 +205,10 @@ void for_each_quad(const Block& b, F&& quad) {
             const auto si = static_cast<std::int64_t>(i), sj = static_cast<std::int64_t>(j);
             if (!b.solid_pixel(si, sj)) continue;
             const std::uint64_t cx = i / b.n[0], cy = j / b.n[1];
-            const QuadKind top = !b.hole_cell(cx, cy, true) ? QuadKind::solid
+            const QuadKind top = !b.hole_cell(cx, cy, true)        ? QuadKind::solid
                                  : b.keep_half && i == 0 && j == 0 ? QuadKind::half
                                                                    : QuadKind::hole;
-            quad(Corner{i, j, nz}, X, Y, top);  // top, +z
+            quad(Corner{i, j, nz}, X, Y, top);                                                           // top, +z
             quad(Corner{i, j, 0}, Y, X, b.hole_cell(cx, cy, false) ? QuadKind::hole : QuadKind::solid);  // bottom, −z
             const bool wall[4] = {!b.solid_pixel(si + 1, sj), !b.solid_pixel(si - 1, sj), !b.solid_pixel(si, sj + 1),
                                   !b.solid_pixel(si, sj - 1)};
@@ -242,7 +243,7 @@ void drop_unused_vertices(std::vector<Vec3>& positions, std::vector<Triangle>& t
 
 TriMesh triangulated_block(const Block& b, std::uint64_t faces, Random& rng) {
     const Lattice lattice(b);
-    const std::uint64_t n_quads = b.quad_count();  // the solid ones
+    const std::uint64_t n_quads = b.quad_count();                            // the solid ones
     std::uint64_t to_split = (faces - (b.keep_half ? 1 : 0)) / 2 - n_quads;  // centre splits still to place
     std::uint64_t quads_left = n_quads;
     std::vector<Vec3> positions;
@@ -427,7 +428,8 @@ std::uint64_t component_min_faces(int genus, int holes) { return 2 * Block(genus
 void check_counts(int genus, int holes, int components) {
     if (genus < 0) invalid("the genus must be >= 0 (got " + std::to_string(genus) + ")");
     if (holes < 0 || holes > max_holes)
-        invalid("the number of holes must be in [0, " + std::to_string(max_holes) + "] (got " + std::to_string(holes) + ")");
+        invalid("the number of holes must be in [0, " + std::to_string(max_holes) + "] (got " + std::to_string(holes) +
+                ")");
     if (components < 1 || components > max_components)
         invalid("the number of components must be in [1, " + std::to_string(max_components) + "] (got " +
                 std::to_string(components) + ")");
@@ -458,9 +460,10 @@ TriMesh block_mesh(const RandomMeshOptions& options) {
     double right = -std::numeric_limits<double>::infinity();  // the largest x of the components so far
     for (int c = 0; c < components; ++c) {
         const int genus = share(options.genus, components, c), holes = share(options.holes, components, c);
-        const std::uint64_t extra = 2 * (pairs / count + (static_cast<std::uint64_t>(c) < pairs % count ? 1 : 0)) +
-                                    (c == 0 ? surplus % 2 : 0);
-        const TriMesh part = component_mesh(genus, holes, component_min_faces(genus, holes) + extra, options.noise, rng);
+        const std::uint64_t extra =
+            2 * (pairs / count + (static_cast<std::uint64_t>(c) < pairs % count ? 1 : 0)) + (c == 0 ? surplus % 2 : 0);
+        const TriMesh part =
+            component_mesh(genus, holes, component_min_faces(genus, holes) + extra, options.noise, rng);
         // Component 0 stays centred at the origin; component c >= 1 is moved along +x so that its
         // smallest x is right + 1: bounding boxes 1 apart (up to a rounding), so no two
         // components meet.
@@ -579,8 +582,8 @@ Family parse_family(const std::string& name) {
 void set_knob(FamilyKnobs& knobs, Family family, const std::string& name, double value) {
     std::string dashed = name;
     std::replace(dashed.begin(), dashed.end(), '_', '-');
-    const auto known = std::find_if(std::begin(knob_names), std::end(knob_names),
-                                    [&](const KnobName& k) { return dashed == k.name; });
+    const auto known =
+        std::find_if(std::begin(knob_names), std::end(knob_names), [&](const KnobName& k) { return dashed == k.name; });
     if (known == std::end(knob_names)) invalid("unknown knob '" + name + "'");
     if (known->family != family)
         invalid("--" + dashed + " is a knob of the " + family_name(known->family) + " family, not of " +
@@ -590,12 +593,16 @@ void set_knob(FamilyKnobs& knobs, Family family, const std::string& name, double
             invalid("--" + dashed + " must be an integer (got " + shortest(value) + ")");
         return static_cast<int>(value);
     };
-    double* const reals[] = {&knobs.roundness, &knobs.amplitude, &knobs.bad_fraction, &knobs.smallest_angle_deg,
-                             nullptr, &knobs.low_fraction, &knobs.edge_ratio, &knobs.anisotropy, nullptr, &knobs.depth};
+    double* const reals[] = {&knobs.roundness, &knobs.amplitude,    &knobs.bad_fraction, &knobs.smallest_angle_deg,
+                             nullptr,          &knobs.low_fraction, &knobs.edge_ratio,   &knobs.anisotropy,
+                             nullptr,          &knobs.depth};
     const auto index = known - std::begin(knob_names);
-    if (dashed == "high-valence") knobs.high_valence = integer();
-    else if (dashed == "grid-cells") knobs.grid_cells = integer();
-    else *reals[index] = value;
+    if (dashed == "high-valence")
+        knobs.high_valence = integer();
+    else if (dashed == "grid-cells")
+        knobs.grid_cells = integer();
+    else
+        *reals[index] = value;
 }
 
 std::string generate_command(const RandomMeshOptions& o, const std::string& out) {

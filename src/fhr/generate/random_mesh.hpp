@@ -49,15 +49,16 @@ struct FamilyKnobs {
     double bad_fraction = 0.1;         ///< share of the faces that are needles, caps or slivers, in (0, 0.5]
     double smallest_angle_deg = 1e-4;  ///< the thinnest triangle's smallest corner, degrees, in [1e-9, 1]
     // valence
-    int high_valence = 64;         ///< one vertex per component reaches at least this valence, in [7, 1000]
-    double low_fraction = 0.05;    ///< share of the vertices made valence 3, in [0, 0.2]
+    int high_valence = 64;       ///< one vertex per component reaches at least this valence, in [7, 1000]
+    double low_fraction = 0.05;  ///< share of the vertices made valence 3, in [0, 0.2]
     // density
-    double edge_ratio = 1e5;   ///< longest / shortest edge reached by graded refinement, in [10, 1e9]
-    double anisotropy = 100;   ///< aspect ratio of the anisotropic band's triangles, in [1, 1e6]
+    double edge_ratio = 1e5;  ///< longest / shortest edge reached by graded refinement, in [10, 1e9]
+    double anisotropy = 100;  ///< aspect ratio of the anisotropic band's triangles, in [1, 1e6]
     // degenerate
-    int grid_cells = 8;        ///< grid steps per mean edge length (coordinates on a power-of-two grid <= mean edge / grid_cells), in [2, 1024]
+    int grid_cells =
+        8;  ///< grid steps per mean edge length (coordinates on a power-of-two grid <= mean edge / grid_cells), in [2, 1024]
     // immersed
-    double depth = 1.5;        ///< how far a bump is pushed through the slab, in slab thicknesses, in [1.1, 4]
+    double depth = 1.5;  ///< how far a bump is pushed through the slab, in slab thicknesses, in [1.1, 4]
     bool operator==(const FamilyKnobs&) const = default;
 };
 
@@ -67,11 +68,11 @@ struct KnobName {
     const char* name;
     Family family;
 };
-inline constexpr KnobName knob_names[] = {
-    {"roundness", Family::smooth},       {"amplitude", Family::smooth},      {"bad-fraction", Family::quality},
-    {"smallest-angle", Family::quality}, {"high-valence", Family::valence},  {"low-fraction", Family::valence},
-    {"edge-ratio", Family::density},     {"anisotropy", Family::density},    {"grid-cells", Family::degenerate},
-    {"depth", Family::immersed}};
+inline constexpr KnobName knob_names[] = {{"roundness", Family::smooth},      {"amplitude", Family::smooth},
+                                          {"bad-fraction", Family::quality},  {"smallest-angle", Family::quality},
+                                          {"high-valence", Family::valence},  {"low-fraction", Family::valence},
+                                          {"edge-ratio", Family::density},    {"anisotropy", Family::density},
+                                          {"grid-cells", Family::degenerate}, {"depth", Family::immersed}};
 
 /// Sets the knob of that name (as in knob_names; '_' may stand for '-') to value: the one place
 /// the CLI and the Python package turn a name into a knob. Integer knobs take an integral value.
@@ -85,12 +86,12 @@ void set_knob(FamilyKnobs& knobs, Family family, const std::string& name, double
 /// ⌊b/C⌋ (+1 if c < b mod C) holes. Recipes with holes = 0 and components = 1 give the
 /// closed generator's meshes, pinned by GEN-4.
 struct RandomMeshOptions {
-    int genus = 0;            ///< g >= 0: number of handles, in total
-    std::size_t faces = 1000; ///< exact face count F >= min_faces(genus, holes, components); even when holes = 0
-    std::uint64_t seed = 1;   ///< the same options give a bit-identical mesh, on any compiler
-    double noise = 0.0;       ///< in [0, 0.5): vertex jitter, as a fraction of the mean length of its edges
-    int holes = 0;            ///< b in [0, max_holes]: number of boundary loops, in total
-    int components = 1;       ///< C in [1, max_components]: number of connected components
+    int genus = 0;                  ///< g >= 0: number of handles, in total
+    std::size_t faces = 1000;       ///< exact face count F >= min_faces(genus, holes, components); even when holes = 0
+    std::uint64_t seed = 1;         ///< the same options give a bit-identical mesh, on any compiler
+    double noise = 0.0;             ///< in [0, 0.5): vertex jitter, as a fraction of the mean length of its edges
+    int holes = 0;                  ///< b in [0, max_holes]: number of boundary loops, in total
+    int components = 1;             ///< C in [1, max_components]: number of connected components
     Family family = Family::block;  ///< what kind of mesh; block recipes give the meshes pinned by GEN-4
     FamilyKnobs knobs{};            ///< the family's own options (ignored by block)
 };

@@ -87,9 +87,13 @@ struct FieldScratch final : detail::ScratchBase {
 class Foci {
 public:
     Foci(const TriMesh& mesh, VertexId a, VertexId b, const EllipseOptions& options, Workspace* workspace)
-        : mesh_(mesh), a_(a), b_(b), workspace_(workspace),
+        : mesh_(mesh),
+          a_(a),
+          b_(b),
+          workspace_(workspace),
           fields_(options.field_a && options.field_b && options.field_a->source == a && options.field_b->source == b),
-          field_a_(options.field_a), field_b_(options.field_b) {}
+          field_a_(options.field_a),
+          field_b_(options.field_b) {}
 
     // D_a = d_a(a, b), from a's field when it holds b, else from a run from a stopped once b is final.
     double d_ab() {
@@ -163,7 +167,7 @@ EllipsePath ellipse_shortest_path(const TriMesh& mesh, VertexId a, VertexId b, c
     const std::size_t nv = mesh.n_vertices();
     if (a.idx() >= nv || b.idx() >= nv)
         throw InvalidInput("vertex " + std::to_string(std::max(a.idx(), b.idx())) + " is out of range (the mesh has " +
-                                      std::to_string(nv) + " vertices)");
+                           std::to_string(nv) + " vertices)");
     if (a == b) throw InvalidInput("the two vertices are the same (" + std::to_string(a.idx()) + ")");
     if (!(options.K > 1)) throw InvalidInput("K must be greater than 1");
     // Every search below borrows from one workspace: the caller's, or this call's own (declared

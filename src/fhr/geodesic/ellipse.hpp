@@ -76,9 +76,9 @@ struct EllipsePath {
         /// can at most cover a's component; there is then no artificial border either, nothing
         /// reaches one, and the border certificate holds: paper_notes/ellipse.md.)
         whole_mesh,
-        border,      ///< nothing the restricted search brought to T_jk's border can be shorter
-        search,      ///< the exact search on all of T, pruned above L, found nothing shorter
-        replaced,    ///< that search found a shorter path (outside T_jk): its path is returned
+        border,    ///< nothing the restricted search brought to T_jk's border can be shorter
+        search,    ///< the exact search on all of T, pruned above L, found nothing shorter
+        replaced,  ///< that search found a shorter path (outside T_jk): its path is returned
         /// No search: the curve of a boundary edge of D is the arc of T's boundary between its
         /// ends, and a cone edge of T̂ is itself (partition.hpp, core/cones.hpp).
         boundary_arc,

@@ -107,7 +107,8 @@ double intercept(P2 i, P2 q) { return (i.x * q.y - q.x * i.y) / (q.y - i.y); }
 
 double longest_edge_at(const TriMesh& m, VertexId v) {
     double longest = 0;
-    m.for_each_outgoing(v, [&](HalfedgeId h) { longest = std::max(longest, (m.position(m.to(h)) - m.position(v)).norm()); });
+    m.for_each_outgoing(
+        v, [&](HalfedgeId h) { longest = std::max(longest, (m.position(m.to(h)) - m.position(v)).norm()); });
     return longest;
 }
 
@@ -220,7 +221,9 @@ double ExactGeodesic::vertex_key(VertexId v, double d) const {
 // |I x| + |x t'| is convex in x with its minimum where the segment I t' crosses the edge.
 double ExactGeodesic::window_key(const Window& w) const {
     const P2 s{w.sx, w.sy};
-    const auto through = [&](double x, double tx, double ty) { return w.sigma + std::hypot(x - w.sx, w.sy) + std::hypot(x - tx, ty); };
+    const auto through = [&](double x, double tx, double ty) {
+        return w.sigma + std::hypot(x - w.sx, w.sy) + std::hypot(x - tx, ty);
+    };
     if (goals_.empty()) return w.sigma + std::hypot(std::clamp(w.sx, w.b0, w.b1) - w.sx, w.sy);
     double best = INFINITY;
     for (const Vec3& t : goals_) {
@@ -318,7 +321,8 @@ void ExactGeodesic::expand_vertex(VertexId v) {
             // The face spans [a, a + fan_[k]] counted from the arrival direction; the wedge is
             // [π, total − π], widened by wedge_tolerance.
             const double a = std::fmod(theta - back + total, total), b = a + fan_[k];
-            emit = emit && ((a <= total - pi + wedge_tolerance && b >= pi - wedge_tolerance) || b - total >= pi - wedge_tolerance);
+            emit = emit && ((a <= total - pi + wedge_tolerance && b >= pi - wedge_tolerance) ||
+                            b - total >= pi - wedge_tolerance);
             theta += fan_[k++];
         }
         if (emit) {
@@ -408,7 +412,8 @@ void ExactGeodesic::propagate(std::span<const VertexId> targets) {
     for (VertexId t : targets) goals.push_back(mesh_.position(t));
     if (goals != goals_) {
         goals_ = std::move(goals);
-        for (Event& e : heap_) e.key = e.is_vertex ? vertex_key(VertexId(e.index), e.dist) : window_key(windows_[e.index]);
+        for (Event& e : heap_)
+            e.key = e.is_vertex ? vertex_key(VertexId(e.index), e.dist) : window_key(windows_[e.index]);
         std::make_heap(heap_.begin(), heap_.end(), std::greater<>());
     }
     while (!heap_.empty()) {

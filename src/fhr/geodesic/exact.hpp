@@ -162,8 +162,8 @@ private:
     std::vector<std::uint8_t>& kind_;
     std::vector<Window>& windows_;
     std::vector<Event>& heap_;
-    std::vector<double> fan_;    ///< expand_vertex's corner angles, reused
-    std::vector<Vec3> goals_;    ///< positions of the current targets
+    std::vector<double> fan_;  ///< expand_vertex's corner angles, reused
+    std::vector<Vec3> goals_;  ///< positions of the current targets
     std::uint32_t seq_ = 0;
     ExactStats stats_;
 

@@ -216,8 +216,7 @@ private:
             update_corner(m_.next(m_.next(h)), true);  // the corner at w, opposite to(next(h)) -> v
         });
         if (!unfold_) return;
-        for (std::uint32_t l = link_head_[v]; l != no_link; l = links_[l].next)
-            update_corner(links_[l].corner, false);
+        for (std::uint32_t l = link_head_[v]; l != no_link; l = links_[l].next) update_corner(links_[l].corner, false);
     }
 
     void relax(std::uint32_t c, double t) {
@@ -318,9 +317,8 @@ namespace {
 void check_sources(const TriMesh& mesh, std::span<const VertexId> sources) {
     for (VertexId s : sources)
         if (!s.valid() || s.idx() >= mesh.n_vertices())
-            throw InvalidInput("fast marching: source " + std::to_string(s.idx()) +
-                                          " is not a vertex of the mesh (" + std::to_string(mesh.n_vertices()) +
-                                          " vertices)");
+            throw InvalidInput("fast marching: source " + std::to_string(s.idx()) + " is not a vertex of the mesh (" +
+                               std::to_string(mesh.n_vertices()) + " vertices)");
 }
 
 }  // namespace

@@ -97,7 +97,8 @@ public:
     /// \pre mesh valid without garbage, sources are vertices of it; the mesh and the workspace
     ///      (when given) outlive the run.
     /// \throws InvalidInput when a source is not a vertex of the mesh.
-    FastMarching(const TriMesh& mesh, std::span<const VertexId> sources, bool unfold = true, Workspace* workspace = nullptr);
+    FastMarching(const TriMesh& mesh, std::span<const VertexId> sources, bool unfold = true,
+                 Workspace* workspace = nullptr);
     ~FastMarching();
     FastMarching(const FastMarching&) = delete;
     FastMarching& operator=(const FastMarching&) = delete;

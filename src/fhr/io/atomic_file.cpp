@@ -23,13 +23,16 @@ namespace fhr::io {
 
 namespace {
 
-InvalidInput refusal(const std::string& path, int error) { return InvalidInput(path, 0, std::string("cannot write: ") + std::strerror(error)); }
+InvalidInput refusal(const std::string& path, int error) {
+    return InvalidInput(path, 0, std::string("cannot write: ") + std::strerror(error));
+}
 
 }  // namespace
 
 FileParts& FileParts::elements(std::size_t count, Put put) {
     puts_.push_back(std::move(put));
-    for (std::size_t first = 0; first < count; first += block) parts_.push_back({puts_.size() - 1, first, std::min(count, first + block)});
+    for (std::size_t first = 0; first < count; first += block)
+        parts_.push_back({puts_.size() - 1, first, std::min(count, first + block)});
     return *this;
 }
 
@@ -111,6 +114,8 @@ void FileParts::write(const std::string& path, Executor* executor) const {
     }
 }
 
-void write_file_atomically(const std::string& path, std::string_view bytes) { FileParts().text(std::string(bytes)).write(path); }
+void write_file_atomically(const std::string& path, std::string_view bytes) {
+    FileParts().text(std::string(bytes)).write(path);
+}
 
 }  // namespace fhr::io

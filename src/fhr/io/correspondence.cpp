@@ -23,7 +23,8 @@ std::vector<CorrespondenceEntry> parse_correspondence(std::string_view bytes, co
             std::array<double, 3> b{};
             for (double& x : b) {
                 x = s.real(where);
-                if (!(x >= 0 && x <= 1)) s.fail(where, "barycentric coordinate " + std::to_string(x) + " is not in [0, 1]");
+                if (!(x >= 0 && x <= 1))
+                    s.fail(where, "barycentric coordinate " + std::to_string(x) + " is not in [0, 1]");
             }
             if (std::abs(b[0] + b[1] + b[2] - 1) > sum_tolerance)
                 s.fail(where, "barycentric coordinates sum to " + std::to_string(b[0] + b[1] + b[2]) + ", not 1");

@@ -22,10 +22,10 @@ using detail::Where;
 
 /// FMT-OBJ-1: statements of the OBJ specification that carry nothing the paper's input needs.
 constexpr std::string_view ignored_statements[] = {
-    "vt",     "vn",     "vp",     "g",     "o",        "s",        "mg",    "usemtl", "mtllib",
-    "usemap", "maps",   "l",      "p",     "curv",     "curv2",    "surf",  "cstype", "deg",
-    "bmat",   "step",   "parm",   "trim",  "hole",     "scrv",     "sp",    "end",    "con",
-    "lod",    "bevel",  "c_interp", "d_interp", "shadow_obj", "trace_obj", "ctech", "stech", "call"};
+    "vt",     "vn",    "vp",       "g",        "o",          "s",         "mg",    "usemtl", "mtllib",
+    "usemap", "maps",  "l",        "p",        "curv",       "curv2",     "surf",  "cstype", "deg",
+    "bmat",   "step",  "parm",     "trim",     "hole",       "scrv",      "sp",    "end",    "con",
+    "lod",    "bevel", "c_interp", "d_interp", "shadow_obj", "trace_obj", "ctech", "stech",  "call"};
 
 bool is_ignored(std::string_view keyword) {
     for (std::string_view s : ignored_statements)
@@ -36,8 +36,8 @@ bool is_ignored(std::string_view keyword) {
 /// An OBJ reference resolved to a 0-based index: positive ones are 1-based and checked against the
 /// final count by the caller (OBJ allows them to refer forward), negative ones count back from the
 /// `defined` records read so far (FMT-OBJ-4, FMT-OBJ-5).
-std::uint32_t resolve(std::string_view token, std::uint64_t defined, const char* what, const char* plural, TextScanner& in,
-                      Where where) {
+std::uint32_t resolve(std::string_view token, std::uint64_t defined, const char* what, const char* plural,
+                      TextScanner& in, Where where) {
     std::int64_t value = 0;
     const NumberStatus status = detail::parse_int64(token, value);
     if (status == NumberStatus::not_a_number)
@@ -47,8 +47,8 @@ std::uint32_t resolve(std::string_view token, std::uint64_t defined, const char*
     if (value == 0) in.fail(where, "index 0 (OBJ indices are 1-based)");
     if (value > 0) return static_cast<std::uint32_t>(value - 1);
     if (value < -static_cast<std::int64_t>(defined))
-        in.fail(where, "relative index " + std::to_string(value) + " out of range (only " + std::to_string(defined) + " " +
-                           plural + " defined so far)");
+        in.fail(where, "relative index " + std::to_string(value) + " out of range (only " + std::to_string(defined) +
+                           " " + plural + " defined so far)");
     return static_cast<std::uint32_t>(static_cast<std::int64_t>(defined) + value);
 }
 
@@ -57,7 +57,7 @@ std::uint32_t resolve(std::string_view token, std::uint64_t defined, const char*
 std::uint32_t parse_corner(std::string_view corner, std::uint64_t defined, TextScanner& in, Where where,
                            std::uint64_t defined_uv = 0, std::uint32_t* texture = nullptr) {
     std::array<std::string_view, 3> parts;  // vertex, texture, normal
-    std::size_t last = 0;  // index of the last part present
+    std::size_t last = 0;                   // index of the last part present
     for (std::string_view rest = corner;; ++last) {
         if (last == parts.size()) in.fail(where, "malformed corner " + detail::quoted(corner));
         const std::size_t slash = rest.find('/');
@@ -76,8 +76,10 @@ std::uint32_t parse_corner(std::string_view corner, std::uint64_t defined, TextS
     if (!texture_ok || !normal_ok)
         in.fail(where, "malformed corner " + detail::quoted(corner) + " (expected i, i/t, i//n or i/t/n)");
 
-    if (texture) *texture = last >= 1 && !parts[1].empty() ? resolve(parts[1], defined_uv, "texture coordinate", "texture coordinates", in, where)
-                                                              : SoupTexture::none;
+    if (texture)
+        *texture = last >= 1 && !parts[1].empty()
+                       ? resolve(parts[1], defined_uv, "texture coordinate", "texture coordinates", in, where)
+                       : SoupTexture::none;
     return resolve(parts[0], defined, "vertex", "vertices", in, where);
 }
 
@@ -89,7 +91,7 @@ PolygonSoup parse_obj(std::string_view bytes, const std::string& name, bool text
     PolygonSoup soup;
     soup.source = name;
     SoupTexture& tex = soup.texture;
-    std::uint32_t group = 0;  // the texture of the faces that follow: the last `usemtl`, 0 before any
+    std::uint32_t group = 0;       // the texture of the faces that follow: the last `usemtl`, 0 before any
     detail::PrintedDigits digits;  // of the coordinates x, y, z
     if (texture) tex.texture_names.emplace_back();
 
@@ -110,7 +112,8 @@ PolygonSoup parse_obj(std::string_view bytes, const std::string& name, bool text
             std::uint64_t n = 0;
             for (std::string_view corner = in.token(); !corner.empty(); corner = in.token(), ++n) {
                 std::uint32_t t = SoupTexture::none;
-                soup.indices.push_back(parse_corner(corner, soup.points.size(), in, where, tex.uv.size(), texture ? &t : nullptr));
+                soup.indices.push_back(
+                    parse_corner(corner, soup.points.size(), in, where, tex.uv.size(), texture ? &t : nullptr));
                 if (texture) tex.corner_uv.push_back(t);
             }
             detail::check_polygon_size(n, name, in.line(), where);

@@ -24,8 +24,8 @@ bool parse_header_keyword(std::string_view keyword, detail::TextScanner& in) {
     if (prefix.substr(0, 1) == "C") prefix.remove_prefix(1);
     if (prefix.substr(0, 1) == "N") prefix.remove_prefix(1);
     if (!prefix.empty())
-        in.fail({"header"}, "unsupported OFF variant " + detail::quoted(keyword) +
-                                " (accepted: [ST][C][N]OFF in 3 dimensions)");
+        in.fail({"header"},
+                "unsupported OFF variant " + detail::quoted(keyword) + " (accepted: [ST][C][N]OFF in 3 dimensions)");
     return keyword.size() > 3;
 }
 

@@ -97,10 +97,14 @@ Header parse_header_lines(std::string_view bytes, TextScanner& in) {
         }
         if (keyword == "format") {
             const std::string_view encoding = in.token(where, "an encoding");
-            if (encoding == "ascii") h.encoding = Encoding::ascii;
-            else if (encoding == "binary_little_endian") h.encoding = Encoding::little_endian;
-            else if (encoding == "binary_big_endian") h.encoding = Encoding::big_endian;
-            else in.fail(where, "unknown encoding " + detail::quoted(encoding));
+            if (encoding == "ascii")
+                h.encoding = Encoding::ascii;
+            else if (encoding == "binary_little_endian")
+                h.encoding = Encoding::little_endian;
+            else if (encoding == "binary_big_endian")
+                h.encoding = Encoding::big_endian;
+            else
+                in.fail(where, "unknown encoding " + detail::quoted(encoding));
             if (in.token(where, "a version") != "1.0") in.fail(where, "unsupported PLY version (expected 1.0)");
             has_format = true;
         } else if (keyword == "element") {
@@ -147,7 +151,8 @@ Header parse_header(std::string_view bytes, TextScanner& in) {
     Header h = parse_header_lines(bytes, in);
     const std::string& file = in.name();
     for (const Element& e : h.elements)
-        if (e.properties.empty()) detail::fail(file, 0, {"header"}, "element " + detail::quoted(e.name) + " has no properties");
+        if (e.properties.empty())
+            detail::fail(file, 0, {"header"}, "element " + detail::quoted(e.name) + " has no properties");
 
     h.vertex = find_element(h, "vertex", file);
     const std::vector<Property>& vertex = h.elements[h.vertex].properties;
@@ -155,8 +160,10 @@ Header parse_header(std::string_view bytes, TextScanner& in) {
     for (std::size_t c = 0; c < 3; ++c) {
         std::size_t k = 0;
         while (k < vertex.size() && vertex[k].name != axes[c]) ++k;
-        if (k == vertex.size()) detail::fail(file, 0, {"header"}, "element 'vertex' has no property '" + std::string(axes[c]) + "'");
-        if (vertex[k].is_list) detail::fail(file, 0, {"header"}, "vertex property '" + std::string(axes[c]) + "' is a list");
+        if (k == vertex.size())
+            detail::fail(file, 0, {"header"}, "element 'vertex' has no property '" + std::string(axes[c]) + "'");
+        if (vertex[k].is_list)
+            detail::fail(file, 0, {"header"}, "vertex property '" + std::string(axes[c]) + "' is a list");
         h.xyz[c] = k;
     }
 
@@ -174,7 +181,8 @@ Header parse_header(std::string_view bytes, TextScanner& in) {
             if (ps[j].name == name && !ps[j].is_list) return j;
         return Header::absent;
     };
-    constexpr std::array<std::array<std::string_view, 2>, 3> uv_names = {{{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}}};
+    constexpr std::array<std::array<std::string_view, 2>, 3> uv_names = {
+        {{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}}};
     for (const auto& names : uv_names)
         if (h.vertex_uv[0] == Header::absent && scalar(vertex, names[0]) != Header::absent &&
             scalar(vertex, names[1]) != Header::absent)
@@ -195,8 +203,10 @@ std::uint64_t min_body_bytes(const Header& h) {
         for (std::size_t k = 0; k < h.elements[e].properties.size(); ++k) {
             const Property& p = h.elements[e].properties[k];
             const std::uint64_t min_values = (e == h.face && k == h.face_list) ? 3 : 0;
-            if (h.encoding == Encoding::ascii) record += p.is_list ? 2 + 2 * min_values : 2;
-            else record += p.is_list ? info(p.count_type).size + min_values * info(p.type).size : info(p.type).size;
+            if (h.encoding == Encoding::ascii)
+                record += p.is_list ? 2 + 2 * min_values : 2;
+            else
+                record += p.is_list ? info(p.count_type).size + min_values * info(p.type).size : info(p.type).size;
         }
         total = detail::add_min_bytes(total, h.elements[e].count, record);
     }
@@ -208,7 +218,8 @@ class AsciiBody {
 public:
     explicit AsciiBody(TextScanner& in) : in_(in) {}
     void begin(Where where, std::uint64_t declared) {
-        if (!in_.next_line()) in_.fail(where, "unexpected end of file (the header declares " + std::to_string(declared) + ")");
+        if (!in_.next_line())
+            in_.fail(where, "unexpected end of file (the header declares " + std::to_string(declared) + ")");
     }
     void end(Where where) { in_.expect_end_of_line(where); }
     void finish() {
@@ -245,7 +256,8 @@ public:
     void end(Where) {}
     void finish() {
         if (pos_ != data_.size())
-            detail::fail(name_, 0, {}, "unexpected data after the last element (" + std::to_string(data_.size() - pos_) + " bytes)");
+            detail::fail(name_, 0, {},
+                         "unexpected data after the last element (" + std::to_string(data_.size() - pos_) + " bytes)");
     }
     std::uint64_t line() const { return 0; }
     std::int64_t integer(Scalar t, Where where) {
@@ -275,7 +287,9 @@ public:
     }
 
 private:
-    [[noreturn]] void truncated(Where where) const { detail::fail(name_, 0, where, "unexpected end of data (truncated file?)"); }
+    [[noreturn]] void truncated(Where where) const {
+        detail::fail(name_, 0, where, "unexpected end of data (truncated file?)");
+    }
     std::uint64_t raw(Scalar t, Where where) {
         const unsigned size = info(t).size;
         if (data_.size() - pos_ < size) truncated(where);
@@ -318,7 +332,8 @@ void read_body(Body& body, const Header& h, PolygonSoup& soup, bool text, bool t
                 const Property& prop = element.properties[k];
                 if (!prop.is_list) {
                     const bool coordinate = is_vertex && (k == h.xyz[0] || k == h.xyz[1] || k == h.xyz[2]);
-                    const double v = texture && coordinate ? body.real(prop.type, where, digits, tex.rounding) : body.real(prop.type, where);
+                    const double v = texture && coordinate ? body.real(prop.type, where, digits, tex.rounding)
+                                                           : body.real(prop.type, where);
                     for (int c = 0; c < 3; ++c)
                         if (is_vertex && k == h.xyz[c]) p[c] = v;
                     for (int c = 0; c < 2; ++c)

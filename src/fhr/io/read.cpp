@@ -16,14 +16,16 @@ namespace fhr::io {
 Format format_from_extension(const std::string& path) {
     const std::size_t slash = path.find_last_of('/');
     const std::size_t dot = path.find_last_of('.');
-    std::string ext = (dot == std::string::npos || (slash != std::string::npos && dot < slash)) ? "" : path.substr(dot + 1);
+    std::string ext =
+        (dot == std::string::npos || (slash != std::string::npos && dot < slash)) ? "" : path.substr(dot + 1);
     for (char& c : ext) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
     if (ext == "off" || ext == "coff") return Format::off;
     if (ext == "obj") return Format::obj;
     if (ext == "ply") return Format::ply;
     if (ext == "stl") return Format::stl;
     throw InvalidInput(path, 0,
-                       "unknown format (extension " + (ext.empty() ? std::string("missing") : detail::quoted("." + ext)) +
+                       "unknown format (extension " +
+                           (ext.empty() ? std::string("missing") : detail::quoted("." + ext)) +
                            "; expected .off, .coff, .obj, .ply or .stl)");
 }
 

@@ -76,7 +76,9 @@ PolygonSoup parse_binary(std::string_view bytes, std::uint32_t n, const std::str
 /// Fails unless the current line starts with `keyword`.
 void expect_keyword(TextScanner& in, std::string_view keyword, Where where) {
     const std::string_view t = in.token();
-    if (t != keyword) in.fail(where, "expected '" + std::string(keyword) + "', found " + (t.empty() ? std::string("end of line") : detail::quoted(t)));
+    if (t != keyword)
+        in.fail(where, "expected '" + std::string(keyword) + "', found " +
+                           (t.empty() ? std::string("end of line") : detail::quoted(t)));
 }
 
 /// Moves to the next line and checks it starts with `keyword`.
@@ -144,8 +146,9 @@ PolygonSoup parse_stl(std::string_view bytes, const std::string& name) {
                              std::to_string(n) + " triangles (" + std::to_string(84 + 50 * std::uint64_t{n}) +
                              " bytes) but the file has " + std::to_string(bytes.size()) + " bytes (truncated file?)");
     } else if (bytes.substr(0, 5) != "solid") {
-        detail::fail(name, 0, {}, "not an ascii STL (no 'solid' at the start) and too short for a binary STL (" +
-                                      std::to_string(bytes.size()) + " bytes < 84)");
+        detail::fail(name, 0, {},
+                     "not an ascii STL (no 'solid' at the start) and too short for a binary STL (" +
+                         std::to_string(bytes.size()) + " bytes < 84)");
     }
     return parse_ascii(bytes, name);
 }

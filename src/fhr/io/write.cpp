@@ -31,7 +31,8 @@ void append_little_endian(std::string& out, std::uint64_t bits, int size) {
 
 }  // namespace
 
-void write_off(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles, Executor* executor) {
+void write_off(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles,
+               Executor* executor) {
     check_indices(points.size(), triangles);
     std::string header = "OFF\n";
     append_number(header, points.size());
@@ -60,8 +61,9 @@ void write_obj(const std::string& path, std::span<const Vec3> points, std::span<
                std::span<const Vec2> corner_uv, Executor* executor) {
     if (!corner_uv.empty() && corner_uv.size() != 3 * triangles.size())
         throw std::invalid_argument("fhr::io::write_obj: corner_uv must hold 3 entries per triangle");
-    write_obj(path, points, triangles, corner_uv.empty() ? std::function<Vec2(std::size_t)>() : [&](std::size_t c) { return corner_uv[c]; },
-              executor);
+    write_obj(
+        path, points, triangles,
+        corner_uv.empty() ? std::function<Vec2(std::size_t)>() : [&](std::size_t c) { return corner_uv[c]; }, executor);
 }
 
 void write_obj(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles,
@@ -103,7 +105,8 @@ void write_obj(const std::string& path, std::span<const Vec3> points, std::span<
 void write_obj_polylines(const std::string& path, std::span<const Vec3> points,
                          std::span<const std::vector<std::uint32_t>> polylines, std::span<const std::string> groups,
                          Executor* executor) {
-    if (!groups.empty() && groups.size() != polylines.size()) throw std::invalid_argument("fhr::io::write_obj_polylines: one group per polyline");
+    if (!groups.empty() && groups.size() != polylines.size())
+        throw std::invalid_argument("fhr::io::write_obj_polylines: one group per polyline");
     FileParts file;
     file.elements(points.size(), [&](std::size_t first, std::size_t end, std::string& out) {
         for (std::size_t i = first; i < end; ++i) {
@@ -154,7 +157,8 @@ void write_ply(const std::string& path, std::span<const Vec3> points, std::span<
     file.write(path, executor);
 }
 
-void write_mesh(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles, Executor* executor) {
+void write_mesh(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles,
+                Executor* executor) {
     switch (format_from_extension(path)) {
         case Format::off: write_off(path, points, triangles, executor); return;
         case Format::obj: write_obj(path, points, triangles, std::span<const Vec2>(), executor); return;

@@ -36,8 +36,8 @@ void write_obj(const std::string& path, std::span<const Vec3> points, std::span<
 /// OBJ polylines (`l` lines), one per entry of `polylines` (fhr run's geodesics.obj); with
 /// `groups` (one name per polyline), each line is preceded by `g NAME` when its name changes.
 void write_obj_polylines(const std::string& path, std::span<const Vec3> points,
-                         std::span<const std::vector<std::uint32_t>> polylines, std::span<const std::string> groups = {},
-                         Executor* executor = nullptr);
+                         std::span<const std::vector<std::uint32_t>> polylines,
+                         std::span<const std::string> groups = {}, Executor* executor = nullptr);
 /// Binary little-endian PLY with double vertex coordinates and uint32 face indices; when
 /// `face_patch` is non-empty, one more face property `uint patch` (fhr run's refined.ply: the
 /// domain face whose patch holds each face of T′).

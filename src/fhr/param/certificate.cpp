@@ -85,7 +85,8 @@ Certificate certify(const Disk& disk, const PatchMap& psi, const std::array<Vec3
     }
     const std::size_t nv = disk.positions.size();
     if (psi.beta.size() != nv) {
-        fail("MAP-8", Element::whole, -1, std::to_string(psi.beta.size()) + " images for " + std::to_string(nv) + " vertices");
+        fail("MAP-8", Element::whole, -1,
+             std::to_string(psi.beta.size()) + " images for " + std::to_string(nv) + " vertices");
         return cert;
     }
     // MAP-6: finite barycentric triples. On the 2^-53 grid they sum to 1 exactly; any producer
@@ -109,8 +110,9 @@ Certificate certify(const Disk& disk, const PatchMap& psi, const std::array<Vec3
         area.add(0.5 * ((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x())));
         if (orient2d(a, b, c) <= 0) {
             if (cert.flipped_triangles++ == 0)
-                fail("MAP-8", Element::face, static_cast<std::int64_t>(t), "orientation: image of triangle " + std::to_string(t) + " (" + std::to_string(f[0]) + ", " +
-                     std::to_string(f[1]) + ", " + std::to_string(f[2]) + ") is folded or degenerate");
+                fail("MAP-8", Element::face, static_cast<std::int64_t>(t),
+                     "orientation: image of triangle " + std::to_string(t) + " (" + std::to_string(f[0]) + ", " +
+                         std::to_string(f[1]) + ", " + std::to_string(f[2]) + ") is folded or degenerate");
             continue;
         }
         auto in_domain = [&](std::uint32_t v) {
@@ -143,8 +145,9 @@ Certificate certify(const Disk& disk, const PatchMap& psi, const std::array<Vec3
             previous = parameter;
             if (!problem.empty()) {
                 ++cert.boundary_violations;
-                fail("MAP-8", Element::boundary_position, static_cast<std::int64_t>(p % n), "boundary: vertex " + std::to_string(u) + " at boundary position " + std::to_string(p % n) +
-                     " with β " + vertex_text(beta) + ": " + problem);
+                fail("MAP-8", Element::boundary_position, static_cast<std::int64_t>(p % n),
+                     "boundary: vertex " + std::to_string(u) + " at boundary position " + std::to_string(p % n) +
+                         " with β " + vertex_text(beta) + ": " + problem);
             }
         }
     }

@@ -33,12 +33,12 @@ inline constexpr double area_tolerance = 1e-12;
 
 /// The result of certify().
 struct Certificate {
-    bool passed = false;                 ///< every check below holds
-    std::size_t triangles = 0;           ///< image triangles checked
-    std::size_t flipped_triangles = 0;   ///< exact orient2d ≤ 0 (folded or degenerate)
-    std::size_t boundary_violations = 0; ///< boundary vertices off their side, out of order, or corners off
-    double image_area = 0;               ///< Σ signed areas in the (β1, β2) plane (1/2 when one-to-one)
-    double min_image_angle_degrees = 0;  ///< smallest angle of the image triangles in the domain triangle
+    bool passed = false;                  ///< every check below holds
+    std::size_t triangles = 0;            ///< image triangles checked
+    std::size_t flipped_triangles = 0;    ///< exact orient2d ≤ 0 (folded or degenerate)
+    std::size_t boundary_violations = 0;  ///< boundary vertices off their side, out of order, or corners off
+    double image_area = 0;                ///< Σ signed areas in the (β1, β2) plane (1/2 when one-to-one)
+    double min_image_angle_degrees = 0;   ///< smallest angle of the image triangles in the domain triangle
     /// None iff passed; else the first broken check: MAP-1 (the disk, disk_violation), MAP-6 (a
     /// vertex's β), MAP-8 (the image count as a whole, a face's orientation, a boundary position,
     /// the area as a whole).

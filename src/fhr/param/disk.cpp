@@ -66,13 +66,16 @@ std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t x) {
     return x;
 }
 
-Violation broken(Element element, std::int64_t index, std::string what) { return Violation{"MAP-1", element, index, std::move(what)}; }
+Violation broken(Element element, std::int64_t index, std::string what) {
+    return Violation{"MAP-1", element, index, std::move(what)};
+}
 
 constexpr std::uint32_t none = detail::DirectedEdges::none;
 
 // What disk_violation learns of the triangles on its way.
 struct DiskScan {
-    explicit DiskScan(std::size_t nv, std::size_t nt) : incident(nv, 0), edges(3 * nt), boundary_next(nv, none), boundary_prev(nv, none) {}
+    explicit DiskScan(std::size_t nv, std::size_t nt)
+        : incident(nv, 0), edges(3 * nt), boundary_next(nv, none), boundary_prev(nv, none) {}
     std::vector<std::uint32_t> incident;  // per vertex, its triangles
     detail::DirectedEdges edges;          // each directed edge's triangle
     std::vector<std::uint32_t> boundary_next, boundary_prev;
@@ -86,17 +89,23 @@ std::optional<Violation> triangles_violation(const Disk& disk, DiskScan& scan) {
     for (std::size_t t = 0; t < nt; ++t) {
         const auto& f = disk.triangles[t];
         for (int k = 0; k < 3; ++k)
-            if (f[k] >= nv) return broken(Element::face, t, "triangle " + std::to_string(t) + " names vertex " + std::to_string(f[k]) + " of " + std::to_string(nv));
-        if (f[0] == f[1] || f[1] == f[2] || f[2] == f[0]) return broken(Element::face, t, "triangle " + std::to_string(t) + " repeats a vertex");
+            if (f[k] >= nv)
+                return broken(Element::face, t,
+                              "triangle " + std::to_string(t) + " names vertex " + std::to_string(f[k]) + " of " +
+                                  std::to_string(nv));
+        if (f[0] == f[1] || f[1] == f[2] || f[2] == f[0])
+            return broken(Element::face, t, "triangle " + std::to_string(t) + " repeats a vertex");
         for (int k = 0; k < 3; ++k) {
             ++scan.incident[f[k]];
             if (!scan.edges.insert(detail::edge_key(f[k], f[(k + 1) % 3]), static_cast<std::uint32_t>(t)))
-                return broken(Element::face, static_cast<std::int64_t>(t), "directed edge (" + std::to_string(f[k]) + ", " +
-                                  std::to_string(f[(k + 1) % 3]) + ") is in two triangles (inconsistent orientation or a non-manifold edge)");
+                return broken(Element::face, static_cast<std::int64_t>(t),
+                              "directed edge (" + std::to_string(f[k]) + ", " + std::to_string(f[(k + 1) % 3]) +
+                                  ") is in two triangles (inconsistent orientation or a non-manifold edge)");
         }
     }
     for (std::size_t v = 0; v < nv; ++v)
-        if (scan.incident[v] == 0) return broken(Element::vertex, v, "vertex " + std::to_string(v) + " is in no triangle");
+        if (scan.incident[v] == 0)
+            return broken(Element::vertex, v, "vertex " + std::to_string(v) + " is in no triangle");
     return std::nullopt;
 }
 
@@ -112,7 +121,9 @@ std::optional<Violation> boundary_violation(const Disk& disk, DiskScan& scan) {
         }
         ++scan.n_edges;
         ++scan.n_boundary_edges;
-        if (scan.boundary_next[a] != none) return broken(Element::vertex, a, "vertex " + std::to_string(a) + " starts two boundary edges (not a disk)");
+        if (scan.boundary_next[a] != none)
+            return broken(Element::vertex, a,
+                          "vertex " + std::to_string(a) + " starts two boundary edges (not a disk)");
         scan.boundary_next[a] = b;
         scan.boundary_prev[b] = a;
     }
@@ -142,7 +153,9 @@ std::optional<Violation> fan_violation(const Disk& disk, const DiskScan& scan) {
             w = f[(k + 1) % 3];
             if (w == first) break;
         }
-        if (visited != scan.incident[v]) return broken(Element::vertex, v, "vertex " + std::to_string(v) + " is not manifold (its triangles form more than one fan)");
+        if (visited != scan.incident[v])
+            return broken(Element::vertex, v,
+                          "vertex " + std::to_string(v) + " is not manifold (its triangles form more than one fan)");
     }
     return std::nullopt;
 }
@@ -152,17 +165,24 @@ std::optional<Violation> fan_violation(const Disk& disk, const DiskScan& scan) {
 std::optional<Violation> loop_violation(const Disk& disk, const DiskScan& scan) {
     const auto& loop = disk.boundary;
     const std::size_t nv = disk.positions.size();
-    if (loop.size() < 3) return broken(Element::boundary_position, -1, "boundary loop has " + std::to_string(loop.size()) + " vertices (needs 3 corners)");
+    if (loop.size() < 3)
+        return broken(Element::boundary_position, -1,
+                      "boundary loop has " + std::to_string(loop.size()) + " vertices (needs 3 corners)");
     if (loop.size() != scan.n_boundary_edges)
-        return broken(Element::boundary_position, -1, "the triangles have " + std::to_string(scan.n_boundary_edges) + " boundary edges but the loop has " +
-                                                 std::to_string(loop.size()) + " (more than one boundary loop?)");
+        return broken(Element::boundary_position, -1,
+                      "the triangles have " + std::to_string(scan.n_boundary_edges) +
+                          " boundary edges but the loop has " + std::to_string(loop.size()) +
+                          " (more than one boundary loop?)");
     std::vector<char> on_loop(nv, 0);
     for (std::size_t i = 0; i < loop.size(); ++i) {
         const std::uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
         if (a >= nv || scan.boundary_next[a] != b)
-            return broken(Element::boundary_position, static_cast<std::int64_t>(i), "boundary position " + std::to_string(i) + ": (" + std::to_string(a) + ", " +
-                                                  std::to_string(b) + ") is not a boundary edge in the triangles' orientation");
-        if (on_loop[a]++) return broken(Element::boundary_position, static_cast<std::int64_t>(i), "boundary position " + std::to_string(i) + " repeats vertex " + std::to_string(a));
+            return broken(Element::boundary_position, static_cast<std::int64_t>(i),
+                          "boundary position " + std::to_string(i) + ": (" + std::to_string(a) + ", " +
+                              std::to_string(b) + ") is not a boundary edge in the triangles' orientation");
+        if (on_loop[a]++)
+            return broken(Element::boundary_position, static_cast<std::int64_t>(i),
+                          "boundary position " + std::to_string(i) + " repeats vertex " + std::to_string(a));
     }
     return std::nullopt;
 }
@@ -176,13 +196,15 @@ std::optional<Violation> topology_violation(const Disk& disk, const DiskScan& sc
     for (const auto& f : disk.triangles)
         for (int k = 1; k < 3; ++k) parent[find_root(parent, f[k])] = find_root(parent, f[0]);
     for (std::uint32_t v = 1; v < nv; ++v)
-        if (find_root(parent, v) != find_root(parent, 0)) return broken(Element::vertex, v, "not connected (vertex " + std::to_string(v) + ")");
+        if (find_root(parent, v) != find_root(parent, 0))
+            return broken(Element::vertex, v, "not connected (vertex " + std::to_string(v) + ")");
     const long chi = static_cast<long>(nv) - static_cast<long>(scan.n_edges) + static_cast<long>(disk.triangles.size());
     if (chi != 1) return broken(Element::whole, -1, "Euler characteristic " + std::to_string(chi) + " (a disk has 1)");
     const auto& c = disk.corners;
     if (!(c[0] == 0 && c[0] < c[1] && c[1] < c[2] && c[2] < disk.boundary.size()))
-        return broken(Element::corners, -1, "corners (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) +
-                                                ") are not 0 < c1 < c2 < " + std::to_string(disk.boundary.size()));
+        return broken(Element::corners, -1,
+                      "corners (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) +
+                          ") are not 0 < c1 < c2 < " + std::to_string(disk.boundary.size()));
     return std::nullopt;
 }
 

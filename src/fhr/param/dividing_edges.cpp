@@ -24,7 +24,8 @@ std::size_t split_dividing_edges(Disk& disk, std::vector<std::uint32_t>* origin)
     for (const auto& f : disk.triangles)
         for (int k = 0; k < 3; ++k) {
             const std::uint32_t a = f[k], b = f[(k + 1) % 3];
-            if (a < b && (side[a] & side[b]) != 0 && edges.find(detail::edge_key(b, a)) != detail::DirectedEdges::none) dividing.emplace_back(a, b);
+            if (a < b && (side[a] & side[b]) != 0 && edges.find(detail::edge_key(b, a)) != detail::DirectedEdges::none)
+                dividing.emplace_back(a, b);
         }
 
     auto set = [&](std::uint32_t t, std::array<std::uint32_t, 3> f) {

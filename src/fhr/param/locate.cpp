@@ -50,7 +50,8 @@ PatchLocator::PatchLocator(const Disk& disk, const PatchMap& psi)
     }
 
     // The grid: G² ≈ #T cells over [0,1]², each listing the triangles whose bounding box meets it.
-    grid_ = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(triangles_.size())))));
+    grid_ = std::max<std::size_t>(
+        1, static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(triangles_.size())))));
     const double g = static_cast<double>(grid_);
     auto cell = [&](double x) { return std::min(grid_ - 1, static_cast<std::size_t>(std::max(0.0, x * g))); };
     std::vector<std::array<std::size_t, 4>> boxes(triangles_.size());  // i0, i1, j0, j1
@@ -84,7 +85,8 @@ PatchLocator::Location PatchLocator::on_side(unsigned c, double tau) const {
     // segment that starts there, where s = 0 and φ is the vertex's position exactly.
     const std::size_t segments = side.segments.size();
     const auto above = std::upper_bound(side.tau.begin(), side.tau.end(), tau);
-    const std::size_t p = std::min<std::size_t>(segments - 1, static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, above - side.tau.begin() - 1)));
+    const std::size_t p = std::min<std::size_t>(
+        segments - 1, static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, above - side.tau.begin() - 1)));
     const double s = std::clamp((tau - side.tau[p]) / (side.tau[p + 1] - side.tau[p]), 0.0, 1.0);
     Location hit{side.segments[p].triangle, {0.0, 0.0, 0.0}};
     hit.weights[side.segments[p].near_place] = 1 - s;
@@ -120,7 +122,8 @@ PatchLocator::Location PatchLocator::in_interior(double x, double y) const {
         auto point = [&](std::uint32_t v) { return Eigen::Vector2d(image_[v][0], image_[v][1]); };
         const Eigen::Vector2d a = point(f[0]), b = point(f[1]), c = point(f[2]);
         // Exact containment in the closed triangle (the images are positively oriented).
-        if (orient2d(a, b, q) >= 0 && orient2d(b, c, q) >= 0 && orient2d(c, a, q) >= 0) return normalized(t, weights(t));
+        if (orient2d(a, b, q) >= 0 && orient2d(b, c, q) >= 0 && orient2d(c, a, q) >= 0)
+            return normalized(t, weights(t));
     }
     // Not in any closed image triangle: β lies outside the reference triangle by rounding
     // (within below_zero_tolerance). Take the triangle whose coordinates are least negative.

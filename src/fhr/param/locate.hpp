@@ -64,8 +64,8 @@ private:
     std::vector<std::array<std::uint32_t, 3>> triangles_;
     std::vector<std::array<double, 2>> image_;  ///< (β1, β2) of each vertex
     std::array<Side, 3> sides_;
-    std::size_t grid_ = 1;                      ///< G
-    std::vector<std::uint32_t> cell_start_;     ///< G² + 1
+    std::size_t grid_ = 1;                   ///< G
+    std::vector<std::uint32_t> cell_start_;  ///< G² + 1
     std::vector<std::uint32_t> cell_triangles_;
 };
 

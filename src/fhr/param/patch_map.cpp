@@ -32,7 +32,8 @@ void place_side(const Disk& disk, unsigned c, std::vector<std::array<double, 3>>
     if (!forward) std::reverse(u.begin(), u.end());
     // Now u runs from the canonical end E to the other end F; L_p accumulates from E.
     std::vector<double> L(u.size(), 0.0);
-    for (std::size_t p = 1; p < u.size(); ++p) L[p] = L[p - 1] + (disk.positions[u[p]] - disk.positions[u[p - 1]]).norm();
+    for (std::size_t p = 1; p < u.size(); ++p)
+        L[p] = L[p - 1] + (disk.positions[u[p]] - disk.positions[u[p - 1]]).norm();
     const double total = L.back();
     if (!(total > 0) || !std::isfinite(total))
         throw InvalidInput("patch: MAP-1: side " + std::to_string(c) + " has chord length " + std::to_string(total));
@@ -82,7 +83,8 @@ Eigen::MatrixXd solve(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
     if (solver == Solver::sparse_lu) {
         Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
         lu.compute(A);
-        if (lu.info() != Eigen::Success) throw NumericalFailure("patch: SparseLU could not factor the system: " + lu.lastErrorMessage());
+        if (lu.info() != Eigen::Success)
+            throw NumericalFailure("patch: SparseLU could not factor the system: " + lu.lastErrorMessage());
         Eigen::MatrixXd x = lu.solve(rhs);
         if (lu.info() != Eigen::Success || !x.allFinite()) throw NumericalFailure("patch: SparseLU solve failed");
         return x;
@@ -100,10 +102,10 @@ Eigen::MatrixXd solve(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
         // by 0 (NaN after 2 iterations: the pipeline fuzzer, density family, uniform weights).
         const Eigen::VectorXd start = it.preconditioner().solve(rhs.col(j));
         x.col(j) = it.solveWithGuess(rhs.col(j), start);
-        if (it.info() != Eigen::Success || !x.col(j).allFinite())
-        {
+        if (it.info() != Eigen::Success || !x.col(j).allFinite()) {
             char what[160];  // %g: the tolerance is 1e-12-ish, which std::to_string prints as 0.000000
-            std::snprintf(what, sizeof what, "patch: BiCGSTAB did not reach relative residual %g (reached %g after %ld iterations)",
+            std::snprintf(what, sizeof what,
+                          "patch: BiCGSTAB did not reach relative residual %g (reached %g after %ld iterations)",
                           bicgstab_tolerance, it.error(), static_cast<long>(it.iterations()));
             throw NumericalFailure(what);
         }
@@ -153,9 +155,9 @@ PatchMap map_patch(const Disk& disk, const PatchMapOptions& options) {
         // geometry could leave it far closer to that side than 2⁻⁵³ when the side's vertices are
         // a needle's (`./run families`, quality 45: its β rounded onto the side, three image
         // triangles degenerate).
-        const std::vector<double> lambda_vw = v + disk.midpoints >= nv
-                                                  ? std::vector<double>(ring.size(), 1.0 / static_cast<double>(ring.size()))
-                                                  : one_ring_weights(options.weights, disk.positions[v], ring_positions, v);
+        const std::vector<double> lambda_vw =
+            v + disk.midpoints >= nv ? std::vector<double>(ring.size(), 1.0 / static_cast<double>(ring.size()))
+                                     : one_ring_weights(options.weights, disk.positions[v], ring_positions, v);
         entries.emplace_back(i, i, 1.0);
         for (std::size_t k = 0; k < ring.size(); ++k) {
             const std::uint32_t w = ring[k];

@@ -53,7 +53,8 @@ std::vector<double> shape_preserving(const Vec3& p, std::span<const Vec3> ring) 
         // ring) the choice is unique; both candidate triangles give the same coordinates there,
         // with a zero at the unshared vertex.
         const double target = phi[k] < pi ? phi[k] + pi : phi[k] - pi;
-        const std::size_t l = static_cast<std::size_t>(std::upper_bound(phi.begin(), phi.begin() + d, target) - phi.begin()) - 1;
+        const std::size_t l =
+            static_cast<std::size_t>(std::upper_bound(phi.begin(), phi.begin() + d, target) - phi.begin()) - 1;
         const std::size_t l1 = (l + 1) % d;
         if (l == k || l1 == k) return {};  // a scaled angle ≥ π: the origin is not inside; no weights
         // Barycentric coordinates of the origin in (q_k, q_l, q_{l+1}) from the signed areas
@@ -99,14 +100,15 @@ std::string_view name(Weights kind) {
 Weights parse_weights(std::string_view text) {
     for (Weights w : {Weights::shape_preserving, Weights::mean_value, Weights::uniform})
         if (text == name(w)) return w;
-    throw InvalidInput("unknown weights '" + std::string(text) + "' (expected shape-preserving, mean-value or uniform)");
+    throw InvalidInput("unknown weights '" + std::string(text) +
+                       "' (expected shape-preserving, mean-value or uniform)");
 }
 
 std::vector<double> one_ring_weights(Weights kind, const Vec3& p, std::span<const Vec3> ring, std::uint32_t vertex) {
     const std::size_t d = ring.size();
     if (d < 3)
         throw InvalidInput("patch: vertex " + std::to_string(vertex) + " is interior with " + std::to_string(d) +
-                                      " neighbours (an interior vertex of a triangulated disk has at least 3)");
+                           " neighbours (an interior vertex of a triangulated disk has at least 3)");
     std::vector<double> w;
     switch (kind) {
         case Weights::shape_preserving: w = shape_preserving(p, ring); break;

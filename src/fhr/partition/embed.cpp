@@ -54,7 +54,8 @@ public:
         } else {
             VertexId::Index corners = 0;
             for (const geodesic::GeodesicPath& p : paths) {
-                if (p.points.size() < 2 || p.points.front().kind != SurfacePoint::Kind::vertex || p.points.back().kind != SurfacePoint::Kind::vertex)
+                if (p.points.size() < 2 || p.points.front().kind != SurfacePoint::Kind::vertex ||
+                    p.points.back().kind != SurfacePoint::Kind::vertex)
                     throw ContractViolation("embed: a curve does not run between two vertices");
                 ends_.emplace_back(p.points.front().vertex, p.points.back().vertex);
                 for (VertexId x : {p.points.front().vertex, p.points.back().vertex})
@@ -69,7 +70,8 @@ public:
     }
 
     Embedding run() {
-        if (D_ && paths_.size() != D_->mesh.n_edges()) throw ContractViolation("embed: one path per edge of D is needed");
+        if (D_ && paths_.size() != D_->mesh.n_edges())
+            throw ContractViolation("embed: one path per edge of D is needed");
         for (std::uint32_t e = 0; e < paths_.size(); ++e) add_path(e);
         check_runs();
         std::vector<Triangle> triangles;
@@ -101,7 +103,8 @@ private:
     std::vector<Chord> chords_;
     std::vector<Run> runs_;
 
-    static Conflict make_conflict(Kind kind, std::uint32_t a, std::uint32_t b, std::array<VertexId, 3> near, VertexId d_vertex = {}) {
+    static Conflict make_conflict(Kind kind, std::uint32_t a, std::uint32_t b, std::array<VertexId, 3> near,
+                                  VertexId d_vertex = {}) {
         return Conflict{kind, EdgeId(std::min(a, b)), EdgeId(std::max(a, b)), d_vertex, near};
     }
     void conflict(Kind kind, std::uint32_t a, std::uint32_t b, std::array<VertexId, 3> near, VertexId d_vertex = {}) {
@@ -208,19 +211,22 @@ private:
         };
         if (a.vertex.valid() && b.vertex.valid()) {
             const HalfedgeId h = T_.find_halfedge(a.vertex, b.vertex);
-            if (!h.valid()) throw ContractViolation("embed: consecutive path vertices are not adjacent (D edge " + std::to_string(e) + ")");
+            if (!h.valid())
+                throw ContractViolation("embed: consecutive path vertices are not adjacent (D edge " +
+                                        std::to_string(e) + ")");
             const EdgeId edge = TriMesh::edge(h);
             return run(edge, end_parameter(edge, a.vertex), end_parameter(edge, b.vertex));
         }
         if (!a.vertex.valid() && !b.vertex.valid() && a.edge == b.edge) return run(a.edge, a.t, b.t);
         const Node& p = a.vertex.valid() ? b : a;  // an edge node
         const Node& q = a.vertex.valid() ? a : b;  // a vertex, or another edge node
-        if (q.vertex.valid() && !std::isnan(end_parameter(p.edge, q.vertex))) return run(p.edge, p.t, end_parameter(p.edge, q.vertex));
+        if (q.vertex.valid() && !std::isnan(end_parameter(p.edge, q.vertex)))
+            return run(p.edge, p.t, end_parameter(p.edge, q.vertex));
         for (unsigned side = 0; side < 2; ++side) {
             const HalfedgeId h = TriMesh::halfedge(p.edge, side);
             const HalfedgeId h1 = T_.next(h), h2 = T_.next(h1);
-            const bool holds = q.vertex.valid() ? T_.to(h1) == q.vertex
-                                                : (TriMesh::edge(h1) == q.edge || TriMesh::edge(h2) == q.edge);
+            const bool holds =
+                q.vertex.valid() ? T_.to(h1) == q.vertex : (TriMesh::edge(h1) == q.edge || TriMesh::edge(h2) == q.edge);
             if (holds) return chords_.push_back(Chord{T_.face(h), va, vb, e});
         }
         throw ContractViolation("embed: consecutive path nodes share no face (D edge " + std::to_string(e) + ")");
@@ -271,7 +277,8 @@ private:
     // face is triangulated (the caller needs only the conflicts): the earlier conflicts stop every
     // block, a block's own stop it.
     void triangulate_faces(std::vector<Triangle>& triangles) {
-        std::sort(chords_.begin(), chords_.end(), [](const Chord& x, const Chord& y) { return x.face.idx() < y.face.idx(); });
+        std::sort(chords_.begin(), chords_.end(),
+                  [](const Chord& x, const Chord& y) { return x.face.idx() < y.face.idx(); });
         struct Block {
             std::vector<Triangle> triangles;
             std::vector<FaceId> t_face;
@@ -283,7 +290,8 @@ private:
         std::vector<Block> blocks(nb);
         executor_.for_each(nb, 2, [&](std::size_t b) {
             Block& out = blocks[b];
-            const auto first_face = static_cast<FaceId::Index>(b * block), end = static_cast<FaceId::Index>(std::min(nf, (b + 1) * block));
+            const auto first_face = static_cast<FaceId::Index>(b * block),
+                       end = static_cast<FaceId::Index>(std::min(nf, (b + 1) * block));
             out.triangles.reserve(end - first_face);
             auto chord = std::lower_bound(chords_.begin(), chords_.end(), first_face,
                                           [](const Chord& c, FaceId::Index f) { return c.face.idx() < f; });
@@ -292,7 +300,8 @@ private:
                 const FaceId f(i);
                 const auto first = chord;
                 while (chord != chords_.end() && chord->face == f) ++chord;
-                triangulate_face(f, std::span<const Chord>(first, chord), out.triangles, out.conflicts, failed, scratch);
+                triangulate_face(f, std::span<const Chord>(first, chord), out.triangles, out.conflicts, failed,
+                                 scratch);
                 out.t_face.resize(out.triangles.size(), f);
             }
         });
@@ -305,8 +314,8 @@ private:
     }
 
     // Face f of T cut along its chords (Fig. 3), triangulated.
-    void triangulate_face(FaceId f, std::span<const Chord> chords, std::vector<Triangle>& triangles, std::vector<Conflict>& conflicts,
-                          bool failed, FaceScratch& x) const {
+    void triangulate_face(FaceId f, std::span<const Chord> chords, std::vector<Triangle>& triangles,
+                          std::vector<Conflict>& conflicts, bool failed, FaceScratch& x) const {
         const HalfedgeId h0 = T_.halfedge(f), h1 = T_.next(h0), h2 = T_.next(h1);
         if (chords.empty() && slot_[TriMesh::edge(h0).idx()] == none && slot_[TriMesh::edge(h1).idx()] == none &&
             slot_[TriMesh::edge(h2).idx()] == none) {  // untouched by the network: the face itself
@@ -338,7 +347,8 @@ private:
                 const auto [a, b] = cuts[i];
                 const auto [c, d] = cuts[k];
                 if ((a < c && c < b && b < d) || (c < a && a < d && d < b))
-                    conflicts.push_back(make_conflict(Kind::crossing, chords[i].d_edge, chords[k].d_edge, T_.face_vertices(f)));
+                    conflicts.push_back(
+                        make_conflict(Kind::crossing, chords[i].d_edge, chords[k].d_edge, T_.face_vertices(f)));
             }
         if (failed || !conflicts.empty()) return;
         // The chords cut the polygon into convex pieces: split the piece holding each chord.
@@ -389,7 +399,8 @@ private:
     // The triangulation of a convex piece (indices into poly, in boundary order) that maximizes
     // the smallest angle (Klincsek's dynamic programme over sub-polygons, O(m³)); the Fig. 3
     // "either diagonal" choice, made for shape.
-    void triangulate_convex(FaceScratch& x, const std::vector<std::size_t>& piece, std::vector<Triangle>& triangles) const {
+    void triangulate_convex(FaceScratch& x, const std::vector<std::size_t>& piece,
+                            std::vector<Triangle>& triangles) const {
         const std::vector<VertexId>& poly = x.poly;
         const std::size_t m = piece.size();
         constexpr double inf = std::numeric_limits<double>::infinity();
@@ -438,7 +449,8 @@ private:
             const auto& path = net.path[e];
             for (std::size_t i = 0; i + 1 < path.size(); ++i) {
                 const HalfedgeId h = net.mesh.find_halfedge(path[i], path[i + 1]);
-                if (!h.valid() || net.d_halfedge[h].valid()) throw InternalError("embed: a path segment is not an edge of T′");
+                if (!h.valid() || net.d_halfedge[h].valid())
+                    throw InternalError("embed: a path segment is not an edge of T′");
                 net.d_halfedge[h] = TriMesh::halfedge(e, 0);
                 net.d_halfedge[TriMesh::twin(h)] = TriMesh::halfedge(e, 1);
             }
@@ -479,17 +491,20 @@ std::vector<std::uint8_t> out_of_order(std::span<const HalfedgeId> in_d, std::sp
             std::fill(wrong.begin(), wrong.end(), 1);
             break;
         }
-        if (in_t[(static_cast<std::size_t>(at - in_t.begin()) + 1) % n] != in_d[(k + 1) % n]) wrong[k] = wrong[(k + 1) % n] = 1;
+        if (in_t[(static_cast<std::size_t>(at - in_t.begin()) + 1) % n] != in_d[(k + 1) % n])
+            wrong[k] = wrong[(k + 1) % n] = 1;
     }
     return wrong;
 }
 
 std::string Conflict::describe() const {
-    const std::string a = "domain edge " + std::to_string(d_edge_a.idx()), b = "domain edge " + std::to_string(d_edge_b.idx());
+    const std::string a = "domain edge " + std::to_string(d_edge_a.idx()),
+                      b = "domain edge " + std::to_string(d_edge_b.idx());
     switch (kind) {
         case Kind::shared_node:
-            return d_edge_a == d_edge_b ? "the path of " + a + " passes a point twice"
-                                        : "the paths of " + a + " and " + b + " meet at a point that is not a common end";
+            return d_edge_a == d_edge_b
+                       ? "the path of " + a + " passes a point twice"
+                       : "the paths of " + a + " and " + b + " meet at a point that is not a common end";
         case Kind::crossing: return "the paths of " + a + " and " + b + " cross";
         case Kind::through_corner:
             return "the path of " + a + " passes through the corner of domain vertex " + std::to_string(d_vertex.idx());
@@ -502,13 +517,15 @@ std::string Conflict::describe() const {
 
 Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geodesic::GeodesicPath> paths,
                 std::span<const std::uint8_t> unsnapped, Executor* executor) {
-    if (!unsnapped.empty() && unsnapped.size() != paths.size()) throw ContractViolation("embed: one unsnapped flag per path");
+    if (!unsnapped.empty() && unsnapped.size() != paths.size())
+        throw ContractViolation("embed: one unsnapped flag per path");
     return Embedder(T, &D, paths, unsnapped, executor_or_default(executor)).run();
 }
 
-Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath> curves, std::span<const std::uint8_t> unsnapped,
-                       Executor* executor) {
-    if (!unsnapped.empty() && unsnapped.size() != curves.size()) throw ContractViolation("embed: one unsnapped flag per curve");
+Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath> curves,
+                       std::span<const std::uint8_t> unsnapped, Executor* executor) {
+    if (!unsnapped.empty() && unsnapped.size() != curves.size())
+        throw ContractViolation("embed: one unsnapped flag per curve");
     return Embedder(T, nullptr, curves, unsnapped, executor_or_default(executor)).run();
 }
 

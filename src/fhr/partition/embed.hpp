@@ -51,7 +51,7 @@ struct Origin {
 
 /// A vertex of T′ inside a path: the D edge of the path and the node's index along it.
 struct PathPosition {
-    EdgeId d_edge;             ///< invalid: not inside any path
+    EdgeId d_edge;  ///< invalid: not inside any path
     std::uint32_t index = 0;
 };
 
@@ -64,8 +64,8 @@ struct Conflict {
         order,           ///< (2): the cyclic order of the paths at x_j differs from D's
     };
     Kind kind;
-    EdgeId d_edge_a, d_edge_b;                 ///< the D edges (equal when only one is involved), a <= b
-    VertexId d_vertex;                         ///< through_corner and order: the D vertex v_m / v_j, else invalid
+    EdgeId d_edge_a, d_edge_b;  ///< the D edges (equal when only one is involved), a <= b
+    VertexId d_vertex;          ///< through_corner and order: the D vertex v_m / v_j, else invalid
     /// Vertices of T at the place (unused ones invalid), each the one nearest to a node of T′
     /// (the node itself, or the nearer end of its edge of T): shared_node: the shared node;
     /// through_corner: the curve's nodes just before and after x_m; order: the curve's first node
@@ -76,15 +76,15 @@ struct Conflict {
 
 /// The refined triangulation T′ with the geodesic network embedded in it.
 struct Network {
-    TriMesh mesh;                                   ///< T′; vertices 0..#V(T)−1 are T's vertices
-    VertexData<Origin> origin;                      ///< #V(T′)
-    VertexData<PathPosition> on_path;               ///< #V(T′)
-    VertexData<VertexId> corner;                    ///< #V(T′): the D vertex v_j at x_j, else invalid
-    EdgeData<std::vector<VertexId>> path;           ///< #E(D): vertices of T′ from x_j to x_k along Γ_e
-                                                    ///< (direction of D's halfedge (e, 0))
-    HalfedgeData<HalfedgeId> d_halfedge;            ///< #H(T′): the D halfedge it runs along, else invalid
-    FaceData<FaceId> t_face;                        ///< #F(T′): the face of T that holds it
-    double max_snap_distance = 0;                   ///< the farthest a node was moved by snapping
+    TriMesh mesh;                          ///< T′; vertices 0..#V(T)−1 are T's vertices
+    VertexData<Origin> origin;             ///< #V(T′)
+    VertexData<PathPosition> on_path;      ///< #V(T′)
+    VertexData<VertexId> corner;           ///< #V(T′): the D vertex v_j at x_j, else invalid
+    EdgeData<std::vector<VertexId>> path;  ///< #E(D): vertices of T′ from x_j to x_k along Γ_e
+                                           ///< (direction of D's halfedge (e, 0))
+    HalfedgeData<HalfedgeId> d_halfedge;   ///< #H(T′): the D halfedge it runs along, else invalid
+    FaceData<FaceId> t_face;               ///< #F(T′): the face of T that holds it
+    double max_snap_distance = 0;          ///< the farthest a node was moved by snapping
 };
 
 struct Embedding {
@@ -111,8 +111,8 @@ Embedding embed(const TriMesh& T, const domain::Domain& D, std::span<const geode
 /// T′ (partition/region.hpp) — into T, which may have a boundary: as embed(), with the curves'
 /// ends as the corners (numbered in order of first appearance), curve i labelling halfedges 2i
 /// (along it) and 2i + 1, and no condition (2) (there is no D to compare with).
-Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath> curves, std::span<const std::uint8_t> unsnapped = {},
-                       Executor* executor = nullptr);
+Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath> curves,
+                       std::span<const std::uint8_t> unsnapped = {}, Executor* executor = nullptr);
 
 /// Condition (2) at one vertex v_j of D: in_d holds D's halfedges out of v_j in D's cyclic order,
 /// in_t the D halfedges of the curves leaving x_j in T′'s cyclic order. Flag k is 1 when D's edge

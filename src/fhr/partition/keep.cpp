@@ -55,12 +55,12 @@ geodesic::GeodesicPath reversed(geodesic::GeodesicPath p) {
 // A curve of the network, kept from its smaller vertex of T to its larger.
 struct Curve {
     geodesic::GeodesicPath path;
-    bool exact = false;             // the exact geodesic of T between its ends
-    RestrictedPath restricted{};    // when not exact: how it was found
+    bool exact = false;           // the exact geodesic of T between its ends
+    RestrictedPath restricted{};  // when not exact: how it was found
     // A geodesic of the start is snapped as embed() snaps geodesics; a curve found later is placed
     // as found, since snapping could move it across a curve that it passes closer than snapping.
     bool snapped = false;
-    bool fixed = false;             // a cone edge or a boundary arc (domain::on_cone): never changed
+    bool fixed = false;  // a cone edge or a boundary arc (domain::on_cone): never changed
 };
 
 // The network while D is being made: a domain, one curve per edge keyed by the edge's ends in T,
@@ -68,7 +68,8 @@ struct Curve {
 // again: each change is made in its region, partition/region.hpp).
 class Network_ {
 public:
-    Network_(const TriMesh& T, std::size_t real_vertices, domain::Domain D) : T_(T), real_(real_vertices), D_(std::move(D)) {}
+    Network_(const TriMesh& T, std::size_t real_vertices, domain::Domain D)
+        : T_(T), real_(real_vertices), D_(std::move(D)) {}
 
     const TriMesh& T() const { return T_; }
     std::size_t real_vertices() const { return real_; }
@@ -84,7 +85,8 @@ public:
     // keep their numbers through flips and collapses until compacted, which keeps the order.
     VertexId at(VertexId::Index x) const {
         const auto it = std::lower_bound(D_.t_vertex.begin(), D_.t_vertex.end(), VertexId(x));
-        if (it == D_.t_vertex.end() || it->idx() != x) throw InternalError("keeping the domain: a vertex of T that is not in D");
+        if (it == D_.t_vertex.end() || it->idx() != x)
+            throw InternalError("keeping the domain: a vertex of T that is not in D");
         return VertexId(static_cast<VertexId::Index>(it - D_.t_vertex.begin()));
     }
 
@@ -151,11 +153,11 @@ std::vector<std::array<VertexId, 3>> faces_in_t(const domain::Domain& D) {
 struct Job {
     EdgeId e;
     VertexId a, b;
-    double geodesic_length = -1;                 // tightening: |Γ| of the edge; a flip: -1
-    double current = INFINITY;                   // tightening: the length of its curve now
-    std::optional<Curve> curve{};                // the new curve, from a's vertex of T to b's
-    std::vector<FaceId> on_left{}, on_right{};   // the faces of T its two patches touch (sides of
-                                                 // the curve from its smaller vertex of T)
+    double geodesic_length = -1;                // tightening: |Γ| of the edge; a flip: -1
+    double current = INFINITY;                  // tightening: the length of its curve now
+    std::optional<Curve> curve{};               // the new curve, from a's vertex of T to b's
+    std::vector<FaceId> on_left{}, on_right{};  // the faces of T its two patches touch (sides of
+                                                // the curve from its smaller vertex of T)
 };
 
 // What runs the independent restricted searches of one keep_domain call: its executor, and a pool
@@ -173,7 +175,8 @@ void compute(const Network_& n, std::vector<Job>& jobs, Searches& searches) {
         // The network's own curves: a region that is not what they promise is a bug (value() throws).
         Region region = Region::cut_out(n.T(), q.touched, q.curves).value();
         const geodesic::WorkspacePool::Lease workspace = searches.workspaces.lease();
-        RestrictedPath r = restricted_path(region, region.side(0, q.left).value(), n.x(j.a), n.x(j.b), workspace.get()).value();
+        RestrictedPath r =
+            restricted_path(region, region.side(0, q.left).value(), n.x(j.a), n.x(j.b), workspace.get()).value();
         const bool exact = r.touches == 0 && j.geodesic_length >= 0 && r.shortest <= j.geodesic_length * (1 + 1e-12);
         if (!exact && !(r.path.length < j.current * (1 - 1e-9))) return;
         geodesic::GeodesicPath path = n.x(j.a).idx() < n.x(j.b).idx() ? std::move(r.path) : reversed(std::move(r.path));
@@ -205,7 +208,8 @@ void apply(Network_& net, Job& j) {
 // The next batch of `left`: collapses whose closed 1-rings meet no earlier one's (taken or left),
 // so that they commute with every collapse they overtake; the others stay in `left`. `blocked`:
 // per vertex of D, all 0, and so again on return.
-std::vector<domain::Collapse> next_batch(const Network_& net, std::vector<domain::Collapse>& left, std::vector<std::uint8_t>& blocked) {
+std::vector<domain::Collapse> next_batch(const Network_& net, std::vector<domain::Collapse>& left,
+                                         std::vector<std::uint8_t>& blocked) {
     const TriMesh& m = net.domain().mesh;
     std::vector<domain::Collapse> batch, later;
     std::vector<VertexId> marked;
@@ -242,12 +246,14 @@ void flip_to_valence_3(Network_& net, std::span<const domain::Collapse> batch, S
             // the face of T (the other is a cone face).
             const HalfedgeId vw = m.find_halfedge(v, w);
             const bool along = net.apex(c.left) || net.apex(c.right);
-            const HalfedgeId side = along ? (net.apex(net.x(m.to(m.next(vw)))) ? TriMesh::twin(vw) : vw)
-                                          : valence % 2 == 0 ? vw : TriMesh::twin(vw);
+            const HalfedgeId side = along              ? (net.apex(net.x(m.to(m.next(vw)))) ? TriMesh::twin(vw) : vw)
+                                    : valence % 2 == 0 ? vw
+                                                       : TriMesh::twin(vw);
             const VertexId u = m.to(m.next(side));
             const HalfedgeId spoke = side == vw ? m.find_halfedge(v, u) : m.find_halfedge(u, v);
             const VertexId y = m.to(m.next(spoke));
-            if (!m.is_flip_ok(TriMesh::edge(spoke))) throw InternalError("keeping the domain: a spoke cannot be flipped");
+            if (!m.is_flip_ok(TriMesh::edge(spoke)))
+                throw InternalError("keeping the domain: a spoke cannot be flipped");
             jobs.push_back(Job{.e = TriMesh::edge(spoke), .a = w, .b = y});
         }
         if (jobs.empty()) return;
@@ -299,15 +305,16 @@ void collapse(Network_& net, const domain::Collapse& c) {
         net.touched().erase(it);
         net.curves().erase(key_of(c.removed, net.x(D.mesh.to(h))));
     });
-    Corners k{c.kept.idx(), net.x(D.mesh.to(D.mesh.next(vw))).idx(), net.x(D.mesh.to(D.mesh.next(TriMesh::twin(vw)))).idx()};
+    Corners k{c.kept.idx(), net.x(D.mesh.to(D.mesh.next(vw))).idx(),
+              net.x(D.mesh.to(D.mesh.next(TriMesh::twin(vw)))).idx()};
     std::sort(k.begin(), k.end());
     D.mesh.collapse(vw);
     net.touched()[k] = std::move(touched);
 }
 
 // Redoes `collapses` (in T's numbering, in their order) on the network, a batch at a time.
-void redo(Network_& net, std::span<const domain::Collapse> collapses, const std::function<void(const std::string&)>& say,
-          Searches& searches) {
+void redo(Network_& net, std::span<const domain::Collapse> collapses,
+          const std::function<void(const std::string&)>& say, Searches& searches) {
     domain::Domain& D = net.domain();
     // Vertices keep their numbers until the end (removed ones become garbage).
     std::vector<domain::Collapse> left(collapses.begin(), collapses.end());
@@ -349,7 +356,8 @@ constexpr std::size_t search_budget = 200000;
 
 class FlipsTo {
 public:
-    FlipsTo(Network_& net, const domain::Domain& target, Searches& searches) : net_(net), D_(net.domain()), searches_(searches) {
+    FlipsTo(Network_& net, const domain::Domain& target, Searches& searches)
+        : net_(net), D_(net.domain()), searches_(searches) {
         for (const auto& [a, b] : domain::edge_endpoints(target)) want_.insert(key_of(a, b));
     }
 
@@ -358,7 +366,9 @@ public:
         const std::size_t first = missing_in(D_.mesh);
         std::size_t flips = 0;
         for (std::size_t missing = first; missing > 0; missing = missing_in(D_.mesh)) {
-            if (flips > 4 * first + 16) throw PartitionFailure("keeping the domain: the given domain is not reached by flips from its decimation");
+            if (flips > 4 * first + 16)
+                throw PartitionFailure(
+                    "keeping the domain: the given domain is not reached by flips from its decimation");
             if (std::vector<Job> jobs = making_target_edges(); !jobs.empty()) {
                 flips += flip(std::move(jobs));
                 continue;
@@ -372,7 +382,7 @@ private:
     Network_& net_;
     domain::Domain& D_;
     Searches& searches_;
-    std::set<Pair> want_;            // the target's edges, by their ends in T
+    std::set<Pair> want_;             // the target's edges, by their ends in T
     std::vector<std::uint8_t> near_;  // per vertex of D: an end of a missing edge (sequence_nearer)
     std::vector<EdgeId> sequence_;    // the search's flips so far
     std::size_t states_ = 0;          // meshes the search looked at
@@ -409,8 +419,8 @@ private:
         for (EdgeId e : D_.mesh.edges()) {
             const HalfedgeId h = TriMesh::halfedge(e, 0);
             const FaceId f = D_.mesh.face(h), g = D_.mesh.face(TriMesh::twin(h));
-            if (used[f.idx()] || used[g.idx()] || want_.count(key(D_.mesh, e)) || !D_.mesh.is_flip_ok(e) || !want_.count(made(D_.mesh, e)) ||
-                !making.insert(made(D_.mesh, e)).second)
+            if (used[f.idx()] || used[g.idx()] || want_.count(key(D_.mesh, e)) || !D_.mesh.is_flip_ok(e) ||
+                !want_.count(made(D_.mesh, e)) || !making.insert(made(D_.mesh, e)).second)
                 continue;
             used[f.idx()] = used[g.idx()] = 1;
             jobs.push_back(job(e));
@@ -431,15 +441,17 @@ private:
         bool found = false;
         for (int depth = 1; depth <= 4 && !found; ++depth) found = search(D_.mesh, depth, missing);
         if (!found)
-            throw PartitionFailure(std::string("keeping the domain: ") +
-                                   (states_ > search_budget ? "no short sequence of flips found that brings" : "no four flips bring") +
-                                   " the decimation nearer to the given domain");
+            throw PartitionFailure(
+                std::string("keeping the domain: ") +
+                (states_ > search_budget ? "no short sequence of flips found that brings" : "no four flips bring") +
+                " the decimation nearer to the given domain");
         return sequence_;
     }
 
     bool candidate(const TriMesh& m, EdgeId e) const {
         const HalfedgeId h = TriMesh::halfedge(e, 0);
-        if (domain::on_cone(m, D_.t_vertex, e, net_.real_vertices())) return false;  // a cone edge or a boundary edge of D: fixed
+        if (domain::on_cone(m, D_.t_vertex, e, net_.real_vertices()))
+            return false;  // a cone edge or a boundary edge of D: fixed
         return (near_[m.from(h).idx()] || near_[m.to(h).idx()] || near_[m.to(m.next(h)).idx()] ||
                 near_[m.to(m.next(TriMesh::twin(h))).idx()]) &&
                m.is_flip_ok(e);
@@ -468,8 +480,8 @@ void flip_to(Network_& net, const domain::Domain& target, const std::function<vo
 
 // The curves in D's edge order, each along D's halfedge (e, 0), and which of them embed() must
 // place as given.
-std::pair<std::vector<geodesic::GeodesicPath>, std::vector<std::uint8_t>> in_edge_order(const domain::Domain& D,
-                                                                                         const std::map<Pair, Curve>& curves) {
+std::pair<std::vector<geodesic::GeodesicPath>, std::vector<std::uint8_t>> in_edge_order(
+    const domain::Domain& D, const std::map<Pair, Curve>& curves) {
     std::pair<std::vector<geodesic::GeodesicPath>, std::vector<std::uint8_t>> out;
     for (const auto& [a, b] : domain::edge_endpoints(D)) {
         const Curve& c = curves.at(key_of(a, b));
@@ -486,9 +498,13 @@ std::pair<std::vector<geodesic::GeodesicPath>, std::vector<std::uint8_t>> in_edg
 // across the face between two spokes (a point of its far edge, ordered along it). False also
 // where this cannot be read off (a first step to a point inside a face): the caller then embeds
 // and checks them, as it does when anything here was too hopeful (snapping, say).
-bool kept_plausible(const TriMesh& T, const TriMesh& m, const std::function<VertexId(VertexId)>& x,
-                    const std::function<bool(HalfedgeId)>& is_kept, const std::function<const geodesic::GeodesicPath&(HalfedgeId)>& curve) {
-    std::set<std::pair<std::uint32_t, double>> nodes;  // vertices as (index, -1), edge points as (edge, t along halfedge (e, 0))
+using CornerOf = std::function<VertexId(VertexId)>;
+using IsKept = std::function<bool(HalfedgeId)>;
+using CurveOf = std::function<const geodesic::GeodesicPath&(HalfedgeId)>;
+
+// No two kept curves share a node, none passes through a corner inside, none has a node inside a face.
+bool nodes_apart(const TriMesh& T, const TriMesh& m, const CornerOf& x, const IsKept& is_kept, const CurveOf& curve) {
+    std::set<std::pair<std::uint32_t, double>> nodes;  // vertices as (index, -1), edge points as (edge, t along (e, 0))
     std::set<std::uint32_t> corners;
     for (VertexId v : m.vertices()) corners.insert(x(v).idx());
     for (EdgeId e : m.edges()) {
@@ -503,46 +519,67 @@ bool kept_plausible(const TriMesh& T, const TriMesh& m, const std::function<Vert
                 key = {p.vertex.idx(), -1};
             } else if (p.kind == SurfacePoint::Kind::edge) {
                 const bool forward = p.halfedge == TriMesh::halfedge(TriMesh::edge(p.halfedge), 0);
-                key = {static_cast<std::uint32_t>(T.n_vertices() + TriMesh::edge(p.halfedge).idx()), forward ? p.t : 1 - p.t};
+                key = {static_cast<std::uint32_t>(T.n_vertices() + TriMesh::edge(p.halfedge).idx()),
+                       forward ? p.t : 1 - p.t};
             } else {
                 return false;
             }
             if (!nodes.insert(key).second) return false;
         }
     }
-    for (VertexId v : m.vertices()) {
-        const VertexId xv = x(v);
-        std::vector<HalfedgeId> spokes;
-        T.for_each_outgoing(xv, [&](HalfedgeId h) { spokes.push_back(h); });
-        std::vector<std::pair<std::pair<std::size_t, double>, std::size_t>> in_t;  // (place in the fan, rank in D)
-        std::size_t rank = 0;
-        bool readable = true;
-        m.for_each_outgoing(v, [&](HalfedgeId h) {
-            if (!is_kept(h) || !readable) return;
-            const auto& points = curve(h).points;
-            const SurfacePoint& p = points.front().vertex == xv ? points[1] : points[points.size() - 2];
-            std::pair<std::size_t, double> place{SIZE_MAX, 0};
-            for (std::size_t k = 0; k < spokes.size() && place.first == SIZE_MAX; ++k) {
-                const HalfedgeId s = spokes[k];
-                if (p.kind == SurfacePoint::Kind::vertex && p.vertex == T.to(s)) place = {2 * k, 0};
-                if (p.kind == SurfacePoint::Kind::edge && TriMesh::edge(p.halfedge) == TriMesh::edge(s))
-                    place = {2 * k, p.halfedge == s ? p.t : 1 - p.t};
-                // face(s) = (x_j, to(s), b) lies between s and the spoke before it clockwise
-                // (for_each_outgoing's order), x_j -> b: its far edge is crossed from b to to(s).
-                if (p.kind == SurfacePoint::Kind::edge && !T.is_boundary(s) && TriMesh::edge(p.halfedge) == TriMesh::edge(T.next(s)))
-                    place = {(2 * k + 2 * spokes.size() - 1) % (2 * spokes.size()), p.halfedge == T.next(s) ? 1 - p.t : p.t};
-            }
-            if (place.first == SIZE_MAX) readable = false;
-            in_t.push_back({place, rank++});
-        });
-        if (!readable) return false;
-        std::sort(in_t.begin(), in_t.end());
-        for (std::size_t i = 0; i < in_t.size(); ++i) {
-            if (i > 0 && in_t[i].first == in_t[i - 1].first) return false;  // two curves leave through one point
-            // D's cyclic order: the ranks follow each other around, from wherever the fan starts.
-            if (in_t[(i + 1) % in_t.size()].second != (in_t[i].second + 1) % in_t.size()) return false;
-        }
+    return true;
+}
+
+// Where a curve's first step p from x_j leaves in T's fan of spokes around x_j (2k: along spoke
+// k; 2k − 1: across the face before it), and where along it; {SIZE_MAX, 0} when it cannot be read.
+std::pair<std::size_t, double> place_in_fan(const TriMesh& T, const std::vector<HalfedgeId>& spokes,
+                                            const SurfacePoint& p) {
+    std::pair<std::size_t, double> place{SIZE_MAX, 0};
+    for (std::size_t k = 0; k < spokes.size() && place.first == SIZE_MAX; ++k) {
+        const HalfedgeId s = spokes[k];
+        if (p.kind == SurfacePoint::Kind::vertex && p.vertex == T.to(s)) place = {2 * k, 0};
+        if (p.kind == SurfacePoint::Kind::edge && TriMesh::edge(p.halfedge) == TriMesh::edge(s))
+            place = {2 * k, p.halfedge == s ? p.t : 1 - p.t};
+        // face(s) = (x_j, to(s), b) lies between s and the spoke before it clockwise
+        // (for_each_outgoing's order), x_j -> b: its far edge is crossed from b to to(s).
+        if (p.kind == SurfacePoint::Kind::edge && !T.is_boundary(s) &&
+            TriMesh::edge(p.halfedge) == TriMesh::edge(T.next(s)))
+            place = {(2 * k + 2 * spokes.size() - 1) % (2 * spokes.size()), p.halfedge == T.next(s) ? 1 - p.t : p.t};
     }
+    return place;
+}
+
+// Around corner x_v the kept curves' first steps leave through distinct points, in D's cyclic order.
+bool in_order_at(const TriMesh& T, const TriMesh& m, VertexId v, const CornerOf& x, const IsKept& is_kept,
+                 const CurveOf& curve) {
+    const VertexId xv = x(v);
+    std::vector<HalfedgeId> spokes;
+    T.for_each_outgoing(xv, [&](HalfedgeId h) { spokes.push_back(h); });
+    std::vector<std::pair<std::pair<std::size_t, double>, std::size_t>> in_t;  // (place in the fan, rank in D)
+    std::size_t rank = 0;
+    bool readable = true;
+    m.for_each_outgoing(v, [&](HalfedgeId h) {
+        if (!is_kept(h) || !readable) return;
+        const auto& points = curve(h).points;
+        const auto place = place_in_fan(T, spokes, points.front().vertex == xv ? points[1] : points[points.size() - 2]);
+        if (place.first == SIZE_MAX) readable = false;
+        in_t.push_back({place, rank++});
+    });
+    if (!readable) return false;
+    std::sort(in_t.begin(), in_t.end());
+    for (std::size_t i = 0; i < in_t.size(); ++i) {
+        if (i > 0 && in_t[i].first == in_t[i - 1].first) return false;  // two curves leave through one point
+        // D's cyclic order: the ranks follow each other around, from wherever the fan starts.
+        if (in_t[(i + 1) % in_t.size()].second != (in_t[i].second + 1) % in_t.size()) return false;
+    }
+    return true;
+}
+
+bool kept_plausible(const TriMesh& T, const TriMesh& m, const CornerOf& x, const IsKept& is_kept,
+                    const CurveOf& curve) {
+    if (!nodes_apart(T, m, x, is_kept, curve)) return false;
+    for (VertexId v : m.vertices())
+        if (!in_order_at(T, m, v, x, is_kept, curve)) return false;
     return true;
 }
 
@@ -583,8 +620,16 @@ public:
                 std::span<const geodesic::EllipsePath> geodesics, std::span<const Conflict> conflicts,
                 std::span<const Pair> order, Executor& executor, bool check_kept,
                 const std::function<void(const std::string&)>& say)
-        : T_(T), D_(D), geodesics_(geodesics), conflicts_(conflicts), order_(order), executor_(executor),
-          check_kept_(check_kept), say_(say), real_vertices_(real_vertices), ends_(domain::edge_endpoints(D)),
+        : T_(T),
+          D_(D),
+          geodesics_(geodesics),
+          conflicts_(conflicts),
+          order_(order),
+          executor_(executor),
+          check_kept_(check_kept),
+          say_(say),
+          real_vertices_(real_vertices),
+          ends_(domain::edge_endpoints(D)),
           net_(T, real_vertices, make_domain(T, faces_in_t(D))) {
         for (std::size_t e = 0; e < ends_.size(); ++e) edge_of_[key_of(ends_[e].first, ends_[e].second)] = e;
     }
@@ -646,7 +691,8 @@ private:
         for (const Pair& k : order_) {
             const std::size_t e = edge_of_.at(k);
             rank_[k] = rank_.size();
-            kept_[e] = fixed_[e] || (alone[e] && std::none_of(against[e].begin(), against[e].end(), [&](std::size_t o) { return kept_[o] != 0; }));
+            kept_[e] = fixed_[e] || (alone[e] && std::none_of(against[e].begin(), against[e].end(),
+                                                              [&](std::size_t o) { return kept_[o] != 0; }));
         }
     }
 
@@ -664,9 +710,14 @@ private:
                 paths_.push_back(a.idx() < b.idx() ? geodesics_[e].path : reversed(geodesics_[e].path));
             }
             if (!check_kept_) {
-                if (!kept_plausible(T_, m(), [&](VertexId v) { return net_.x(v); }, [&](HalfedgeId h) { return is_kept(h); },
-                                    [&](HalfedgeId h) -> const geodesic::GeodesicPath& { return paths_[index_.at(edge_key(h))]; })) {
-                    say_("keeping the domain: the kept geodesics embedded and checked first (two share a point, or some leave a corner out of D's order)");
+                if (!kept_plausible(
+                        T_, m(), [&](VertexId v) { return net_.x(v); }, [&](HalfedgeId h) { return is_kept(h); },
+                        [&](HalfedgeId h) -> const geodesic::GeodesicPath& {
+                            return paths_[index_.at(edge_key(h))];
+                        })) {
+                    say_(
+                        "keeping the domain: the kept geodesics embedded and checked first (two share a point, or some "
+                        "leave a corner out of D's order)");
                     return Step::failure("the kept geodesics are not plausible as they are");
                 }
                 break;
@@ -682,7 +733,8 @@ private:
             if (out_of_order->empty()) break;
             for (std::size_t e : *out_of_order) kept_[e] = 0;
         }
-        for (const auto& [k, i] : index_) net_.curves()[k] = Curve{paths_[i], true, {}, true, fixed_[edge_of_.at(k)] != 0};
+        for (const auto& [k, i] : index_)
+            net_.curves()[k] = Curve{paths_[i], true, {}, true, fixed_[edge_of_.at(k)] != 0};
         return done;
     }
 
@@ -714,11 +766,14 @@ private:
                 in_t.push_back(key_of(p.front().vertex, p.back().vertex));
             });
             for (const Pair& k : in_t) {
-                if (std::find(in_d.begin(), in_d.end(), k) == in_d.end()) out_of_order.push_back(edge_of_.at(k));
-                else own.push_back(k);
+                if (std::find(in_d.begin(), in_d.end(), k) == in_d.end())
+                    out_of_order.push_back(edge_of_.at(k));
+                else
+                    own.push_back(k);
             }
             if (same_cycle(in_d, own)) continue;
-            const auto movable = std::find_if(in_d.begin(), in_d.end(), [&](const Pair& k) { return !fixed_[edge_of_.at(k)]; });
+            const auto movable =
+                std::find_if(in_d.begin(), in_d.end(), [&](const Pair& k) { return !fixed_[edge_of_.at(k)]; });
             if (movable == in_d.end())
                 return Outcome<std::vector<std::size_t>>::failure("fixed curves alone out of order: not a domain of T");
             std::size_t drop = edge_of_.at(*movable);
@@ -791,7 +846,8 @@ private:
             h = n;
             if (walk > boundary) return false;
         }
-        const long chi = static_cast<long>(vertices.size()) - static_cast<long>(inner / 2 + boundary) + static_cast<long>(g.size());
+        const long chi =
+            static_cast<long>(vertices.size()) - static_cast<long>(inner / 2 + boundary) + static_cast<long>(g.size());
         return boundary != 0 && walk == boundary && chi == 1 - static_cast<long>(repeated);
     }
 
@@ -807,7 +863,8 @@ private:
                 for (FaceId a : g) {
                     HalfedgeId h = m().halfedge(a);
                     for (int i = 0; i < 3; ++i, h = m().next(h))
-                        if (is_kept(h) && embedded.emplace(edge_key(h), around.size()).second) around.push_back(paths_[index_.at(edge_key(h))]);
+                        if (is_kept(h) && embedded.emplace(edge_key(h), around.size()).second)
+                            around.push_back(paths_[index_.at(edge_key(h))]);
                 }
             }
             cut_ = embed_curves(T_, around, {}, &executor_);
@@ -834,7 +891,8 @@ private:
         }
         const auto& path = cut_.network.path[EdgeId(embedded.at(edge_key(boundary)))];
         const HalfedgeId first = M.find_halfedge(path[0], path[1]);
-        const FaceId seed = M.face(net_.x(m().from(boundary)).idx() < net_.x(m().to(boundary)).idx() ? first : TriMesh::twin(first));
+        const FaceId seed =
+            M.face(net_.x(m().from(boundary)).idx() < net_.x(m().to(boundary)).idx() ? first : TriMesh::twin(first));
         if (region[seed.idx()] >= 0) return Step::failure("two polygons in one region of T′");
         std::vector<FaceId> stack{seed};
         region[seed.idx()] = static_cast<std::int32_t>(gi);
@@ -866,7 +924,9 @@ private:
             if (Step split = put_in(*next, workspace); !split) return split;
         for (std::size_t gi = 0; gi < groups_.size(); ++gi) {
             if (groups_[gi].size() != 1) throw InternalError("keeping the domain: a polygon left unsplit");
-            if (!touched_[gi].empty()) net_.touched()[corners_of(net_.domain(), groups_[gi][0])] = std::move(touched_[gi]);  // else the caller's
+            if (!touched_[gi].empty())
+                net_.touched()[corners_of(net_.domain(), groups_[gi][0])] =
+                    std::move(touched_[gi]);  // else the caller's
         }
         return done;
     }
@@ -906,10 +966,12 @@ private:
         if (!inside) return Step::failure("a polygon of the kept curves: " + inside.why());
         if (!cut_out->find_sub(VertexId(k.first)) || !cut_out->find_sub(VertexId(k.second)))
             return Step::failure("a removed edge's end lies outside the faces of its polygon");
-        Outcome<RestrictedPath> r = restricted_path(*cut_out, *inside, VertexId(k.first), VertexId(k.second), &workspace);
+        Outcome<RestrictedPath> r =
+            restricted_path(*cut_out, *inside, VertexId(k.first), VertexId(k.second), &workspace);
         if (!r) return Step::failure("a polygon of the kept curves: " + r.why());
         Curve& c = net_.curves()[k] = Curve{std::move(r->path), false, *r, false};
-        if (Step added = cut_out->add(RegionCurve{&c.path, false}); !added) return Step::failure("a polygon of the kept curves: " + added.why());
+        if (Step added = cut_out->add(RegionCurve{&c.path, false}); !added)
+            return Step::failure("a polygon of the kept curves: " + added.why());
         kept_[e] = 1;
         return split_group(static_cast<std::size_t>(gi), m().face(h), *cut_out, around.size());
     }
@@ -956,12 +1018,22 @@ private:
 // and the curves in D's edge order.
 class KeepNetwork {
 public:
-    KeepNetwork(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D, const std::function<const domain::Domain&()>& base,
-                std::span<const geodesic::EllipsePath> geodesics, std::span<const Conflict> conflicts,
+    KeepNetwork(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D,
+                const std::function<const domain::Domain&()>& base, std::span<const geodesic::EllipsePath> geodesics,
+                std::span<const Conflict> conflicts,
                 const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,
                 const std::function<void(const std::string&)>& progress, Executor& executor, Start start)
-        : T_(T), real_vertices_(real_vertices), D_(D), base_(base), geodesics_(geodesics), conflicts_(conflicts),
-          geodesics_of_(geodesics_of), progress_(progress), executor_(executor), start_(start), searches_{executor},
+        : T_(T),
+          real_vertices_(real_vertices),
+          D_(D),
+          base_(base),
+          geodesics_(geodesics),
+          conflicts_(conflicts),
+          geodesics_of_(geodesics_of),
+          progress_(progress),
+          executor_(executor),
+          start_(start),
+          searches_{executor},
           ends_(domain::edge_endpoints(D)) {}
 
     KeptNetwork run() {
@@ -1003,13 +1075,16 @@ private:
     // The kept order: the fixed curves (cone edges, D's boundary edges) first, then edges whose
     // geodesic is in no conflict, then the others, each group shortest geodesic first.
     void kept_order() {
-        for (std::size_t e = 0; e < ends_.size(); ++e) geodesic_length_[key_of(ends_[e].first, ends_[e].second)] = geodesics_[e].path.length;
+        for (std::size_t e = 0; e < ends_.size(); ++e)
+            geodesic_length_[key_of(ends_[e].first, ends_[e].second)] = geodesics_[e].path.length;
         for (const Conflict& c : conflicts_)
-            for (EdgeId e : {c.d_edge_a, c.d_edge_b}) reason_.emplace(key_of(ends_[e.idx()].first, ends_[e.idx()].second), c.describe());
+            for (EdgeId e : {c.d_edge_a, c.d_edge_b})
+                reason_.emplace(key_of(ends_[e.idx()].first, ends_[e.idx()].second), c.describe());
         for (const auto& [k, length] : geodesic_length_) order_.push_back(k);
         std::set<Pair> fixed;
         for (EdgeId e : D_.mesh.edges())
-            if (domain::on_cone(D_.mesh, D_.t_vertex, e, real_vertices_)) fixed.insert(key_of(ends_[e.idx()].first, ends_[e.idx()].second));
+            if (domain::on_cone(D_.mesh, D_.t_vertex, e, real_vertices_))
+                fixed.insert(key_of(ends_[e.idx()].first, ends_[e.idx()].second));
         std::stable_sort(order_.begin(), order_.end(), [&](const Pair& p, const Pair& q) {
             const bool fp = fixed.count(p) != 0, fq = fixed.count(q) != 0;
             if (fp != fq) return fp;
@@ -1024,14 +1099,16 @@ private:
     void direct_start() {
         for (const bool check_kept : {false, true}) {
             try {
-                Outcome<Network_> found = DirectStart(T_, real_vertices_, D_, geodesics_, conflicts_, order_, executor_, check_kept,
-                                                      [this](const std::string& line) { say(line); }).run();
+                Outcome<Network_> found = DirectStart(T_, real_vertices_, D_, geodesics_, conflicts_, order_, executor_,
+                                                      check_kept, [this](const std::string& line) { say(line); })
+                                              .run();
                 if (found) take_if_checked(std::move(*found), check_kept);
             } catch (const PartitionFailure&) {  // no room to separate: step back instead
             }
             if (net_) break;
         }
-        if (net_) say("keeping the domain: the geodesics that conflict with no kept one are kept, the others restricted");
+        if (net_)
+            say("keeping the domain: the geodesics that conflict with no kept one are kept, the others restricted");
     }
 
     // The direct start's network, checked as a whole before it is used: (1), (2) and the patches.
@@ -1039,7 +1116,9 @@ private:
         const auto [paths, unsnapped] = in_edge_order(D_, found.curves());
         Embedding check = embed(T_, D_, paths, unsnapped, &executor_);
         if (!check.conflicts.empty()) {
-            if (!check_kept) say("keeping the domain: the kept geodesics, read as in order, refused by the check; embedded and checked first");
+            if (!check_kept)
+                say("keeping the domain: the kept geodesics, read as in order, refused by the check; embedded and "
+                    "checked first");
             return;
         }
         Patches patches = extract_patches(D_, check.network, &executor_);
@@ -1061,7 +1140,8 @@ private:
             } else {
                 undone_ = std::max(4 * undone_, std::max<std::size_t>(1, faces / 8));
                 // Past 16 |D| faces (each collapse takes two) the geodesics cost more than redoing from T.
-                if (undone_ >= H.history.size() || H.mesh.n_faces() + 2 * undone_ > 16 * H.mesh.n_faces()) undone_ = H.history.size();
+                if (undone_ >= H.history.size() || H.mesh.n_faces() + 2 * undone_ > 16 * H.mesh.n_faces())
+                    undone_ = H.history.size();
             }
             const domain::Domain Di = domain::undo_collapses(H, T_, undone_);
             faces = Di.mesh.n_faces();
@@ -1073,7 +1153,8 @@ private:
                     std::to_string(undone_) + " collapses undone) satisfy (1) and (2)");
                 return;
             }
-            if (undone_ == H.history.size()) throw InternalError("keeping the domain: conflicts on D = T, whose paths are T's edges");
+            if (undone_ == H.history.size())
+                throw InternalError("keeping the domain: conflicts on D = T, whose paths are T's edges");
         }
     }
 
@@ -1083,7 +1164,8 @@ private:
         std::vector<geodesic::GeodesicPath> paths;
         if (is_t) {
             for (const auto& [a, b] : domain::edge_endpoints(Di))
-                paths.push_back(geodesic::GeodesicPath{{SurfacePoint::at_vertex(a), SurfacePoint::at_vertex(b)}, (T_.position(a) - T_.position(b)).norm()});
+                paths.push_back(geodesic::GeodesicPath{{SurfacePoint::at_vertex(a), SurfacePoint::at_vertex(b)},
+                                                       (T_.position(a) - T_.position(b)).norm()});
         } else {
             for (const auto& p : geodesics_of_(Di)) paths.push_back(p.path);
         }
@@ -1091,16 +1173,22 @@ private:
     }
 
     // The network of D_i, whose geodesics `paths` are embedded without conflict.
-    void take_valid(const domain::Domain& Di, const std::vector<geodesic::GeodesicPath>& paths, const Embedding& embedding) {
+    void take_valid(const domain::Domain& Di, const std::vector<geodesic::GeodesicPath>& paths,
+                    const Embedding& embedding) {
         net_.emplace(T_, real_vertices_, make_domain(T_, faces_in_t(Di)));
         const auto di_ends = domain::edge_endpoints(Di);
         for (std::size_t e = 0; e < paths.size(); ++e) {
             const auto [a, b] = di_ends[e];
-            net_->curves()[key_of(a, b)] = Curve{a.idx() < b.idx() ? paths[e] : reversed(paths[e]), true, {}, true,
-                                                 domain::on_cone(Di.mesh, Di.t_vertex, EdgeId(static_cast<EdgeId::Index>(e)), real_vertices_)};
+            net_->curves()[key_of(a, b)] =
+                Curve{a.idx() < b.idx() ? paths[e] : reversed(paths[e]),
+                      true,
+                      {},
+                      true,
+                      domain::on_cone(Di.mesh, Di.t_vertex, EdgeId(static_cast<EdgeId::Index>(e)), real_vertices_)};
         }
         const Patches patches = extract_patches(Di, embedding.network, &executor_);
-        for (FaceId df : Di.mesh.faces()) net_->touched()[corners_of(Di, df)] = faces_of_t(patches, embedding.network, df);
+        for (FaceId df : Di.mesh.faces())
+            net_->touched()[corners_of(Di, df)] = faces_of_t(patches, embedding.network, df);
     }
 
     // The start's size as the caller counts D: its faces on T, without the cone faces of D̂_i (the
@@ -1117,18 +1205,22 @@ private:
     // 3. The undone collapses, redone on the network.
     void redo_collapses(const domain::Domain& H) {
         checked_.reset();
-        redo(*net_, std::span<const domain::Collapse>(H.history).subspan(H.history.size() - undone_),
-             [this](const std::string& line) { say(line); }, searches_);
-        if (canonical_faces(net_->domain()) != canonical_faces(H)) throw InternalError("keeping the domain: the collapses redone do not give the decimation");
+        redo(
+            *net_, std::span<const domain::Collapse>(H.history).subspan(H.history.size() - undone_),
+            [this](const std::string& line) { say(line); }, searches_);
+        if (canonical_faces(net_->domain()) != canonical_faces(H))
+            throw InternalError("keeping the domain: the collapses redone do not give the decimation");
     }
 
     // 4. A domain given by the user: from the decimation to its edges by flips.
     void flip_to_given() {
         checked_.reset();
-        flip_to(*net_, D_, [this](const std::string& line) { say(line); }, searches_);
+        flip_to(
+            *net_, D_, [this](const std::string& line) { say(line); }, searches_);
         // With every edge in place, only the orientation can differ: D turned over is not a domain of T.
         if (canonical_faces(net_->domain()) != canonical_faces(D_))
-            throw PartitionFailure("keeping the domain: the given domain has the edges of T's decimation but its faces turned over");
+            throw PartitionFailure(
+                "keeping the domain: the given domain has the edges of T's decimation but its faces turned over");
     }
 
     // 5. Tightening, in the kept order, at most three passes.
@@ -1140,7 +1232,8 @@ private:
                 if (!net_->curves().at(k).exact) left.push_back(k);
             std::size_t changed = 0;
             while (!left.empty()) changed += tighten_batch(left);
-            say("keeping the domain: tightening pass " + std::to_string(pass + 1) + ", " + std::to_string(changed) + " curves shortened");
+            say("keeping the domain: tightening pass " + std::to_string(pass + 1) + ", " + std::to_string(changed) +
+                " curves shortened");
             if (changed == 0) break;
         }
     }
@@ -1161,7 +1254,11 @@ private:
                 continue;
             }
             used[f.idx()] = used[g.idx()] = 1;
-            jobs.push_back(Job{.e = TriMesh::edge(h), .a = a, .b = b, .geodesic_length = geodesic_length_.at(k), .current = net_->curves().at(k).path.length});
+            jobs.push_back(Job{.e = TriMesh::edge(h),
+                               .a = a,
+                               .b = b,
+                               .geodesic_length = geodesic_length_.at(k),
+                               .current = net_->curves().at(k).path.length});
         }
         compute(*net_, jobs, searches_);
         std::size_t changed = 0;
@@ -1216,8 +1313,7 @@ const char* name(CurveKind kind) {
 
 KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D,
                         const std::function<const domain::Domain&()>& base,
-                        std::span<const geodesic::EllipsePath> geodesics,
-                        std::span<const Conflict> conflicts,
+                        std::span<const geodesic::EllipsePath> geodesics, std::span<const Conflict> conflicts,
                         const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,
                         const std::function<void(const std::string&)>& progress, Executor& executor, Start start) {
     return KeepNetwork(T, real_vertices, D, base, geodesics, conflicts, geodesics_of, progress, executor, start).run();

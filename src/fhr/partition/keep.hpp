@@ -75,10 +75,10 @@ struct CurveInfo {
 };
 
 struct KeptNetwork {
-    EdgeData<geodesic::GeodesicPath> paths;     ///< #E(D): the curve of D's halfedge (e, 0)
-    EdgeData<CurveInfo> info;                   ///< #E(D)
-    EdgeData<std::uint8_t> unsnapped;           ///< #E(D): 1 when embed() must place it as given
-    std::size_t start_faces = 0;                ///< #F(D_i), the start, on T (D̂_i's cone faces not counted)
+    EdgeData<geodesic::GeodesicPath> paths;  ///< #E(D): the curve of D's halfedge (e, 0)
+    EdgeData<CurveInfo> info;                ///< #E(D)
+    EdgeData<std::uint8_t> unsnapped;        ///< #E(D): 1 when embed() must place it as given
+    std::size_t start_faces = 0;             ///< #F(D_i), the start, on T (D̂_i's cone faces not counted)
     /// embed(T, D, paths, unsnapped) and its patches when they were already computed (the direct
     /// start's check, its curves unchanged since), so that the caller need not embed the same
     /// curves again nor cut the same patches (at 10⁶ faces 0.8 s and 0.2 s).
@@ -110,8 +110,7 @@ enum class Start : std::uint8_t {
 ///         to D.
 KeptNetwork keep_domain(const TriMesh& T, std::size_t real_vertices, const domain::Domain& D,
                         const std::function<const domain::Domain&()>& base,
-                        std::span<const geodesic::EllipsePath> geodesics,
-                        std::span<const Conflict> conflicts,
+                        std::span<const geodesic::EllipsePath> geodesics, std::span<const Conflict> conflicts,
                         const std::function<std::vector<geodesic::EllipsePath>(const domain::Domain&)>& geodesics_of,
                         const std::function<void(const std::string&)>& progress, Executor& executor,
                         Start start = Start::fast);

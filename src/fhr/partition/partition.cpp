@@ -31,14 +31,18 @@ public:
         for (EdgeId e : D_hat.mesh.edges()) {
             const auto& [a, b] = ends[e.idx()];
             const Key key = key_of(a, b);
-            if (!fixed(D_hat, e) && !cache_.count(key) && std::find(missing.begin(), missing.end(), key) == missing.end()) missing.push_back(key);
+            if (!fixed(D_hat, e) && !cache_.count(key) &&
+                std::find(missing.begin(), missing.end(), key) == missing.end())
+                missing.push_back(key);
         }
         // One fast-marching field per end, shared by its paths, then the paths.
         std::vector<VertexId::Index> foci;
         for (const Key& k : missing) foci.insert(foci.end(), {k.first, k.second});
         std::sort(foci.begin(), foci.end());
         foci.erase(std::unique(foci.begin(), foci.end()), foci.end());
-        auto focus_index = [&](VertexId::Index v) { return static_cast<std::size_t>(std::lower_bound(foci.begin(), foci.end(), v) - foci.begin()); };
+        auto focus_index = [&](VertexId::Index v) {
+            return static_cast<std::size_t>(std::lower_bound(foci.begin(), foci.end(), v) - foci.begin());
+        };
         std::vector<std::vector<VertexId>> partners(foci.size());
         for (const Key& k : missing) {
             partners[focus_index(k.first)].push_back(VertexId(k.second));
@@ -47,7 +51,8 @@ public:
         std::vector<geodesic::FocusField> fields(foci.size());
         executor_.for_each(foci.size(), 8, [&](std::size_t i) {
             const geodesic::WorkspacePool::Lease workspace = workspaces_.lease();
-            fields[i] = geodesic::focus_field(T_, VertexId(foci[i]), partners[i], options_.K, field_reach, workspace.get());
+            fields[i] =
+                geodesic::focus_field(T_, VertexId(foci[i]), partners[i], options_.K, field_reach, workspace.get());
         });
         std::vector<geodesic::EllipsePath> found(missing.size());
         executor_.for_each(missing.size(), 8, [&](std::size_t i) {
@@ -56,7 +61,8 @@ public:
             options.workspace = workspace.get();
             options.field_a = &fields[focus_index(missing[i].first)];
             options.field_b = &fields[focus_index(missing[i].second)];
-            found[i] = geodesic::ellipse_shortest_path(T_, VertexId(missing[i].first), VertexId(missing[i].second), options);
+            found[i] =
+                geodesic::ellipse_shortest_path(T_, VertexId(missing[i].first), VertexId(missing[i].second), options);
         });
         for (std::size_t i = 0; i < missing.size(); ++i) cache_.emplace(missing[i], std::move(found[i]));
         std::vector<geodesic::EllipsePath> paths;
@@ -71,10 +77,12 @@ public:
             // The ellipse search ends without a path only when the exact search exhausted a's
             // component without reaching b (ellipse.hpp): a loss to rounding, not a property of D.
             if (p.path.points.empty())
-                throw PartitionFailure("no shortest path found for domain edge " + std::to_string(e.idx()) + " between vertices " +
-                                       std::to_string(a.idx()) + " and " + std::to_string(b.idx()) +
-                                       " of T: the exact geodesic search exhausted the component of " + std::to_string(a.idx()) +
-                                       " without reaching " + std::to_string(b.idx()) + " (a loss to rounding, possible on needle triangles)");
+                throw PartitionFailure("no shortest path found for domain edge " + std::to_string(e.idx()) +
+                                       " between vertices " + std::to_string(a.idx()) + " and " +
+                                       std::to_string(b.idx()) +
+                                       " of T: the exact geodesic search exhausted the component of " +
+                                       std::to_string(a.idx()) + " without reaching " + std::to_string(b.idx()) +
+                                       " (a loss to rounding, possible on needle triangles)");
             if (a.idx() > b.idx()) std::reverse(p.path.points.begin(), p.path.points.end());
             paths.push_back(std::move(p));
         }
@@ -82,7 +90,9 @@ public:
     }
 
     bool apex(VertexId x) const { return x.idx() >= T_.n_vertices(); }
-    bool fixed(const domain::Domain& D_hat, EdgeId e) const { return domain::on_cone(D_hat.mesh, D_hat.t_vertex, e, T_.n_vertices()); }
+    bool fixed(const domain::Domain& D_hat, EdgeId e) const {
+        return domain::on_cone(D_hat.mesh, D_hat.t_vertex, e, T_.n_vertices());
+    }
 
 private:
     using Key = std::pair<VertexId::Index, VertexId::Index>;
@@ -101,8 +111,10 @@ private:
         } else {
             // D's face on the left of a -> b is a face of T when the cone face is on the right.
             bool cone_on_left = false;
-            for (VertexId v : D_hat.mesh.face_vertices(D_hat.mesh.face(h))) cone_on_left = cone_on_left || apex(D_hat.t_vertex[v]);
-            nodes = cone_on_left ? boundary_arc(T_hat_, T_.n_vertices(), b, a) : boundary_arc(T_hat_, T_.n_vertices(), a, b);
+            for (VertexId v : D_hat.mesh.face_vertices(D_hat.mesh.face(h)))
+                cone_on_left = cone_on_left || apex(D_hat.t_vertex[v]);
+            nodes = cone_on_left ? boundary_arc(T_hat_, T_.n_vertices(), b, a)
+                                 : boundary_arc(T_hat_, T_.n_vertices(), a, b);
             if (cone_on_left) std::reverse(nodes.begin(), nodes.end());
         }
         geodesic::EllipsePath out;
@@ -205,7 +217,9 @@ std::size_t flip_over_corners(domain::Domain& D, const std::vector<Conflict>& co
     std::size_t flips = 0;
     for (const Conflict& c : conflicts) {
         // D̂'s own edges beyond D's are cone edges: never flipped (nor are D's boundary edges).
-        if (c.kind != Conflict::Kind::through_corner || c.d_edge_a.idx() >= D.mesh.n_edges() || touched[c.d_edge_a.idx()]) continue;
+        if (c.kind != Conflict::Kind::through_corner || c.d_edge_a.idx() >= D.mesh.n_edges() ||
+            touched[c.d_edge_a.idx()])
+            continue;
         const EdgeId e = c.d_edge_a;
         const HalfedgeId h = TriMesh::halfedge(e, 0);
         const VertexId m = c.d_vertex;
@@ -237,7 +251,8 @@ std::optional<domain::Domain> decimation_to_vertices(const TriMesh& T, const dom
         std::sort(a.begin(), a.end());
         std::sort(b.begin(), b.end());
         if (a == b) return H;
-        why = "§2 stops at " + std::to_string(H.mesh.n_vertices()) + " vertices, not the domain's " + std::to_string(b.size());
+        why = "§2 stops at " + std::to_string(H.mesh.n_vertices()) + " vertices, not the domain's " +
+              std::to_string(b.size());
     } catch (const InvalidInput& e) {
         why = std::string("§2 cannot decimate T to the domain's vertices: ") + e.what();
     }
@@ -251,9 +266,16 @@ std::optional<domain::Domain> decimation_to_vertices(const TriMesh& T, const dom
 class Partitioner {
 public:
     Partitioner(const TriMesh& T, domain::Domain D, const PartitionOptions& options)
-        : T_(T), options_(options), D0_(D), D_(std::move(D)), decimated_(!D0_.history.empty()),
-          vertices0_(D0_.mesh.n_vertices()), kept_(T.n_vertices(), 0), executor_(executor_or_default(options.executor)),
-          cones_(T.is_closed() ? std::nullopt : std::optional<Coned>(add_cones(T))), T_hat_(cones_ ? cones_->mesh : T),
+        : T_(T),
+          options_(options),
+          D0_(D),
+          D_(std::move(D)),
+          decimated_(!D0_.history.empty()),
+          vertices0_(D0_.mesh.n_vertices()),
+          kept_(T.n_vertices(), 0),
+          executor_(executor_or_default(options.executor)),
+          cones_(T.is_closed() ? std::nullopt : std::optional<Coned>(add_cones(T))),
+          T_hat_(cones_ ? cones_->mesh : T),
           cache_(T, T_hat_, options.ellipse, executor_) {}
 
     Partition run() {
@@ -266,7 +288,8 @@ public:
             Embedding embedding = embed(T_hat_, D_hat, paths, {}, &executor_);
             std::string keep_failure;  // why D could not be kept, for the message of a given domain
             std::optional<KeptNetwork> attempt;
-            if (!embedding.conflicts.empty() && options_.keep_domain && out_.retries == 0) attempt = keeping(D_hat, embedding, keep_failure);
+            if (!embedding.conflicts.empty() && options_.keep_domain && out_.retries == 0)
+                attempt = keeping(D_hat, embedding, keep_failure);
             std::vector<std::uint8_t> unsnapped;
             std::optional<Patches> patches;  // the kept network's, cut already with its embedding
             if (!embedding.conflicts.empty() && attempt) take_kept(D_hat, *attempt, embedding, unsnapped, patches);
@@ -283,9 +306,9 @@ private:
     domain::Domain D_;
     bool decimated_;
     std::size_t vertices0_;
-    std::vector<VertexId> keep_;       // vertices of T the decimation must keep (local recovery)
-    std::vector<std::uint8_t> kept_;   // per vertex of T: in keep_ (or tried)
-    Flips flipped_;                    // edges made by flips
+    std::vector<VertexId> keep_;      // vertices of T the decimation must keep (local recovery)
+    std::vector<std::uint8_t> kept_;  // per vertex of T: in keep_ (or tried)
+    Flips flipped_;                   // edges made by flips
     // The last decimation, from which the recovery decimates again or steps back: D itself when
     // its history describes it, else (D changed after its decimation) T decimated afresh to D's
     // size when first needed.
@@ -322,14 +345,18 @@ private:
     // collapses can crowd curves around one point until there is no room to separate them: then
     // again from the nearest valid level; failing that, a decimated D is changed as the paper-only
     // mode does and a given one is refused (`keep_failure` says why).
-    std::optional<KeptNetwork> keeping(const domain::Domain& D_hat, const Embedding& embedding, std::string& keep_failure) {
+    std::optional<KeptNetwork> keeping(const domain::Domain& D_hat, const Embedding& embedding,
+                                       std::string& keep_failure) {
         std::optional<domain::Domain> H;
         std::string no_base;  // why there is no H, once found
         auto base = [&]() -> const domain::Domain& {
             if (!H && no_base.empty()) {
-                if (decimated_ && domain::history_describes(D_, T_)) H = D_hat;
-                else if (decimated_) no_base = "D's history does not describe it";
-                else if (const std::optional<domain::Domain> h = decimation_to_vertices(T_, D_, no_base)) H = domain::close_domain(*h, T_);
+                if (decimated_ && domain::history_describes(D_, T_))
+                    H = D_hat;
+                else if (decimated_)
+                    no_base = "D's history does not describe it";
+                else if (const std::optional<domain::Domain> h = decimation_to_vertices(T_, D_, no_base))
+                    H = domain::close_domain(*h, T_);
             }
             if (!H) throw PartitionFailure(no_base);
             return *H;
@@ -337,14 +364,15 @@ private:
         for (const Start start : {Start::fast, Start::gradual}) {
             if (!no_base.empty()) break;
             try {
-                return keep_domain(T_hat_, T_.n_vertices(), D_hat, base, out_.paths.values(), embedding.conflicts,
-                                   [&](const domain::Domain& d) { return cache_.all(d); }, options_.progress, executor_, start);
+                return keep_domain(
+                    T_hat_, T_.n_vertices(), D_hat, base, out_.paths.values(), embedding.conflicts,
+                    [&](const domain::Domain& d) { return cache_.all(d); }, options_.progress, executor_, start);
             } catch (const PartitionFailure& e) {
                 keep_failure = e.what();
                 progress("keeping the domain failed (" + keep_failure +
                          (start == Start::fast && no_base.empty() ? "); again from the nearest valid level"
-                          : decimated_                         ? "); changing D instead"
-                                                               : "); the given domain is refused"));
+                          : decimated_                            ? "); changing D instead"
+                                                                  : "); the given domain is refused"));
             }
         }
         return std::nullopt;
@@ -352,8 +380,8 @@ private:
 
     // The kept network in place of the geodesics: its curves, and their embedding (the direct
     // start's when its curves stayed as they were, else made now).
-    void take_kept(const domain::Domain& D_hat, KeptNetwork& kept, Embedding& embedding, std::vector<std::uint8_t>& unsnapped,
-                   std::optional<Patches>& patches) {
+    void take_kept(const domain::Domain& D_hat, KeptNetwork& kept, Embedding& embedding,
+                   std::vector<std::uint8_t>& unsnapped, std::optional<Patches>& patches) {
         for (EdgeId e : kept.paths.ids()) out_.paths[e].path = kept.paths[e];
         out_.curves = kept.info;
         out_.keep_start_faces = kept.start_faces;
@@ -366,14 +394,20 @@ private:
             embedding = embed(T_hat_, D_hat, kept.paths.values(), unsnapped, &executor_);
         }
         if (!embedding.conflicts.empty())
-            throw InternalError("keeping the domain: the final network breaks (1)/(2): " + embedding.conflicts.front().describe());
+            throw InternalError("keeping the domain: the final network breaks (1)/(2): " +
+                                embedding.conflicts.front().describe());
     }
 
     // The partition of a network that satisfies (1) and (2); with boundary, the cones taken off.
-    Partition finish(const domain::Domain& D_hat, Embedding& embedding, std::vector<std::uint8_t>& unsnapped, std::optional<Patches>& patches) {
+    Partition finish(const domain::Domain& D_hat, Embedding& embedding, std::vector<std::uint8_t>& unsnapped,
+                     std::optional<Patches>& patches) {
         if (out_.curves.empty())
             for (EdgeId e : out_.paths.ids())
-                out_.curves.push_back(CurveInfo{cache_.fixed(D_hat, e) ? CurveKind::boundary : CurveKind::geodesic, out_.paths[e].path.length, 0, 0, {}});
+                out_.curves.push_back(CurveInfo{cache_.fixed(D_hat, e) ? CurveKind::boundary : CurveKind::geodesic,
+                                                out_.paths[e].path.length,
+                                                0,
+                                                0,
+                                                {}});
         if (cones_) {
             // The cones off: D's edges are D̂'s first ones; T′ is embedded on T itself, where the
             // network must again satisfy (1) and (2) (the cones only closed the loops).
@@ -385,7 +419,8 @@ private:
             for (const auto& p : out_.paths) open.push_back(p.path);
             embedding = embed(T_, D_, open, unsnapped, &executor_);
             if (!embedding.conflicts.empty())
-                throw InternalError("partition: the network breaks (1)/(2) without the cones: " + embedding.conflicts.front().describe());
+                throw InternalError("partition: the network breaks (1)/(2) without the cones: " +
+                                    embedding.conflicts.front().describe());
             patches.reset();  // D̂'s on T̂
         }
         out_.patches = patches ? std::move(*patches) : extract_patches(D_, embedding.network, &executor_);
@@ -408,7 +443,8 @@ private:
                 }))
                 pairs.push_back(&c);
         std::string what = "conditions (1)/(2) of §3 fail for the given domain:";
-        for (std::size_t i = 0; i < std::min<std::size_t>(pairs.size(), 4); ++i) what += (i ? "; " : " ") + pairs[i]->describe();
+        for (std::size_t i = 0; i < std::min<std::size_t>(pairs.size(), 4); ++i)
+            what += (i ? "; " : " ") + pairs[i]->describe();
         if (pairs.size() > 4) what += "; and " + std::to_string(pairs.size() - 4) + " more";
         if (!keep_failure.empty()) what += "; and the domain cannot be kept: " + keep_failure;
         throw PartitionFailure(what);
@@ -416,11 +452,13 @@ private:
 
     // One round of the recovery of a decimated D: the first strategy that applies.
     void recover(const Embedding& embedding) {
-        const std::string conflicts = std::to_string(embedding.conflicts.size()) + " conflicts (" + embedding.conflicts.front().describe() + ")";
+        const std::string conflicts =
+            std::to_string(embedding.conflicts.size()) + " conflicts (" + embedding.conflicts.front().describe() + ")";
         out_.resolved.insert(out_.resolved.end(), embedding.conflicts.begin(), embedding.conflicts.end());
         ++out_.retries;
         if (const std::size_t flips = flip_over_corners(D_, embedding.conflicts, flipped_)) {
-            progress("partition: " + conflicts + "; flipped " + std::to_string(flips) + " domain edges that ran over a corner");
+            progress("partition: " + conflicts + "; flipped " + std::to_string(flips) +
+                     " domain edges that ran over a corner");
             return;
         }
         if (decimate_again(embedding, conflicts)) return;
@@ -443,8 +481,9 @@ private:
         base_ = domain::decimate_again(T_, last_decimation(), o);
         D_ = *base_;
         const std::size_t again = reapply_flips(D_, flipped_);
-        progress("partition: " + conflicts + "; decimating again keeping " + std::to_string(keep_.size()) + " vertices: " +
-                 std::to_string(D_.mesh.n_faces()) + " faces, " + std::to_string(again) + " earlier flips made again");
+        progress("partition: " + conflicts + "; decimating again keeping " + std::to_string(keep_.size()) +
+                 " vertices: " + std::to_string(D_.mesh.n_faces()) + " faces, " + std::to_string(again) +
+                 " earlier flips made again");
         return true;
     }
 
@@ -458,8 +497,9 @@ private:
         base_ = domain::undo_collapses(last, T_, undo);
         D_ = *base_;
         const std::size_t again = reapply_flips(D_, flipped_);
-        progress("partition: " + conflicts + "; stepping back " + std::to_string(undo) + " collapses of the decimation: " +
-                 std::to_string(D_.mesh.n_faces()) + " faces, " + std::to_string(again) + " earlier flips made again");
+        progress("partition: " + conflicts + "; stepping back " + std::to_string(undo) +
+                 " collapses of the decimation: " + std::to_string(D_.mesh.n_faces()) + " faces, " +
+                 std::to_string(again) + " earlier flips made again");
     }
 };
 

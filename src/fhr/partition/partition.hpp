@@ -61,16 +61,17 @@ struct PartitionOptions {
 
 /// The result of §3: the (possibly refined) domain, its paths, T′ and the patches.
 struct Partition {
-    domain::Domain domain;                     ///< D after recovery (unchanged when none was needed)
-    EdgeData<geodesic::EllipsePath> paths;     ///< #E(D): Γ for D's halfedge (e, 0), from x_j to x_k
-    Network network;                           ///< T′ with the paths embedded
-    Patches patches;                           ///< one disk per face of D
-    std::size_t retries = 0;                   ///< rounds that found conflicts and decimated again
-    std::size_t vertices_added = 0;            ///< #V(D) − #V(D₀)
-    std::vector<VertexId> kept;                ///< the vertices of T that the recovery made D keep
-    std::vector<Conflict> resolved;            ///< the conflicts met on the way, in order
-    EdgeData<CurveInfo> curves;                ///< #E(D): each curve's kind (geodesic or restricted)
-    std::size_t keep_start_faces = 0;          ///< keeping D: the faces of the start on T (D's own count when kept directly; 0: not needed)
+    domain::Domain domain;                  ///< D after recovery (unchanged when none was needed)
+    EdgeData<geodesic::EllipsePath> paths;  ///< #E(D): Γ for D's halfedge (e, 0), from x_j to x_k
+    Network network;                        ///< T′ with the paths embedded
+    Patches patches;                        ///< one disk per face of D
+    std::size_t retries = 0;                ///< rounds that found conflicts and decimated again
+    std::size_t vertices_added = 0;         ///< #V(D) − #V(D₀)
+    std::vector<VertexId> kept;             ///< the vertices of T that the recovery made D keep
+    std::vector<Conflict> resolved;         ///< the conflicts met on the way, in order
+    EdgeData<CurveInfo> curves;             ///< #E(D): each curve's kind (geodesic or restricted)
+    std::size_t keep_start_faces =
+        0;  ///< keeping D: the faces of the start on T (D's own count when kept directly; 0: not needed)
 };
 
 /// §3 for T and D.

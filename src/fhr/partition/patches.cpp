@@ -40,8 +40,10 @@ Regions regions(const domain::Domain& D, const Network& net) {
                     // R lies on the left of h, and D's face on the left of the D halfedge is T_i.
                     const FaceId df = D.mesh.face(dh);
                     FaceId& known = out.region_face[static_cast<std::size_t>(r)];
-                    if (!known.valid()) known = df;
-                    else if (known != df) fail(df, "runs into the patch of domain face " + std::to_string(known.idx()));
+                    if (!known.valid())
+                        known = df;
+                    else if (known != df)
+                        fail(df, "runs into the patch of domain face " + std::to_string(known.idx()));
                     continue;
                 }
                 const FaceId n = M.face(TriMesh::twin(h));
@@ -56,7 +58,8 @@ Regions regions(const domain::Domain& D, const Network& net) {
 }
 
 // Patch df's disk on its own, `local` numbering its vertices (−1 elsewhere, restored after).
-void make_disk(const domain::Domain& D, const Network& net, const Regions& regions, FaceId df, Patch& p, std::vector<std::int32_t>& local) {
+void make_disk(const domain::Domain& D, const Network& net, const Regions& regions, FaceId df, Patch& p,
+               std::vector<std::int32_t>& local) {
     const TriMesh& M = net.mesh;
     auto local_of = [&](VertexId v) {
         if (local[v.idx()] < 0) {
@@ -98,7 +101,8 @@ void make_disk(const domain::Domain& D, const Network& net, const Regions& regio
     std::sort(sorted.begin(), sorted.end());
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) fail(df, "touches itself on its boundary");
     if (boundary_halfedges != loop.size()) fail(df, "has a second boundary loop");
-    const long V = static_cast<long>(p.vertices.size()), F = static_cast<long>(p.faces.size()), L = static_cast<long>(loop.size());
+    const long V = static_cast<long>(p.vertices.size()), F = static_cast<long>(p.faces.size()),
+               L = static_cast<long>(loop.size());
     if (2 * V - (3 * F + L) + 2 * F != 2) fail(df, "is not a topological disk");
     for (VertexId v : p.vertices) local[v.idx()] = -1;
 }

@@ -26,13 +26,13 @@ namespace fhr::partition {
 struct Patch {
     std::vector<FaceId> faces;       ///< faces of T′, in increasing order
     std::vector<VertexId> vertices;  ///< disk vertex -> vertex of T′
-    Disk disk;                ///< local triangles, boundary from corner x_j of D's face (j, k, l)
+    Disk disk;                       ///< local triangles, boundary from corner x_j of D's face (j, k, l)
 };
 
 /// The patches, indexed by D's faces, and the patch of every face of T′.
 struct Patches {
-    FaceData<Patch> patch;              ///< #F(D)
-    FaceData<FaceId> patch_of_face;     ///< #F(T′): the D face whose patch holds it
+    FaceData<Patch> patch;           ///< #F(D)
+    FaceData<FaceId> patch_of_face;  ///< #F(T′): the D face whose patch holds it
 };
 
 /// Cuts T′ along the network into one disk per face of D; the disks are made on `executor`

@@ -41,9 +41,12 @@ std::vector<FaceId> closed_faces(const TriMesh& T, std::span<const FaceId> touch
             bool previous = false, first = false, seen = false;
             T.for_each_outgoing(v, [&](HalfedgeId h) {
                 const FaceId f = T.face(h);
-                const bool in = f.valid() && std::binary_search(faces.begin(), faces.begin() + static_cast<std::ptrdiff_t>(before), f);
-                if (!seen) first = in, seen = true;
-                else if (in && !previous) ++fans;
+                const bool in = f.valid() && std::binary_search(faces.begin(),
+                                                                faces.begin() + static_cast<std::ptrdiff_t>(before), f);
+                if (!seen)
+                    first = in, seen = true;
+                else if (in && !previous)
+                    ++fans;
                 previous = in;
             });
             if (first && !previous) ++fans;
@@ -56,7 +59,8 @@ std::vector<FaceId> closed_faces(const TriMesh& T, std::span<const FaceId> touch
 
 }  // namespace
 
-Outcome<Region> Region::cut_out(const TriMesh& T, std::span<const FaceId> touched, std::span<const RegionCurve> curves) {
+Outcome<Region> Region::cut_out(const TriMesh& T, std::span<const FaceId> touched,
+                                std::span<const RegionCurve> curves) {
     Region r(T);
     r.t_face_ = closed_faces(T, touched);
     for (FaceId f : r.t_face_)
@@ -76,7 +80,8 @@ Outcome<Region> Region::cut_out(const TriMesh& T, std::span<const FaceId> touche
     }
     r.sub_ = TriMesh::from_triangles(std::move(positions), triangles);
     for (const RegionCurve& c : curves)
-        if (Outcome<std::monostate> converted = r.convert(c); !converted) return Outcome<Region>::failure(converted.why());
+        if (Outcome<std::monostate> converted = r.convert(c); !converted)
+            return Outcome<Region>::failure(converted.why());
     if (Outcome<std::monostate> cut = r.recut(); !cut) return Outcome<Region>::failure(cut.why());
     return r;
 }
@@ -92,7 +97,9 @@ Outcome<std::monostate> Region::convert(const RegionCurve& c) {
     for (const SurfacePoint& q : c.path->points) {
         if (q.kind == SurfacePoint::Kind::vertex) {
             const std::optional<VertexId> v = find_sub(q.vertex);
-            if (!v) return Outcome<std::monostate>::failure("a curve passes a vertex of T outside the faces around the region");
+            if (!v)
+                return Outcome<std::monostate>::failure(
+                    "a curve passes a vertex of T outside the faces around the region");
             p.points.push_back(SurfacePoint::at_vertex(*v));
             continue;
         }
@@ -111,7 +118,9 @@ Outcome<std::monostate> Region::convert(const RegionCurve& c) {
 
 Outcome<std::monostate> Region::recut() {
     cut_ = embed_curves(sub_, curves_, unsnapped_);
-    if (!cut_.conflicts.empty()) return Outcome<std::monostate>::failure("the curves around a region conflict: " + cut_.conflicts.front().describe());
+    if (!cut_.conflicts.empty())
+        return Outcome<std::monostate>::failure("the curves around a region conflict: " +
+                                                cut_.conflicts.front().describe());
     return std::monostate{};
 }
 
@@ -123,7 +132,9 @@ std::optional<VertexId> Region::find_sub(VertexId v) const {
 
 VertexId Region::in_sub(VertexId v) const {
     const std::optional<VertexId> s = find_sub(v);
-    if (!s) throw InternalError("region: vertex " + std::to_string(v.idx()) + " of T is outside the faces around the region");
+    if (!s)
+        throw InternalError("region: vertex " + std::to_string(v.idx()) +
+                            " of T is outside the faces around the region");
     return *s;
 }
 
@@ -141,7 +152,8 @@ Outcome<FaceData<std::uint8_t>> Region::side(std::size_t curve, bool left) const
     const FaceId seed = M.face(left ? h : TriMesh::twin(h));
     FaceData<std::uint8_t> mask(M.n_faces(), 0);
     std::vector<FaceId> stack{seed};
-    if (!seed.valid()) return Outcome<FaceData<std::uint8_t>>::failure("a curve on the border of the faces around the region");
+    if (!seed.valid())
+        return Outcome<FaceData<std::uint8_t>>::failure("a curve on the border of the faces around the region");
     mask[seed] = 1;
     while (!stack.empty()) {
         const FaceId f = stack.back();

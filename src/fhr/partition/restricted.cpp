@@ -87,8 +87,9 @@ public:
         RestrictedPath out;
         out.shortest = search.distance(to);
         if (!std::isfinite(out.shortest))
-            throw PartitionFailure("restricted path: vertex " + std::to_string(region_.in_t(to).idx()) + " cannot be reached from vertex " +
-                                   std::to_string(region_.in_t(from).idx()) + " inside the region the other curves leave free");
+            throw PartitionFailure("restricted path: vertex " + std::to_string(region_.in_t(to).idx()) +
+                                   " cannot be reached from vertex " + std::to_string(region_.in_t(from).idx()) +
+                                   " inside the region the other curves leave free");
         const std::vector<SurfacePoint> pts = snapped(search.path_to(to).points, out.separation_bound);
         std::vector<SurfacePoint>& nodes = out.path.points;
         auto push = [&](const SurfacePoint& p) {
@@ -116,7 +117,8 @@ public:
                         const HalfedgeId h = net_.mesh.find_halfedge(q.vertex, p.vertex);
                         const auto E = h.valid() ? along(q.vertex, p.vertex) : std::nullopt;
                         if (E && masked(net_.mesh.face(h)) && masked(net_.mesh.face(TriMesh::twin(h))))
-                            push(SurfacePoint::on_edge(TriMesh::halfedge(*E, 0), (*param_on(*E, q.vertex) + *param_on(*E, p.vertex)) / 2));
+                            push(SurfacePoint::on_edge(TriMesh::halfedge(*E, 0),
+                                                       (*param_on(*E, q.vertex) + *param_on(*E, p.vertex)) / 2));
                     }
                     ++out.touches;
                     out.separation_bound += separate(p.vertex, pts[i - 1], pts[i + 1], push);
@@ -146,7 +148,8 @@ private:
         std::vector<SurfacePoint> pts;
         for (std::size_t i = 0; i < star.size(); ++i) {
             SurfacePoint p = star[i];
-            if (i > 0 && i + 1 < star.size() && p.kind == SurfacePoint::Kind::edge && (p.t <= snap_fraction || p.t >= 1 - snap_fraction)) {
+            if (i > 0 && i + 1 < star.size() && p.kind == SurfacePoint::Kind::edge &&
+                (p.t <= snap_fraction || p.t >= 1 - snap_fraction)) {
                 const VertexId a = m.from(p.halfedge), b = m.to(p.halfedge);
                 bound += 2 * std::min(p.t, 1 - p.t) * (m.position(b) - m.position(a)).norm();
                 p = SurfacePoint::at_vertex(p.t <= snap_fraction ? a : b);
@@ -233,8 +236,10 @@ private:
             const double s = su + (*param_on(*E, w) > su ? delta : -delta);
             if (!(s > 0 && s < 1) || s == su || delta < min_separation) {
                 char what[200];  // %g: the gap is below 3e-12 here, which std::to_string prints as 0.000000
-                std::snprintf(what, sizeof what, "restricted path: no room to separate the curve from the curve near vertex %u (gap %g of an edge)",
-                              static_cast<unsigned>(near_in_t(u).idx()), gap);
+                std::snprintf(
+                    what, sizeof what,
+                    "restricted path: no room to separate the curve from the curve near vertex %u (gap %g of an edge)",
+                    static_cast<unsigned>(near_in_t(u).idx()), gap);
                 throw PartitionFailure(what);
             }
             points.push_back(SurfacePoint::on_edge(TriMesh::halfedge(*E, 0), s));
@@ -249,8 +254,8 @@ private:
 
 }  // namespace
 
-Outcome<RestrictedPath> restricted_path(const Region& region, const FaceData<std::uint8_t>& mask, VertexId from, VertexId to,
-                                        geodesic::Workspace* workspace) {
+Outcome<RestrictedPath> restricted_path(const Region& region, const FaceData<std::uint8_t>& mask, VertexId from,
+                                        VertexId to, geodesic::Workspace* workspace) {
     try {
         RestrictedPath r = Restrictor(region, mask, workspace).run(region.in_sub(from), region.in_sub(to));
         for (SurfacePoint& p : r.path.points) p = region.in_t(p);

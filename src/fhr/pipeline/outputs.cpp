@@ -33,7 +33,8 @@ exchange::ParamFile param_file_faces(const Parameterization& p) {
     f.domain_vertices.assign(D.mesh.positions().begin(), D.mesh.positions().end());
     f.domain_faces = D.mesh.triangles();
     f.surface_faces.reserve(p.refined_faces.size());
-    for (std::size_t i = 0; i < p.refined_faces.size(); ++i) f.surface_faces.push_back({p.refined_faces[i], p.face_patch[i], p.face_beta[i]});
+    for (std::size_t i = 0; i < p.refined_faces.size(); ++i)
+        f.surface_faces.push_back({p.refined_faces[i], p.face_patch[i], p.face_beta[i]});
     return f;
 }
 
@@ -82,7 +83,8 @@ public:
                 if ((file.domain_vertices[t[(e + 1) % 3]] - file.domain_vertices[t[e]]).squaredNorm() >
                     (file.domain_vertices[t[(k + 1) % 3]] - file.domain_vertices[t[k]]).squaredNorm())
                     k = e;
-            const Vec3 &a = file.domain_vertices[t[k]], &b = file.domain_vertices[t[(k + 1) % 3]], &c = file.domain_vertices[t[(k + 2) % 3]];
+            const Vec3 &a = file.domain_vertices[t[k]], &b = file.domain_vertices[t[(k + 1) % 3]],
+                       &c = file.domain_vertices[t[(k + 2) % 3]];
             const double ab = (b - a).norm();
             const double x = (c - a).dot(b - a) / ab, y = (b - a).cross(c - a).norm() / ab;
             flat_[d][k] = io::Vec2(0, 0);
@@ -93,7 +95,8 @@ public:
         }
         std::vector<std::size_t> order(m);
         std::iota(order.begin(), order.end(), std::size_t{0});
-        std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return height[i] > height[j]; });
+        std::stable_sort(order.begin(), order.end(),
+                         [&](std::size_t i, std::size_t j) { return height[i] > height[j]; });
         const double gap = 0.02 * height[order.front()];
         double area = 0;
         for (std::size_t d = 0; d < m; ++d) area += (width[d] + gap) * (height[d] + gap);
@@ -122,7 +125,7 @@ public:
 private:
     const exchange::ParamFile& file_;
     std::vector<std::array<io::Vec2, 3>> flat_;  // T_i laid flat, its box's lower left corner at 0
-    std::vector<io::Vec2> origin_;                // where that box goes, before scaling
+    std::vector<io::Vec2> origin_;               // where that box goes, before scaling
     double scale_ = 1;
 };
 
@@ -135,16 +138,26 @@ std::string percent_name(double p) {
 
 void write_wavelet_report(io::JsonWriter& j, const wavelet::WaveletResult& w) {
     j.key("remesh").begin_object();
-    j.key("level").value(w.levels).key("vertices").value(w.remesh_positions.size()).key("faces").value(w.remesh_faces.size());
+    j.key("level")
+        .value(w.levels)
+        .key("vertices")
+        .value(w.remesh_positions.size())
+        .key("faces")
+        .value(w.remesh_faces.size());
     j.key("hausdorff").value(w.remesh_hausdorff.lower()).key("hausdorff_upper_bound").value(w.remesh_hausdorff.upper());
     j.key("hausdorff_relative_to_bbox_diagonal").value(w.hausdorff_relative).end_object();
     j.key("wavelet").begin_object();
     j.key("coefficients").value(w.coefficients).key("reconstruction_max_error").value(w.reconstruction_max_error);
-    j.key("reconstruction_max_error_relative").value(w.max_abs_coordinate > 0 ? w.reconstruction_max_error / w.max_abs_coordinate : 0.0);
+    j.key("reconstruction_max_error_relative")
+        .value(w.max_abs_coordinate > 0 ? w.reconstruction_max_error / w.max_abs_coordinate : 0.0);
     j.key("kept").begin_array();
     for (const auto& k : w.kept) {
         j.begin_object().key("percent").value(k.percent).key("count").value(k.count).key("l2_error").value(k.l2_error);
-        j.key("hausdorff").value(k.hausdorff.lower()).key("hausdorff_upper_bound").value(k.hausdorff.upper()).end_object();
+        j.key("hausdorff")
+            .value(k.hausdorff.lower())
+            .key("hausdorff_upper_bound")
+            .value(k.hausdorff.upper())
+            .end_object();
     }
     j.end_array().end_object();
 }
@@ -159,7 +172,8 @@ std::vector<exchange::FaceStretch> face_stretches(const Parameterization& p) {
         const Triangle& d = domain_faces[p.face_patch[f]];
         std::array<Vec3, 3> q;
         for (int c = 0; c < 3; ++c)
-            q[c] = p.face_beta[f][c][0] * D.position(VertexId(d[0])) + p.face_beta[f][c][1] * D.position(VertexId(d[1])) +
+            q[c] = p.face_beta[f][c][0] * D.position(VertexId(d[0])) +
+                   p.face_beta[f][c][1] * D.position(VertexId(d[1])) +
                    p.face_beta[f][c][2] * D.position(VertexId(d[2]));
         const Triangle& t = p.refined_faces[f];
         stretches[f] = exchange::face_stretch(q[0], q[1], q[2], p.refined_positions[t[0]], p.refined_positions[t[1]],
@@ -198,29 +212,42 @@ std::vector<PatchAnisotropy> worst_patches(const Parameterization& p, std::size_
     }
     const std::size_t kept = std::min(count, patches.size());
     std::partial_sort(patches.begin(), patches.begin() + static_cast<std::ptrdiff_t>(kept), patches.end(),
-                      [](const PatchAnisotropy& a, const PatchAnisotropy& b) { return a.max != b.max ? a.max > b.max : a.patch < b.patch; });
+                      [](const PatchAnisotropy& a, const PatchAnisotropy& b) {
+                          return a.max != b.max ? a.max > b.max : a.patch < b.patch;
+                      });
     patches.resize(kept);
     return patches;
 }
 
-}  // namespace
-
-std::string report_json(const InputInfo& input, const Parameterization& p, const exchange::VerifyReport& oracle,
-                        const Options& options, const wavelet::WaveletResult* wavelets) {
+// report.json's `input` and `domain` sections.
+void write_input_and_domain(io::JsonWriter& j, const InputInfo& input, const Parameterization& p) {
     const partition::Partition& P = p.partition;
     const TriMesh& D = P.domain.mesh;
-    io::JsonWriter j;
-    j.begin_object();
     j.key("input").begin_object();
     j.key("path").value(input.path).key("vertices").value(input.vertices).key("faces").value(input.faces);
-    j.key("genus").value(input.genus).key("boundary_loops").value(input.boundary_loops).key("components").value(input.components).end_object();
+    j.key("genus")
+        .value(input.genus)
+        .key("boundary_loops")
+        .value(input.boundary_loops)
+        .key("components")
+        .value(input.components)
+        .end_object();
 
     j.key("domain").begin_object();
     j.key("vertices").value(D.n_vertices()).key("edges").value(D.n_edges()).key("faces").value(D.n_faces());
     j.key("faces_asked").value(input.domain_faces_asked).key("faces_requested").value(input.domain_faces_requested);
-    j.key("retries").value(P.retries).key("vertices_added").value(P.vertices_added).key("kept_vertices").value(P.kept.size());
+    j.key("retries")
+        .value(P.retries)
+        .key("vertices_added")
+        .value(P.vertices_added)
+        .key("kept_vertices")
+        .value(P.kept.size());
     j.key("conflicts_resolved").value(P.resolved.size()).end_object();
+}
 
+// report.json's `partition` section.
+void write_partition(io::JsonWriter& j, const Parameterization& p) {
+    const partition::Partition& P = p.partition;
     std::size_t windows = 0, max_attempts = 0;
     double max_K = 0, total_length = 0;
     for (const auto& path : P.paths) {
@@ -243,7 +270,10 @@ std::string report_json(const InputInfo& input, const Parameterization& p, const
         excess += P.paths[e].path.length - P.curves[e].geodesic_length;
         separation = std::max(separation, P.curves[e].separation_bound);
     }
-    j.key("geodesic_edges").value(P.curves.size() - restricted - boundary_curves).key("restricted_edges").value(restricted);
+    j.key("geodesic_edges")
+        .value(P.curves.size() - restricted - boundary_curves)
+        .key("restricted_edges")
+        .value(restricted);
     j.key("boundary_edges").value(boundary_curves);
     j.key("restricted_length").value(restricted_length).key("restricted_excess").value(excess);
     j.key("max_separation_bound").value(separation).key("keep_start_faces").value(P.keep_start_faces);
@@ -258,7 +288,11 @@ std::string report_json(const InputInfo& input, const Parameterization& p, const
     j.end_array();
     j.key("refined_vertices").value(p.refined_positions.size()).key("refined_faces").value(p.refined_faces.size());
     j.key("dividing_edges_split").value(p.dividing_edges_split).end_object();
+}
 
+// report.json's `parameterization` section: the certificates, the oracle's verdict, the distortion.
+void write_parameterization(io::JsonWriter& j, const Parameterization& p, const exchange::VerifyReport& oracle,
+                            const Options& options) {
     std::size_t flipped = 0, boundary = 0;
     double min_angle = std::numeric_limits<double>::infinity();
     for (const auto& c : p.certificates) {
@@ -272,10 +306,12 @@ std::string report_json(const InputInfo& input, const Parameterization& p, const
     j.key("certified").value(p.certified() && oracle.valid());
     j.key("flipped_triangles").value(flipped).key("boundary_violations").value(boundary);
     j.key("min_image_angle_degrees").value(min_angle);
-    const auto first = std::find_if(p.certificates.begin(), p.certificates.end(), [](const auto& c) { return !c.passed; });
+    const auto first =
+        std::find_if(p.certificates.begin(), p.certificates.end(), [](const auto& c) { return !c.passed; });
     if (first != p.certificates.end())
-        j.key("first_failure").value("patch " + std::to_string(std::distance(p.certificates.begin(), first)) + ": " +
-                                      first->first_failure->describe());
+        j.key("first_failure")
+            .value("patch " + std::to_string(std::distance(p.certificates.begin(), first)) + ": " +
+                   first->first_failure->describe());
     j.key("oracle").begin_object();
     j.key("valid").value(oracle.valid()).key("checks").begin_array();
     for (const auto& c : oracle.checks) {
@@ -291,9 +327,27 @@ std::string report_json(const InputInfo& input, const Parameterization& p, const
     exchange::write_distortion_fields(j, oracle.distortion);
     j.key("worst_patches").begin_array();
     for (const auto& w : worst_patches(p, 5))
-        j.begin_object().key("patch").value(w.patch).key("max_anisotropy").value(w.max).key("faces_above_10").value(w.above_10).end_object();
+        j.begin_object()
+            .key("patch")
+            .value(w.patch)
+            .key("max_anisotropy")
+            .value(w.max)
+            .key("faces_above_10")
+            .value(w.above_10)
+            .end_object();
     j.end_array().end_object();
     j.end_object();
+}
+
+}  // namespace
+
+std::string report_json(const InputInfo& input, const Parameterization& p, const exchange::VerifyReport& oracle,
+                        const Options& options, const wavelet::WaveletResult* wavelets) {
+    io::JsonWriter j;
+    j.begin_object();
+    write_input_and_domain(j, input, p);
+    write_partition(j, p);
+    write_parameterization(j, p, oracle, options);
     if (wavelets) write_wavelet_report(j, *wavelets);
     j.end_object();
     return j.str();
@@ -315,7 +369,9 @@ std::string timings_json(const Timings& timings) {
 
 std::vector<RateStep> rate_steps(const TriMesh& T, const TriMesh& D, const wavelet::WaveletResult& w) {
     std::vector<RateStep> steps;
-    const auto has = [&](double p) { return std::any_of(steps.begin(), steps.end(), [&](const auto& q) { return q.percent == p; }); };
+    const auto has = [&](double p) {
+        return std::any_of(steps.begin(), steps.end(), [&](const auto& q) { return q.percent == p; });
+    };
     for (const auto& k : w.kept)
         if (!has(k.percent)) steps.push_back({k.percent, k.count, k.l2_error, k.hausdorff.lower(), k.positions});
     const wavelet::FilterBank bank(wavelet::refine(D, w.levels));
@@ -331,7 +387,8 @@ std::vector<RateStep> rate_steps(const TriMesh& T, const TriMesh& D, const wavel
         const double h = wavelet::hausdorff(T.positions(), t_faces, f, w.remesh_faces, ho).lower();
         steps.push_back({p, count, l2, h, std::move(f)});
     }
-    std::stable_sort(steps.begin(), steps.end(), [](const RateStep& x, const RateStep& y) { return x.percent < y.percent; });
+    std::stable_sort(steps.begin(), steps.end(),
+                     [](const RateStep& x, const RateStep& y) { return x.percent < y.percent; });
     return steps;
 }
 
@@ -361,22 +418,25 @@ std::vector<std::function<void()>> parameterization_files(const std::string& bas
         io::write_obj_polylines(base + "geodesics.obj", P.network.mesh.positions(), lines, kinds, executor);
     });
     files.emplace_back([&, base, executor] {
-        io::write_off(base + "domain.off", p.partition.domain.mesh.positions(), p.partition.domain.mesh.triangles(), executor);
+        io::write_off(base + "domain.off", p.partition.domain.mesh.positions(), p.partition.domain.mesh.triangles(),
+                      executor);
     });
     return files;
 }
 
 // §5's meshes: D^J through φ and each kept percentage's reconstruction. `wavelets` must outlive
 // the writers.
-std::vector<std::function<void()>> wavelet_files(const std::string& base, const wavelet::WaveletResult& wavelets, Executor* executor) {
+std::vector<std::function<void()>> wavelet_files(const std::string& base, const wavelet::WaveletResult& wavelets,
+                                                 Executor* executor) {
     std::vector<std::function<void()>> files;
     files.emplace_back([&wavelets, base, executor] {
-        io::write_off(base + "remesh_L" + std::to_string(wavelets.levels) + ".off", wavelets.remesh_positions, wavelets.remesh_faces,
-                      executor);
+        io::write_off(base + "remesh_L" + std::to_string(wavelets.levels) + ".off", wavelets.remesh_positions,
+                      wavelets.remesh_faces, executor);
     });
     for (const auto& k : wavelets.kept)
         files.emplace_back([&wavelets, &k, base, executor] {
-            io::write_off(base + "wavelet_keep" + percent_name(k.percent) + ".off", k.positions, wavelets.remesh_faces, executor);
+            io::write_off(base + "wavelet_keep" + percent_name(k.percent) + ".off", k.positions, wavelets.remesh_faces,
+                          executor);
         });
     return files;
 }
@@ -407,7 +467,8 @@ RunTexts write_outputs(const std::string& dir, const InputInfo& input, const Par
     // Each file is written in parts on every thread (io::FileParts).
     std::optional<exchange::ParamFile> file;
     std::vector<std::function<void()>> files;
-    if (!written.parameterization) files = parameterization_files(base, p, file.emplace(to_param_file(p)), options.executor);
+    if (!written.parameterization)
+        files = parameterization_files(base, p, file.emplace(to_param_file(p)), options.executor);
     if (wavelets && !written.wavelets)
         for (auto& f : wavelet_files(base, *wavelets, options.executor)) files.push_back(std::move(f));
     for (const auto& write : files) write();
@@ -467,7 +528,8 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
         const wavelet::Refinement r = wavelet::refine(P.domain.mesh, wavelets->levels);
         const TriMesh& dj = r.levels.back();
         const std::vector<Triangle> dj_faces = dj.triangles();
-        render::write_fig8(base + "fig8.png", camera, {dj.positions(), dj_faces}, {wavelets->remesh_positions, wavelets->remesh_faces}, size);
+        render::write_fig8(base + "fig8.png", camera, {dj.positions(), dj_faces},
+                           {wavelets->remesh_positions, wavelets->remesh_faces}, size);
         if (wavelets->kept.size() >= 2)
             render::write_fig9(base + "fig9.png", camera, {wavelets->kept[0].positions, wavelets->remesh_faces},
                                {wavelets->kept[1].positions, wavelets->remesh_faces}, size);
@@ -481,7 +543,8 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
         render::write_rate_distortion_svg(base + "rate_distortion.svg", points, labels);
     }
     // ψ_i(S_i) inside an equilateral triangle for the first patch and the one with the most faces.
-    const std::array<Eigen::Vector2d, 3> corners{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0.5, std::sqrt(3.0) / 2)};
+    const std::array<Eigen::Vector2d, 3> corners{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0),
+                                                 Eigen::Vector2d(0.5, std::sqrt(3.0) / 2)};
     FaceId largest(0);
     for (FaceId d : p.disks.ids())
         if (p.disks[d].triangles.size() > p.disks[largest].triangles.size()) largest = d;

@@ -19,8 +19,9 @@ namespace fhr::pipeline {
 /// Wall-clock seconds per stage, in the order run (names: paper §6's timing table): the observer
 /// of a run whose timings.json is written.
 struct Timings final : StageObserver {
-    std::vector<std::pair<std::string, double>> stages;       ///< summed into "total"
-    std::vector<std::pair<std::string, double>> after_total;  ///< written after "total", not summed: measurements of the result
+    std::vector<std::pair<std::string, double>> stages;  ///< summed into "total"
+    std::vector<std::pair<std::string, double>>
+        after_total;  ///< written after "total", not summed: measurements of the result
     void stage(std::string_view name, double seconds, bool in_total) override {
         (in_total ? stages : after_total).emplace_back(std::string(name), seconds);
     }

@@ -38,8 +38,8 @@ std::string base64(std::string_view bytes) {
     out.reserve((bytes.size() + 2) / 3 * 4);
     std::size_t i = 0;
     for (; i + 3 <= bytes.size(); i += 3) {
-        const std::uint32_t v = static_cast<std::uint8_t>(bytes[i]) << 16 | static_cast<std::uint8_t>(bytes[i + 1]) << 8 |
-                                static_cast<std::uint8_t>(bytes[i + 2]);
+        const std::uint32_t v = static_cast<std::uint8_t>(bytes[i]) << 16 |
+                                static_cast<std::uint8_t>(bytes[i + 1]) << 8 | static_cast<std::uint8_t>(bytes[i + 2]);
         for (int s = 18; s >= 0; s -= 6) out += alphabet[(v >> s) & 63];
     }
     if (const std::size_t rest = bytes.size() - i; rest > 0) {
@@ -63,9 +63,15 @@ std::string_view bytes_of(std::span<const T> values) {
 class ArrayWriter {
 public:
     explicit ArrayWriter(io::JsonWriter& j) : j_(j) {}
-    void u32(std::string_view name, std::span<const std::uint32_t> values) { entry(name, "u32", values.size(), bytes_of(values)); }
-    void u8(std::string_view name, std::span<const std::uint8_t> values) { entry(name, "u8", values.size(), bytes_of(values)); }
-    void f32(std::string_view name, std::span<const float> values) { entry(name, "f32", values.size(), bytes_of(values)); }
+    void u32(std::string_view name, std::span<const std::uint32_t> values) {
+        entry(name, "u32", values.size(), bytes_of(values));
+    }
+    void u8(std::string_view name, std::span<const std::uint8_t> values) {
+        entry(name, "u8", values.size(), bytes_of(values));
+    }
+    void f32(std::string_view name, std::span<const float> values) {
+        entry(name, "f32", values.size(), bytes_of(values));
+    }
     void triangles(std::string_view name, std::span<const Triangle> faces) {
         std::vector<std::uint32_t> flat;
         flat.reserve(3 * faces.size());
@@ -85,7 +91,9 @@ public:
         q.reserve(3 * points.size());
         for (const Vec3& x : points)
             for (int c = 0; c < 3; ++c)
-                q.push_back(hi[c] > lo[c] ? static_cast<std::uint16_t>(std::lround((x[c] - lo[c]) / (hi[c] - lo[c]) * 65535.0)) : 0);
+                q.push_back(hi[c] > lo[c]
+                                ? static_cast<std::uint16_t>(std::lround((x[c] - lo[c]) / (hi[c] - lo[c]) * 65535.0))
+                                : 0);
         begin(name, "q16", 3 * points.size());
         j_.key("min").begin_array().value(lo[0]).value(lo[1]).value(lo[2]).end_array();
         j_.key("max").begin_array().value(hi[0]).value(hi[1]).value(hi[2]).end_array();
@@ -95,7 +103,8 @@ public:
     void unit16(std::string_view name, std::span<const double> values) {
         std::vector<std::uint16_t> q;
         q.reserve(values.size());
-        for (const double x : values) q.push_back(static_cast<std::uint16_t>(std::lround(std::clamp(x, 0.0, 1.0) * 65535.0)));
+        for (const double x : values)
+            q.push_back(static_cast<std::uint16_t>(std::lround(std::clamp(x, 0.0, 1.0) * 65535.0)));
         entry(name, "u16n", q.size(), bytes_of(std::span<const std::uint16_t>(q)));
     }
 
@@ -131,7 +140,9 @@ DisplayMesh display_mesh(const Parameterization& p, std::size_t budget) {
         hi = hi.cwiseMax(x);
     }
     for (const Triangle& t : p.refined_faces)
-        area += 0.5 * (p.refined_positions[t[1]] - p.refined_positions[t[0]]).cross(p.refined_positions[t[2]] - p.refined_positions[t[0]]).norm();
+        area += 0.5 * (p.refined_positions[t[1]] - p.refined_positions[t[0]])
+                          .cross(p.refined_positions[t[2]] - p.refined_positions[t[0]])
+                          .norm();
     // A surface of area A sampled on cells of side h has about 2A/h² faces left.
     for (double h = std::sqrt(2 * area / static_cast<double>(budget));; h *= 1.1) {
         std::unordered_map<std::uint64_t, std::uint32_t> cell_index;
@@ -140,7 +151,8 @@ DisplayMesh display_mesh(const Parameterization& p, std::size_t budget) {
         std::vector<double> count;
         for (std::size_t v = 0; v < p.refined_positions.size(); ++v) {
             const Vec3 c = ((p.refined_positions[v] - lo) / h).array().floor();
-            const std::uint64_t key = static_cast<std::uint64_t>(c[0]) << 42 | static_cast<std::uint64_t>(c[1]) << 21 | static_cast<std::uint64_t>(c[2]);
+            const std::uint64_t key = static_cast<std::uint64_t>(c[0]) << 42 | static_cast<std::uint64_t>(c[1]) << 21 |
+                                      static_cast<std::uint64_t>(c[2]);
             const auto [it, added] = cell_index.try_emplace(key, static_cast<std::uint32_t>(sum.size()));
             if (added) {
                 sum.emplace_back(Vec3::Zero());
@@ -178,7 +190,8 @@ std::vector<std::uint32_t> added_edges(const Parameterization& p) {
     std::sort(sides.begin(), sides.end());
     std::vector<std::uint32_t> edges;
     for (std::size_t i = 0; i + 1 < sides.size(); ++i)
-        if (sides[i][0] == sides[i + 1][0] && sides[i][1] == sides[i + 1][1] && p.face_t[sides[i][2]] == p.face_t[sides[i + 1][2]]) {
+        if (sides[i][0] == sides[i + 1][0] && sides[i][1] == sides[i + 1][1] &&
+            p.face_t[sides[i][2]] == p.face_t[sides[i + 1][2]]) {
             edges.push_back(sides[i][0]);
             edges.push_back(sides[i][1]);
         }
@@ -222,7 +235,8 @@ std::vector<std::uint8_t> rgb(std::span<const float> values, ColourOf colour) {
     out.reserve(3 * values.size());
     for (const float x : values) {
         const render::Colour c = colour(x);
-        for (int k = 0; k < 3; ++k) out.push_back(static_cast<std::uint8_t>(std::lround(std::clamp(c[k], 0.0, 1.0) * 255)));
+        for (int k = 0; k < 3; ++k)
+            out.push_back(static_cast<std::uint8_t>(std::lround(std::clamp(c[k], 0.0, 1.0) * 255)));
     }
     return out;
 }
@@ -238,14 +252,15 @@ enum class Scale { linear, log };
 
 // A legend: its colour bar as 64 CSS colours from `from` to `to` and its ticks.
 template <class ColourOf>
-void legend(io::JsonWriter& j, std::string_view name, double from, double to, std::initializer_list<double> ticks, Scale scale,
-            ColourOf colour) {
+void legend(io::JsonWriter& j, std::string_view name, double from, double to, std::initializer_list<double> ticks,
+            Scale scale, ColourOf colour) {
     j.key(name).begin_object().key("from").value(from).key("to").value(to).key("ticks").begin_array();
     for (const double t : ticks) j.value(t);
     j.end_array().key("colours").begin_array();
     for (int i = 0; i < 64; ++i) {
         const double x = scale == Scale::log ? from * std::pow(to / from, i / 63.0) : from + (to - from) * i / 63.0;
-        const std::vector<std::uint8_t> c = rgb(std::span<const float>(std::array<float, 1>{static_cast<float>(x)}), colour);
+        const std::vector<std::uint8_t> c =
+            rgb(std::span<const float>(std::array<float, 1>{static_cast<float>(x)}), colour);
         char css[8];
         std::snprintf(css, sizeof css, "#%02x%02x%02x", c[0], c[1], c[2]);
         j.value(std::string_view(css));
@@ -259,8 +274,10 @@ void write_refined(ArrayWriter& a, const Parameterization& p, const DisplayMesh&
     const bool decimated = !display.original.empty();
     const std::size_t n = decimated ? display.faces.size() : p.refined_faces.size();
     const auto original = [&](std::size_t f) { return decimated ? display.original[f] : f; };
-    a.q16("tp_positions", decimated ? std::span<const Vec3>(display.positions) : std::span<const Vec3>(p.refined_positions));
-    a.triangles("tp_faces", decimated ? std::span<const Triangle>(display.faces) : std::span<const Triangle>(p.refined_faces));
+    a.q16("tp_positions",
+          decimated ? std::span<const Vec3>(display.positions) : std::span<const Vec3>(p.refined_positions));
+    a.triangles("tp_faces",
+                decimated ? std::span<const Triangle>(display.faces) : std::span<const Triangle>(p.refined_faces));
     if (decimated) a.u32("tp_original", display.original);
     std::vector<std::uint32_t> patch(n);
     std::vector<double> beta;
@@ -312,7 +329,8 @@ void write_levels(ArrayWriter& a, const Parameterization& p, const PageContent& 
     const wavelet::Refinement r = wavelet::refine(p.partition.domain.mesh, w.levels);
     a.q16("dj_positions", r.levels.back().positions());
     a.q16("fj_positions", w.remesh_positions);
-    for (std::size_t j = 0; j < w.remesh_level_faces.size(); ++j) a.triangles("level_faces_" + std::to_string(j), w.remesh_level_faces[j]);
+    for (std::size_t j = 0; j < w.remesh_level_faces.size(); ++j)
+        a.triangles("level_faces_" + std::to_string(j), w.remesh_level_faces[j]);
     const double far = largest_rate_error(content);
     for (std::size_t i = 0; i < content.rate.size(); ++i) {
         const std::vector<Vec3>& x = content.rate[i].positions;
@@ -352,7 +370,16 @@ void write_page(const std::string& path, const TriMesh& T, const Parameterizatio
     j.key("timings").raw(content.timings_json.substr(0, content.timings_json.find_last_not_of('\n') + 1));
     j.key("rate").begin_array();
     for (const RateStep& s : content.rate)
-        j.begin_object().key("percent").value(s.percent).key("count").value(s.count).key("l2").value(s.l2).key("hausdorff").value(s.hausdorff).end_object();
+        j.begin_object()
+            .key("percent")
+            .value(s.percent)
+            .key("count")
+            .value(s.count)
+            .key("l2")
+            .value(s.l2)
+            .key("hausdorff")
+            .value(s.hausdorff)
+            .end_object();
     j.end_array();
     j.key("levels").value(content.wavelets ? content.wavelets->levels : 0);
     j.key("legends").begin_object();
@@ -360,7 +387,8 @@ void write_page(const std::string& path, const TriMesh& T, const Parameterizatio
     legend(j, "stretch", 0.25, 4, {0.25, 0.5, 1, 2, 4}, Scale::log, stretch_colour);
     if (content.wavelets) {
         const double far = largest_rate_error(content);
-        legend(j, "error", 0, far, {0, far / 2, far}, Scale::linear, [far](double d) { return error_colour(far > 0 ? d / far : 0); });
+        legend(j, "error", 0, far, {0, far / 2, far}, Scale::linear,
+               [far](double d) { return error_colour(far > 0 ? d / far : 0); });
     }
     j.end_object();
     j.key("arrays").begin_object();
@@ -370,9 +398,11 @@ void write_page(const std::string& path, const TriMesh& T, const Parameterizatio
     if (content.wavelets) write_levels(a, p, content);
     j.end_object().end_object();
 
-    std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-                       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>fhr — " +
-                       render::xml_escaped(content.title) + "</title>\n</head>\n<body>\n<script id=\"fhr-data\" type=\"application/json\">";
+    std::string html =
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>fhr — " +
+        render::xml_escaped(content.title) +
+        "</title>\n</head>\n<body>\n<script id=\"fhr-data\" type=\"application/json\">";
     html += script_safe(j.str());
     html += "</script>\n<script>";
     html += detail::page_script();

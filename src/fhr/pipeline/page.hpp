@@ -30,10 +30,10 @@ inline constexpr std::size_t page_display_faces = 2'000'000;
 
 /// What the page shows beside the meshes.
 struct PageContent {
-    std::string title;          ///< the mesh's name
-    std::string report_json;    ///< report.json's text (RunTexts::report)
-    std::string timings_json;   ///< timings.json's text (RunTexts::timings): the only part that varies
-    int up_axis = 1;            ///< 0, 1, 2: x, y or z up (fhr run --up)
+    std::string title;         ///< the mesh's name
+    std::string report_json;   ///< report.json's text (RunTexts::report)
+    std::string timings_json;  ///< timings.json's text (RunTexts::timings): the only part that varies
+    int up_axis = 1;           ///< 0, 1, 2: x, y or z up (fhr run --up)
     const wavelet::WaveletResult* wavelets = nullptr;  ///< §5, or null
     std::vector<RateStep> rate;                        ///< with §5: rate_steps
     std::size_t display_faces = page_display_faces;    ///< T′ drawn as is up to this many faces (≥ 1000)

@@ -66,7 +66,8 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
         try {
             out.maps[d] = param::map_patch(disk, options.map);
         } catch (const InvalidInput& e) {  // the patch is fhr's own (§3), not the caller's input
-            throw InternalError("the patch of domain face " + std::to_string(i) + " that §3 made is refused by §4: " + e.problem());
+            throw InternalError("the patch of domain face " + std::to_string(i) +
+                                " that §3 made is refused by §4: " + e.problem());
         }
         out.certificates[d] = param::certify(disk, out.maps[d]);
         out.disks[d] = std::move(disk);
@@ -103,10 +104,11 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
         }
     }
     if (options.observer) options.observer->stage("parameterization", detail::seconds_since(param), true);
-    const std::size_t failed = static_cast<std::size_t>(
-        std::count_if(out.certificates.begin(), out.certificates.end(), [](const param::Certificate& c) { return !c.passed; }));
+    const std::size_t failed = static_cast<std::size_t>(std::count_if(
+        out.certificates.begin(), out.certificates.end(), [](const param::Certificate& c) { return !c.passed; }));
     say("parameterization: " + std::to_string(n_patches) + " patches, " + std::to_string(out.dividing_edges_split) +
-        " dividing edges split, " + (failed ? std::to_string(failed) + " NOT certified" : std::string("all certified")));
+        " dividing edges split, " +
+        (failed ? std::to_string(failed) + " NOT certified" : std::string("all certified")));
     return out;
 }
 

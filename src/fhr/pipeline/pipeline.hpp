@@ -43,7 +43,8 @@ struct Options {
     bool keep_domain = true;  ///< §3: keep D (restricted paths where geodesics conflict), else change it
     std::function<void(const std::string&)> progress;  ///< optional: one line per step, on the calling thread
     StageObserver* observer = nullptr;                 ///< optional: the seconds of each stage
-    Executor* executor = nullptr;  ///< optional: runs the independent tasks (paths, patches, §5's brackets); default_executor()
+    Executor* executor =
+        nullptr;  ///< optional: runs the independent tasks (paths, patches, §5's brackets); default_executor()
 };
 
 /// The parameterization φ: Ω_D → Ω_T as computed, with everything the outputs need.
@@ -51,18 +52,18 @@ struct Parameterization {
     /// D (final), paths, T′ before §4, patches (their faces and vertices; each patch's disk is moved
     /// to `disks`, not copied: at 10⁶ faces 57 MB)
     partition::Partition partition;
-    FaceData<param::Disk> disks;                    ///< #F(D): each patch's disk after its dividing edges were split
-    FaceData<param::PatchMap> maps;                 ///< #F(D): ψ_i at the disk's vertices
-    FaceData<param::Certificate> certificates;      ///< #F(D)
+    FaceData<param::Disk> disks;                ///< #F(D): each patch's disk after its dividing edges were split
+    FaceData<param::PatchMap> maps;             ///< #F(D): ψ_i at the disk's vertices
+    FaceData<param::Certificate> certificates;  ///< #F(D)
     std::size_t dividing_edges_split = 0;
     // The final T′: T′ of §3 plus the dividing-edge midpoints.
     std::vector<Vec3> refined_positions;
     std::vector<Triangle> refined_faces;
     // Per face of the final T′ (parallel to refined_faces, as in the `fhr-param 1` file):
-    std::vector<std::uint32_t> face_patch;                      ///< the D face of its patch (FaceId::idx())
+    std::vector<std::uint32_t> face_patch;                        ///< the D face of its patch (FaceId::idx())
     std::vector<std::array<std::array<double, 3>, 3>> face_beta;  ///< per corner: β of ψ
-    std::vector<std::uint32_t> face_t;                          ///< the face of T that holds it (FaceId::idx())
-    bool certified() const;                          ///< every patch's certificate passed
+    std::vector<std::uint32_t> face_t;                            ///< the face of T that holds it (FaceId::idx())
+    bool certified() const;                                       ///< every patch's certificate passed
 };
 
 /// The global maps of §4: φ = ψ⁻¹ from any point of Ω_D (a face of D and barycentric coordinates

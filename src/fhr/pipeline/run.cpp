@@ -15,8 +15,10 @@ namespace {
 constexpr std::size_t prepare_beside_below = std::size_t{1} << 18;
 
 void check(const RunOptions& options) {
-    if ((options.faces > 0) == options.domain.has_value()) throw ContractViolation("run: give exactly one of faces and domain");
-    if (options.levels < 0 || options.levels > 8) throw InvalidInput("levels must be in 0..8, not " + std::to_string(options.levels));
+    if ((options.faces > 0) == options.domain.has_value())
+        throw ContractViolation("run: give exactly one of faces and domain");
+    if (options.levels < 0 || options.levels > 8)
+        throw InvalidInput("levels must be in 0..8, not " + std::to_string(options.levels));
     for (double k : options.keep)
         if (!(k > 0 && k <= 100)) throw InvalidInput("kept percentages must be in (0, 100], not " + std::to_string(k));
     if (!options.keep.empty() && options.levels == 0) throw InvalidInput("kept percentages need levels >= 1");
@@ -25,8 +27,8 @@ void check(const RunOptions& options) {
 // §2's result, and what was prepared beside it.
 struct Prepared {
     domain::Domain D;
-    std::optional<exchange::PreparedInput> oracle_t;  // the oracle's side of T (PARAM-11)
-    std::optional<wavelet::TriangleTree> t_tree;      // §5's brackets' tree of T
+    std::optional<exchange::PreparedInput> oracle_t;                   // the oracle's side of T (PARAM-11)
+    std::optional<wavelet::TriangleTree> t_tree;                       // §5's brackets' tree of T
     double decimating = -1, oracle_t_seconds = 0, t_tree_seconds = 0;  // each counted in its stage's seconds
 };
 
@@ -63,7 +65,10 @@ std::string more_faces(const TriMesh& T, std::size_t asked, std::size_t faces) {
     const std::size_t raised = domain::component_targets(T, asked).raised;
     std::string more = " (" + std::to_string(asked) + " asked";
     if (raised) more += "; " + std::to_string(raised) + " more for the components' least sizes";
-    if (faces > asked + raised) more += "; no valid collapse left: the boundary's loops and corners (--corner-angle) or the angle and normal rules need more";
+    if (faces > asked + raised)
+        more +=
+            "; no valid collapse left: the boundary's loops and corners (--corner-angle) or the angle and normal rules "
+            "need more";
     return more + ")";
 }
 
@@ -75,15 +80,17 @@ double wavelets(RunResult& out, const exchange::ParamFile& lent, const TriMesh& 
     const auto start = detail::Clock::now();
     const GlobalMap phi(out.parameterization);
     const double locating = detail::seconds_since(start);
-    const wavelet::AffinePieces pieces{
-        lent.surface_vertices, lent.surface_faces.size(),
-        [&](std::size_t f, Triangle& corners, std::uint32_t& patch, std::array<std::array<double, 3>, 3>& beta, std::uint32_t& t_face) {
-            const exchange::ParamFace& face = lent.surface_faces[f];
-            corners = face.v, patch = face.patch, beta = face.beta, t_face = out.parameterization.face_t[f];
-        }};
-    out.wavelets = wavelet::analyse(out.parameterization.partition.domain.mesh,
-                                    [&](FaceId d, const std::array<double, 3>& beta) { return phi.phi(d, beta); }, options.levels,
-                                    options.keep, T, {}, options.method.executor, &pieces, t_tree ? &*t_tree : nullptr);
+    const wavelet::AffinePieces pieces{lent.surface_vertices, lent.surface_faces.size(),
+                                       [&](std::size_t f, Triangle& corners, std::uint32_t& patch,
+                                           std::array<std::array<double, 3>, 3>& beta, std::uint32_t& t_face) {
+                                           const exchange::ParamFace& face = lent.surface_faces[f];
+                                           corners = face.v, patch = face.patch, beta = face.beta,
+                                           t_face = out.parameterization.face_t[f];
+                                       }};
+    out.wavelets = wavelet::analyse(
+        out.parameterization.partition.domain.mesh,
+        [&](FaceId d, const std::array<double, 3>& beta) { return phi.phi(d, beta); }, options.levels, options.keep, T,
+        {}, options.method.executor, &pieces, t_tree ? &*t_tree : nullptr);
     if (options.after_wavelets) options.after_wavelets(*out.wavelets);
     return locating;
 }
@@ -105,8 +112,8 @@ RunResult run(const TriMesh& T, RunOptions options) {
     if (prepared.decimating >= 0) observe("mesh_reduction", prepared.decimating, true);
     out.domain_faces_asked = options.faces;
     out.domain_faces_requested = prepared.D.mesh.n_faces();
-    say("domain: " + std::to_string(prepared.D.mesh.n_vertices()) + " vertices, " + std::to_string(prepared.D.mesh.n_faces()) + " faces" +
-        more_faces(T, options.faces, prepared.D.mesh.n_faces()));
+    say("domain: " + std::to_string(prepared.D.mesh.n_vertices()) + " vertices, " +
+        std::to_string(prepared.D.mesh.n_faces()) + " faces" + more_faces(T, options.faces, prepared.D.mesh.n_faces()));
     // §3, §4.
     out.parameterization = parameterize(T, std::move(prepared.D), method);
     // The independent oracle (src/fhr/exchange) judges exactly what param.fhrp will hold; §5 reads
@@ -135,8 +142,8 @@ RunResult run(const TriMesh& T, RunOptions options) {
         observe("decomposition", out.wavelets->decomposition_seconds, true);
         observe("reconstruction", out.wavelets->reconstruction_seconds, true);
         observe("hausdorff", prepared.t_tree_seconds + out.wavelets->hausdorff_seconds, false);
-        say("wavelets: D^" + std::to_string(options.levels) + " " + std::to_string(out.wavelets->remesh_faces.size()) + " faces, " +
-            std::to_string(out.wavelets->coefficients) + " coefficients");
+        say("wavelets: D^" + std::to_string(options.levels) + " " + std::to_string(out.wavelets->remesh_faces.size()) +
+            " faces, " + std::to_string(out.wavelets->coefficients) + " coefficients");
     }
     return out;
 }

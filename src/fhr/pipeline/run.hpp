@@ -50,11 +50,11 @@ struct RunOptions {
 };
 
 struct RunResult {
-    Parameterization parameterization;              ///< D (final), T′, ψ, certificates
-    exchange::VerifyReport oracle;                  ///< fhr verify's judgement of it against T
-    std::optional<wavelet::WaveletResult> wavelets; ///< with levels > 0
-    std::size_t domain_faces_asked = 0;             ///< RunOptions::faces (0 with a given domain)
-    std::size_t domain_faces_requested = 0;         ///< D's faces before §3 (equal to the final ones when D is kept)
+    Parameterization parameterization;               ///< D (final), T′, ψ, certificates
+    exchange::VerifyReport oracle;                   ///< fhr verify's judgement of it against T
+    std::optional<wavelet::WaveletResult> wavelets;  ///< with levels > 0
+    std::size_t domain_faces_asked = 0;              ///< RunOptions::faces (0 with a given domain)
+    std::size_t domain_faces_requested = 0;          ///< D's faces before §3 (equal to the final ones when D is kept)
     bool certified() const { return parameterization.certified() && oracle.valid(); }
 };
 

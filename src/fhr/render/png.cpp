@@ -57,10 +57,14 @@ private:
 
 // RFC 1951 §3.2.6: the fixed literal/length code.
 void fixed_literal(BitWriter& w, unsigned symbol) {
-    if (symbol < 144) w.code(0x30 + symbol, 8);
-    else if (symbol < 256) w.code(0x190 + (symbol - 144), 9);
-    else if (symbol < 280) w.code(symbol - 256, 7);
-    else w.code(0xC0 + (symbol - 280), 8);
+    if (symbol < 144)
+        w.code(0x30 + symbol, 8);
+    else if (symbol < 256)
+        w.code(0x190 + (symbol - 144), 9);
+    else if (symbol < 280)
+        w.code(symbol - 256, 7);
+    else
+        w.code(0xC0 + (symbol - 280), 8);
 }
 
 // RFC 1951 §3.2.5: length codes 257..285 and distance codes 0..29 with their extra bits.
@@ -68,8 +72,8 @@ constexpr std::array<int, 29> length_base = {3,  4,  5,  6,  7,  8,  9,  10, 11,
                                              31, 35, 43, 51, 59, 67, 83, 99, 115, 131, 163, 195, 227, 258};
 constexpr std::array<int, 29> length_extra = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2,
                                               2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
-constexpr std::array<int, 30> distance_base = {1,   2,   3,   4,   5,   7,    9,    13,   17,   25,
-                                               33,  49,  65,  97,  129, 193,  257,  385,  513,  769,
+constexpr std::array<int, 30> distance_base = {1,    2,    3,    4,    5,    7,    9,    13,    17,    25,
+                                               33,   49,   65,   97,   129,  193,  257,  385,   513,   769,
                                                1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
 constexpr std::array<int, 30> distance_extra = {0, 0, 0, 0, 1, 1, 2, 2,  3,  3,  4,  4,  5,  5,  6,
                                                 6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
@@ -109,7 +113,8 @@ void deflate_fixed(std::span<const std::uint8_t> in, BitWriter& w) {
         if (pos + min_match <= n) {
             const int limit = int(std::min<std::size_t>(max_match, n - pos));
             std::int64_t candidate = head[hash(pos)];
-            for (int chain = 0; candidate >= 0 && std::int64_t(pos) - candidate <= window && chain < max_chain; ++chain) {
+            for (int chain = 0; candidate >= 0 && std::int64_t(pos) - candidate <= window && chain < max_chain;
+                 ++chain) {
                 const std::size_t c = std::size_t(candidate);
                 int length = 0;
                 while (length < limit && in[c + std::size_t(length)] == in[pos + std::size_t(length)]) ++length;
@@ -230,10 +235,10 @@ std::string zlib_compress(std::span<const std::uint8_t> bytes) {
 std::string encode_png(const Image& image) {
     if (image.width < 1 || image.height < 1)  // PNG §11.2.2: 1 ≤ width, height ≤ 2^31 − 1 (an int)
         throw InvalidInput("png: image size " + std::to_string(image.width) + "×" + std::to_string(image.height) +
-                                      " is not at least 1×1");
+                           " is not at least 1×1");
     if (image.rgb.size() != 3 * std::size_t(image.width) * std::size_t(image.height))
         throw InvalidInput("png: pixel buffer has " + std::to_string(image.rgb.size()) + " bytes, expected 3·" +
-                                      std::to_string(image.width) + "·" + std::to_string(image.height));
+                           std::to_string(image.width) + "·" + std::to_string(image.height));
     std::string out = "\x89PNG\r\n\x1a\n";
     std::string header;
     put_u32(header, std::uint32_t(image.width));

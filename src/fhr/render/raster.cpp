@@ -37,8 +37,9 @@ struct View {
         if (!finite(forward) || !finite(right) || !(camera.near > 0) || !std::isfinite(camera.near) ||
             !(camera.fov_y_degrees > 0 && camera.fov_y_degrees < 180) || !(camera.depth_bias >= 0) ||
             !std::isfinite(camera.depth_bias))
-            refuse("degenerate camera (eye = target, up parallel to the view, near ≤ 0, fov_y not in (0°, 180°) "
-                   "or depth_bias < 0)");
+            refuse(
+                "degenerate camera (eye = target, up parallel to the view, near ≤ 0, fov_y not in (0°, 180°) "
+                "or depth_bias < 0)");
         eye = camera.eye;
         near = camera.near;
         depth_bias = camera.depth_bias;
@@ -95,7 +96,9 @@ std::uint32_t pack(const Colour& c) {
 class Canvas {
 public:
     Canvas(int width, int height, const Colour& background)
-        : width_(width), height_(height), colour_(std::size_t(width) * std::size_t(height), pack(background)),
+        : width_(width),
+          height_(height),
+          colour_(std::size_t(width) * std::size_t(height), pack(background)),
           depth_(colour_.size(), std::numeric_limits<float>::infinity()) {}
 
     int width() const { return width_; }
@@ -105,7 +108,8 @@ public:
     // The inclusive sample range covered by [lo, hi] of sample-centre coordinates, clipped to the
     // buffer; empty (first > last) when outside.
     static std::pair<int, int> sample_range(double lo, double hi, int size) {
-        const double first = std::max(0.0, std::ceil(lo - 0.5)), last = std::min(double(size - 1), std::floor(hi - 0.5));
+        const double first = std::max(0.0, std::ceil(lo - 0.5)),
+                     last = std::min(double(size - 1), std::floor(hi - 0.5));
         if (!(first <= last)) return {1, 0};
         return {int(first), int(last)};
     }
@@ -189,8 +193,13 @@ struct Light {
 
 ScreenVertex project(const View& view, const ClipVertex& c) {
     const double q = 1 / c.view.z();
-    return {view.centre_x + c.view.x() * q * view.scale_x, view.centre_y - c.view.y() * q * view.scale_y, q,
-            c.u * q, c.v * q, c.diffuse * q, c.specular * q};
+    return {view.centre_x + c.view.x() * q * view.scale_x,
+            view.centre_y - c.view.y() * q * view.scale_y,
+            q,
+            c.u * q,
+            c.v * q,
+            c.diffuse * q,
+            c.specular * q};
 }
 
 void check_mesh(const MeshView& mesh, std::size_t m) {
@@ -244,7 +253,8 @@ void check_polylines(const PolylineView& lines, std::size_t l) {
                 refuse(name + ": path " + std::to_string(p) + " has point " + std::to_string(v) + " ≥ " +
                        std::to_string(lines.points.size()));
     if (!lines.colour.allFinite() || !(lines.width_pixels > 0) || !std::isfinite(lines.width_pixels) ||
-        !lines.hidden_colour.allFinite() || !(lines.hidden_width_pixels >= 0) || !std::isfinite(lines.hidden_width_pixels))
+        !lines.hidden_colour.allFinite() || !(lines.hidden_width_pixels >= 0) ||
+        !std::isfinite(lines.hidden_width_pixels))
         refuse(name + ": colour not finite, width not positive or hidden width negative");
 }
 
@@ -267,7 +277,8 @@ void draw_mesh(Canvas& canvas, const View& view, const Light& light, const MeshV
     }
     for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
         const Triangle& t = mesh.triangles[f];
-        const std::pair<double, double> flat = mesh.shading == Shading::flat ? light.terms(face_normal(t)) : std::pair{0.0, 0.0};
+        const std::pair<double, double> flat =
+            mesh.shading == Shading::flat ? light.terms(face_normal(t)) : std::pair{0.0, 0.0};
         std::array<ClipVertex, 3> corners;
         for (int k = 0; k < 3; ++k) {
             const auto [diffuse, specular] = mesh.shading == Shading::flat ? flat : vertex_light[t[k]];
@@ -390,8 +401,12 @@ Image render_panel(const Panel& panel, const Camera& camera, int width, int heig
             lines.push_back({mesh.positions, edges_of(mesh, true), style.boundary_colour, style.hidden_boundary_colour,
                              style.boundary_width_pixels, style.hidden_boundary_width_pixels});
     for (const PolylineView& polyline : panel.polylines) {
-        Lines& l = lines.emplace_back(Lines{polyline.points, {}, polyline.colour, polyline.hidden_colour,
-                                            polyline.width_pixels, polyline.hidden_width_pixels});
+        Lines& l = lines.emplace_back(Lines{polyline.points,
+                                            {},
+                                            polyline.colour,
+                                            polyline.hidden_colour,
+                                            polyline.width_pixels,
+                                            polyline.hidden_width_pixels});
         for (const std::vector<std::uint32_t>& path : polyline.paths) {
             if (path.size() == 1) l.segments.emplace_back(path[0], path[0]);  // a dot
             for (std::size_t k = 0; k + 1 < path.size(); ++k) l.segments.emplace_back(path[k], path[k + 1]);
@@ -419,8 +434,9 @@ Image render_panel(const Panel& panel, const Camera& camera, int width, int heig
                     const std::uint32_t c = canvas.colour(x * ss + i, y * ss + j);
                     for (int ch = 0; ch < 3; ++ch) sum[ch] += (c >> (8 * ch)) & 0xFF;
                 }
-            image.set(x, y, Rgb8{std::uint8_t((sum[0] + n / 2) / n), std::uint8_t((sum[1] + n / 2) / n),
-                                 std::uint8_t((sum[2] + n / 2) / n)});
+            image.set(x, y,
+                      Rgb8{std::uint8_t((sum[0] + n / 2) / n), std::uint8_t((sum[1] + n / 2) / n),
+                           std::uint8_t((sum[2] + n / 2) / n)});
         }
     return image;
 }

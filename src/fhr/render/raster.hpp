@@ -58,8 +58,8 @@ Bounds merged(const Bounds& a, const Bounds& b);
 struct Camera {
     Vec3 eye = Vec3(0, 0, 1), target = Vec3::Zero(), up = Vec3::UnitY();
     double fov_y_degrees = 30;
-    double near = 1e-3;        ///< clipping distance along the viewing direction, > 0
-    double depth_bias = 0;     ///< world units a line may lie behind the surface and still show
+    double near = 1e-3;     ///< clipping distance along the viewing direction, > 0
+    double depth_bias = 0;  ///< world units a line may lie behind the surface and still show
 };
 
 /// Where the camera looks from: azimuth about the up axis and elevation above the plane
@@ -86,8 +86,8 @@ enum class Shading {
 
 /// A triangle mesh to draw. Spans are views: the caller keeps the data alive during render_panel().
 struct MeshView {
-    std::span<const Vec3> positions;            ///< #V
-    std::span<const Triangle> triangles;        ///< #F, indices < #V
+    std::span<const Vec3> positions;      ///< #V
+    std::span<const Triangle> triangles;  ///< #F, indices < #V
     /// empty, or 3·#F texture coordinates: corner k of triangle f at 3f + k. When given, the
     /// surface colour is the checkerboard of RenderStyle at the interpolated (u, v).
     std::span<const Eigen::Vector2d> corner_uv;
@@ -95,7 +95,7 @@ struct MeshView {
     std::span<const Colour> face_colours;
     Colour colour = Colour(0.72, 0.76, 0.84);  ///< the colour when neither of the above is given
     Shading shading = Shading::flat;
-    bool outline = false;                       ///< draw every edge as a thin line (RenderStyle)
+    bool outline = false;  ///< draw every edge as a thin line (RenderStyle)
     /// draw the boundary edges — those of exactly one triangle — as thick lines of
     /// RenderStyle::boundary_colour (REN-15); a closed mesh has none
     bool boundary = false;

@@ -35,17 +35,19 @@ std::string label(double x) {
 
 std::string header(int width, int height) {
     const std::string w = std::to_string(width), h = std::to_string(height);
-    return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" +
+    return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" "
+           "width=\"" +
            w + "\" height=\"" + h + "\" viewBox=\"0 0 " + w + " " + h + "\">\n<rect width=\"" + w + "\" height=\"" + h +
            "\" fill=\"white\"/>\n";
 }
 
 std::string line(double x1, double y1, double x2, double y2, const std::string& attributes) {
-    return "<line x1=\"" + fixed(x1) + "\" y1=\"" + fixed(y1) + "\" x2=\"" + fixed(x2) + "\" y2=\"" + fixed(y2) + "\" " +
-           attributes + "/>\n";
+    return "<line x1=\"" + fixed(x1) + "\" y1=\"" + fixed(y1) + "\" x2=\"" + fixed(x2) + "\" y2=\"" + fixed(y2) +
+           "\" " + attributes + "/>\n";
 }
 
-std::string text(double x, double y, const std::string& anchor, const std::string& content, const std::string& extra = "") {
+std::string text(double x, double y, const std::string& anchor, const std::string& content,
+                 const std::string& extra = "") {
     return "<text x=\"" + fixed(x) + "\" y=\"" + fixed(y) + "\" text-anchor=\"" + anchor + "\"" + extra + ">" +
            xml_escaped(content) + "</text>\n";
 }
@@ -87,7 +89,6 @@ std::string xml_escaped(std::string_view text) {
     return out;
 }
 
-
 std::string patch_svg(const std::array<Eigen::Vector2d, 3>& corners, std::span<const ImageTriangle> image, int size) {
     if (size < 16) refuse("canvas size " + std::to_string(size) + " < 16");
     for (const Eigen::Vector2d& c : corners)
@@ -109,7 +110,8 @@ std::string patch_svg(const std::array<Eigen::Vector2d, 3>& corners, std::span<c
         for (const Barycentric& beta : image[t])
             for (const double b : beta)
                 if (!std::isfinite(b)) refuse("image triangle " + std::to_string(t) + " has a β that is not finite");
-        out += "<polygon points=\"" + point(image[t][0]) + " " + point(image[t][1]) + " " + point(image[t][2]) + "\"/>\n";
+        out +=
+            "<polygon points=\"" + point(image[t][0]) + " " + point(image[t][1]) + " " + point(image[t][2]) + "\"/>\n";
     }
     out += "</g>\n<polygon points=\"" + point({1, 0, 0}) + " " + point({0, 1, 0}) + " " + point({0, 0, 1}) +
            "\" fill=\"none\" stroke=\"black\" stroke-width=\"2\" stroke-linejoin=\"round\"/>\n</svg>\n";
@@ -126,7 +128,8 @@ std::string rate_distortion_svg(std::span<const RatePoint> points, const RatePlo
     for (std::size_t i = 0; i < points.size(); ++i) {
         const RatePoint& p = points[i];
         for (const double v : {p.kept_percent, p.l2, p.hausdorff})
-            if (!(v >= 0) || !std::isfinite(v)) refuse("point " + std::to_string(i) + " has a negative or non-finite value");
+            if (!(v >= 0) || !std::isfinite(v))
+                refuse("point " + std::to_string(i) + " has a negative or non-finite value");
     }
     std::vector<RatePoint> sorted(points.begin(), points.end());
     std::stable_sort(sorted.begin(), sorted.end(),
@@ -147,7 +150,8 @@ std::string rate_distortion_svg(std::span<const RatePoint> points, const RatePlo
     out += "<g font-family=\"sans-serif\" font-size=\"13\" fill=\"black\">\n";
     out += text(width / 2.0, 28, "middle", labels.title, " font-size=\"16\"");
     out += text((left + right) / 2, height - 14, "middle", labels.x);
-    out += text(20, (top + bottom) / 2, "middle", labels.y, " transform=\"rotate(-90 20 " + fixed((top + bottom) / 2) + ")\"");
+    out += text(20, (top + bottom) / 2, "middle", labels.y,
+                " transform=\"rotate(-90 20 " + fixed((top + bottom) / 2) + ")\"");
     const std::string axis_style = "stroke=\"black\" stroke-width=\"1.2\"";
     out += line(left, bottom, right, bottom, axis_style);
     out += line(left, bottom, left, top, axis_style);
@@ -168,8 +172,8 @@ std::string rate_distortion_svg(std::span<const RatePoint> points, const RatePlo
     };
     const Series series[2] = {{"L2", "#1f5fa8", &RatePoint::l2}, {"Hausdorff", "#c0392b", &RatePoint::hausdorff}};
     for (int s = 0; s < 2; ++s) {
-        std::string polyline = "<polyline fill=\"none\" stroke=\"" + std::string(series[s].colour) +
-                               "\" stroke-width=\"2\" points=\"";
+        std::string polyline =
+            "<polyline fill=\"none\" stroke=\"" + std::string(series[s].colour) + "\" stroke-width=\"2\" points=\"";
         std::string circles;
         for (std::size_t i = 0; i < sorted.size(); ++i) {
             const double x = sx(sorted[i].kept_percent), y = sy(sorted[i].*series[s].value);
@@ -177,7 +181,8 @@ std::string rate_distortion_svg(std::span<const RatePoint> points, const RatePlo
             polyline += fixed(x);
             polyline += ',';
             polyline += fixed(y);
-            circles += "<circle cx=\"" + fixed(x) + "\" cy=\"" + fixed(y) + "\" r=\"3.5\" fill=\"" + series[s].colour + "\"/>\n";
+            circles += "<circle cx=\"" + fixed(x) + "\" cy=\"" + fixed(y) + "\" r=\"3.5\" fill=\"" + series[s].colour +
+                       "\"/>\n";
         }
         out += polyline + "\"/>\n" + circles;
         const double legend_y = top + 14 + 20 * s;
@@ -189,7 +194,8 @@ std::string rate_distortion_svg(std::span<const RatePoint> points, const RatePlo
     return out;
 }
 
-void write_rate_distortion_svg(const std::string& path, std::span<const RatePoint> points, const RatePlotLabels& labels) {
+void write_rate_distortion_svg(const std::string& path, std::span<const RatePoint> points,
+                               const RatePlotLabels& labels) {
     io::write_file_atomically(path, rate_distortion_svg(points, labels));
 }
 
@@ -207,8 +213,9 @@ std::string anisotropy_legend_svg() {
     out += text(left, 18, "start", "anisotropy σ₁/σ₂ of each face of T′ (log scale)");
     for (int k = 0; k < bars; ++k) {  // bar k: log10 of the ratio at its middle
         const double x0 = left + (right - left) * k / bars, x1 = left + (right - left) * (k + 1) / bars;
-        out += "<rect x=\"" + fixed(x0) + "\" y=\"" + fixed(top) + "\" width=\"" + fixed(x1 - x0 + 0.01) + "\" height=\"" +
-               fixed(bottom - top) + "\" fill=\"" + hex(anisotropy_colour(std::pow(10.0, 3.0 * (k + 0.5) / bars))) + "\"/>\n";
+        out += "<rect x=\"" + fixed(x0) + "\" y=\"" + fixed(top) + "\" width=\"" + fixed(x1 - x0 + 0.01) +
+               "\" height=\"" + fixed(bottom - top) + "\" fill=\"" +
+               hex(anisotropy_colour(std::pow(10.0, 3.0 * (k + 0.5) / bars))) + "\"/>\n";
     }
     for (const double tick : {1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0}) {
         const double x = left + (right - left) * std::log10(tick) / 3;

@@ -54,16 +54,17 @@ inline rc::Gen<generate::RandomMeshOptions> gen_mesh_options(const MeshRanges& r
     return rc::gen::exec([=] {
         const auto draw_if_varies = [](int lo, int hi) { return lo == hi ? lo : *rc::gen::inRange(lo, hi + 1); };
         generate::RandomMeshOptions o;
-        if (r.families.size() > 1) o.family = r.families[*rc::gen::inRange<std::size_t>(0, r.families.size())];
-        else if (r.families.size() == 1) o.family = r.families[0];
+        if (r.families.size() > 1)
+            o.family = r.families[*rc::gen::inRange<std::size_t>(0, r.families.size())];
+        else if (r.families.size() == 1)
+            o.family = r.families[0];
         o.genus = *rc::gen::inRange(r.min_genus, r.max_genus + 1);
         o.holes = draw_if_varies(r.min_holes, r.max_holes);
         o.components = draw_if_varies(r.min_components, r.max_components);
         const std::size_t least = generate::min_faces(o);
         if (least > r.max_faces)
-            throw InvalidInput("gen_mesh_options: " + generate_command(o) + " needs at least " +
-                                          std::to_string(least) + " faces, more than max_faces = " +
-                                          std::to_string(r.max_faces));
+            throw InvalidInput("gen_mesh_options: " + generate_command(o) + " needs at least " + std::to_string(least) +
+                               " faces, more than max_faces = " + std::to_string(r.max_faces));
         const std::size_t step = o.holes == 0 ? 2 : 1;  // F is even without holes
         o.faces = least + step * *rc::gen::inRange<std::size_t>(0, (r.max_faces - least) / step + 1);
         o.seed = *rc::gen::inRange<std::uint64_t>(0, std::numeric_limits<std::int64_t>::max());

@@ -27,7 +27,8 @@ void locate(std::uint32_t g, const std::array<double, 3>& l, int levels, Visit& 
     if (a - 1 >= margin && b >= margin && c >= margin) locate(4 * g, {a - 1, b, c}, levels - 1, visit);
     if (a >= margin && b - 1 >= margin && c >= margin) locate(4 * g + 1, {a, b - 1, c}, levels - 1, visit);
     if (a >= margin && b >= margin && c - 1 >= margin) locate(4 * g + 2, {a, b, c - 1}, levels - 1, visit);
-    if (1 - c >= margin && 1 - a >= margin && 1 - b >= margin) locate(4 * g + 3, {1 - c, 1 - a, 1 - b}, levels - 1, visit);
+    if (1 - c >= margin && 1 - a >= margin && 1 - b >= margin)
+        locate(4 * g + 3, {1 - c, 1 - a, 1 - b}, levels - 1, visit);
 }
 
 constexpr std::size_t affine_blocks = 8;
@@ -40,8 +41,8 @@ constexpr std::size_t affine_blocks = 8;
 // faces: its crossings are found twice). Blocks of T′'s faces with their own maxima, merged. The
 // maxima are of squared gaps, square-rooted at the end: √ rounds monotonically, so the largest
 // root is the root of the largest square, bit for bit (2·10⁶ square roots on the horse).
-AffineBounds affine_bounds(const Refinement& r, std::span<const Vec3> f_j, const AffinePieces& pieces, std::size_t t_faces,
-                           double on_t, Executor* executor) {
+AffineBounds affine_bounds(const Refinement& r, std::span<const Vec3> f_j, const AffinePieces& pieces,
+                           std::size_t t_faces, double on_t, Executor* executor) {
     const int J = r.depth();
     const double n = std::ldexp(1.0, J);
     const std::vector<Triangle> faces = r.finest().triangles();
@@ -109,7 +110,8 @@ namespace {
 
 // Task 1 of analyse: the filter bank, the decomposition, the round trip and each kept percentage's
 // reconstruction, with their seconds.
-void decompose_and_compress(WaveletResult& out, const Refinement& r, std::span<const double> keep_percent, Executor* executor) {
+void decompose_and_compress(WaveletResult& out, const Refinement& r, std::span<const double> keep_percent,
+                            Executor* executor) {
     auto begin = detail::Clock::now();
     const FilterBank bank(r, executor);
     const Decomposition d = bank.decompose(out.remesh_positions, executor);
@@ -120,7 +122,8 @@ void decompose_and_compress(WaveletResult& out, const Refinement& r, std::span<c
     out.reconstruction_seconds = detail::seconds_since(begin);
 
     for (std::size_t v = 0; v < round_trip.size(); ++v) {
-        out.reconstruction_max_error = std::max(out.reconstruction_max_error, (round_trip[v] - out.remesh_positions[v]).cwiseAbs().maxCoeff());
+        out.reconstruction_max_error =
+            std::max(out.reconstruction_max_error, (round_trip[v] - out.remesh_positions[v]).cwiseAbs().maxCoeff());
         out.max_abs_coordinate = std::max(out.max_abs_coordinate, out.remesh_positions[v].cwiseAbs().maxCoeff());
     }
     for (const LevelSolve& s : d.solves) out.cg_iterations.push_back(s.iterations);
@@ -152,7 +155,8 @@ KeptPriors kept_priors(const WaveletResult& out, const KeptResult& k, std::size_
     const Hausdorff& f = out.remesh_hausdorff;
     std::vector<double> moved(k.positions.size());
     double most = 0;
-    for (std::size_t v = 0; v < moved.size(); ++v) most = std::max(most, moved[v] = (k.positions[v] - out.remesh_positions[v]).norm());
+    for (std::size_t v = 0; v < moved.size(); ++v)
+        most = std::max(most, moved[v] = (k.positions[v] - out.remesh_positions[v]).norm());
     constexpr double up = 1 + 1e-12;
     std::vector<double> from_t(t_faces), to_t(out.remesh_faces.size());
     for (std::size_t i = 0; i < from_t.size(); ++i) from_t[i] = (f.a_to_b.triangle_upper[i] + most) * up;
@@ -168,7 +172,8 @@ KeptPriors kept_priors(const WaveletResult& out, const KeptResult& k, std::size_
 // (DirectedHausdorff::triangle_upper) they sharpen the reconstructions' priors too. T′ lies on T
 // within PARAM-11's tolerance (1e−9 of the diagonal plus 64u·|x|max), the points' rounding within
 // as much again. Without φ's faces, none.
-AffineBounds f_priors(const Refinement& r, const WaveletResult& out, const TriMesh& T, const AffinePieces* pieces, Executor* executor) {
+AffineBounds f_priors(const Refinement& r, const WaveletResult& out, const TriMesh& T, const AffinePieces* pieces,
+                      Executor* executor) {
     if (!pieces) return {};
     double max_abs = 0;
     for (const Vec3& x : T.positions()) max_abs = std::max(max_abs, x.cwiseAbs().maxCoeff());
@@ -210,7 +215,8 @@ WaveletResult analyse(const TriMesh& D, const DomainMap& phi, int levels, std::s
     const AffineBounds affine = f_priors(r, out, T, pieces, executor);
     // f^J's tree, built in its bracket's task; each reconstruction's is it refitted to its positions.
     std::optional<TriangleTree> f_tree;
-    const auto bracket = [&](const std::vector<Vec3>& positions, const TriangleTree& tree, Hausdorff& h, const HausdorffOptions& o) {
+    const auto bracket = [&](const std::vector<Vec3>& positions, const TriangleTree& tree, Hausdorff& h,
+                             const HausdorffOptions& o) {
         h = hausdorff(T.positions(), t_faces, t_tree, positions, out.remesh_faces, tree, o, executor);
     };
     executor_or_default(executor).for_each(2, 1, [&](std::size_t task) {

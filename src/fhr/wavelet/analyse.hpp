@@ -32,9 +32,9 @@ struct KeptResult {
 };
 
 struct WaveletResult {
-    int levels = 0;                       ///< J
-    std::vector<Vec3> remesh_positions;   ///< f^J at the vertices of D^J (#V(D^J))
-    std::vector<Triangle> remesh_faces;   ///< the faces of D^J (#F(D^J) = 4^J #F(D))
+    int levels = 0;                      ///< J
+    std::vector<Vec3> remesh_positions;  ///< f^J at the vertices of D^J (#V(D^J))
+    std::vector<Triangle> remesh_faces;  ///< the faces of D^J (#F(D^J) = 4^J #F(D))
     /// The first #V(D^j) positions with these faces are f^j(Ω_D) on D^j: remesh_level_faces[j], j = 0..J.
     std::vector<std::vector<Triangle>> remesh_level_faces;
     Hausdorff remesh_hausdorff;           ///< between Ω_T and f^J(Ω_D)
@@ -47,8 +47,10 @@ struct WaveletResult {
     std::vector<KeptResult> kept;         ///< one per requested percentage, in the order given
     double refinement_seconds = 0;        ///< refine + sample φ (steady_clock)
     double decomposition_seconds = 0;     ///< build the filter bank + decompose
-    double reconstruction_seconds = 0;    ///< the round trip's reconstruction and, per kept percentage, choosing the coefficients and reconstructing
-    double hausdorff_seconds = 0;         ///< all Hausdorff brackets, from T's tree to the last (an error measure, not a stage of the paper; f^J's runs beside the decomposition and reconstructions, so this includes them)
+    double reconstruction_seconds =
+        0;  ///< the round trip's reconstruction and, per kept percentage, choosing the coefficients and reconstructing
+    double hausdorff_seconds =
+        0;  ///< all Hausdorff brackets, from T's tree to the last (an error measure, not a stage of the paper; f^J's runs beside the decomposition and reconstructions, so this includes them)
 };
 
 /// φ where it is affine: on each face of T′ (T refined by the partition, paper §3) φ maps the
@@ -59,8 +61,8 @@ struct AffinePieces {
     std::size_t faces = 0;         ///< #F(T′)
     /// Face f of T′: its corners (into points), the face of D of its patch, the corners' β there,
     /// the face of T that holds it.
-    std::function<void(std::size_t f, Triangle& corners, std::uint32_t& patch, std::array<std::array<double, 3>, 3>& beta,
-                       std::uint32_t& t_face)>
+    std::function<void(std::size_t f, Triangle& corners, std::uint32_t& patch,
+                       std::array<std::array<double, 3>, 3>& beta, std::uint32_t& t_face)>
         face;
 };
 
@@ -79,8 +81,8 @@ struct AffineBounds {
 /// side shared by two faces of D^J, within 10⁻¹² in β, counts for both), in fixed blocks of them on
 /// `executor` (maxima: the same bits on any number of threads). f_j: f^J at the vertices of
 /// D^J = r.finest(); t_faces: #F(T). \pre pieces certified (AffinePieces, analyse).
-AffineBounds affine_bounds(const Refinement& r, std::span<const Vec3> f_j, const AffinePieces& pieces, std::size_t t_faces,
-                           double on_t, Executor* executor = nullptr);
+AffineBounds affine_bounds(const Refinement& r, std::span<const Vec3> f_j, const AffinePieces& pieces,
+                           std::size_t t_faces, double on_t, Executor* executor = nullptr);
 
 /// The §5 wavelet stage for a domain D (closed or with boundary, one component or several),
 /// φ: Ω_D → Ω_T and the input surface T. Hausdorff distances use `hausdorff_options`; a

@@ -21,15 +21,17 @@ using View = Eigen::Map<Rows3>;
 ConstView view(std::span<const Vec3> p) {
     return ConstView(p.empty() ? nullptr : p.data()->data(), static_cast<Eigen::Index>(p.size()), 3);
 }
-View view(std::vector<Vec3>& p) { return View(p.empty() ? nullptr : p.data()->data(), static_cast<Eigen::Index>(p.size()), 3); }
+View view(std::vector<Vec3>& p) {
+    return View(p.empty() ? nullptr : p.data()->data(), static_cast<Eigen::Index>(p.size()), 3);
+}
 
 double max_abs(const Eigen::Ref<const Eigen::VectorXd>& v) { return v.size() == 0 ? 0.0 : v.cwiseAbs().maxCoeff(); }
 
 // Jacobi-preconditioned conjugate gradients for A x = b, stopped on the true residual
 // ‖b − A x‖_∞ ≤ tau (filter_bank.hpp): when the recurrence says so, the true residual is
 // recomputed, and CG restarts from it if the recurrence had drifted.
-int conjugate_gradients(const SparseRows& A, const Eigen::VectorXd& inverse_diagonal, const Eigen::VectorXd& b, double tau,
-                        Eigen::VectorXd& x, double& residual) {
+int conjugate_gradients(const SparseRows& A, const Eigen::VectorXd& inverse_diagonal, const Eigen::VectorXd& b,
+                        double tau, Eigen::VectorXd& x, double& residual) {
     x.setZero(b.size());
     Eigen::VectorXd r = b;
     residual = max_abs(r);
@@ -85,7 +87,8 @@ LevelFilter build_level(const TriMesh& coarse, const TriMesh& fine, int j) {
         for (const auto& [w, q] : psi[k]) scratch[w] = q;
         double sum = 0;
         for (const auto& [a, qa] : psi[k])
-            for (SparseRows::InnerIterator it(G, a); it; ++it) sum += qa * it.value() * scratch[static_cast<std::size_t>(it.col())];
+            for (SparseRows::InnerIterator it(G, a); it; ++it)
+                sum += qa * it.value() * scratch[static_cast<std::size_t>(it.col())];
         for (const auto& [w, q] : psi[k]) scratch[w] = 0.0;
         L.norm[k] = std::sqrt(sum);
     }
@@ -102,11 +105,13 @@ std::size_t Decomposition::coefficient_count() const {
 
 FilterBank::FilterBank(const Refinement& r, Executor* executor) {
     levels_.resize(static_cast<std::size_t>(r.depth()));
-    executor_or_default(executor).for_each(levels_.size(), 1, [&](std::size_t i) { levels_[i] = build_level(r.levels[i], r.levels[i + 1], static_cast<int>(i) + 1); });
+    executor_or_default(executor).for_each(levels_.size(), 1, [&](std::size_t i) {
+        levels_[i] = build_level(r.levels[i], r.levels[i + 1], static_cast<int>(i) + 1);
+    });
 }
 
-LevelSolve FilterBank::decompose_level(int j, std::span<const Vec3> c, std::vector<Vec3>& coarse, std::vector<Vec3>& detail,
-                                       Executor* executor) const {
+LevelSolve FilterBank::decompose_level(int j, std::span<const Vec3> c, std::vector<Vec3>& coarse,
+                                       std::vector<Vec3>& detail, Executor* executor) const {
     FHR_DCHECK(1 <= j && j <= depth());
     FHR_DCHECK(c.size() == static_cast<std::size_t>(level(j).P.rows()));
     const LevelFilter& L = level(j);
@@ -124,12 +129,14 @@ LevelSolve FilterBank::decompose_level(int j, std::span<const Vec3> c, std::vect
     std::array<double, 3> residual{};
     std::array<int, 3> steps{};
     executor_or_default(executor).for_each(3, 1, [&](std::size_t k) {
-        steps[k] = conjugate_gradients(L.A, L.inverse_diagonal, b.col(static_cast<Eigen::Index>(k)), s.tolerance, x[k], residual[k]);
+        steps[k] = conjugate_gradients(L.A, L.inverse_diagonal, b.col(static_cast<Eigen::Index>(k)), s.tolerance, x[k],
+                                       residual[k]);
     });
     for (int k = 0; k < 3; ++k) {
         if (steps[k] > max_cg_iterations)
-            throw NumericalFailure("wavelet decomposition, level " + std::to_string(j) + ": conjugate gradients left the residual " +
-                                   std::to_string(residual[k]) + " above " + std::to_string(s.tolerance) + " after " +
+            throw NumericalFailure("wavelet decomposition, level " + std::to_string(j) +
+                                   ": conjugate gradients left the residual " + std::to_string(residual[k]) +
+                                   " above " + std::to_string(s.tolerance) + " after " +
                                    std::to_string(max_cg_iterations) + " steps");
         D.col(k) = x[k];
         s.iterations = std::max(s.iterations, steps[k]);
@@ -146,7 +153,8 @@ Decomposition FilterBank::decompose(std::span<const Vec3> f, Executor* executor)
     out.solves.resize(levels_.size());
     std::vector<Vec3> c(f.begin(), f.end()), next;
     for (int j = depth(); j >= 1; --j) {
-        out.solves[static_cast<std::size_t>(j - 1)] = decompose_level(j, c, next, out.detail[static_cast<std::size_t>(j - 1)], executor);
+        out.solves[static_cast<std::size_t>(j - 1)] =
+            decompose_level(j, c, next, out.detail[static_cast<std::size_t>(j - 1)], executor);
         c.swap(next);
     }
     out.coarse = std::move(c);
@@ -161,10 +169,12 @@ std::vector<Vec3> FilterBank::reconstruct_level(int j, std::span<const Vec3> coa
     View out = view(c);
     // Row r of the result is row r of P times c^{j−1} plus row r of Q times d^{j−1}, whichever
     // block it is computed in (P and Q are stored by rows).
-    for_each_block(executor_or_default(executor), static_cast<std::size_t>(L.P.rows()), 16384, 1, [&](std::size_t first, std::size_t end) {
-        const auto row = static_cast<Eigen::Index>(first), count = static_cast<Eigen::Index>(end - first);
-        out.middleRows(row, count) = L.P.middleRows(row, count) * C + L.Q.middleRows(row, count) * Dd;
-    });
+    for_each_block(executor_or_default(executor), static_cast<std::size_t>(L.P.rows()), 16384, 1,
+                   [&](std::size_t first, std::size_t end) {
+                       const auto row = static_cast<Eigen::Index>(first),
+                                  count = static_cast<Eigen::Index>(end - first);
+                       out.middleRows(row, count) = L.P.middleRows(row, count) * C + L.Q.middleRows(row, count) * Dd;
+                   });
     return c;
 }
 

@@ -40,21 +40,21 @@ namespace fhr::wavelet {
 
 /// The operators between D^{j−1} and D^j.
 struct LevelFilter {
-    int j = 0;                      ///< the fine level
-    std::uint32_t n_coarse = 0;     ///< #V(D^{j−1}); new vertex u = n_coarse + k, k an edge of D^{j−1}
-    SparseRows P;                   ///< #V(D^j) × #V(D^{j−1})
-    SparseRows Q;                   ///< #V(D^j) × m: column k is ψ_{n_coarse + k}, scale 2^{j−1}
-    SparseRows A;                   ///< m × m: Q_N − P_N Q_O
+    int j = 0;                         ///< the fine level
+    std::uint32_t n_coarse = 0;        ///< #V(D^{j−1}); new vertex u = n_coarse + k, k an edge of D^{j−1}
+    SparseRows P;                      ///< #V(D^j) × #V(D^{j−1})
+    SparseRows Q;                      ///< #V(D^j) × m: column k is ψ_{n_coarse + k}, scale 2^{j−1}
+    SparseRows A;                      ///< m × m: Q_N − P_N Q_O
     Eigen::VectorXd inverse_diagonal;  ///< m: 1 / A_kk (Jacobi preconditioner)
-    std::vector<double> norm;       ///< m: ‖ψ_u‖ = ⟨ψ_u, ψ_u⟩^½ in the paper's inner product
+    std::vector<double> norm;          ///< m: ‖ψ_u‖ = ⟨ψ_u, ψ_u⟩^½ in the paper's inner product
     std::size_t m() const { return norm.size(); }
 };
 
 /// How the decomposition's system went at one level.
 struct LevelSolve {
-    int iterations = 0;      ///< CG steps, the largest of the three coordinates
-    double residual = 0;     ///< ‖A d − b‖_∞ (true residual) over the three coordinates
-    double tolerance = 0;    ///< τ_j
+    int iterations = 0;    ///< CG steps, the largest of the three coordinates
+    double residual = 0;   ///< ‖A d − b‖_∞ (true residual) over the three coordinates
+    double tolerance = 0;  ///< τ_j
 };
 
 /// f^J = f^0 + g^0 + … + g^{J−1} (paper §5) as coefficients.

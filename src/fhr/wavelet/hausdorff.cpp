@@ -22,7 +22,8 @@ TriangleTree::TriangleTree(std::span<const Vec3> positions, std::span<const Tria
     std::vector<Extent> extent(triangles_.size());
     for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
         order_[t] = t;
-        const Vec3 &a = positions_[triangles_[t][0]], &b = positions_[triangles_[t][1]], &c = positions_[triangles_[t][2]];
+        const Vec3 &a = positions_[triangles_[t][0]], &b = positions_[triangles_[t][1]],
+                   &c = positions_[triangles_[t][2]];
         extent[t] = {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c), (a + b + c) / 3.0};
     }
     nodes_.reserve(2 * triangles_.size() / leaf_size + 2);
@@ -96,7 +97,8 @@ std::uint32_t TriangleTree::build(std::uint32_t first, std::uint32_t count, cons
     (hi - lo).maxCoeff(&axis);
     const std::uint32_t half = count / 2;
     keys.clear();
-    for (std::uint32_t i = first; i < first + count; ++i) keys.emplace_back(extent[order_[i]].centroid[axis], order_[i]);
+    for (std::uint32_t i = first; i < first + count; ++i)
+        keys.emplace_back(extent[order_[i]].centroid[axis], order_[i]);
     std::nth_element(keys.begin(), keys.begin() + half, keys.end());
     for (std::uint32_t i = 0; i < count; ++i) order_[first + i] = keys[i].second;
     const std::uint32_t left = build(first, half, extent, keys);
@@ -235,7 +237,7 @@ double TriangleTree::fan_bound(const Vec3 (&x)[3], std::uint32_t v) const {
     }
     for (std::size_t i = 0; i < cycle.size(); ++i)
         for (std::size_t j = i + 1; j < cycle.size(); ++j)
-            if (cycle[i] == cycle[j]) return none;  // not a simple cycle or path: not a disk
+            if (cycle[i] == cycle[j]) return none;                   // not a simple cycle or path: not a disk
     const std::size_t k = cycle.size(), edges = closed ? k : k - 1;  // link edges (i, i + 1 mod k)
     // Flatten into the plane through v normal to the fan's area-weighted normal.
     const Vec3& o = positions_[v];
@@ -258,7 +260,8 @@ double TriangleTree::fan_bound(const Vec3 (&x)[3], std::uint32_t v) const {
     const double slack = 1e-12 * scale;  // rounding in the flattening and the measures below
     auto turn = [&](const Vec3& a, const Vec3& b, const Vec3& c) { return n.dot((b - a).cross(c - b)); };
     for (std::size_t i = 0; i < edges; ++i)  // the flat fan's triangles keep their orientation
-        if (!(n.dot((w[i] - o).cross(w[(i + 1) % k] - o)) > 1e-9 * (w[i] - o).norm() * (w[(i + 1) % k] - o).norm())) return none;
+        if (!(n.dot((w[i] - o).cross(w[(i + 1) % k] - o)) > 1e-9 * (w[i] - o).norm() * (w[(i + 1) % k] - o).norm()))
+            return none;
     // The flat fan's outline P: the link cycle around v, or v followed by the link path. When P is
     // convex the fan's positively oriented triangles tile it.
     if (!closed) w.insert(w.begin(), o);
@@ -323,11 +326,13 @@ public:
         order.reserve(last - first);
         for (std::uint32_t i = first; i < last; ++i) {
             const Triangle& t = a_triangles_[i];
-            order.emplace_back(-std::max({at_vertex_[t[0]].distance, at_vertex_[t[1]].distance, at_vertex_[t[2]].distance}), i);
+            order.emplace_back(
+                -std::max({at_vertex_[t[0]].distance, at_vertex_[t[1]].distance, at_vertex_[t[2]].distance}), i);
         }
         const std::size_t farthest = std::min<std::size_t>(order.size(), 64);
         std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(farthest), order.end());
-        std::sort(order.begin() + static_cast<std::ptrdiff_t>(farthest), order.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
+        std::sort(order.begin() + static_cast<std::ptrdiff_t>(farthest), order.end(),
+                  [](const auto& x, const auto& y) { return x.second < y.second; });
         for (const auto& [_, i] : order) triangle_upper[i] = root(i);
         h.upper = std::max({h.upper, h.lower, dropped_});
     }
@@ -369,7 +374,7 @@ private:
     double bound(const Piece& q) const {
         double b = std::max({q.d[0], q.d[1], q.d[2]}) + corner_cover_radius(q.x[0], q.x[1], q.x[2]);  // Lipschitz
         if (b <= settled()) return b;
-        for (int j = 0; j < 3; ++j) {                                                  // convexity
+        for (int j = 0; j < 3; ++j) {  // convexity
             const std::uint32_t t = q.near[j];
             if ((j > 0 && t == q.near[0]) || (j > 1 && t == q.near[1])) continue;  // tried already
             double sup = 0;  // d(x_k, near_k) is d_k: the same computation
@@ -377,8 +382,9 @@ private:
             b = std::min(b, sup);
         }
         if (b <= settled()) return b;
-        for (int i = 0; i < 3; ++i)                                                    // two triangles
-            if (const std::uint32_t s = q.near[i], t = q.near[(i + 1) % 3]; s != t) b = std::min(b, B_.pair_bound(q.x, s, t));
+        for (int i = 0; i < 3; ++i)  // two triangles
+            if (const std::uint32_t s = q.near[i], t = q.near[(i + 1) % 3]; s != t)
+                b = std::min(b, B_.pair_bound(q.x, s, t));
         if (b <= settled()) return b;
         if (q.near[0] != q.near[1] || q.near[1] != q.near[2])  // a vertex fan: at a vertex common to them all
             for (std::uint32_t v : B_.triangle(q.near[0]))
@@ -475,7 +481,9 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
         std::vector<std::uint32_t> order;
         for (std::uint32_t v = 0; v < state.size(); ++v)
             if (state[v] == wanted) order.push_back(v);
-        std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return bound[x] > bound[y] || (bound[x] == bound[y] && x < y); });
+        std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
+            return bound[x] > bound[y] || (bound[x] == bound[y] && x < y);
+        });
         BlockSearch first(a_positions, a_triangles, B, options, at_vertex);
         for (std::uint32_t v : order) {
             if (bound[v] < std::max(first.h.lower, options.known)) break;
@@ -513,7 +521,8 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
         BlockSearch block(a_positions, a_triangles, B, options, at_vertex);
         block.h.lower = h.lower;
         block.h.farthest = h.farthest;
-        block.run(static_cast<std::uint32_t>(n * k / search_blocks), static_cast<std::uint32_t>(n * (k + 1) / search_blocks), h.triangle_upper);
+        block.run(static_cast<std::uint32_t>(n * k / search_blocks),
+                  static_cast<std::uint32_t>(n * (k + 1) / search_blocks), h.triangle_upper);
         parts[k] = std::move(block.h);
     });
     for (const DirectedHausdorff& part : parts) {  // in block order: the first farthest point found
@@ -526,8 +535,8 @@ DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::spa
 }
 
 Hausdorff hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles,
-                    std::span<const Vec3> b_positions, std::span<const Triangle> b_triangles, const HausdorffOptions& options,
-                    Executor* executor) {
+                    std::span<const Vec3> b_positions, std::span<const Triangle> b_triangles,
+                    const HausdorffOptions& options, Executor* executor) {
     HausdorffOptions o = options;
     if (o.resolution <= 0) {
         Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;

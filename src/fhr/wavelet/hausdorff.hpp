@@ -77,9 +77,9 @@ public:
     TriangleTree(TriangleTree other, std::span<const Vec3> positions);
 
     struct Hit {
-        double distance;     ///< |p − point|
+        double distance;  ///< |p − point|
         std::uint32_t triangle;
-        Vec3 point;          ///< the closest point
+        Vec3 point;  ///< the closest point
     };
     /// The closest point of the soup to p. `hint`: a triangle to start from (any valid index
     /// speeds up queries at nearby points; the answer does not depend on it).
@@ -112,7 +112,8 @@ private:
         Vec3 corner[3], lo, hi;
     };
     std::vector<LeafTriangle> leaf_;  ///< triangle order_[i]'s corners and box
-    std::vector<std::uint32_t> fan_start_, fan_;  ///< the triangles at vertex v: fan_[fan_start_[v] .. fan_start_[v + 1])
+    std::vector<std::uint32_t> fan_start_,
+        fan_;  ///< the triangles at vertex v: fan_[fan_start_[v] .. fan_start_[v + 1])
     struct Extent {
         Vec3 lo, hi, centroid;  ///< a triangle's box and centroid
     };
@@ -148,9 +149,9 @@ struct HausdorffOptions {
 /// h(A, B) = sup_{p ∈ A} d(p, B), bracketed: lower ≤ h(A, B) ≤ upper, and
 /// max(upper, known) − max(lower, known) ≤ δ (HausdorffOptions).
 struct DirectedHausdorff {
-    double lower = 0;         ///< max over the samples: h(A, B) ≥ lower
-    double upper = 0;         ///< h(A, B) ≤ upper
-    std::size_t samples = 0;  ///< distances d(p, B) evaluated
+    double lower = 0;              ///< max over the samples: h(A, B) ≥ lower
+    double upper = 0;              ///< h(A, B) ≤ upper
+    std::size_t samples = 0;       ///< distances d(p, B) evaluated
     Vec3 farthest = Vec3::Zero();  ///< a point of A at distance `lower`
     /// Per triangle of A: an upper bound of sup d(·, B) on it (the largest bound of its pieces
     /// where the search ended, or its prior).
@@ -159,7 +160,7 @@ struct DirectedHausdorff {
 
 struct Hausdorff {
     DirectedHausdorff a_to_b, b_to_a;
-    double resolution = 0;  ///< δ used
+    double resolution = 0;                                                 ///< δ used
     double lower() const { return std::max(a_to_b.lower, b_to_a.lower); }  ///< the reported distance
     double upper() const { return std::max(a_to_b.upper, b_to_a.upper); }
 };
@@ -170,7 +171,8 @@ struct Hausdorff {
 /// vertices on, as tasks on `executor` (default_executor() when null); the same result on any
 /// number of threads.
 DirectedHausdorff directed_hausdorff(std::span<const Vec3> a_positions, std::span<const Triangle> a_triangles,
-                                     const TriangleTree& B, const HausdorffOptions& options, Executor* executor = nullptr);
+                                     const TriangleTree& B, const HausdorffOptions& options,
+                                     Executor* executor = nullptr);
 
 /// The two-sided Hausdorff distance between two triangle meshes (any topology, soups too): A to B
 /// first, then B to A searched only down to the first's lower (HausdorffOptions::known), so that

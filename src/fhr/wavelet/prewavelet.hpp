@@ -61,8 +61,7 @@ Real theta(std::size_t n, std::size_t a) {
     using std::sqrt;
     const Real root21 = sqrt(Real(21));
     const Real lambda = (root21 - Real(5)) / Real(2);
-    return (integer_power(lambda, a) + integer_power(lambda, n - a)) /
-           (root21 * (Real(1) - integer_power(lambda, n)));
+    return (integer_power(lambda, a) + integer_power(lambda, n - a)) / (root21 * (Real(1) - integer_power(lambda, n)));
 }
 
 /// θ^∂_t(k, l) = (T_t⁻¹)_{kl} = θ_{2t}(|k − l|) + θ_{2t}(k + l) for a boundary vertex with t coarse

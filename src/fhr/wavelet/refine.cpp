@@ -12,9 +12,7 @@ namespace {
 using Beta = std::array<double, 3>;
 
 // The midpoint of two dyadic coordinate triples: halving a multiple of 2^−(j−1) in [0, 1] is exact.
-Beta average(const Beta& a, const Beta& b) {
-    return {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
-}
+Beta average(const Beta& a, const Beta& b) { return {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])}; }
 
 // One 1-to-4 split of `coarse` (paper §5, Fig. 5), carrying the corner coordinates along.
 TriMesh split_once(const TriMesh& coarse, const std::vector<std::array<Beta, 3>>& coarse_beta,
@@ -54,7 +52,7 @@ TriMesh split_once(const TriMesh& coarse, const std::vector<std::array<Beta, 3>>
         const Triangle& t = triangles[g.idx()];
         if (v[0].idx() != t[0] || v[1].idx() != t[1] || v[2].idx() != t[2])
             throw InternalError("wavelet::refine: from_triangles changed the corner order of face " +
-                                   std::to_string(g.idx()));
+                                std::to_string(g.idx()));
     }
     return fine;
 }
@@ -70,7 +68,7 @@ Refinement refine(const TriMesh& D, int J) {
         faces *= 4;
         if (faces > max_refined_faces)
             throw InvalidInput("dyadic refinement: D^" + std::to_string(J) + " would have more than " +
-                                          std::to_string(max_refined_faces) + " faces");
+                               std::to_string(max_refined_faces) + " faces");
     }
     Refinement r;
     r.levels.reserve(static_cast<std::size_t>(J) + 1);

@@ -14,13 +14,14 @@ namespace fhr::detail {
 
 [[noreturn]] inline void dcheck_failed(const char* condition, const char* file, int line) {
     throw ContractViolation(std::string("precondition violated: ") + condition + " (" + file + ":" +
-                           std::to_string(line) + ")");
+                            std::to_string(line) + ")");
 }
 
 }  // namespace fhr::detail
 
 #if defined(FHR_DCHECKS)
-#define FHR_DCHECK(condition) ((condition) ? static_cast<void>(0) : ::fhr::detail::dcheck_failed(#condition, __FILE__, __LINE__))
+#define FHR_DCHECK(condition) \
+    ((condition) ? static_cast<void>(0) : ::fhr::detail::dcheck_failed(#condition, __FILE__, __LINE__))
 #else
 #define FHR_DCHECK(condition) static_cast<void>(sizeof((condition) ? 1 : 0))
 #endif

@@ -9,6 +9,8 @@ namespace fhr::detail {
 using Clock = std::chrono::steady_clock;
 
 /// Seconds from `start` to now.
-inline double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+inline double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 }  // namespace fhr::detail

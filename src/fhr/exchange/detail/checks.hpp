@@ -100,11 +100,11 @@ inline CheckResult skipped(const char* id, const char* title, const std::string&
 /// compact connected orientable surface is determined up to homeomorphism by these two numbers
 /// (χ = 2 − 2g − b: the classification of surfaces), so they are what PARAM-4 and PARAM-11 compare.
 struct Topology {
-    Components components;                   ///< vertex → component, numbered by lowest vertex
-    std::vector<long> chi;                   ///< per component
-    std::vector<std::uint32_t> loops;        ///< boundary loops per component
-    std::vector<std::uint32_t> vertices;     ///< number of vertices per component
-    std::vector<std::uint32_t> first_vertex; ///< the lowest vertex of each component (its name)
+    Components components;                    ///< vertex → component, numbered by lowest vertex
+    std::vector<long> chi;                    ///< per component
+    std::vector<std::uint32_t> loops;         ///< boundary loops per component
+    std::vector<std::uint32_t> vertices;      ///< number of vertices per component
+    std::vector<std::uint32_t> first_vertex;  ///< the lowest vertex of each component (its name)
 
     std::size_t count() const { return chi.size(); }
     std::uint32_t of(std::uint32_t vertex) const { return components.vertex_component[VertexId(vertex)]; }
@@ -168,10 +168,11 @@ inline std::optional<Surface> build_surface(const PolygonSoup& soup, const char*
         rec.fail([&] {
             std::string warning = log.warnings.front();  // ": dropped …" or ": re-oriented …" (no file name)
             if (warning.rfind(": ", 0) == 0) warning.erase(0, 2);
-            return std::string(what) + (log.dropped_vertices ? " has vertices in no face: "
-                                                             : " is not oriented counter-clockwise seen from outside "
-                                                               "(each component consistently, a closed one with "
-                                                               "positive volume): ") +
+            return std::string(what) +
+                   (log.dropped_vertices ? " has vertices in no face: "
+                                         : " is not oriented counter-clockwise seen from outside "
+                                           "(each component consistently, a closed one with "
+                                           "positive volume): ") +
                    warning;
         });
     } catch (const InvalidInput& e) {
@@ -181,7 +182,9 @@ inline std::optional<Surface> build_surface(const PolygonSoup& soup, const char*
 }
 
 /// "1 boundary loop", "2 boundary loops".
-inline std::string loops_text(std::uint64_t n) { return std::to_string(n) + (n == 1 ? " boundary loop" : " boundary loops"); }
+inline std::string loops_text(std::uint64_t n) {
+    return std::to_string(n) + (n == 1 ? " boundary loop" : " boundary loops");
+}
 
 /// The key of grid cell (x, y, z), each coordinate in [0, 2²¹): the sparse grids below and in
 /// atlas.cpp list their simplices or points as sorted (key, index) pairs.
@@ -326,7 +329,8 @@ struct InputSide {
 
     /// `extra` is added to the tolerance (an atlas's printed rounding, ATLAS-8).
     explicit InputSide(const TriMesh& t, double extra = 0)
-        : tolerance(tolerance_of(t) + extra), area(total_area(t)),
+        : tolerance(tolerance_of(t) + extra),
+          area(total_area(t)),
           faces(t, t.triangles(), std::sqrt(area / static_cast<double>(t.n_faces())), tolerance) {
         std::vector<Triangle> edges;
         double length = 0;
@@ -351,6 +355,5 @@ private:
         return geometry_tolerance * (hi - lo).norm() + 64 * unit_roundoff * max_abs;
     }
 };
-
 
 }  // namespace fhr::exchange::detail

@@ -38,7 +38,8 @@ inline int share(int total, int components, int c) { return total / components +
 
 /// The slab of each component of a block mesh of the recipe `o` (its components numbered in
 /// order, as random_mesh makes them), read from the mesh's bounding boxes and the genus shares.
-std::vector<Slab> block_slabs(const TriMesh& block, const RandomMeshOptions& o, const VertexData<std::uint32_t>& component);
+std::vector<Slab> block_slabs(const TriMesh& block, const RandomMeshOptions& o,
+                              const VertexData<std::uint32_t>& component);
 
 /// Step 1, rounding: p on the surface of `slab` moved along the gradient of the slab blurred by
 /// the kernel of radius `roundness` (in (0, 1/2)) onto its level set 1/2.

@@ -129,8 +129,8 @@ Kept kept_features(const TriMesh& m) {
         VertexId w;
         m.for_each_outgoing(b, [&](HalfedgeId g) {
             const VertexId x = m.to(g);
-            if (!w.valid() && x != a && x != c && x != d && equal_coordinates(a, x) == 2 && equal_coordinates(b, x) == 2 &&
-                collinear(m.position(a), m.position(b), m.position(x)))
+            if (!w.valid() && x != a && x != c && x != d && equal_coordinates(a, x) == 2 &&
+                equal_coordinates(b, x) == 2 && collinear(m.position(a), m.position(b), m.position(x)))
                 w = x;
         });
         if (!w.valid()) continue;

@@ -111,7 +111,8 @@ public:
         std::vector<std::vector<EdgeId>> creases(C);
         for (EdgeId e : m.edges()) {
             const HalfedgeId h = TriMesh::halfedge(e, 0);
-            if (!m.is_boundary(e) && facet(m, h) != facet(m, TriMesh::twin(h))) creases[ed_.component(m.from(h))].push_back(e);
+            if (!m.is_boundary(e) && facet(m, h) != facet(m, TriMesh::twin(h)))
+                creases[ed_.component(m.from(h))].push_back(e);
         }
         std::vector<std::size_t> used(C, 0);
         on_chain_.assign(m.n_vertices(), 0);
@@ -119,7 +120,7 @@ public:
             const Chain chain = choose_chain(creases[c]);
             if (chain.v.empty())
                 throw InternalError("density family: no crease chain in component " + std::to_string(c) + " (" +
-                                       generate_command(o_) + ")");
+                                    generate_command(o_) + ")");
             for (VertexId v : chain.v) on_chain_[v.idx()] = 1;
             used[c] += refine_band(chain);
         }
@@ -138,7 +139,8 @@ public:
         for (std::size_t c = 0; c < C; ++c) {
             double shortest_c = shortest_edge[c];
             const VertexId focus = insert_focus(c, shortest_c);
-            if (!focus.valid()) throw InternalError("density family: no face for the focus (" + generate_command(o_) + ")");
+            if (!focus.valid())
+                throw InternalError("density family: no face for the focus (" + generate_command(o_) + ")");
             used[c] += 2;
             while (longest[c] / shortest_c < target) {
                 if (graded_round(focus, shortest_c) != 3)
@@ -182,7 +184,8 @@ private:
         const bool first_side = rng_.coin();
         for (std::size_t k = 0; k < creases.size(); ++k)
             for (int s = 0; s < 2; ++s) {
-                const HalfedgeId h = TriMesh::halfedge(creases[(start + k) % creases.size()], (s == 0) == first_side ? 0 : 1);
+                const HalfedgeId h =
+                    TriMesh::halfedge(creases[(start + k) % creases.size()], (s == 0) == first_side ? 0 : 1);
                 Chain chain{{m.from(h), m.to(h)}, facet(m, h)};
                 const int other = facet(m, TriMesh::twin(h));
                 extend(chain, other);
@@ -233,7 +236,8 @@ private:
         for (std::size_t i = 0; i + 1 < chain.v.size(); ++i) {
             const HalfedgeId h = side_halfedge(chain.v[i], chain.v[i + 1], chain.side);
             if (m.is_boundary(h) || facet(m, h) != chain.side) return false;
-            if (m.is_boundary(TriMesh::edge(m.next(h))) && m.is_boundary(TriMesh::edge(m.next(m.next(h))))) return false;
+            if (m.is_boundary(TriMesh::edge(m.next(h))) && m.is_boundary(TriMesh::edge(m.next(m.next(h)))))
+                return false;
         }
         return true;
     }
@@ -337,7 +341,8 @@ private:
         m.for_each_outgoing(p, [&](HalfedgeId h) { ring.push_back(m.to(h)); });
         std::size_t splits = 0;
         for (VertexId s : ring) {
-            const VertexId mid = ed_.split_edge(TriMesh::edge(m.find_halfedge(p, s)), midpoint(m.position(p), m.position(s)));
+            const VertexId mid =
+                ed_.split_edge(TriMesh::edge(m.find_halfedge(p, s)), midpoint(m.position(p), m.position(s)));
             if (!mid.valid()) break;
             ++splits;
             m.for_each_outgoing(mid, [&](HalfedgeId h) { shortest_c = std::min(shortest_c, edge_length(m, h)); });

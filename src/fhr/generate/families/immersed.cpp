@@ -113,8 +113,10 @@ void add_finger(TriMesh& m, const Slab& slab, const std::vector<FaceId>& faces, 
     for (VertexId v : seen) {
         if (v == tip || !interior_to_facet(m, v, axis, plane)) continue;
         bool star_inside = true;
-        m.for_each_outgoing(v, [&](HalfedgeId h) { star_inside = star_inside && length(m.position(m.to(h)) - c) < finger_radius; });
-        if (star_inside) lifts.push_back({v, axis, depth * (1 - smoothstep(length(m.position(v) - c) / finger_radius))});
+        m.for_each_outgoing(
+            v, [&](HalfedgeId h) { star_inside = star_inside && length(m.position(m.to(h)) - c) < finger_radius; });
+        if (star_inside)
+            lifts.push_back({v, axis, depth * (1 - smoothstep(length(m.position(v) - c) / finger_radius))});
     }
 }
 
@@ -171,7 +173,8 @@ TriMesh immersed_mesh(const RandomMeshOptions& o) {
         offset[l.v.idx()][l.axis] = l.height;
     }
     for (VertexId v : m.vertices())
-        curved[v.idx()] = deform(rounded(slabs[after.vertex_component[v]], smooth_defaults.roundness, m.position(v)) + offset[v.idx()]);
+        curved[v.idx()] = deform(rounded(slabs[after.vertex_component[v]], smooth_defaults.roundness, m.position(v)) +
+                                 offset[v.idx()]);
     for (VertexId v : m.vertices()) m.position(v) = curved[v.idx()];
     const auto pair = find_self_intersection(m);
     if (!pair || (*pair)[0] == (*pair)[1])

@@ -167,8 +167,9 @@ public:
                 if (try_insert(kind, f, aim, first)) return;
             }
             if (kind != Kind::sliver)
-                throw InternalError("quality family: no face takes a " + std::string(kind == Kind::cap ? "cap" : "needle") +
-                                       " of " + shortest(aim) + "° (a bug: see paper_notes/generator.md)");
+                throw InternalError("quality family: no face takes a " +
+                                    std::string(kind == Kind::cap ? "cap" : "needle") + " of " + shortest(aim) +
+                                    "° (a bug: see paper_notes/generator.md)");
             kind = Kind::needle;
         }
     }
@@ -313,7 +314,8 @@ TriMesh renumbered_by_component(const TriMesh& m) {
     std::vector<std::uint32_t> order(m.n_vertices());
     for (std::uint32_t v = 0; v < order.size(); ++v) order[v] = v;
     const auto component = [&](std::uint32_t v) { return comps.vertex_component[VertexId(v)]; };
-    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return component(a) < component(b); });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return component(a) < component(b); });
     std::vector<std::uint32_t> index(m.n_vertices());
     std::vector<Vec3> positions(m.n_vertices());
     for (std::uint32_t i = 0; i < order.size(); ++i) {

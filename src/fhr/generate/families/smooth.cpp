@@ -117,7 +117,8 @@ constexpr double min_wavelength = 2;
 // --- step 3: moving the vertices ----------------------------------------------------------------
 
 /// The faces around v with v at q, as the guard wants them (removed: the faces as they are).
-void star_at(const TriMesh& m, VertexId v, const Vec3& q, std::vector<FaceId>& removed, std::vector<TriangleAt>& added) {
+void star_at(const TriMesh& m, VertexId v, const Vec3& q, std::vector<FaceId>& removed,
+             std::vector<TriangleAt>& added) {
     removed.clear();
     added.clear();
     m.for_each_outgoing(v, [&](HalfedgeId h) {
@@ -133,7 +134,8 @@ void star_at(const TriMesh& m, VertexId v, const Vec3& q, std::vector<FaceId>& r
 
 }  // namespace
 
-std::vector<Slab> block_slabs(const TriMesh& block, const RandomMeshOptions& o, const VertexData<std::uint32_t>& component) {
+std::vector<Slab> block_slabs(const TriMesh& block, const RandomMeshOptions& o,
+                              const VertexData<std::uint32_t>& component) {
     const std::size_t count = static_cast<std::size_t>(o.components);
     std::vector<double> lo(count, INFINITY), hi(count, -INFINITY), ylo(count, INFINITY), yhi(count, -INFINITY);
     for (VertexId v : block.vertices()) {
@@ -177,7 +179,10 @@ Vec3 rounded(const Slab& slab, double roundness, const Vec3& p) {
     for (int iteration = 0; iteration < 100; ++iteration) {
         const auto [value, slope] = g(t);
         if (value == 0) break;
-        if ((value < 0) == (g0 < 0)) lo = t; else hi = t;
+        if ((value < 0) == (g0 < 0))
+            lo = t;
+        else
+            hi = t;
         double next = slope != 0 ? t - value / slope : lo;
         if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
         if (next == t || !(hi - lo > 1e-15)) break;

@@ -116,7 +116,8 @@ public:
         const TriMesh& m = ed_.mesh();
         // Each component's vertices are consecutive in the block (GEN-3): note where each begins.
         std::vector<std::size_t> first(ed_.components() + 1, m.n_vertices());
-        for (std::size_t v = m.n_vertices(); v-- > 0;) first[ed_.component(VertexId(static_cast<VertexId::Index>(v)))] = v;
+        for (std::size_t v = m.n_vertices(); v-- > 0;)
+            first[ed_.component(VertexId(static_cast<VertexId::Index>(v)))] = v;
         std::size_t unused = hub_reserve(o_);
         std::vector<VertexId> hubs;
         for (std::size_t c = 0; c < ed_.components(); ++c) {
@@ -185,7 +186,8 @@ private:
                 if (m.is_boundary(d) || m.position(d)[axis] != m.position(v)[axis]) return;
                 // The new triangles (v, b, d) and (v, d, c): corners at b, d, c.
                 const Vec3 &pv = m.position(v), &pb = m.position(b), &pc = m.position(c), &pd = m.position(d);
-                if (!corner_ok(pb, pd, pv) || !corner_ok(pd, pv, pb) || !corner_ok(pd, pc, pv) || !corner_ok(pc, pv, pd))
+                if (!corner_ok(pb, pd, pv) || !corner_ok(pd, pv, pb) || !corner_ok(pd, pc, pv) ||
+                    !corner_ok(pc, pv, pd))
                     return;
                 const Vec3 vd = pd - pv;
                 candidates.push_back({dot(vd, vd), TriMesh::edge(g)});
@@ -248,7 +250,7 @@ private:
             }
             if (!added.valid())
                 throw InternalError("valence family: no wedge of hub vertex " + std::to_string(v.idx()) +
-                                       " could be split (" + generate_command(o_) + ")");
+                                    " could be split (" + generate_command(o_) + ")");
             ++splits;
         }
         return splits;
@@ -269,7 +271,7 @@ private:
         while (!stack.empty()) {
             const auto [a, b] = stack.back();
             stack.pop_back();
-            const HalfedgeId h = m.find_halfedge(a, b);  // in the face (a, b, q)
+            const HalfedgeId h = m.find_halfedge(a, b);        // in the face (a, b, q)
             if (!h.valid() || m.to(m.next(h)) != q) continue;  // no longer opposite q
             if (m.is_boundary(TriMesh::edge(h)) || a == hub || b == hub) continue;
             // Both faces in one facet (same axis-aligned normal through a and b: one plane).
@@ -334,7 +336,8 @@ private:
                     done = eligible(f, pass == 1) && insert(f);
                 }
             if (!done)
-                throw InternalError("valence family: no face left for a valence-3 vertex (" + generate_command(o_) + ")");
+                throw InternalError("valence family: no face left for a valence-3 vertex (" + generate_command(o_) +
+                                    ")");
         }
     }
 };

@@ -36,7 +36,8 @@ struct WorkspaceAccess {
         std::unique_ptr<S> s;
         if (ws) {
             std::vector<std::unique_ptr<ScratchBase>>& kept = ws->kept_;
-            const auto it = std::find_if(kept.begin(), kept.end(), [](const auto& k) { return dynamic_cast<S*>(k.get()) != nullptr; });
+            const auto it = std::find_if(kept.begin(), kept.end(),
+                                         [](const auto& k) { return dynamic_cast<S*>(k.get()) != nullptr; });
             if (it != kept.end()) {
                 s.reset(static_cast<S*>(it->release()));
                 kept.erase(it);
@@ -59,7 +60,8 @@ struct WorkspaceAccess {
         if (!ws) return;
         --ws->lent_;
         std::vector<std::unique_ptr<ScratchBase>>& kept = ws->kept_;
-        const auto same = std::count_if(kept.begin(), kept.end(), [](const auto& k) { return dynamic_cast<S*>(k.get()) != nullptr; });
+        const auto same =
+            std::count_if(kept.begin(), kept.end(), [](const auto& k) { return dynamic_cast<S*>(k.get()) != nullptr; });
         if (static_cast<std::size_t>(same) < Workspace::max_kept) kept.push_back(std::move(s));
     }
 };

@@ -21,10 +21,11 @@ public:
     JsonWriter& value(double x);
     JsonWriter& value(bool b);
     template <class T>
-        requires(std::is_integral_v<T> && !std::is_same_v<T, bool>)
-    JsonWriter& value(T x) {
-        if constexpr (std::is_signed_v<T>) return signed_value(x);
-        else return unsigned_value(x);
+    requires(std::is_integral_v<T> && !std::is_same_v<T, bool>) JsonWriter& value(T x) {
+        if constexpr (std::is_signed_v<T>)
+            return signed_value(x);
+        else
+            return unsigned_value(x);
     }
     JsonWriter& null();
     /// A value written elsewhere as JSON text (such as report.json's document), put here as is.
@@ -35,7 +36,7 @@ public:
 private:
     std::string out_;
     int depth_ = 0;
-    bool first_ = true;      // no element yet at this depth
+    bool first_ = true;  // no element yet at this depth
     bool after_key_ = false;
     void element_start();
     void newline();

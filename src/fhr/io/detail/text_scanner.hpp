@@ -164,8 +164,8 @@ private:
 /// caller as out of range) are refused with the element named.
 [[noreturn]] void fail_index(std::int64_t value, std::uint64_t size, const std::string& name, std::uint64_t line,
                              Where where);
-inline std::uint32_t checked_index(std::int64_t value, std::uint64_t size, const std::string& name,
-                                   std::uint64_t line, Where where) {
+inline std::uint32_t checked_index(std::int64_t value, std::uint64_t size, const std::string& name, std::uint64_t line,
+                                   Where where) {
     if (value < 0 || static_cast<std::uint64_t>(value) >= size) fail_index(value, size, name, line, where);
     return static_cast<std::uint32_t>(value);
 }

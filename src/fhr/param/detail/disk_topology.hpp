@@ -14,9 +14,7 @@
 
 namespace fhr::param::detail {
 
-inline std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
-    return (static_cast<std::uint64_t>(a) << 32) | b;
-}
+inline std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) { return (static_cast<std::uint64_t>(a) << 32) | b; }
 
 /// The directed edge (a, b) → the triangle that traverses it: an open-addressing table (a power
 /// of two of at least twice as many slots as edges, linear probing) in two flat arrays.
@@ -48,11 +46,13 @@ public:
 
 private:
     static constexpr std::uint64_t empty = std::uint64_t(-1);  // no edge_key: its vertices are < 2^32 − 1
-    std::vector<std::uint64_t> key_;       // an erased edge keeps its key, with triangle none
+    std::vector<std::uint64_t> key_;                           // an erased edge keeps its key, with triangle none
     std::vector<std::uint32_t> triangle_;
-    std::size_t used_ = 0;                 // slots with a key
+    std::size_t used_ = 0;  // slots with a key
     unsigned shift_ = 0;
-    std::size_t slot(std::uint64_t key) const { return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_); }
+    std::size_t slot(std::uint64_t key) const {
+        return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
+    }
     // The slot of `key`, or the empty slot where it would go.
     std::size_t place(std::uint64_t key) const {
         std::size_t i = slot(key);

@@ -43,14 +43,15 @@ class Region {
 public:
     /// The region of `touched`, the faces of T that it meets, cut along `curves`, which include
     /// every curve on its boundary; or why not: a curve leaves those faces, or two curves cross.
-    static Outcome<Region> cut_out(const TriMesh& T, std::span<const FaceId> touched, std::span<const RegionCurve> curves);
+    static Outcome<Region> cut_out(const TriMesh& T, std::span<const FaceId> touched,
+                                   std::span<const RegionCurve> curves);
 
     /// Adds a curve inside the region (the new curve of a flip or a tightening) and cuts again;
     /// or why not (as cut_out).
     Outcome<std::monostate> add(const RegionCurve& curve);
 
-    const TriMesh& sub() const { return sub_; }            ///< T_S
-    const Network& cut() const { return cut_.network; }    ///< T′_S; curve i labels halfedges 2i, 2i + 1
+    const TriMesh& sub() const { return sub_; }          ///< T_S
+    const Network& cut() const { return cut_.network; }  ///< T′_S; curve i labels halfedges 2i, 2i + 1
 
     /// The faces of T′_S on the left (or right) of curve i, as a mask over T′_S's faces; or why
     /// not: the curves do not enclose that side.
@@ -65,8 +66,8 @@ public:
 
 private:
     const TriMesh& T_;
-    std::vector<VertexId> t_vertex_;  // vertex of T_S -> vertex of T
-    std::vector<FaceId> t_face_;      // face of T_S -> face of T
+    std::vector<VertexId> t_vertex_;                                   // vertex of T_S -> vertex of T
+    std::vector<FaceId> t_face_;                                       // face of T_S -> face of T
     std::vector<std::pair<VertexId::Index, VertexId::Index>> sub_of_;  // (vertex of T, of T_S), sorted
     TriMesh sub_;
     std::vector<geodesic::GeodesicPath> curves_;  // on T_S

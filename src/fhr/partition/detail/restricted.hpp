@@ -65,7 +65,7 @@ struct RestrictedPath {
 /// a bug: the caller's value() throws InternalError), the direct start's may not be.
 /// \throws PartitionFailure when `to` cannot be reached inside the region, or when a touched node
 ///         has no room for the separation (less than min_separation of an edge).
-Outcome<RestrictedPath> restricted_path(const Region& region, const FaceData<std::uint8_t>& mask, VertexId from, VertexId to,
-                                        geodesic::Workspace* workspace = nullptr);
+Outcome<RestrictedPath> restricted_path(const Region& region, const FaceData<std::uint8_t>& mask, VertexId from,
+                                        VertexId to, geodesic::Workspace* workspace = nullptr);
 
 }  // namespace fhr::partition
