@@ -1,7 +1,7 @@
 // FHR §6 figures — an independent PNG reader for the render tests (spec/render.md REN-1, REN-2):
-// chunk parsing with CRC checks, an inflater for zlib streams (RFC 1950/1951: stored, fixed- and
-// dynamic-Huffman blocks, canonical codes decoded bit by bit — a different method from the
-// encoder's), and the five PNG filters undone. It throws std::runtime_error naming the first
+// chunk parsing with its own CRC-32 checks, an inflater for zlib streams with its own Adler-32
+// (RFC 1950/1951: stored, fixed- and dynamic-Huffman blocks, canonical codes decoded bit by bit —
+// not libpng's or zlib's code), and the five PNG filters undone. It throws std::runtime_error naming the first
 // violation, so a test can REQUIRE_NOTHROW and read the message.
 #pragma once
 
@@ -13,7 +13,6 @@
 #include <vector>
 
 #include <fhr/render/image.hpp>
-#include <fhr/render/png.hpp>
 
 namespace fhr::render::reader {
 
@@ -27,8 +26,28 @@ inline std::uint32_t be32(const std::string& s, std::size_t at) {
            (std::uint32_t(std::uint8_t(s[at + 2])) << 8) | std::uint32_t(std::uint8_t(s[at + 3]));
 }
 
-// The chunks after the signature; every length and CRC checked. Our own CRC-32 is checked
-// against published vectors in test_png.cpp, so using it here is not circular.
+/// CRC-32 of ISO 3309 (reflected polynomial 0xEDB88320), bit by bit: checked against published
+/// vectors in test_png.cpp.
+inline std::uint32_t crc32(const std::string& bytes) {
+    std::uint32_t c = 0xFFFFFFFFu;
+    for (const char b : bytes) {
+        c ^= std::uint8_t(b);
+        for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    }
+    return c ^ 0xFFFFFFFFu;
+}
+
+/// Adler-32 of RFC 1950 §8.2, reduced at every byte.
+inline std::uint32_t adler32(const std::string& bytes) {
+    std::uint32_t a = 1, b = 0;
+    for (const char x : bytes) {
+        a = (a + std::uint8_t(x)) % 65521;
+        b = (b + a) % 65521;
+    }
+    return (b << 16) | a;
+}
+
+// The chunks after the signature; every length and CRC checked.
 inline std::vector<Chunk> read_chunks(const std::string& png) {
     if (png.compare(0, 8, std::string("\x89PNG\r\n\x1a\n", 8)) != 0) throw std::runtime_error("bad signature");
     std::vector<Chunk> chunks;
@@ -40,8 +59,7 @@ inline std::vector<Chunk> read_chunks(const std::string& png) {
             throw std::runtime_error("chunk length out of range");
         const std::string typed = png.substr(at + 4, 4 + length);
         const std::uint32_t crc = be32(png, at + 8 + length);
-        if (crc != crc32({reinterpret_cast<const std::uint8_t*>(typed.data()), typed.size()}))
-            throw std::runtime_error("bad CRC in chunk " + typed.substr(0, 4));
+        if (crc != crc32(typed)) throw std::runtime_error("bad CRC in chunk " + typed.substr(0, 4));
         chunks.push_back({typed.substr(0, 4), typed.substr(4)});
         at += 12 + length;
     }
@@ -192,8 +210,7 @@ inline std::string inflate_zlib(const std::string& stream) {
     in.align();
     const std::size_t at = in.byte_position();
     if (at + 4 != stream.size()) throw std::runtime_error("zlib: Adler-32 missing or trailing bytes");
-    if (be32(stream, at) != adler32({reinterpret_cast<const std::uint8_t*>(out.data()), out.size()}))
-        throw std::runtime_error("zlib: Adler-32 mismatch");
+    if (be32(stream, at) != adler32(out)) throw std::runtime_error("zlib: Adler-32 mismatch");
     return out;
 }
 
