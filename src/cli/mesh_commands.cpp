@@ -17,7 +17,7 @@ namespace fhr::cli {
 
 int run_generate(const std::vector<std::string>& argv) {
     std::vector<std::string> options_taken{"family", "genus", "holes", "components", "faces", "seed", "noise", "out"};
-    for (const generate::KnobName& k : generate::knob_names) options_taken.push_back(k.name);
+    for (const generate::KnobName& k : generate::knob_names()) options_taken.push_back(k.name);
     const Args args(argv, {"min-faces"}, options_taken);
     if (!args.positional().empty()) usage_error("fhr generate takes no positional arguments");
     generate::RandomMeshOptions options;
@@ -30,7 +30,7 @@ int run_generate(const std::vector<std::string>& argv) {
     options.noise = args.real("noise", 0.0, 0.0, 0.5);  // the generator refuses 0.5 itself
     // The family's own knobs, each accepted only with its family (generate::set_knob); their ranges
     // are checked by the generator (spec/generator.md).
-    for (const generate::KnobName& k : generate::knob_names)
+    for (const generate::KnobName& k : generate::knob_names())
         if (args.get(k.name))
             generate::set_knob(options.knobs, options.family, k.name, args.real(k.name, 0, -1e300, 1e300));
     if (args.flag("min-faces")) {  // what a caller drawing face counts needs (bench/run_families.py)

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 
 #include <fhr/core/trimesh.hpp>
@@ -63,16 +64,12 @@ struct FamilyKnobs {
 };
 
 /// The knobs by the names `fhr generate` gives them (`--smallest-angle` is "smallest-angle"), each
-/// with its family, in the order of FamilyKnobs.
+/// with its family, in the order of FamilyKnobs: knob_names() lists them all.
 struct KnobName {
     const char* name;
     Family family;
 };
-inline constexpr KnobName knob_names[] = {{"roundness", Family::smooth},      {"amplitude", Family::smooth},
-                                          {"bad-fraction", Family::quality},  {"smallest-angle", Family::quality},
-                                          {"high-valence", Family::valence},  {"low-fraction", Family::valence},
-                                          {"edge-ratio", Family::density},    {"anisotropy", Family::density},
-                                          {"grid-cells", Family::degenerate}, {"depth", Family::immersed}};
+std::span<const KnobName> knob_names();
 
 /// Sets the knob of that name (as in knob_names; '_' may stand for '-') to value: the one place
 /// the CLI and the Python package turn a name into a knob. Integer knobs take an integral value.

@@ -61,6 +61,15 @@ inline Vec3 normal(const Vec3& a, const Vec3& b, const Vec3& c) { return cross(b
 /// noise: every family's starting point (embedded, proven: paper_notes/generator.md).
 TriMesh base_block(const RandomMeshOptions& options, std::size_t faces);
 
+/// The block family itself (block.cpp): its least face count and its mesh.
+std::size_t block_min_faces(const RandomMeshOptions& options);
+TriMesh block_mesh(const RandomMeshOptions& options);
+
+/// A recipe's checks before any family makes it: the noise (the block's knob only), the face
+/// count against `least_faces(options)` (the family's, its knobs checked there), its parity
+/// without holes, and max_faces. \throws InvalidInput naming the first that fails.
+void check_recipe(const RandomMeshOptions& options, std::size_t (*least_faces)(const RandomMeshOptions&));
+
 // One entry point per family: `<family>_min_faces(options)` is the family's least face count (its
 // knobs checked: InvalidInput naming the knob and its range), `<family>_mesh(options)` the mesh,
 // exactly options.faces faces, options already checked against that least count.
