@@ -27,6 +27,15 @@ using partition::Conflict;
 
 namespace {
 
+// The random surfaces of the PART-12 properties: genus 0–2, 1–5 boundary loops, 1–3 components.
+const fhr::testing::MeshRanges with_boundary{.min_genus = 0,
+                                             .max_genus = 2,
+                                             .max_faces = 1200,
+                                             .min_holes = 1,
+                                             .max_holes = 5,
+                                             .min_components = 1,
+                                             .max_components = 3};
+
 TriMesh cgal_mesh(const char* name) { return test::load_mesh(test::cgal_mesh(name)); }
 
 TriMesh fandisk() { return cgal_mesh("fandisk.off"); }
@@ -466,13 +475,7 @@ TEST_CASE("PART-10, PART-12: surfaces with 1-5 boundary loops and 1-3 components
     // that a direct start has exactly D's faces here as on a closed mesh.
     std::size_t restricted_runs = 0, direct_starts = 0;
     rc::prop("the partition of a random surface with boundary keeps its random decimated domain", [&] {
-        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh({.min_genus = 0,
-                                                                       .max_genus = 2,
-                                                                       .max_faces = 1200,
-                                                                       .min_holes = 1,
-                                                                       .max_holes = 5,
-                                                                       .min_components = 1,
-                                                                       .max_components = 3});
+        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh(with_boundary);
         const TriMesh& T = g;
         const domain::Domain D = test::random_open_domain(T);
         const Narrated run = narrated_partition(T, D);
@@ -499,13 +502,7 @@ TEST_CASE("PART-10, PART-12: surfaces with 1-5 boundary loops and 1-3 components
 TEST_CASE("PART-9, PART-12: surfaces with boundary and components in the paper-only mode recover validly",
           "[partition][property][boundary]") {
     rc::prop("the paper-only partition of a random surface with boundary", [] {
-        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh({.min_genus = 0,
-                                                                       .max_genus = 2,
-                                                                       .max_faces = 1200,
-                                                                       .min_holes = 1,
-                                                                       .max_holes = 5,
-                                                                       .min_components = 1,
-                                                                       .max_components = 3});
+        const fhr::testing::GeneratedMesh g = *fhr::testing::gen_mesh(with_boundary);
         const TriMesh& T = g;
         const domain::Domain D = test::random_open_domain(T);
         partition::PartitionOptions options;
