@@ -11,7 +11,7 @@
 #include <fhr/domain/decimate.hpp>
 #include <fhr/io/read.hpp>
 #include <fhr/param/certificate.hpp>
-#include <fhr/param/dividing_edges.hpp>
+#include <fhr/param/detail/dividing_edges.hpp>
 #include <fhr/partition/partition.hpp>
 
 using namespace fhr;

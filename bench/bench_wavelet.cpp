@@ -37,8 +37,8 @@
 #include <fhr/core/geometry.hpp>
 #include <fhr/domain/decimate.hpp>
 #include <fhr/pipeline/pipeline.hpp>
-#include <fhr/wavelet/compress.hpp>
-#include <fhr/wavelet/filter_bank.hpp>
+#include <fhr/wavelet/detail/compress.hpp>
+#include <fhr/wavelet/detail/filter_bank.hpp>
 #include <fhr/wavelet/hausdorff.hpp>
 #include <fhr/wavelet/refine.hpp>
 

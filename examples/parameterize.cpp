@@ -37,10 +37,10 @@ int main(int argc, char** argv) {
         // T′ keeps T's vertices under their own numbers, before the points the paths added.
         const fhr::pipeline::Parameterization& p = result.parameterization;
         std::vector<std::optional<std::pair<std::uint32_t, fhr::exchange::Beta>>> at(T.n_vertices());
-        for (std::size_t f = 0; f < p.refined_faces.size(); ++f)
+        for (fhr::RefinedFaceId f : p.face_patch.ids())  // the faces of the final T′, in the file's order
             for (int k = 0; k < 3; ++k) {
-                const std::uint32_t v = p.refined_faces[f][k];
-                if (v < at.size() && !at[v]) at[v] = {p.face_patch[f], p.face_beta[f][k]};
+                const std::uint32_t v = p.refined_faces[f.idx()][k];
+                if (v < at.size() && !at[v]) at[v] = {p.face_patch[f].idx(), p.face_beta[f][k]};
             }
         for (std::size_t v = 0; v < at.size(); ++v)
             std::printf("%zu %u %.17g %.17g %.17g\n", v, at[v]->first, at[v]->second[0], at[v]->second[1],

@@ -22,7 +22,7 @@
 #include <fhr/domain/decimate.hpp>
 #include <fhr/exchange/verify.hpp>
 #include <fhr/generate/random_mesh.hpp>
-#include <fhr/pipeline/outputs.hpp>
+#include <fhr/pipeline/run.hpp>
 #include <fhr/pipeline/pipeline.hpp>
 
 namespace {

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <random>
 
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using fhr::collinear;

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include <fhr/core/cones.hpp>
+#include <fhr/core/detail/cones.hpp>
 #include <fhr/core/geometry.hpp>
 #include <fhr/core/topology.hpp>
 #include <fhr/core/trimesh.hpp>
@@ -881,7 +881,7 @@ TEST_CASE("split_face inserts a vertex of valence 3 inside a face (paper Fig. 4)
     });
 }
 
-// ---- Cones over boundary loops (core/cones.hpp; spec/mesh.md CONE-1, CONE-2) ----
+// ---- Cones over boundary loops (core/detail/cones.hpp; spec/mesh.md CONE-1, CONE-2) ----
 
 using fhr::add_cones;
 using fhr::boundary_arc;

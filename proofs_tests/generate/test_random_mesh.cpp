@@ -21,7 +21,7 @@
 #include <fhr/core/build.hpp>
 #include <fhr/core/errors.hpp>
 #include <fhr/core/geometry.hpp>
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 #include <fhr/core/topology.hpp>
 #include <fhr/generate/embedding.hpp>
 #include <fhr/generate/random_mesh.hpp>

@@ -13,7 +13,7 @@
 #include <fhr/core/geometry.hpp>
 #include <fhr/core/surface_point.hpp>
 #include <fhr/core/topology.hpp>
-#include <fhr/geodesic/fast_marching.hpp>
+#include <fhr/geodesic/detail/fast_marching.hpp>
 
 namespace fhr::test {
 

@@ -18,7 +18,7 @@
 #include <fhr/domain/decimate.hpp>
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/geodesic/ellipse.hpp>
-#include <fhr/geodesic/fast_marching.hpp>
+#include <fhr/geodesic/detail/fast_marching.hpp>
 #include <fhr/io/read.hpp>
 #include <fhr/testing/rapidcheck.hpp>
 #include "geodesic/geodesic_checks.hpp"

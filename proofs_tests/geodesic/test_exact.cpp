@@ -26,7 +26,7 @@
 
 #include <fhr/core/build.hpp>
 #include <fhr/core/geometry.hpp>
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 #include <fhr/core/topology.hpp>
 #include <fhr/domain/decimate.hpp>
 #include <fhr/generate/random_mesh.hpp>

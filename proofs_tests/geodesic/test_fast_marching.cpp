@@ -20,7 +20,7 @@
 
 #include <fhr/core/build.hpp>
 #include <fhr/core/errors.hpp>
-#include <fhr/geodesic/fast_marching.hpp>
+#include <fhr/geodesic/detail/fast_marching.hpp>
 #include <fhr/io/read.hpp>
 #include <fhr/testing/rapidcheck.hpp>
 #include "support/analytic_meshes.hpp"

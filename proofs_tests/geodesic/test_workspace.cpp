@@ -20,7 +20,7 @@
 #include <fhr/generate/random_mesh.hpp>
 #include <fhr/geodesic/ellipse.hpp>
 #include <fhr/geodesic/exact.hpp>
-#include <fhr/geodesic/fast_marching.hpp>
+#include <fhr/geodesic/detail/fast_marching.hpp>
 #include <fhr/geodesic/workspace.hpp>
 #include <fhr/testing/rapidcheck.hpp>
 

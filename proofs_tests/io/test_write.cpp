@@ -20,7 +20,7 @@
 #include <rapidcheck/catch.h>
 
 #include <fhr/core/executor.hpp>
-#include <fhr/io/atomic_file.hpp>
+#include <fhr/io/detail/atomic_file.hpp>
 #include <fhr/io/detail/number_text.hpp>
 #include <fhr/io/read.hpp>
 #include <fhr/io/write.hpp>

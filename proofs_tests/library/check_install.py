@@ -4,10 +4,13 @@
   check_install.py SOURCE_DIR install CXX...
       Copies the source tree (the files git knows, committed or not) to a temporary folder,
       configures it with -Dtests=false -Dbench=false -Dpython=false --libdir=lib, builds it and installs it
-      with `meson install --destdir` into a temporary prefix. Checks that the prefix holds the
-      public headers and no detail/ header, libfhr, fhr.pc and the CMake package files. Then builds
-      examples/parameterize.cpp and examples/verify.cpp with nothing but the compiler and
-      `pkg-config --define-prefix --cflags --libs fhr` against that prefix, and runs them on the
+      with `meson install --destdir` into a temporary prefix. Checks that the prefix holds exactly
+      the public headers that spec/library.md lists (no other header: no detail/, app/ or render/),
+      that <fhr/fhr.hpp> includes every one of them but <fhr/testing/rapidcheck.hpp>, and libfhr,
+      fhr.pc and the CMake package files. Then builds examples/parameterize.cpp,
+      examples/verify.cpp and every ```cpp snippet of README.md (its #include lines first, the rest
+      as the body of main) with nothing but the compiler and
+      `pkg-config --define-prefix --cflags --libs fhr` against that prefix, and runs the examples on the
       fandisk: parameterize prints, for every vertex of T, the domain face and β that the
       reference run of `fhr run` wrote for it (reference_outputs/fandisk/param.fhrp.gz); verify
       says `valid` for that file and `INVALID PARAM-5` for a copy with one β made 1.5. Finally a
@@ -21,6 +24,7 @@ The fandisk is read from FHR_CGAL_MESHES or out/cgal-data/data/meshes, as in the
 Exit 0 when everything holds."""
 import gzip
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -59,6 +63,40 @@ def reference_param(tmp):
     bad = tmp / "bad.fhrp"
     bad.write_text("\n".join(lines))
     return good, bad, text
+
+
+def public_headers():
+    """The list of spec/library.md after its `<!-- public headers -->` marker."""
+    text = (source / "spec/library.md").read_text(encoding="utf-8")
+    marker = text.find("<!-- public headers -->")
+    if marker < 0:
+        sys.exit("spec/library.md has no list of public headers (its <!-- public headers --> marker)")
+    listed = []
+    for line in text[marker:].splitlines()[1:]:
+        m = re.fullmatch(r"\s*- `(fhr/[^`]+\.hpp)`", line)
+        if not m:
+            break
+        listed.append(m.group(1))
+    if not listed:
+        sys.exit("spec/library.md lists no public header after its marker")
+    return sorted(listed)
+
+
+def readme_programs(tmp):
+    """Every ```cpp block of README.md as a program: its #include lines, then the rest in main()."""
+    text = (source / "README.md").read_text(encoding="utf-8")
+    blocks = re.findall(r"```cpp\n(.*?)```", text, re.S)
+    if not blocks:
+        sys.exit("README.md has no ```cpp snippet")
+    programs = []
+    for i, block in enumerate(blocks):
+        lines = block.splitlines()
+        includes = [l for l in lines if l.startswith("#include")]
+        body = [l for l in lines if not l.startswith("#include")]
+        program = tmp / ("readme_snippet_%d.cpp" % i)
+        program.write_text("\n".join(includes) + "\n\nint main() {\n" + "\n".join(body) + "\n    return 0;\n}\n")
+        programs.append(program)
+    return programs
 
 
 def check_verdicts(verify_program, good, bad, who):
@@ -116,18 +154,22 @@ with tempfile.TemporaryDirectory() as tmp_name:
         run(["meson", "install", "-C", copy / "build", "--destdir", dest])
         prefix = dest / "usr/local"
         headers = sorted(str(p.relative_to(prefix / "include")) for p in (prefix / "include").rglob("*.hpp"))
-        needed = ["fhr/fhr.hpp", "fhr/version.hpp", "fhr/core/trimesh.hpp", "fhr/pipeline/run.hpp",
-                  "fhr/exchange/verify.hpp", "fhr/testing/rapidcheck.hpp"]
-        missing = [h for h in needed if h not in headers]
-        internal = [h for h in headers if "/detail/" in h]
-        if missing or internal or not all(h.startswith("fhr/") for h in headers):
-            sys.exit("installed headers: missing %s, internals %s, outside fhr/ %s" % (
-                missing, internal, [h for h in headers if not h.startswith("fhr/")]))
+        listed = public_headers()
+        missing = [h for h in listed if h not in headers]
+        unlisted = [h for h in headers if h not in listed]
+        if missing or unlisted:
+            sys.exit("installed headers against spec/library.md's list: missing %s, not listed %s" % (missing, unlisted))
+        umbrella = re.findall(r"#include <(fhr/[^>]+)>", (prefix / "include/fhr/fhr.hpp").read_text(encoding="utf-8"))
+        expected = [h for h in listed if h not in ("fhr/fhr.hpp", "fhr/testing/rapidcheck.hpp")]
+        if sorted(umbrella) != expected:
+            sys.exit("<fhr/fhr.hpp> and the public list differ by %s (it must include every public header but "
+                     "itself and the RapidCheck one)" % sorted(set(umbrella) ^ set(expected)))
         for f in ["lib/libfhr.a", "lib/pkgconfig/fhr.pc", "lib/cmake/fhr/fhrConfig.cmake",
                   "lib/cmake/fhr/fhrConfigVersion.cmake"]:
             if not (prefix / f).exists():
                 sys.exit("not installed: " + f)
-        print("installed: %d public headers under fhr/ (no detail/), libfhr.a, fhr.pc, fhrConfig.cmake" % len(headers))
+        print("installed: the %d public headers of spec/library.md and no other, fhr.hpp including all but "
+              "the RapidCheck one, libfhr.a, fhr.pc, fhrConfig.cmake" % len(headers))
         # CLI-RUN-8: the copy holds no web/node_modules, so this fhr has no page: --html exits 2 at
         # once, saying how to build it, and writes nothing.
         page_out = tmp / "page"
@@ -144,6 +186,10 @@ with tempfile.TemporaryDirectory() as tmp_name:
         for example in ["parameterize", "verify"]:
             run(cxx + ["-std=c++20", "-O2", copy / "examples" / (example + ".cpp"), "-o", tmp / example] + flags)
         check_parameterize(tmp / "parameterize", reference_text)
+        snippets = readme_programs(tmp)
+        for program in snippets:
+            run(cxx + ["-std=c++20", "-O1", program, "-o", program.with_suffix("")] + flags)
+        print("README.md: its %d C++ snippet(s) compile and link against the installed library" % len(snippets))
         check_verdicts(tmp / "verify", good, bad, "verify (pkg-config)")
 
         cmake_project = tmp / "cmake_consumer"

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 #include <fhr/core/trimesh.hpp>
 #include <fhr/param/disk.hpp>
 

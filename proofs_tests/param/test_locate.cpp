@@ -10,9 +10,9 @@
 #include <random>
 
 #include <fhr/core/errors.hpp>
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 #include <fhr/param/certificate.hpp>
-#include <fhr/param/dividing_edges.hpp>
+#include <fhr/param/detail/dividing_edges.hpp>
 #include <fhr/param/locate.hpp>
 #include <fhr/param/patch_map.hpp>
 #include <fhr/testing/rapidcheck.hpp>

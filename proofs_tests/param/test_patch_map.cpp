@@ -16,7 +16,7 @@
 #include <fhr/core/errors.hpp>
 #include <fhr/param/certificate.hpp>
 #include <fhr/param/disk.hpp>
-#include <fhr/param/dividing_edges.hpp>
+#include <fhr/param/detail/dividing_edges.hpp>
 #include <fhr/param/patch_map.hpp>
 #include <fhr/param/weights.hpp>
 #include <fhr/testing/rapidcheck.hpp>

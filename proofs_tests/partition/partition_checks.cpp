@@ -38,10 +38,10 @@ std::set<std::uint32_t> faces_holding(const TriMesh& T, const partition::Origin&
         if (f.valid()) s.insert(f.idx());  // a boundary halfedge has no face
     };
     if (o.vertex.valid()) {
-        T.for_each_outgoing(o.vertex, [&](HalfedgeId h) { add(T.face(h)); });
+        T.for_each_outgoing(VertexId(o.vertex), [&](HalfedgeId h) { add(T.face(h)); });
     } else {
-        add(T.face(TriMesh::halfedge(o.edge, 0)));
-        add(T.face(TriMesh::halfedge(o.edge, 1)));
+        add(T.face(TriMesh::halfedge(EdgeId(o.edge), 0)));
+        add(T.face(TriMesh::halfedge(EdgeId(o.edge), 1)));
     }
     return s;
 }
@@ -79,13 +79,14 @@ std::string piece_violation(const TriMesh& T, const partition::Network& net) {
         unsigned bits = 0;
         HalfedgeId h = T.halfedge(F);
         for (unsigned s = 0; s < 3; ++s, h = T.next(h))
-            if (o.vertex.valid() ? (T.from(h) == o.vertex || T.to(h) == o.vertex) : TriMesh::edge(h) == o.edge)
+            if (o.vertex.valid() ? (T.from(h) == VertexId(o.vertex) || T.to(h) == VertexId(o.vertex))
+                                 : TriMesh::edge(h) == EdgeId(o.edge))
                 bits |= 1u << s;
         return bits;
     };
     for (const std::vector<FaceId>& faces : pieces) {
         if (faces.size() < 2) continue;  // a triangle has one triangulation
-        const FaceId F = net.t_face[faces.front()];
+        const FaceId F(net.t_face[faces.front()]);
         std::set<std::uint32_t> in_piece;
         for (FaceId f : faces) in_piece.insert(f.idx());
         std::map<std::uint32_t, std::uint32_t> after;  // the piece's boundary, vertex to next vertex
@@ -166,14 +167,14 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
     // T′ inside a face of T, the same area.
     if (M.n_vertices() < T.n_vertices() || P.network.origin.size() != M.n_vertices()) return "PART-2: vertex count";
     for (VertexId v : T.vertices())
-        if (M.position(v) != T.position(v) || P.network.origin[v].vertex != v) {
+        if (M.position(v) != T.position(v) || P.network.origin[v].vertex != TVertexId(v)) {
             why << "PART-2: vertex " << v.idx() << " of T moved";
             return why.str();
         }
     for (std::size_t i = T.n_vertices(); i < M.n_vertices(); ++i) {
         const partition::Origin& o = P.network.origin[VertexId(static_cast<VertexId::Index>(i))];
         if (o.vertex.valid() || !(o.t > 0 && o.t < 1)) return "PART-2: a new vertex is not inside an edge of T";
-        const HalfedgeId h = TriMesh::halfedge(o.edge, 0);
+        const HalfedgeId h = TriMesh::halfedge(EdgeId(o.edge), 0);
         const Vec3 &a = T.position(T.from(h)), &b = T.position(T.to(h));
         if (segment_distance(M.position(VertexId(static_cast<VertexId::Index>(i))), a, b) > 1e-12 * (b - a).norm()) {
             why << "PART-2: vertex " << i << " of T′ is off its edge " << o.edge.idx() << " of T";
@@ -203,9 +204,10 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
     if (P.network.path.size() != D.mesh.n_edges() || P.paths.size() != D.mesh.n_edges()) return "PART-3: path count";
     std::vector<int> on_path(M.n_vertices(), -1);
     for (EdgeId e : D.mesh.edges()) {
-        const auto& path = P.network.path[e];
-        const HalfedgeId dh = TriMesh::halfedge(e, 0);
-        if (path.size() < 2 || path.front() != D.t_vertex[D.mesh.from(dh)] || path.back() != D.t_vertex[D.mesh.to(dh)])
+        const auto& path = P.network.path[DEdgeId(e)];
+        const DHalfedgeId dh(TriMesh::halfedge(e, 0));
+        if (path.size() < 2 || path.front() != D.t_vertex[D.mesh.from(HalfedgeId(dh))] ||
+            path.back() != D.t_vertex[D.mesh.to(HalfedgeId(dh))])
             return "PART-3: a path does not join its corners";
         double length = 0;
         for (std::size_t i = 0; i + 1 < path.size(); ++i) {
@@ -234,14 +236,14 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
         }
     }
     std::size_t labelled = 0;
-    for (HalfedgeId d : P.network.d_halfedge) labelled += d.valid();
+    for (DHalfedgeId d : P.network.d_halfedge) labelled += d.valid();
     std::size_t segments = 0;
     for (const auto& path : P.network.path) segments += path.size() - 1;
     if (labelled != 2 * segments) return "PART-3: edges of T′ carry labels of no path";
     // PART-5: condition (2) — around x_j the curves leave in the order of D's edges around v_j.
     for (VertexId vj : D.mesh.vertices()) {
-        std::vector<HalfedgeId> d_order, t_order;
-        D.mesh.for_each_outgoing(vj, [&](HalfedgeId h) { d_order.push_back(h); });
+        std::vector<DHalfedgeId> d_order, t_order;
+        D.mesh.for_each_outgoing(vj, [&](HalfedgeId h) { d_order.push_back(DHalfedgeId(h)); });
         M.for_each_outgoing(D.t_vertex[vj], [&](HalfedgeId h) {
             if (P.network.d_halfedge[h].valid()) t_order.push_back(P.network.d_halfedge[h]);
         });
@@ -268,7 +270,7 @@ std::string partition_violation(const TriMesh& T, const partition::Partition& P)
         return "PART-6: a face of T′ is not in exactly one patch";
     // PART-7: patch adjacency is D's — across every curve edge, the patches of D's two faces.
     for (HalfedgeId h : M.halfedges()) {
-        const HalfedgeId dh = P.network.d_halfedge[h];
+        const HalfedgeId dh(P.network.d_halfedge[h]);
         if (M.is_boundary(h)) {
             // PART-12: T′'s boundary lies on the curves of D's boundary edges.
             if (!dh.valid() || !D.mesh.is_boundary(dh))

@@ -202,28 +202,28 @@ TEST_CASE("PART-4: a path through one point twice is a shared node of its own ed
     REQUIRE(emb.conflicts.size() == 2);  // v1 and v2, each met twice
     for (const Conflict& c : emb.conflicts) {
         CHECK(c.kind == Conflict::Kind::shared_node);
-        CHECK(c.d_edge_a == EdgeId(e));
-        CHECK(c.d_edge_b == EdgeId(e));
+        CHECK(c.d_edge_a == DEdgeId(e));
+        CHECK(c.d_edge_b == DEdgeId(e));
         CHECK(c.describe() == "the path of domain edge 4 passes a point twice");
     }
-    CHECK(emb.conflicts[0].near[0] == v1.vertex);
-    CHECK(emb.conflicts[1].near[0] == v2.vertex);
+    CHECK(emb.conflicts[0].near[0] == TVertexId(v1.vertex));
+    CHECK(emb.conflicts[1].near[0] == TVertexId(v2.vertex));
 }
 
 TEST_CASE("PART-11: every kind of conflict is described by the domain edges and vertex it names",
           "[partition][contract]") {
     // These sentences are what a refused user domain is told (PART-11), one per conflicting pair.
-    const auto described = [](Conflict::Kind kind, std::uint32_t a, std::uint32_t b, VertexId v = {}) {
-        return Conflict{kind, EdgeId(a), EdgeId(b), v, {}}.describe();
+    const auto described = [](Conflict::Kind kind, std::uint32_t a, std::uint32_t b, DVertexId v = {}) {
+        return Conflict{kind, DEdgeId(a), DEdgeId(b), v, {}}.describe();
     };
     using K = Conflict::Kind;
     CHECK(described(K::shared_node, 3, 8) ==
           "the paths of domain edge 3 and domain edge 8 meet at a point that is not a common end");
     CHECK(described(K::shared_node, 5, 5) == "the path of domain edge 5 passes a point twice");
     CHECK(described(K::crossing, 0, 11) == "the paths of domain edge 0 and domain edge 11 cross");
-    CHECK(described(K::through_corner, 7, 7, VertexId(2)) ==
+    CHECK(described(K::through_corner, 7, 7, DVertexId(2)) ==
           "the path of domain edge 7 passes through the corner of domain vertex 2");
-    CHECK(described(K::order, 6, 6, VertexId(9)) ==
+    CHECK(described(K::order, 6, 6, DVertexId(9)) ==
           "around domain vertex 9 the path of domain edge 6 is out of the domain's cyclic order");
 }
 
@@ -260,10 +260,10 @@ TriMesh torus(int n) {
 }
 
 // The D halfedges of face df of the fixture's D.
-std::array<HalfedgeId, 3> sides(FaceId df) {
+std::array<DHalfedgeId, 3> sides(FaceId df) {
     const TriMesh& m = tetrahedron().D.mesh;
     const HalfedgeId h = m.halfedge(df);
-    return {h, m.next(h), m.next(m.next(h))};
+    return {DHalfedgeId(h), DHalfedgeId(m.next(h)), DHalfedgeId(m.next(m.next(h)))};
 }
 
 // An edge of T′ inside the patch of df (both its faces there, no curve on it) whose ends are on
@@ -289,11 +289,14 @@ TEST_CASE("PART-6, PART-7: extract_patches refuses regions that do not match D's
     CHECK(patches_of([](partition::Network&) {}) == "accepted");  // the control
     const EdgeId e(0);
     const FaceId left = f.D.mesh.face(TriMesh::halfedge(e, 0)), right = f.D.mesh.face(TriMesh::halfedge(e, 1));
-    auto label_face = [&](const partition::Network& net, HalfedgeId h) { return f.D.mesh.face(net.d_halfedge[h]); };
+    auto label_face = [&](const partition::Network& net, HalfedgeId h) {
+        return f.D.mesh.face(HalfedgeId(net.d_halfedge[h]));
+    };
     // The curve of D edge 0 unlabelled: its two patches are one region, bounded by both faces' curves.
     auto unlabel_edge_0 = [&](partition::Network& net) {
         for (HalfedgeId h : net.mesh.halfedges())
-            if (net.d_halfedge[h].valid() && TriMesh::edge(net.d_halfedge[h]) == e) net.d_halfedge[h] = HalfedgeId();
+            if (net.d_halfedge[h].valid() && TriMesh::edge(net.d_halfedge[h]) == DEdgeId(e))
+                net.d_halfedge[h] = DHalfedgeId();
     };
     const std::string merged = patches_of(unlabel_edge_0);
     CHECK((merged == "the patch of domain face " + std::to_string(left.idx()) + " runs into the patch of domain face " +
@@ -307,7 +310,7 @@ TEST_CASE("PART-6, PART-7: extract_patches refuses regions that do not match D's
                   if (net.d_halfedge[h].valid() && label_face(net, h) == right) net.d_halfedge[h] = sides(left)[0];
           }) == "the patch of domain face " + std::to_string(right.idx()) + " is empty");
     // No curve at all: one region, on no face of D.
-    CHECK(patches_of([](partition::Network& net) { net.d_halfedge.assign(net.mesh.n_halfedges(), HalfedgeId()); }) ==
+    CHECK(patches_of([](partition::Network& net) { net.d_halfedge.assign(net.mesh.n_halfedges(), DHalfedgeId()); }) ==
           "a part of the surface is bounded by no geodesic path");
     // A face of T′ inside the patch of D face 2 ringed by labels of that face: the patch is two regions.
     const FaceId df(2);
@@ -328,26 +331,26 @@ TEST_CASE(
     "[partition][contract]") {
     const Fixture& f = tetrahedron();
     const FaceId df(0);
-    const EdgeId e =
-        TriMesh::edge(sides(df)[0]);  // a curve on the boundary of patch 0 (face 0 is the lower of its faces)
-    REQUIRE(f.D.mesh.face(TriMesh::twin(sides(df)[0])).idx() > df.idx());
+    const EdgeId e(
+        TriMesh::edge(sides(df)[0]));  // a curve on the boundary of patch 0 (face 0 is the lower of its faces)
+    REQUIRE(f.D.mesh.face(HalfedgeId(TriMesh::twin(sides(df)[0]))).idx() > df.idx());
     // Every label moved to the next face of D: the regions are still one per face, but each
     // patch's curves now have another face's patch on their left.
     CHECK(patches_of([&](partition::Network& net) {
-              for (HalfedgeId& label : net.d_halfedge)
-                  if (label.valid()) label = sides(FaceId((f.D.mesh.face(label).idx() + 1) % 4))[0];
+              for (DHalfedgeId& label : net.d_halfedge)
+                  if (label.valid()) label = sides(FaceId((f.D.mesh.face(HalfedgeId(label)).idx() + 1) % 4))[0];
           }) == "the patch of domain face 0 is not on the left of its curves");
     // A lattice point left out of the curve: two of its consecutive vertices are not joined by an edge of T′.
     CHECK(patches_of([&](partition::Network& net) {
-              std::vector<VertexId>& path = net.path[e];
+              std::vector<VertexId>& path = net.path[DEdgeId(e)];
               path.erase(path.begin() + static_cast<std::ptrdiff_t>(path.size() / 2));
           }) == "the patch of domain face 0 is not on the left of its curves");
     // A spur: the curve goes from one of its vertices v into the patch to w and back to v.
-    const VertexId v = f.network.path[e][2];
+    const VertexId v = f.network.path[DEdgeId(e)][2];
     const HalfedgeId spur = inner_edge(df, v);
     REQUIRE(spur.valid());
     CHECK(patches_of([&](partition::Network& net) {
-              std::vector<VertexId>& path = net.path[e];
+              std::vector<VertexId>& path = net.path[DEdgeId(e)];
               path.insert(path.begin() + 3, {net.mesh.to(spur), v});
           }) == "the patch of domain face 0 touches itself on its boundary");
     // A slit inside the patch, labelled on both sides with the face's own halfedges: a second boundary.
@@ -371,15 +374,15 @@ TEST_CASE("PART-8: extract_patches refuses a patch with a handle (one boundary l
     net.mesh = torus(n);
     const std::array<VertexId, 3> ring{torus_vertex(n, 0, 0), torus_vertex(n, 1, 0),
                                        torus_vertex(n, 1, 1)};  // face 0 of T′
-    net.d_halfedge.assign(net.mesh.n_halfedges(), HalfedgeId());
-    net.path.resize(D.mesh.n_edges());
+    net.d_halfedge = HalfedgeData<DHalfedgeId>(net.mesh, DHalfedgeId());
+    net.path = IdVector<DEdgeId, std::vector<VertexId>>(D.mesh, {});
     for (EdgeId e : D.mesh.edges()) {
         const HalfedgeId dh = TriMesh::halfedge(e, 0);
         const VertexId a = ring[D.mesh.from(dh).idx()], b = ring[D.mesh.to(dh).idx()];
         const HalfedgeId h = net.mesh.find_halfedge(a, b);
-        net.d_halfedge[h] = dh;
-        net.d_halfedge[TriMesh::twin(h)] = TriMesh::twin(dh);
-        net.path[e] = {a, b};
+        net.d_halfedge[h] = DHalfedgeId(dh);
+        net.d_halfedge[TriMesh::twin(h)] = DHalfedgeId(TriMesh::twin(dh));
+        net.path[DEdgeId(e)] = {a, b};
     }
     // The curves of face 0 run around F with F on their left.
     REQUIRE(net.mesh.face(net.mesh.find_halfedge(ring[0], ring[1])) == FaceId(0));
@@ -463,7 +466,7 @@ TEST_CASE("PART-10: the restricted path refuses an end outside its region, namin
     const Fixture& f = tetrahedron();
     // The region: the patch of D face 0, bounded by its three curves (each with the patch on its left).
     std::vector<geodesic::GeodesicPath> ring;
-    for (HalfedgeId dh : sides(FaceId(0))) {
+    for (DHalfedgeId dh : sides(FaceId(0))) {
         geodesic::GeodesicPath p = f.paths[TriMesh::edge(dh).idx()];
         if (dh.idx() & 1u) std::reverse(p.points.begin(), p.points.end());
         ring.push_back(p);

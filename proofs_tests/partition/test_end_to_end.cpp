@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include <fhr/exchange/verify.hpp>
-#include <fhr/pipeline/outputs.hpp>
+#include <fhr/pipeline/run.hpp>
 #include <fhr/pipeline/pipeline.hpp>
 #include "support/analytic_meshes.hpp"
 
@@ -41,11 +41,11 @@ double linear_deviation(const std::vector<Vec3>& corners, const std::vector<Tria
     // in the flat domain triangle. Rounding: the solve reproduces linear functions up to a small
     // multiple of the condition number times 1e−16; 1e−12 leaves a wide margin.
     double worst = 0;
-    for (std::size_t f = 0; f < p.refined_faces.size(); ++f) {
-        const Triangle& d = faces[p.face_patch[f]];
+    for (RefinedFaceId f : p.face_patch.ids()) {
+        const Triangle& d = faces[p.face_patch[f].idx()];
         for (int c = 0; c < 3; ++c) {
-            const auto want =
-                barycentric(p.refined_positions[p.refined_faces[f][c]], corners[d[0]], corners[d[1]], corners[d[2]]);
+            const auto want = barycentric(p.refined_positions[p.refined_faces[f.idx()][c]], corners[d[0]],
+                                          corners[d[1]], corners[d[2]]);
             for (int r = 0; r < 3; ++r) worst = std::max(worst, std::abs(p.face_beta[f][c][r] - want[r]));
         }
     }

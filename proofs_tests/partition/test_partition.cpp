@@ -89,10 +89,11 @@ std::string restricted_oracle_violation(const TriMesh& T, const partition::Parti
     // A curve of the final network as a curve of T, exactly where T′ has it.
     EdgeData<geodesic::GeodesicPath> curves(D.mesh.n_edges());
     for (EdgeId e : curves.ids())
-        for (VertexId v : net.path[e]) {
+        for (VertexId v : net.path[DEdgeId(e)]) {
             const partition::Origin& o = net.origin[v];
-            curves[e].points.push_back(o.vertex.valid() ? SurfacePoint::at_vertex(o.vertex)
-                                                        : SurfacePoint::on_edge(TriMesh::halfedge(o.edge, 0), o.t));
+            curves[e].points.push_back(o.vertex.valid()
+                                           ? SurfacePoint::at_vertex(VertexId(o.vertex))
+                                           : SurfacePoint::on_edge(TriMesh::halfedge(EdgeId(o.edge), 0), o.t));
         }
     for (EdgeId e : D.mesh.edges()) {
         if (!all_edges && P.curves[e].kind != partition::CurveKind::restricted) continue;
@@ -103,7 +104,7 @@ std::string restricted_oracle_violation(const TriMesh& T, const partition::Parti
         for (FaceId f : net.mesh.faces())
             if (P.patches.patch_of_face[f] == f1 || P.patches.patch_of_face[f] == f2) {
                 mask[f] = 1;
-                touched.push_back(net.t_face[f]);
+                touched.push_back(FaceId(net.t_face[f]));
             }
         std::sort(touched.begin(), touched.end());
         touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
@@ -198,11 +199,11 @@ TEST_CASE("PART-4: a path through another corner breaks (1) and is reported", "[
         const partition::Network& net = e.network;
         auto nearest = [&](VertexId v) {
             const partition::Origin& o = net.origin[v];
-            return o.vertex.valid() ? o.vertex
-                   : o.t < 0.5      ? T.from(TriMesh::halfedge(o.edge, 0))
-                                    : T.to(TriMesh::halfedge(o.edge, 0));
+            return o.vertex.valid() ? VertexId(o.vertex)
+                   : o.t < 0.5      ? T.from(TriMesh::halfedge(EdgeId(o.edge), 0))
+                                    : T.to(TriMesh::halfedge(EdgeId(o.edge), 0));
         };
-        const std::vector<VertexId>& path = net.path[d];
+        const std::vector<VertexId>& path = net.path[DEdgeId(d)];
         std::size_t at = 0;
         for (std::size_t i = 1; i + 1 < path.size(); ++i)
             if (net.corner[path[i]].valid()) at = i;
@@ -210,13 +211,13 @@ TEST_CASE("PART-4: a path through another corner breaks (1) and is reported", "[
             nearest(path[at + 2]) == nearest(path[at + 1]))
             continue;
         const auto corner = std::find_if(e.conflicts.begin(), e.conflicts.end(), [&](const Conflict& c) {
-            return c.kind == Conflict::Kind::through_corner && c.d_edge_a == d;
+            return c.kind == Conflict::Kind::through_corner && c.d_edge_a == DEdgeId(d);
         });
         REQUIRE(corner != e.conflicts.end());
         CAPTURE(d.idx());
         CHECK(corner->d_vertex == net.corner[path[at]]);
-        CHECK(corner->near[0] == nearest(path[at - 1]));
-        CHECK(corner->near[1] == nearest(path[at + 1]));
+        CHECK(corner->near[0] == TVertexId(nearest(path[at - 1])));
+        CHECK(corner->near[1] == TVertexId(nearest(path[at + 1])));
         CHECK_FALSE(corner->near[2].valid());
         told_apart = true;
         break;
@@ -226,10 +227,10 @@ TEST_CASE("PART-4: a path through another corner breaks (1) and is reported", "[
 
 TEST_CASE("PART-5: condition (2) at one vertex flags exactly the curves beside a misplaced one", "[partition][unit]") {
     // D's five halfedges out of v_j in D's cyclic order: a b c d e (ids 10, 12, 14, 16, 18).
-    std::vector<HalfedgeId> d;
-    for (std::uint32_t k = 0; k < 5; ++k) d.push_back(HalfedgeId(10 + 2 * k));
+    std::vector<DHalfedgeId> d;
+    for (std::uint32_t k = 0; k < 5; ++k) d.push_back(DHalfedgeId(10 + 2 * k));
     const auto at = [&](std::initializer_list<int> order) {
-        std::vector<HalfedgeId> t;
+        std::vector<DHalfedgeId> t;
         for (int k : order) t.push_back(d[static_cast<std::size_t>(k)]);
         return partition::out_of_order(d, t);
     };
@@ -241,7 +242,7 @@ TEST_CASE("PART-5: condition (2) at one vertex flags exactly the curves beside a
     CHECK(at({0, 2, 1, 3, 4}) == Flags{1, 1, 1, 1, 0});
     CHECK(at({4, 3, 2, 1, 0}) == Flags{1, 1, 1, 1, 1});  // reversed (a domain turned over)
     CHECK(at({0, 1, 2, 3}) == Flags{1, 1, 1, 1, 1});     // a curve missing at x_j
-    CHECK(partition::out_of_order(d, std::vector<HalfedgeId>{d[0], d[1], d[2], d[3], HalfedgeId(99)}) ==
+    CHECK(partition::out_of_order(d, std::vector<DHalfedgeId>{d[0], d[1], d[2], d[3], DHalfedgeId(99)}) ==
           Flags{1, 1, 1, 1, 1});
 }
 

@@ -53,10 +53,12 @@ wavelet::AffineBounds clipped_maxima(const wavelet::Refinement& r, std::span<con
         const double l2 = ((b[0] - a[0]) * (q[1] - a[1]) - (q[0] - a[0]) * (b[1] - a[1])) / det;
         return std::array<double, 3>{1 - l1 - l2, l1, l2};
     };
-    for (std::size_t i = 0; i < p.refined_faces.size(); ++i) {
-        const auto& beta = p.face_beta[i];
+    for (RefinedFaceId face : p.face_patch.ids()) {
+        const std::size_t i = face.idx();
+        const auto& beta = p.face_beta[face];
         const std::array<P2, 3> f{P2{beta[0][0], beta[0][1]}, P2{beta[1][0], beta[1][1]}, P2{beta[2][0], beta[2][1]}};
-        for (std::uint32_t g = p.face_patch[i] * children; g < (p.face_patch[i] + 1) * children; ++g) {
+        for (std::uint32_t g = p.face_patch[face].idx() * children; g < (p.face_patch[face].idx() + 1) * children;
+             ++g) {
             const auto& cb = r.corner_beta[g];
             const std::array<P2, 3> h{P2{cb[0][0], cb[0][1]}, P2{cb[1][0], cb[1][1]}, P2{cb[2][0], cb[2][1]}};
             const double orientation =
@@ -89,7 +91,7 @@ wavelet::AffineBounds clipped_maxima(const wavelet::Refinement& r, std::span<con
                 }
                 const double gap = (at - phi).norm();
                 out.remesh[g] = std::max(out.remesh[g], gap);
-                out.t[p.face_t[i]] = std::max(out.t[p.face_t[i]], gap);
+                out.t[p.face_t[face].idx()] = std::max(out.t[p.face_t[face].idx()], gap);
             }
         }
     }
@@ -111,7 +113,7 @@ TEST_CASE("GlobalMap: φ maps corners to x_j, is continuous across D's edges, an
         for (int k = 0; k < 3; ++k) {
             std::array<double, 3> e{0, 0, 0};
             e[static_cast<std::size_t>(k)] = 1;
-            CHECK(map.phi(d, e) == T.position(D.t_vertex[c[static_cast<std::size_t>(k)]]));
+            CHECK(map.phi(DFaceId(d), e) == T.position(D.t_vertex[c[static_cast<std::size_t>(k)]]));
         }
     }
     // Continuity: a point of edge [v_a, v_b] from either face gives the same point, bit for bit.
@@ -127,7 +129,7 @@ TEST_CASE("GlobalMap: φ maps corners to x_j, is continuous across D's edges, an
                 const auto c = D.mesh.face_vertices(d);
                 std::array<double, 3> beta{0, 0, 0};
                 for (std::size_t k = 0; k < 3; ++k) beta[k] = c[k] == a ? 1 - t : c[k] == b ? t : 0.0;
-                return map.phi(d, beta);
+                return map.phi(DFaceId(d), beta);
             };
             mismatches += in(D.mesh.face(h)) != in(D.mesh.face(TriMesh::twin(h)));
         }
@@ -145,7 +147,7 @@ TEST_CASE("GlobalMap: φ maps corners to x_j, is continuous across D's edges, an
         Vec3 x = Vec3::Zero();
         for (int k = 0; k < 3; ++k)
             x += w[static_cast<std::size_t>(k)] * p.refined_positions[p.refined_faces[f][static_cast<std::size_t>(k)]];
-        const auto [d, beta] = map.psi(f, w);
+        const auto [d, beta] = map.psi(RefinedFaceId(static_cast<RefinedFaceId::Index>(f)), w);
         worst = std::max(worst, (map.phi(d, beta) - x).norm() / scale);
     }
     // The β of ψ carry ~1e−16 relative error; through a triangle of the map that is ~1e−12 of the
@@ -183,12 +185,13 @@ TEST_CASE(
         const pipeline::GlobalMap map(*p);
         const wavelet::Refinement r = wavelet::refine(p->partition.domain.mesh, J);
         const std::vector<Vec3> fj =
-            wavelet::sample(r, [&](FaceId d, const std::array<double, 3>& b) { return map.phi(d, b); });
+            wavelet::sample(r, [&](FaceId d, const std::array<double, 3>& b) { return map.phi(DFaceId(d), b); });
         const wavelet::AffinePieces pieces{p->refined_positions, p->refined_faces.size(),
                                            [&](std::size_t i, Triangle& c, std::uint32_t& d,
                                                std::array<std::array<double, 3>, 3>& beta, std::uint32_t& t) {
-                                               c = p->refined_faces[i], d = p->face_patch[i], beta = p->face_beta[i],
-                                               t = p->face_t[i];
+                                               const RefinedFaceId f(static_cast<RefinedFaceId::Index>(i));
+                                               c = p->refined_faces[i], d = p->face_patch[f].idx(),
+                                               beta = p->face_beta[f], t = p->face_t[f].idx();
                                            }};
         const wavelet::AffineBounds bounds = wavelet::affine_bounds(r, fj, pieces, T.n_faces(), 0);
         const double diagonal = (bounding_box(T).max - bounding_box(T).min).norm();
@@ -219,11 +222,12 @@ TEST_CASE(
                 std::array<double, 3> beta{};
                 for (std::size_t i = 0; i < 3; ++i) beta[i] = l[0] * cb[0][i] + l[1] * cb[1][i] + l[2] * cb[2][i];
                 const Vec3 at = l[0] * fj[c[0].idx()] + l[1] * fj[c[1].idx()] + l[2] * fj[c[2].idx()];
-                RC_ASSERT((at - map.phi(root, beta)).norm() <= bounds.remesh[g.idx()] * (1 + 1e-9) + 1e-12 * diagonal);
+                RC_ASSERT((at - map.phi(DFaceId(root), beta)).norm() <=
+                          bounds.remesh[g.idx()] * (1 + 1e-9) + 1e-12 * diagonal);
             }
         }
         // From T: f^J at ψ(x), in the face of D^J under the root face that holds ψ(x).
-        const auto fj_at = [&](FaceId d, const std::array<double, 3>& beta) {
+        const auto fj_at = [&](DFaceId d, const std::array<double, 3>& beta) {
             const auto n = static_cast<std::uint32_t>(1u << (2 * J));
             for (std::uint32_t g = d.idx() * n; g < (d.idx() + 1) * n; ++g) {
                 const auto& cb = r.corner_beta[g];
@@ -246,8 +250,9 @@ TEST_CASE(
                 const std::array<double, 3> w{1 - s - t, s, t};
                 Vec3 x = Vec3::Zero();
                 for (std::size_t k = 0; k < 3; ++k) x += w[k] * p->refined_positions[p->refined_faces[i][k]];
-                const auto [d, beta] = map.psi(i, w);
-                RC_ASSERT((x - fj_at(d, beta)).norm() <= bounds.t[p->face_t[i]] * (1 + 1e-9) + 1e-12 * diagonal);
+                const RefinedFaceId f(static_cast<RefinedFaceId::Index>(i));
+                const auto [d, beta] = map.psi(f, w);
+                RC_ASSERT((x - fj_at(d, beta)).norm() <= bounds.t[p->face_t[f].idx()] * (1 + 1e-9) + 1e-12 * diagonal);
             }
     });
 }

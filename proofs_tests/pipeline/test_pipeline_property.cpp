@@ -27,7 +27,6 @@
 #include <fhr/core/topology.hpp>
 #include <fhr/domain/decimate.hpp>
 #include <fhr/exchange/verify.hpp>
-#include <fhr/pipeline/outputs.hpp>
 #include <fhr/pipeline/pipeline.hpp>
 #include <fhr/pipeline/run.hpp>
 #include <fhr/testing/rapidcheck.hpp>
@@ -153,7 +152,7 @@ std::string boundary_follows(const TriMesh& T, const partition::Partition& P) {
             arc.push_back(VertexId(u));
         }
         if (h != h0) std::reverse(arc.begin(), arc.end());  // P.network.path runs along (e, 0)
-        if (P.network.path[e] != arc)
+        if (P.network.path[DEdgeId(e)] != arc)
             return "the curve of boundary edge " + std::to_string(e.idx()) + " of D is not the arc of ∂T from " +
                    std::to_string(a) + " to " + std::to_string(b);
     }

@@ -3,7 +3,7 @@
 // verdict and the wavelets in the result; options it cannot take are refused as InvalidInput; the
 // independent tasks run on the caller's executor, with the same result on any number of threads;
 // a caller's task runs beside the oracle on the file it judges (fhr run writes its files there,
-// the same bytes as write_outputs after the run). REN-15: pipeline::write_figures draws the
+// the same bytes as write_outputs after the run). REN-15: app::write_figures draws the
 // boundary of a surface with holes in every figure.
 #include <catch2/catch.hpp>
 
@@ -14,9 +14,9 @@
 
 #include <fhr/core/errors.hpp>
 #include <fhr/core/executor.hpp>
-#include <fhr/pipeline/outputs.hpp>
+#include <fhr/app/outputs.hpp>
 #include <fhr/generate/random_mesh.hpp>
-#include <fhr/pipeline/run.hpp>
+#include <fhr/pipeline/detail/run_beside.hpp>
 #include "render/png_reader.hpp"
 #include "support/test_support.hpp"
 
@@ -126,19 +126,20 @@ TEST_CASE(
     std::size_t calls = 0, wavelet_calls = 0;
     exchange::ParamFile seen;
     std::vector<Vec3> seen_remesh;
-    options.beside_oracle = [&](const pipeline::Parameterization& p, const exchange::ParamFile& file) {
+    pipeline::RunBeside tasks;
+    tasks.beside_oracle = [&](const pipeline::Parameterization& p, const exchange::ParamFile& file) {
         ++calls;
         CHECK(p.refined_positions.empty());  // lent to the file meanwhile
         CHECK(p.face_beta.empty());
         seen = file;
-        pipeline::write_parameterization(beside, p, file, options.method.executor);
+        app::write_parameterization(beside, p, file, options.method.executor);
     };
-    options.after_wavelets = [&](const wavelet::WaveletResult& w) {  // §5's meshes as soon as §5 is done
+    tasks.after_wavelets = [&](const wavelet::WaveletResult& w) {  // §5's meshes as soon as §5 is done
         ++wavelet_calls;
         seen_remesh = w.remesh_positions;
-        pipeline::write_wavelets(beside, w, options.method.executor);
+        app::write_wavelets(beside, w, options.method.executor);
     };
-    const pipeline::RunResult r = pipeline::run(T, options);
+    const pipeline::RunResult r = pipeline::run(T, options, tasks);
     REQUIRE(r.certified());
     REQUIRE(r.wavelets);
     CHECK(calls == 1);
@@ -146,16 +147,16 @@ TEST_CASE(
     CHECK(seen == pipeline::to_param_file(r.parameterization));
     CHECK(seen_remesh == r.wavelets->remesh_positions);
     // The rest written after the run, and everything written after it in another folder: the same bytes.
-    const pipeline::InputInfo input{.path = "generated", .vertices = T.n_vertices(), .faces = T.n_faces(), .genus = 1};
-    const pipeline::Timings timings;
+    const app::InputInfo input{.path = "generated", .vertices = T.n_vertices(), .faces = T.n_faces(), .genus = 1};
+    const app::Timings timings;
     // The files written beside are not written again (a new file would have a new time).
     const auto written_at = [&](const char* name) { return std::filesystem::last_write_time(beside + "/" + name); };
     const auto param_at = written_at("param.fhrp"), remesh_at = written_at("remesh_L1.off");
-    pipeline::write_outputs(beside, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets,
-                            {.parameterization = 0.25, .wavelets = 0.125});
+    app::write_outputs(beside, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets,
+                       {.parameterization = 0.25, .wavelets = 0.125});
     CHECK(written_at("param.fhrp") == param_at);
     CHECK(written_at("remesh_L1.off") == remesh_at);
-    pipeline::write_outputs(after, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets);
+    app::write_outputs(after, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets);
     std::vector<std::string> names;
     for (const auto& entry : std::filesystem::directory_iterator(after))
         names.push_back(entry.path().filename().string());
@@ -171,24 +172,24 @@ TEST_CASE(
     CHECK(test::read_file(after + "/timings.json").find("\"writing_beside_oracle\"") == std::string::npos);
     // One group alone: its seconds alone (the other group written here).
     const std::string one = test::temp_path("run-one-group");
-    pipeline::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets,
-                            {.parameterization = 0.25, .wavelets = std::nullopt});
+    app::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets,
+                       {.parameterization = 0.25, .wavelets = std::nullopt});
     CHECK(test::read_file(one + "/timings.json").find("\"writing_beside_oracle\": 0.25\n") != std::string::npos);
     CHECK(std::filesystem::exists(one + "/remesh_L1.off"));
     CHECK_FALSE(std::filesystem::exists(one + "/param.fhrp"));
-    pipeline::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets,
-                            {.parameterization = std::nullopt, .wavelets = 0.125});
+    app::write_outputs(one, input, r.parameterization, r.oracle, timings, options.method, &*r.wavelets,
+                       {.parameterization = std::nullopt, .wavelets = 0.125});
     CHECK(test::read_file(one + "/timings.json").find("\"writing_beside_oracle\": 0.125\n") != std::string::npos);
     CHECK(std::filesystem::exists(one + "/param.fhrp"));
 
     // A task that throws: the run throws it, once the oracle and §5 are done.
-    options.beside_oracle = [](const pipeline::Parameterization&, const exchange::ParamFile&) {
+    tasks.beside_oracle = [](const pipeline::Parameterization&, const exchange::ParamFile&) {
         throw InvalidInput("out", 0, "cannot write");
     };
-    CHECK_THROWS_AS(pipeline::run(T, options), InvalidInput);
-    options.beside_oracle = nullptr;
-    options.after_wavelets = [](const wavelet::WaveletResult&) { throw InvalidInput("out", 0, "cannot write"); };
-    CHECK_THROWS_AS(pipeline::run(T, options), InvalidInput);
+    CHECK_THROWS_AS(pipeline::run(T, options, tasks), InvalidInput);
+    tasks.beside_oracle = nullptr;
+    tasks.after_wavelets = [](const wavelet::WaveletResult&) { throw InvalidInput("out", 0, "cannot write"); };
+    CHECK_THROWS_AS(pipeline::run(T, options, tasks), InvalidInput);
 }
 
 TEST_CASE("REN-15: write_figures draws the boundary of a surface with holes in both panels of Figs. 6-9",
@@ -208,7 +209,7 @@ TEST_CASE("REN-15: write_figures draws the boundary of a surface with holes in b
     CHECK(boundary_curves > 0);
     const std::string dir = test::temp_path("boundary-run-figures");
     std::filesystem::create_directories(dir);
-    pipeline::write_figures(dir, T, r.parameterization, 1, &*r.wavelets);
+    app::write_figures(dir, T, r.parameterization, 1, &*r.wavelets);
     for (const char* name : {"fig6", "fig7", "fig8", "fig9"}) {
         INFO(name);
         const render::Image image =

@@ -13,7 +13,7 @@
 #include <cmath>
 
 #include <fhr/core/errors.hpp>
-#include <fhr/wavelet/compress.hpp>
+#include <fhr/wavelet/detail/compress.hpp>
 #include <fhr/wavelet/hausdorff.hpp>
 #include "wavelet_support.hpp"
 

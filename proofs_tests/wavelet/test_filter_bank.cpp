@@ -12,7 +12,7 @@
 #include <cmath>
 
 #include <fhr/core/executor.hpp>
-#include <fhr/wavelet/filter_bank.hpp>
+#include <fhr/wavelet/detail/filter_bank.hpp>
 #include "wavelet_support.hpp"
 
 using namespace fhr;

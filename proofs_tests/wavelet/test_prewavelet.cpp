@@ -14,7 +14,7 @@
 #include <map>
 #include <set>
 
-#include <fhr/wavelet/prewavelet.hpp>
+#include <fhr/wavelet/detail/prewavelet.hpp>
 #include <fhr/wavelet/refine.hpp>
 #include "wavelet_support.hpp"
 

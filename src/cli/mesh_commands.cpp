@@ -8,7 +8,7 @@
 #include <fhr/domain/decimate.hpp>
 #include <fhr/domain/user_domain.hpp>
 #include <fhr/generate/random_mesh.hpp>
-#include <fhr/io/atomic_file.hpp>
+#include <fhr/io/detail/atomic_file.hpp>
 #include <fhr/io/correspondence.hpp>
 #include <fhr/io/read.hpp>
 #include "cli/common.hpp"

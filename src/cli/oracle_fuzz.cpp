@@ -75,7 +75,7 @@
 #include <fhr/exchange/vertex_map.hpp>
 #include <fhr/exchange/verify.hpp>
 #include <fhr/generate/random_mesh.hpp>
-#include <fhr/io/atomic_file.hpp>
+#include <fhr/io/detail/atomic_file.hpp>
 #include <fhr/io/detail/number_text.hpp>
 #include <fhr/io/read.hpp>
 #include "cli/common.hpp"

@@ -12,9 +12,9 @@
 #include <fhr/domain/user_domain.hpp>
 #include <fhr/io/correspondence.hpp>
 #include <fhr/io/read.hpp>
-#include <fhr/pipeline/outputs.hpp>
-#include <fhr/pipeline/page.hpp>
-#include <fhr/pipeline/run.hpp>
+#include <fhr/app/outputs.hpp>
+#include <fhr/app/page.hpp>
+#include <fhr/pipeline/detail/run_beside.hpp>
 #include "cli/common.hpp"
 
 namespace fhr::cli {
@@ -53,7 +53,7 @@ int run_run(const std::vector<std::string>& argv) {
         }
     }
     if (args.get("page-faces") && !args.flag("html")) usage_error("--page-faces N needs --html");
-    if (args.flag("html") && !pipeline::page_available())
+    if (args.flag("html") && !app::page_available())
         usage_error(
             "--html: this fhr was built without its page; install web/'s npm packages (npm ci --prefix web, "
             "as ./run does) and reconfigure with -Dpage=enabled");
@@ -65,19 +65,19 @@ int run_run(const std::vector<std::string>& argv) {
     if (args.get("threads"))
         method.executor = &pool.emplace(static_cast<unsigned>(args.integer("threads", 0, 0, 1024)));
     method.progress = [](const std::string& line) { std::fprintf(stderr, "fhr run: %s\n", line.c_str()); };
-    pipeline::Timings timings;
+    app::Timings timings;
     method.observer = &timings;
 
     // Read T and, for --domain, the user's D attached to it (§2, points inside faces/edges inserted).
     auto start = detail::Clock::now();
     TriMesh T = load_mesh(mesh_path, BuildOptions{});
     timings.stage("reading", detail::seconds_since(start), true);
-    pipeline::InputInfo input{.path = mesh_path,
-                              .vertices = T.n_vertices(),
-                              .faces = T.n_faces(),
-                              .genus = genus(T),
-                              .boundary_loops = boundary_loops(T).size(),
-                              .components = connected_components(T).count};
+    app::InputInfo input{.path = mesh_path,
+                         .vertices = T.n_vertices(),
+                         .faces = T.n_faces(),
+                         .genus = genus(T),
+                         .boundary_loops = boundary_loops(T).size(),
+                         .components = connected_components(T).count};
     method.progress(
         "read " + mesh_path + ": " + std::to_string(T.n_vertices()) + " vertices, " + std::to_string(T.n_faces()) +
         " faces, genus " + std::to_string(input.genus) +
@@ -97,39 +97,39 @@ int run_run(const std::vector<std::string>& argv) {
 
     // Run; the files of the parameterization, and §5's meshes once §5 is done, are written beside
     // the oracle (they need no verdict).
-    pipeline::WrittenBeside written;
-    options.beside_oracle = [&](const pipeline::Parameterization& p, const exchange::ParamFile& file) {
+    app::WrittenBeside written;
+    pipeline::RunBeside tasks;
+    tasks.beside_oracle = [&](const pipeline::Parameterization& p, const exchange::ParamFile& file) {
         const auto writing = detail::Clock::now();
-        pipeline::write_parameterization(out, p, file, method.executor);
+        app::write_parameterization(out, p, file, method.executor);
         written.parameterization = detail::seconds_since(writing);
     };
-    options.after_wavelets = [&](const wavelet::WaveletResult& w) {
+    tasks.after_wavelets = [&](const wavelet::WaveletResult& w) {
         const auto writing = detail::Clock::now();
-        pipeline::write_wavelets(out, w, method.executor);
+        app::write_wavelets(out, w, method.executor);
         written.wavelets = detail::seconds_since(writing);
     };
-    const pipeline::RunResult result = pipeline::run(T, options);  // a copy: `method` is used below
+    const pipeline::RunResult result = pipeline::run(T, options, tasks);  // a copy: `method` is used below
     const pipeline::Parameterization& p = result.parameterization;
     const wavelet::WaveletResult* wavelets = result.wavelets ? &*result.wavelets : nullptr;
     input.domain_faces_asked = result.domain_faces_asked;
     input.domain_faces_requested = result.domain_faces_requested;
 
     // Write.
-    const pipeline::RunTexts texts =
-        pipeline::write_outputs(out, input, p, result.oracle, timings, method, wavelets, written);
-    std::vector<pipeline::RateStep> rate;  // §6's curve, for the figures and the page
+    const app::RunTexts texts = app::write_outputs(out, input, p, result.oracle, timings, method, wavelets, written);
+    std::vector<app::RateStep> rate;  // §6's curve, for the figures and the page
     if (wavelets && (args.flag("figures") || args.flag("html")))
-        rate = pipeline::rate_steps(T, p.partition.domain.mesh, *wavelets);
+        rate = app::rate_steps(T, p.partition.domain.mesh, *wavelets);
     if (args.flag("figures")) {
-        pipeline::write_figures(out, T, p, up[0] - 'x', wavelets, rate);
+        app::write_figures(out, T, p, up[0] - 'x', wavelets, rate);
         method.progress("figures: " + out + "/figures/");
     }
     if (args.flag("html")) {
         const std::string name = std::filesystem::path(mesh_path).stem().string();
         const auto display =
-            static_cast<std::size_t>(args.integer("page-faces", pipeline::page_display_faces, 1000, INT64_MAX));
-        pipeline::write_page(out + "/index.html", T, p,
-                             {name, texts.report, texts.timings, up[0] - 'x', wavelets, std::move(rate), display});
+            static_cast<std::size_t>(args.integer("page-faces", app::page_display_faces, 1000, INT64_MAX));
+        app::write_page(out + "/index.html", T, p,
+                        {name, texts.report, texts.timings, up[0] - 'x', wavelets, std::move(rate), display});
         method.progress("page: " + out + "/index.html");
     }
 

@@ -1,4 +1,4 @@
-// The run's data as src/fhr/pipeline/page.cpp embeds it (spec/page.md PAGE-3): one JSON document in
+// The run's data as src/fhr/app/page.cpp embeds it (spec/page.md PAGE-3): one JSON document in
 // <script id="fhr-data">, each array base64 of little-endian typed data. Arrays are decoded when
 // first asked for, so that the first frame waits only for what it draws.
 

@@ -22,7 +22,7 @@
 #include <fhr/core/detail/edge_table.hpp>
 #include <fhr/core/errors.hpp>
 #include <fhr/core/geometry.hpp>
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 #include <fhr/core/topology.hpp>
 
 namespace fhr {

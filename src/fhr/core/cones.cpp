@@ -1,5 +1,5 @@
 // Beyond the paper — surfaces with boundary closed by virtual cones (see cones.hpp).
-#include <fhr/core/cones.hpp>
+#include <fhr/core/detail/cones.hpp>
 
 #include <fhr/core/detail/contract.hpp>
 #include <fhr/core/topology.hpp>

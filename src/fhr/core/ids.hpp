@@ -1,18 +1,31 @@
-// FHR core — strong index types: a VertexId cannot be passed where a FaceId is meant,
-// and per-element data (IdVector) is indexed by its own id type only.
+// FHR core — strong index types: a VertexId cannot be passed where a FaceId is meant, and
+// per-element data (IdVector) is indexed by its own id type only. Where the elements of several
+// meshes meet — T′ of §3 holding, per element, the domain D's and the input T's elements
+// (partition::Network), the final T′ with its patch per face (pipeline::Parameterization) — the
+// other meshes' elements have id types of their own (DFaceId, TFaceId, …): a face of D cannot be
+// taken for a face of T′ or of T without saying so (an explicit conversion).
 #pragma once
 
 #include <compare>
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 namespace fhr {
 
-/// An index into one kind of mesh element. Default-constructed ids are invalid.
-template <class Tag>
+/// The mesh an id names an element of: any mesh (the ids a TriMesh hands out), or, where meshes
+/// meet, the input surface T, the domain D or the final T′ (T′ of §3 with its patches' dividing
+/// edges split: the faces of the `fhr-param 1` file, in its order).
+struct AnyMesh;
+struct SurfaceT;
+struct DomainD;
+struct RefinedT;
+
+/// An index into one kind of element of one kind of mesh. Default-constructed ids are invalid.
+template <class Tag, class Mesh = AnyMesh>
 class Id {
 public:
     using Index = std::uint32_t;
@@ -20,6 +33,10 @@ public:
 
     constexpr Id() = default;
     constexpr explicit Id(Index i) : i_(i) {}
+    /// The same element under another mesh's id type (a TriMesh's own id for T's or D's, or back):
+    /// only explicitly, where the code says which mesh it means.
+    template <class Other>
+    requires(!std::is_same_v<Other, Mesh>) constexpr explicit Id(Id<Tag, Other> other) : i_(other.idx()) {}
     constexpr Index idx() const { return i_; }
     constexpr bool valid() const { return i_ != invalid_index; }
     constexpr auto operator<=>(const Id&) const = default;
@@ -32,6 +49,18 @@ using VertexId = Id<struct VertexTag>;
 using HalfedgeId = Id<struct HalfedgeTag>;
 using EdgeId = Id<struct EdgeTag>;
 using FaceId = Id<struct FaceTag>;
+
+/// Elements of the input surface T where they meet elements of other meshes.
+using TVertexId = Id<VertexTag, SurfaceT>;
+using TEdgeId = Id<EdgeTag, SurfaceT>;
+using TFaceId = Id<FaceTag, SurfaceT>;
+/// Elements of the domain D where they meet elements of other meshes.
+using DVertexId = Id<VertexTag, DomainD>;
+using DHalfedgeId = Id<HalfedgeTag, DomainD>;
+using DEdgeId = Id<EdgeTag, DomainD>;
+using DFaceId = Id<FaceTag, DomainD>;
+/// Faces of the final T′.
+using RefinedFaceId = Id<FaceTag, RefinedT>;
 
 /// `for (VertexId v : IdRange<VertexId>(n))` visits ids 0..n-1 in order.
 template <class IdT>
@@ -65,6 +94,15 @@ class IdVector {
 public:
     IdVector() = default;
     explicit IdVector(std::size_t n, const T& value = T()) : data_(n, value) {}
+    /// One value per element of IdT's kind of `mesh` (element_count, found with the mesh type).
+    template <class Mesh>
+    requires requires(const Mesh& m) { element_count(m, IdT()); }
+    IdVector(const Mesh& mesh, const T& value) : data_(element_count(mesh, IdT()), value) {}
+    /// Whether this holds exactly one value per element of IdT's kind of `mesh`.
+    template <class Mesh>
+    bool fits(const Mesh& mesh) const {
+        return data_.size() == element_count(mesh, IdT());
+    }
     /// Adopts `values` as the data of ids 0, 1, … in order.
     explicit IdVector(std::vector<T> values) : data_(std::move(values)) {}
     T& operator[](IdT id) { return data_[id.idx()]; }
@@ -110,7 +148,7 @@ using FaceData = IdVector<FaceId, T>;
 
 }  // namespace fhr
 
-template <class Tag>
-struct std::hash<fhr::Id<Tag>> {
-    std::size_t operator()(fhr::Id<Tag> id) const noexcept { return std::hash<std::uint32_t>()(id.idx()); }
+template <class Tag, class Mesh>
+struct std::hash<fhr::Id<Tag, Mesh>> {
+    std::size_t operator()(fhr::Id<Tag, Mesh> id) const noexcept { return std::hash<std::uint32_t>()(id.idx()); }
 };

@@ -1,5 +1,5 @@
 // FHR core — exact orientation predicates (see predicates.hpp for the method and its source).
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 
 #include <cmath>
 #include <limits>

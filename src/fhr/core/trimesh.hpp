@@ -78,9 +78,20 @@ public:
     IdRange<FaceId> faces() const { return IdRange<FaceId>(n_faces()); }
 
     // --- navigation -----------------------------------------------------------------------
-    static HalfedgeId twin(HalfedgeId h) { return HalfedgeId(h.idx() ^ 1u); }
-    static EdgeId edge(HalfedgeId h) { return EdgeId(h.idx() >> 1); }
-    static HalfedgeId halfedge(EdgeId e, unsigned side) { return HalfedgeId(2 * e.idx() + side); }
+    // Index arithmetic, the same in every TriMesh: also for the ids of D or T where they meet
+    // other meshes' (ids.hpp), keeping their mesh.
+    template <class M>
+    static Id<HalfedgeTag, M> twin(Id<HalfedgeTag, M> h) {
+        return Id<HalfedgeTag, M>(h.idx() ^ 1u);
+    }
+    template <class M>
+    static Id<EdgeTag, M> edge(Id<HalfedgeTag, M> h) {
+        return Id<EdgeTag, M>(h.idx() >> 1);
+    }
+    template <class M>
+    static Id<HalfedgeTag, M> halfedge(Id<EdgeTag, M> e, unsigned side) {
+        return Id<HalfedgeTag, M>(2 * e.idx() + side);
+    }
     VertexId to(HalfedgeId h) const { return to_[h.idx()]; }
     VertexId from(HalfedgeId h) const { return to_[h.idx() ^ 1u]; }
     HalfedgeId next(HalfedgeId h) const { return next_[h.idx()]; }
@@ -153,7 +164,7 @@ public:
     /// Closes the boundary loop of the boundary halfedge h by a cone: a new vertex at `apex`
     /// joined to every vertex of the loop, one new triangle (from(g), to(g), apex) per boundary
     /// halfedge g of the loop. Every existing element keeps its id; the new vertex, edges and faces
-    /// come after them (core/cones.hpp). \pre is_boundary(h). \return the new vertex.
+    /// come after them (core/detail/cones.hpp). \pre is_boundary(h). \return the new vertex.
     VertexId fill_hole(HalfedgeId h, const Vec3& apex);
     bool has_garbage() const { return deleted_vertices_ != 0; }
     bool is_deleted(VertexId v) const { return !out_[v.idx()].valid(); }
@@ -181,5 +192,24 @@ private:
     FaceId new_face();
     EdgeId new_edge(VertexId a, VertexId b);
 };
+
+/// The number of elements of the kind an id names, in `m` (whatever mesh the id type is for: the
+/// domain's ids count D's elements in D's TriMesh): what IdVector(mesh, value) sizes its data by.
+template <class Mesh>
+std::size_t element_count(const TriMesh& m, Id<struct VertexTag, Mesh>) {
+    return m.n_vertices();
+}
+template <class Mesh>
+std::size_t element_count(const TriMesh& m, Id<struct HalfedgeTag, Mesh>) {
+    return m.n_halfedges();
+}
+template <class Mesh>
+std::size_t element_count(const TriMesh& m, Id<struct EdgeTag, Mesh>) {
+    return m.n_edges();
+}
+template <class Mesh>
+std::size_t element_count(const TriMesh& m, Id<struct FaceTag, Mesh>) {
+    return m.n_faces();
+}
 
 }  // namespace fhr

@@ -23,7 +23,7 @@
 
 #include <fhr/core/build.hpp>
 #include <fhr/core/errors.hpp>
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 #include <fhr/exchange/detail/checks.hpp>
 #include <fhr/io/read.hpp>
 

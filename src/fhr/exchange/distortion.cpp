@@ -9,7 +9,7 @@
 #include <numeric>
 #include <utility>
 
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 
 namespace fhr::exchange {
 

@@ -20,7 +20,7 @@
 
 #include <limits>
 
-#include <fhr/io/atomic_file.hpp>
+#include <fhr/io/detail/atomic_file.hpp>
 #include <fhr/io/detail/number_text.hpp>
 #include <fhr/io/detail/text_scanner.hpp>
 #include <fhr/io/read.hpp>

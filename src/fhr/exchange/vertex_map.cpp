@@ -31,7 +31,7 @@
 #include <numeric>
 #include <string>
 
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 #include <fhr/exchange/detail/checks.hpp>
 
 namespace fhr::exchange {

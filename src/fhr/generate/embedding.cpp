@@ -1,12 +1,12 @@
 // FHR generate — the exact embedding check and guard (beyond the paper); the argument is
-// in embedding.hpp. Every sign comes from core/predicates.hpp (exact for all finite doubles), or is an
+// in embedding.hpp. Every sign comes from core/detail/predicates.hpp (exact for all finite doubles), or is an
 // exact zero decided without arithmetic (points sharing a coordinate; below).
 #include <fhr/generate/embedding.hpp>
 
 #include <algorithm>
 #include <cmath>
 
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 
 namespace fhr::generate {
 namespace {

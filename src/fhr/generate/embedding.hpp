@@ -1,7 +1,7 @@
 // FHR generate — is a triangle mesh embedded? Beyond the paper: the generator's
 // families promise embedded surfaces ("no two non-adjacent triangles intersect") and the immersed
 // family promises the opposite, so both the whole-mesh check and an incremental guard that keeps
-// a mesh embedded edit by edit decide with the exact predicates of core/predicates.hpp. The
+// a mesh embedded edit by edit decide with the exact predicates of core/detail/predicates.hpp. The
 // argument (paper_notes/generator.md, "Embedding"):
 //
 //   A mesh is embedded when every triangle is non-degenerate and any two triangles meet exactly

@@ -8,7 +8,7 @@
 
 #include <fhr/core/errors.hpp>
 #include <fhr/geodesic/detail/scratch.hpp>
-#include <fhr/geodesic/fast_marching.hpp>
+#include <fhr/geodesic/detail/fast_marching.hpp>
 
 namespace fhr::geodesic {
 namespace {

@@ -80,7 +80,7 @@ struct EllipsePath {
         search,    ///< the exact search on all of T, pruned above L, found nothing shorter
         replaced,  ///< that search found a shorter path (outside T_jk): its path is returned
         /// No search: the curve of a boundary edge of D is the arc of T's boundary between its
-        /// ends, and a cone edge of T̂ is itself (partition.hpp, core/cones.hpp).
+        /// ends, and a cone edge of T̂ is itself (partition.hpp, core/detail/cones.hpp).
         boundary_arc,
     };
     GeodesicPath path;

@@ -1,7 +1,7 @@
 // FHR §3 — d_a by Kimmel–Sethian fast marching (see fast_marching.hpp for the pseudocode and
 // paper_notes/fast_marching.md for the decisions: planar update and causality test, unfolding of
 // obtuse corners and its bound, early-stop semantics, measured accuracy).
-#include <fhr/geodesic/fast_marching.hpp>
+#include <fhr/geodesic/detail/fast_marching.hpp>
 
 #include <algorithm>
 #include <cstdint>

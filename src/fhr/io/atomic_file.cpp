@@ -3,7 +3,7 @@
 // leaves nothing behind. The parts of a file are formatted on every thread of the executor and
 // written where they belong (see atomic_file.hpp): part i waits only for the lengths of the parts
 // before it, which are known as soon as those are formatted, not written.
-#include <fhr/io/atomic_file.hpp>
+#include <fhr/io/detail/atomic_file.hpp>
 
 #include <algorithm>
 #include <cerrno>

@@ -10,7 +10,7 @@
 #include <string>
 
 #include <fhr/core/errors.hpp>
-#include <fhr/io/atomic_file.hpp>
+#include <fhr/io/detail/atomic_file.hpp>
 #include <fhr/io/detail/number_text.hpp>
 #include <fhr/io/read.hpp>
 
@@ -130,7 +130,7 @@ void write_obj_polylines(const std::string& path, std::span<const Vec3> points,
 }
 
 void write_ply(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles,
-               std::span<const std::uint32_t> face_patch, Executor* executor) {
+               std::span<const DFaceId> face_patch, Executor* executor) {
     check_indices(points.size(), triangles);
     if (!face_patch.empty() && face_patch.size() != triangles.size())
         throw ContractViolation("write_ply: one patch id per face is needed");
@@ -151,7 +151,7 @@ void write_ply(const std::string& path, std::span<const Vec3> points, std::span<
         for (std::size_t f = first; f < end; ++f) {
             out += '\3';
             for (std::uint32_t v : triangles[f]) append_little_endian(out, v, 4);
-            if (!face_patch.empty()) append_little_endian(out, face_patch[f], 4);
+            if (!face_patch.empty()) append_little_endian(out, face_patch[f].idx(), 4);
         }
     });
     file.write(path, executor);

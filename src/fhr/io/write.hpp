@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include <fhr/core/ids.hpp>
 #include <fhr/core/executor.hpp>
 #include <fhr/core/polygon_soup.hpp>
 
@@ -42,7 +43,7 @@ void write_obj_polylines(const std::string& path, std::span<const Vec3> points,
 /// `face_patch` is non-empty, one more face property `uint patch` (fhr run's refined.ply: the
 /// domain face whose patch holds each face of T′).
 void write_ply(const std::string& path, std::span<const Vec3> points, std::span<const Triangle> triangles,
-               std::span<const std::uint32_t> face_patch = {}, Executor* executor = nullptr);
+               std::span<const DFaceId> face_patch = {}, Executor* executor = nullptr);
 
 /// Writes a mesh in the format of the path's extension (.off, .obj or .ply; spec/formats.md).
 /// \throws InvalidInput for STL (it has no shared vertices) or any other extension.

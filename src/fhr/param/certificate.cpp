@@ -7,7 +7,7 @@
 #include <numbers>
 #include <sstream>
 
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 
 namespace fhr::param {
 namespace {

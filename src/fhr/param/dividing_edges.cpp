@@ -1,6 +1,6 @@
 // FHR §4 Proposition 1 — splitting the dividing edges that would map into the triangle's
 // boundary (Floater 2003, Thm 6.1; see dividing_edges.hpp).
-#include <fhr/param/dividing_edges.hpp>
+#include <fhr/param/detail/dividing_edges.hpp>
 
 #include <utility>
 #include <vector>

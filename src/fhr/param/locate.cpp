@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include <fhr/core/errors.hpp>
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 #include <fhr/param/detail/disk_topology.hpp>
 
 namespace fhr::param {

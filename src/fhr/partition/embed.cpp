@@ -47,24 +47,24 @@ public:
              std::span<const std::uint8_t> unsnapped, Executor& executor)
         : T_(T), D_(D), paths_(paths), unsnapped_(unsnapped), executor_(executor) {
         Network& n = out_.network;
-        n.corner.assign(T.n_vertices(), VertexId());
+        n.corner.assign(T.n_vertices(), DVertexId());
         if (D) {
-            for (VertexId j : D->t_vertex.ids()) n.corner[D->t_vertex[j]] = j;
+            for (VertexId j : D->t_vertex.ids()) n.corner[D->t_vertex[j]] = DVertexId(j);
             ends_ = domain::edge_endpoints(*D);
         } else {
-            VertexId::Index corners = 0;
+            DVertexId::Index corners = 0;
             for (const geodesic::GeodesicPath& p : paths) {
                 if (p.points.size() < 2 || p.points.front().kind != SurfacePoint::Kind::vertex ||
                     p.points.back().kind != SurfacePoint::Kind::vertex)
                     throw ContractViolation("embed: a curve does not run between two vertices");
                 ends_.emplace_back(p.points.front().vertex, p.points.back().vertex);
                 for (VertexId x : {p.points.front().vertex, p.points.back().vertex})
-                    if (!n.corner[x].valid()) n.corner[x] = VertexId(corners++);
+                    if (!n.corner[x].valid()) n.corner[x] = DVertexId(corners++);
             }
         }
         n.on_path.assign(T.n_vertices(), PathPosition{});
         n.origin.resize(T.n_vertices());
-        for (VertexId v : T.vertices()) n.origin[v].vertex = v;
+        for (VertexId v : T.vertices()) n.origin[v].vertex = TVertexId(v);
         positions_.assign(T.positions().begin(), T.positions().end());
         slot_.assign(T.n_edges(), none);
     }
@@ -104,18 +104,22 @@ private:
     std::vector<Run> runs_;
 
     static Conflict make_conflict(Kind kind, std::uint32_t a, std::uint32_t b, std::array<VertexId, 3> near,
-                                  VertexId d_vertex = {}) {
-        return Conflict{kind, EdgeId(std::min(a, b)), EdgeId(std::max(a, b)), d_vertex, near};
+                                  DVertexId d_vertex = {}) {
+        return Conflict{kind,
+                        DEdgeId(std::min(a, b)),
+                        DEdgeId(std::max(a, b)),
+                        d_vertex,
+                        {TVertexId(near[0]), TVertexId(near[1]), TVertexId(near[2])}};
     }
-    void conflict(Kind kind, std::uint32_t a, std::uint32_t b, std::array<VertexId, 3> near, VertexId d_vertex = {}) {
+    void conflict(Kind kind, std::uint32_t a, std::uint32_t b, std::array<VertexId, 3> near, DVertexId d_vertex = {}) {
         out_.conflicts.push_back(make_conflict(kind, a, b, near, d_vertex));
     }
 
     // The vertex of T nearest to vertex v of T′: itself, or the nearer end of its edge of T.
     VertexId nearest(VertexId v) const {
         const Origin& o = out_.network.origin[v];
-        if (o.vertex.valid()) return o.vertex;
-        const HalfedgeId h = TriMesh::halfedge(o.edge, 0);
+        if (o.vertex.valid()) return VertexId(o.vertex);
+        const HalfedgeId h = TriMesh::halfedge(EdgeId(o.edge), 0);
         return o.t < 0.5 ? T_.from(h) : T_.to(h);
     }
 
@@ -157,9 +161,9 @@ private:
         const VertexId v(static_cast<VertexId::Index>(positions_.size()));
         positions_.push_back(at);
         Network& net = out_.network;
-        net.origin.push_back(Origin{{}, n.edge, n.t});
+        net.origin.push_back(Origin{{}, TEdgeId(n.edge), n.t});
         net.on_path.push_back(PathPosition{});
-        net.corner.push_back(VertexId());
+        net.corner.push_back(DVertexId());
         list.emplace_back(n.t, v);
         return v;
     }
@@ -186,7 +190,7 @@ private:
             } else if (net.on_path[v].d_edge.valid()) {
                 conflict(Kind::shared_node, net.on_path[v].d_edge.idx(), e, {nearest(v), {}, {}});
             } else {
-                net.on_path[v] = PathPosition{EdgeId(e), static_cast<std::uint32_t>(i)};
+                net.on_path[v] = PathPosition{DEdgeId(e), static_cast<std::uint32_t>(i)};
             }
         }
         for (std::size_t i = 0; i + 1 < nodes.size(); ++i) add_segment(nodes[i], nodes[i + 1], path[i], path[i + 1], e);
@@ -308,7 +312,7 @@ private:
         out_.network.t_face.reserve(nf);
         for (Block& b : blocks) {
             triangles.insert(triangles.end(), b.triangles.begin(), b.triangles.end());
-            for (FaceId f : b.t_face) out_.network.t_face.push_back(f);
+            for (FaceId f : b.t_face) out_.network.t_face.push_back(TFaceId(f));
             out_.conflicts.insert(out_.conflicts.end(), b.conflicts.begin(), b.conflicts.end());
         }
     }
@@ -444,8 +448,8 @@ private:
     // Every segment is an edge of T′: label it with its D halfedge.
     void label_paths() {
         Network& net = out_.network;
-        net.d_halfedge.assign(net.mesh.n_halfedges(), HalfedgeId());
-        for (EdgeId e : net.path.ids()) {
+        net.d_halfedge = HalfedgeData<DHalfedgeId>(net.mesh, DHalfedgeId());
+        for (DEdgeId e : net.path.ids()) {
             const auto& path = net.path[e];
             for (std::size_t i = 0; i + 1 < path.size(); ++i) {
                 const HalfedgeId h = net.mesh.find_halfedge(path[i], path[i + 1]);
@@ -462,8 +466,8 @@ private:
         const Network& net = out_.network;
         const domain::Domain& D = *D_;
         for (VertexId vj : D.mesh.vertices()) {
-            std::vector<HalfedgeId> in_d, in_t;
-            D.mesh.for_each_outgoing(vj, [&](HalfedgeId h) { in_d.push_back(h); });
+            std::vector<DHalfedgeId> in_d, in_t;
+            D.mesh.for_each_outgoing(vj, [&](HalfedgeId h) { in_d.push_back(DHalfedgeId(h)); });
             net.mesh.for_each_outgoing(D.t_vertex[vj], [&](HalfedgeId h) {
                 if (net.d_halfedge[h].valid()) in_t.push_back(net.d_halfedge[h]);
             });
@@ -471,10 +475,10 @@ private:
             for (std::size_t k = 0; k < in_d.size(); ++k) {
                 if (!wrong[k]) continue;
                 // The curve's first node after x_j: a vertex of D there puts it in its place.
-                const EdgeId e = TriMesh::edge(in_d[k]);
+                const DEdgeId e = TriMesh::edge(in_d[k]);
                 const auto& path = net.path[e];
                 const VertexId first = in_d[k] == TriMesh::halfedge(e, 1) ? path[path.size() - 2] : path[1];
-                conflict(Kind::order, e.idx(), e.idx(), {nearest(first), {}, {}}, vj);
+                conflict(Kind::order, e.idx(), e.idx(), {nearest(first), {}, {}}, DVertexId(vj));
             }
         }
     }
@@ -482,7 +486,7 @@ private:
 
 }  // namespace
 
-std::vector<std::uint8_t> out_of_order(std::span<const HalfedgeId> in_d, std::span<const HalfedgeId> in_t) {
+std::vector<std::uint8_t> out_of_order(std::span<const DHalfedgeId> in_d, std::span<const DHalfedgeId> in_t) {
     const std::size_t n = in_d.size();
     std::vector<std::uint8_t> wrong(n, in_t.size() != n);
     for (std::size_t k = 0; k < n && in_t.size() == n; ++k) {

@@ -32,7 +32,7 @@
 #include <fhr/core/executor.hpp>
 
 #include <fhr/core/trimesh.hpp>
-#include <fhr/domain/decimate.hpp>
+#include <fhr/domain/domain.hpp>
 #include <fhr/geodesic/exact.hpp>
 
 namespace fhr::partition {
@@ -44,14 +44,14 @@ inline constexpr double snap_fraction = 1e-6;
 
 /// Where a vertex of T′ lies on T: every vertex of T′ is a vertex of T or a point of an edge of T.
 struct Origin {
-    VertexId vertex;  ///< valid: this vertex of T
-    EdgeId edge;      ///< otherwise: the point (1 − t)·from + t·to of T's halfedge(edge, 0)
+    TVertexId vertex;  ///< valid: this vertex of T
+    TEdgeId edge;      ///< otherwise: the point (1 − t)·from + t·to of T's halfedge(edge, 0)
     double t = 0;
 };
 
 /// A vertex of T′ inside a path: the D edge of the path and the node's index along it.
 struct PathPosition {
-    EdgeId d_edge;  ///< invalid: not inside any path
+    DEdgeId d_edge;  ///< invalid: not inside any path
     std::uint32_t index = 0;
 };
 
@@ -64,27 +64,27 @@ struct Conflict {
         order,           ///< (2): the cyclic order of the paths at x_j differs from D's
     };
     Kind kind;
-    EdgeId d_edge_a, d_edge_b;  ///< the D edges (equal when only one is involved), a <= b
-    VertexId d_vertex;          ///< through_corner and order: the D vertex v_m / v_j, else invalid
+    DEdgeId d_edge_a, d_edge_b;  ///< the D edges (equal when only one is involved), a <= b
+    DVertexId d_vertex;          ///< through_corner and order: the D vertex v_m / v_j, else invalid
     /// Vertices of T at the place (unused ones invalid), each the one nearest to a node of T′
     /// (the node itself, or the nearer end of its edge of T): shared_node: the shared node;
     /// through_corner: the curve's nodes just before and after x_m; order: the curve's first node
     /// after x_j; crossing: the face of T where the curves cross.
-    std::array<VertexId, 3> near{};
+    std::array<TVertexId, 3> near{};
     std::string describe() const;
 };
 
 /// The refined triangulation T′ with the geodesic network embedded in it.
 struct Network {
-    TriMesh mesh;                          ///< T′; vertices 0..#V(T)−1 are T's vertices
-    VertexData<Origin> origin;             ///< #V(T′)
-    VertexData<PathPosition> on_path;      ///< #V(T′)
-    VertexData<VertexId> corner;           ///< #V(T′): the D vertex v_j at x_j, else invalid
-    EdgeData<std::vector<VertexId>> path;  ///< #E(D): vertices of T′ from x_j to x_k along Γ_e
-                                           ///< (direction of D's halfedge (e, 0))
-    HalfedgeData<HalfedgeId> d_halfedge;   ///< #H(T′): the D halfedge it runs along, else invalid
-    FaceData<FaceId> t_face;               ///< #F(T′): the face of T that holds it
-    double max_snap_distance = 0;          ///< the farthest a node was moved by snapping
+    TriMesh mesh;                                   ///< T′; vertices 0..#V(T)−1 are T's vertices
+    VertexData<Origin> origin;                      ///< #V(T′)
+    VertexData<PathPosition> on_path;               ///< #V(T′)
+    VertexData<DVertexId> corner;                   ///< #V(T′): the D vertex v_j at x_j, else invalid
+    IdVector<DEdgeId, std::vector<VertexId>> path;  ///< #E(D): vertices of T′ from x_j to x_k along Γ_e
+                                                    ///< (direction of D's halfedge (e, 0))
+    HalfedgeData<DHalfedgeId> d_halfedge;           ///< #H(T′): the D halfedge it runs along, else invalid
+    FaceData<TFaceId> t_face;                       ///< #F(T′): the face of T that holds it
+    double max_snap_distance = 0;                   ///< the farthest a node was moved by snapping
 };
 
 struct Embedding {
@@ -119,6 +119,6 @@ Embedding embed_curves(const TriMesh& T, std::span<const geodesic::GeodesicPath>
 /// in_d[k] or its predecessor around v_j has another successor around x_j than around v_j, so
 /// that exactly the curves on either side of a misplaced pair are reported; every flag is 1 when
 /// the curves at x_j are not exactly D's edges there.
-std::vector<std::uint8_t> out_of_order(std::span<const HalfedgeId> in_d, std::span<const HalfedgeId> in_t);
+std::vector<std::uint8_t> out_of_order(std::span<const DHalfedgeId> in_d, std::span<const DHalfedgeId> in_t);
 
 }  // namespace fhr::partition

@@ -1,5 +1,5 @@
 // Beyond the paper (§3): keeping the domain (see keep.hpp for the pseudocode).
-#include <fhr/partition/keep.hpp>
+#include <fhr/partition/detail/keep.hpp>
 
 #include <algorithm>
 #include <iterator>
@@ -11,7 +11,7 @@
 #include <utility>
 #include <variant>
 
-#include <fhr/core/cones.hpp>
+#include <fhr/core/detail/cones.hpp>
 #include <fhr/core/errors.hpp>
 #include <fhr/core/executor.hpp>
 #include <fhr/core/detail/outcome.hpp>
@@ -43,7 +43,7 @@ std::vector<FaceId> merged(std::vector<FaceId> a, std::span<const FaceId> b) {
 // The faces of T that patch df of an embedding's network covers, sorted, each once.
 std::vector<FaceId> faces_of_t(const Patches& patches, const Network& network, FaceId df) {
     std::vector<FaceId> faces;
-    for (FaceId f : patches.patch[df].faces) faces.push_back(network.t_face[f]);
+    for (FaceId f : patches.patch[df].faces) faces.push_back(FaceId(network.t_face[f]));
     return merged(std::move(faces), {});
 }
 
@@ -760,7 +760,7 @@ private:
                 if (is_kept(h)) in_d.push_back(edge_key(h));
             });
             cut_.network.mesh.for_each_outgoing(net_.x(v), [&](HalfedgeId h) {
-                const HalfedgeId label = cut_.network.d_halfedge[h];
+                const DHalfedgeId label = cut_.network.d_halfedge[h];
                 if (!label.valid()) return;
                 const auto& p = paths_[TriMesh::edge(label).idx()].points;
                 in_t.push_back(key_of(p.front().vertex, p.back().vertex));
@@ -889,7 +889,7 @@ private:
             for (int i = 0; i < 3; ++i, h = m().next(h))
                 if (is_kept(h)) boundary = h;
         }
-        const auto& path = cut_.network.path[EdgeId(embedded.at(edge_key(boundary)))];
+        const auto& path = cut_.network.path[DEdgeId(embedded.at(edge_key(boundary)))];
         const HalfedgeId first = M.find_halfedge(path[0], path[1]);
         const FaceId seed =
             M.face(net_.x(m().from(boundary)).idx() < net_.x(m().to(boundary)).idx() ? first : TriMesh::twin(first));
@@ -899,7 +899,7 @@ private:
         while (!stack.empty()) {
             const FaceId a = stack.back();
             stack.pop_back();
-            touched_[gi].push_back(cut_.network.t_face[a]);
+            touched_[gi].push_back(FaceId(cut_.network.t_face[a]));
             HalfedgeId h = M.halfedge(a);
             for (int i = 0; i < 3; ++i, h = M.next(h)) {
                 if (cut_.network.d_halfedge[h].valid()) continue;
@@ -1078,7 +1078,7 @@ private:
         for (std::size_t e = 0; e < ends_.size(); ++e)
             geodesic_length_[key_of(ends_[e].first, ends_[e].second)] = geodesics_[e].path.length;
         for (const Conflict& c : conflicts_)
-            for (EdgeId e : {c.d_edge_a, c.d_edge_b})
+            for (DEdgeId e : {c.d_edge_a, c.d_edge_b})
                 reason_.emplace(key_of(ends_[e.idx()].first, ends_[e.idx()].second), c.describe());
         for (const auto& [k, length] : geodesic_length_) order_.push_back(k);
         std::set<Pair> fixed;

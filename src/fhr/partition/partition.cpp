@@ -8,13 +8,15 @@
 #include <stdexcept>
 #include <utility>
 
-#include <fhr/core/cones.hpp>
+#include <fhr/core/detail/cones.hpp>
+#include <fhr/domain/decimate.hpp>
 #include <fhr/core/errors.hpp>
+#include <fhr/partition/detail/keep.hpp>
 
 namespace fhr::partition {
 namespace {
 
-// Γ(a, b) for every edge of D̂ (D closed by the cones of T̂, core/cones.hpp), reusing the paths of
+// Γ(a, b) for every edge of D̂ (D closed by the cones of T̂, core/detail/cones.hpp), reusing the paths of
 // edges whose ends are unchanged: the exact geodesic on T for an edge of D inside the surface, the
 // arc of T's boundary for a boundary edge of D, the edge itself for a cone edge. The searches run
 // in parallel, each on a workspace leased from the cache's pool: the threads reuse
@@ -149,7 +151,7 @@ std::vector<VertexId> new_keep(const TriMesh& T, const domain::Domain& D, const 
         }
     };
     for (const Conflict& c : embedding.conflicts)
-        for (VertexId v : c.near) add(v);
+        for (TVertexId v : c.near) add(VertexId(v));
     if (!keep.empty()) return keep;
     // All at the conflicts is kept already: the middle node of each conflicting curve; failing
     // that both ends of the edges of T its nodes lie on; failing that the neighbours in T of the
@@ -157,27 +159,27 @@ std::vector<VertexId> new_keep(const TriMesh& T, const domain::Domain& D, const 
     const Network& net = embedding.network;
     auto nearest = [&](VertexId v) {
         const Origin& o = net.origin[v];
-        return o.vertex.valid() ? o.vertex : T.from(TriMesh::halfedge(o.edge, o.t < 0.5 ? 0 : 1));
+        return o.vertex.valid() ? VertexId(o.vertex) : T.from(TriMesh::halfedge(EdgeId(o.edge), o.t < 0.5 ? 0 : 1));
     };
     for (const Conflict& c : embedding.conflicts)
-        for (EdgeId e : {c.d_edge_a, c.d_edge_b}) {
+        for (DEdgeId e : {c.d_edge_a, c.d_edge_b}) {
             const auto& path = net.path[e];
             add(nearest(path[path.size() / 2]));
         }
     if (!keep.empty()) return keep;
     for (const Conflict& c : embedding.conflicts)
-        for (EdgeId e : {c.d_edge_a, c.d_edge_b})
+        for (DEdgeId e : {c.d_edge_a, c.d_edge_b})
             for (VertexId v : net.path[e]) {
                 const Origin& o = net.origin[v];
                 if (o.vertex.valid()) continue;
-                add(T.from(TriMesh::halfedge(o.edge, 0)));
-                add(T.to(TriMesh::halfedge(o.edge, 0)));
+                add(T.from(TriMesh::halfedge(EdgeId(o.edge), 0)));
+                add(T.to(TriMesh::halfedge(EdgeId(o.edge), 0)));
             }
     if (!keep.empty()) return keep;
     // Last, the neighbours in T of the conflicts' places.
     for (const Conflict& c : embedding.conflicts)
-        for (VertexId v : c.near)
-            if (v.valid()) T.for_each_outgoing(v, [&](HalfedgeId h) { add(T.to(h)); });
+        for (TVertexId v : c.near)
+            if (v.valid()) T.for_each_outgoing(VertexId(v), [&](HalfedgeId h) { add(T.to(h)); });
     return keep;
 }
 
@@ -220,9 +222,9 @@ std::size_t flip_over_corners(domain::Domain& D, const std::vector<Conflict>& co
         if (c.kind != Conflict::Kind::through_corner || c.d_edge_a.idx() >= D.mesh.n_edges() ||
             touched[c.d_edge_a.idx()])
             continue;
-        const EdgeId e = c.d_edge_a;
+        const EdgeId e(c.d_edge_a);
         const HalfedgeId h = TriMesh::halfedge(e, 0);
-        const VertexId m = c.d_vertex;
+        const VertexId m(c.d_vertex);
         if (D.mesh.to(D.mesh.next(h)) != m && D.mesh.to(D.mesh.next(TriMesh::twin(h))) != m) continue;
         const VertexPair replaced = pair_of(D, D.mesh.from(h), D.mesh.to(h));
         if (!D.mesh.is_flip_ok(e) || made.count(replaced)) continue;
@@ -314,7 +316,7 @@ private:
     // size when first needed.
     std::optional<domain::Domain> base_;
     Executor& executor_;
-    // With boundary, §3 works on T̂ and D̂, closed by cones (core/cones.hpp); D's own vertices,
+    // With boundary, §3 works on T̂ and D̂, closed by cones (core/detail/cones.hpp); D's own vertices,
     // edges and faces are the first of D̂'s, so conflicts, paths and flips name them alike.
     std::optional<Coned> cones_;
     const TriMesh& T_hat_;
@@ -339,7 +341,7 @@ private:
         return *base_;
     }
 
-    // Keeping D (partition/keep.hpp): restricted shortest paths where the geodesics conflict,
+    // Keeping D (partition/detail/keep.hpp): restricted shortest paths where the geodesics conflict,
     // directly on D, else from D's own decimation, or for a domain given by the user from a
     // decimation of T to its vertices (H, made or proved only when first needed). Redoing many
     // collapses can crowd curves around one point until there is no room to separate them: then

@@ -15,7 +15,7 @@
 //       embed the paths into T -> T′, with the conflicts against (1) and (2)
 //       if no conflict: cut T′ into the patches; return
 //       if keeping D (the default) and D's history describes it, on the first round:
-//           restricted shortest paths where the geodesics conflict (partition/keep.hpp); return
+//           restricted shortest paths where the geodesics conflict (partition/detail/keep.hpp); return
 //           (no room to separate two curves: go on below, changing D)
 //       if D was given by the user: PartitionFailure naming the conflicting domain edges
 //       if some curve runs over a corner of a face beside its edge: flip those edges; next round
@@ -39,18 +39,36 @@
 #include <vector>
 
 #include <fhr/core/executor.hpp>
-#include <fhr/domain/decimate.hpp>
+#include <fhr/domain/domain.hpp>
 #include <fhr/geodesic/ellipse.hpp>
 #include <fhr/partition/embed.hpp>
-#include <fhr/partition/keep.hpp>
 #include <fhr/partition/patches.hpp>
 
 namespace fhr::partition {
 
+/// How the curve of a domain edge was found.
+enum class CurveKind : std::uint8_t {
+    geodesic,    ///< the exact shortest geodesic Γ(x_j, x_k) of T (paper §3)
+    restricted,  ///< the restricted shortest path in the region the other curves leave free
+    boundary,    ///< a boundary edge of D: the arc of T's boundary between its ends (core/detail/cones.hpp)
+};
+
+/// "geodesic", "restricted" or "boundary" (geodesics.obj, report.json).
+const char* name(CurveKind kind);
+
+/// What the report says of one domain edge's curve.
+struct CurveInfo {
+    CurveKind kind = CurveKind::geodesic;
+    double geodesic_length = 0;   ///< |Γ(x_j, x_k)| on T, unrestricted
+    double shortest = 0;          ///< restricted: the restricted shortest length before separation
+    double separation_bound = 0;  ///< restricted: the bound of what the separation added
+    std::string reason;           ///< restricted: the conflict of its geodesic that forced it
+};
+
 struct PartitionOptions {
     geodesic::EllipseOptions ellipse;
     /// true (the default): D is kept, conflicting edges get restricted shortest paths
-    /// (partition/keep.hpp); false: the paper's geodesics only, D changed where they conflict.
+    /// (partition/detail/keep.hpp); false: the paper's geodesics only, D changed where they conflict.
     bool keep_domain = true;
     std::function<void(const std::string&)> progress;  ///< optional: one line per round
     /// optional: runs the independent geodesic and curve searches; default_executor(). Their

@@ -1,4 +1,5 @@
 // FHR §3 — the patches S_i of T′ (see patches.hpp for the pseudocode).
+#include <fhr/core/detail/contract.hpp>
 #include <fhr/partition/patches.hpp>
 
 #include <algorithm>
@@ -35,10 +36,10 @@ Regions regions(const domain::Domain& D, const Network& net) {
             stack.pop_back();
             HalfedgeId h = M.halfedge(g);
             for (int i = 0; i < 3; ++i, h = M.next(h)) {
-                const HalfedgeId dh = net.d_halfedge[h];
+                const DHalfedgeId dh = net.d_halfedge[h];
                 if (dh.valid()) {
                     // R lies on the left of h, and D's face on the left of the D halfedge is T_i.
-                    const FaceId df = D.mesh.face(dh);
+                    const FaceId df = D.mesh.face(HalfedgeId(dh));
                     FaceId& known = out.region_face[static_cast<std::size_t>(r)];
                     if (!known.valid())
                         known = df;
@@ -84,7 +85,7 @@ void make_disk(const domain::Domain& D, const Network& net, const Regions& regio
     std::vector<VertexId> loop;
     for (std::size_t c = 0; c < 3; ++c, dh = D.mesh.next(dh)) {
         p.disk.corners[c] = loop.size();
-        std::vector<VertexId> curve = net.path[TriMesh::edge(dh)];
+        std::vector<VertexId> curve = net.path[DEdgeId(TriMesh::edge(dh))];
         if (dh.idx() & 1u) std::reverse(curve.begin(), curve.end());
         loop.insert(loop.end(), curve.begin(), curve.end() - 1);
     }
@@ -111,6 +112,7 @@ void make_disk(const domain::Domain& D, const Network& net, const Regions& regio
 
 Patches extract_patches(const domain::Domain& D, const Network& net, Executor* executor) {
     const TriMesh& M = net.mesh;
+    FHR_DCHECK(net.path.fits(D.mesh) && net.d_halfedge.fits(M));
     const Regions r = regions(D, net);
     // Each D face has exactly one region.
     std::vector<std::int32_t> region_of_d(D.mesh.n_faces(), -1);

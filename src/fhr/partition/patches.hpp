@@ -16,7 +16,7 @@
 #include <vector>
 
 #include <fhr/core/executor.hpp>
-#include <fhr/domain/decimate.hpp>
+#include <fhr/domain/domain.hpp>
 #include <fhr/core/disk.hpp>
 #include <fhr/partition/embed.hpp>
 

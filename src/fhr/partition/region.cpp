@@ -170,7 +170,7 @@ SurfacePoint Region::in_t(const SurfacePoint& p) const {
 Outcome<FaceData<std::uint8_t>> Region::side(std::size_t curve, bool left) const {
     const Network& net = cut_.network;
     const TriMesh& M = net.mesh;
-    const auto& path = net.path.at(EdgeId(static_cast<EdgeId::Index>(curve)));
+    const auto& path = net.path.at(DEdgeId(static_cast<DEdgeId::Index>(curve)));
     const HalfedgeId h = M.find_halfedge(path[0], path[1]);
     const FaceId seed = M.face(left ? h : TriMesh::twin(h));
     FaceData<std::uint8_t> mask(M.n_faces(), 0);

@@ -33,11 +33,11 @@ public:
         const Origin& o = net_.origin[x];
         const HalfedgeId h = TriMesh::halfedge(E, 0);
         if (o.vertex.valid()) {
-            if (o.vertex == T_.from(h)) return 0.0;
-            if (o.vertex == T_.to(h)) return 1.0;
+            if (VertexId(o.vertex) == T_.from(h)) return 0.0;
+            if (VertexId(o.vertex) == T_.to(h)) return 1.0;
             return std::nullopt;
         }
-        if (o.edge == E) return o.t;
+        if (EdgeId(o.edge) == E) return o.t;
         return std::nullopt;
     }
 
@@ -45,11 +45,11 @@ public:
     std::optional<EdgeId> along(VertexId a, VertexId b) const {
         const Origin &oa = net_.origin[a], &ob = net_.origin[b];
         if (oa.vertex.valid() && ob.vertex.valid()) {
-            const HalfedgeId h = T_.find_halfedge(oa.vertex, ob.vertex);
+            const HalfedgeId h = T_.find_halfedge(VertexId(oa.vertex), VertexId(ob.vertex));
             if (h.valid()) return TriMesh::edge(h);
             return std::nullopt;
         }
-        const EdgeId E = oa.vertex.valid() ? ob.edge : oa.edge;
+        const EdgeId E(oa.vertex.valid() ? ob.edge : oa.edge);
         if (param_on(E, a) && param_on(E, b)) return E;
         return std::nullopt;
     }
@@ -57,15 +57,15 @@ public:
     // Vertex x of T′ as a point of T.
     SurfacePoint place(VertexId x) const {
         const Origin& o = net_.origin[x];
-        if (o.vertex.valid()) return SurfacePoint::at_vertex(o.vertex);
-        return SurfacePoint::on_edge(TriMesh::halfedge(o.edge, 0), o.t);
+        if (o.vertex.valid()) return SurfacePoint::at_vertex(VertexId(o.vertex));
+        return SurfacePoint::on_edge(TriMesh::halfedge(EdgeId(o.edge), 0), o.t);
     }
 
     // The vertex of T at (or nearest to) vertex u of T′_S, for messages.
     VertexId near_in_t(VertexId u) const {
         const Origin& o = net_.origin[u];
-        if (o.vertex.valid()) return region_.in_t(o.vertex);
-        const HalfedgeId h = TriMesh::halfedge(o.edge, 0);
+        if (o.vertex.valid()) return region_.in_t(VertexId(o.vertex));
+        const HalfedgeId h = TriMesh::halfedge(EdgeId(o.edge), 0);
         return region_.in_t(o.t < 0.5 ? T_.from(h) : T_.to(h));
     }
 

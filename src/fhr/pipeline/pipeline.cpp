@@ -8,7 +8,7 @@
 #include <utility>
 
 #include <fhr/core/errors.hpp>
-#include <fhr/param/dividing_edges.hpp>
+#include <fhr/param/detail/dividing_edges.hpp>
 
 namespace fhr::pipeline {
 
@@ -17,19 +17,19 @@ bool Parameterization::certified() const {
 }
 
 GlobalMap::GlobalMap(const Parameterization& p) : p_(p) {
-    FHR_DCHECK(p.certified());
+    FHR_DCHECK(p.certified() && p.disks.fits(p.partition.domain.mesh) && p.maps.fits(p.partition.domain.mesh));
     locators_.reserve(p.disks.size());
-    for (FaceId d : p.disks.ids()) locators_.emplace_back(p.disks[d], p.maps[d]);
+    for (DFaceId d : p.disks.ids()) locators_.emplace_back(p.disks[d], p.maps[d]);
 }
 
-Vec3 GlobalMap::phi(FaceId d, const std::array<double, 3>& beta) const { return locators_.at(d).phi(beta); }
+Vec3 GlobalMap::phi(DFaceId d, const std::array<double, 3>& beta) const { return locators_.at(d).phi(beta); }
 
-std::pair<FaceId, std::array<double, 3>> GlobalMap::psi(std::size_t f, const std::array<double, 3>& w) const {
+std::pair<DFaceId, std::array<double, 3>> GlobalMap::psi(RefinedFaceId f, const std::array<double, 3>& w) const {
     // ψ is linear on every face of T′ (eq. 2): the weights of its corners' images.
     std::array<double, 3> beta{0, 0, 0};
     for (int k = 0; k < 3; ++k)
         for (int r = 0; r < 3; ++r) beta[r] += w[k] * p_.face_beta[f][k][r];
-    return {FaceId(p_.face_patch[f]), beta};
+    return {p_.face_patch[f], beta};
 }
 
 Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options) {
@@ -54,14 +54,15 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     // §4: each patch onto its triangle, certified.
     const auto param = detail::Clock::now();
     const std::size_t n_patches = P.patches.patch.size();
-    out.disks.resize(n_patches);
-    out.maps.resize(n_patches);
-    out.certificates.resize(n_patches);
+    out.disks = IdVector<DFaceId, param::Disk>(P.domain.mesh, {});
+    out.maps = IdVector<DFaceId, param::PatchMap>(P.domain.mesh, {});
+    out.certificates = IdVector<DFaceId, param::Certificate>(P.domain.mesh, {});
+    FHR_DCHECK(out.disks.size() == n_patches);
     std::vector<std::size_t> split(n_patches, 0);
     std::vector<std::vector<std::uint32_t>> origin(n_patches);  // per patch: the triangle before the splits
     executor_or_default(options.executor).for_each(n_patches, 16, [&](std::size_t i) {
-        const FaceId d(static_cast<FaceId::Index>(i));
-        param::Disk disk = std::move(out.partition.patches.patch[d].disk);  // each task its own patch
+        const DFaceId d(static_cast<DFaceId::Index>(i));
+        param::Disk disk = std::move(out.partition.patches.patch[FaceId(d)].disk);  // each task its own patch
         split[i] = param::split_dividing_edges(disk, &origin[i]);
         try {
             out.maps[d] = param::map_patch(disk, options.map);
@@ -83,9 +84,9 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     out.face_patch.reserve(faces);
     out.face_beta.reserve(faces);
     out.face_t.reserve(faces);
-    for (FaceId d : out.disks.ids()) {
+    for (DFaceId d : out.disks.ids()) {
         const param::Disk& disk = out.disks[d];
-        const partition::Patch& patch = P.patches.patch[d];
+        const partition::Patch& patch = P.patches.patch[FaceId(d)];
         std::vector<std::uint32_t> global(disk.positions.size());
         for (std::size_t v = 0; v < disk.positions.size(); ++v) {
             if (v < patch.vertices.size()) {
@@ -98,8 +99,8 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
         for (std::size_t i = 0; i < disk.triangles.size(); ++i) {
             const auto& t = disk.triangles[i];
             out.refined_faces.push_back({global[t[0]], global[t[1]], global[t[2]]});
-            out.face_patch.push_back(d.idx());
-            out.face_t.push_back(P.network.t_face[patch.faces[origin[d.idx()][i]]].idx());
+            out.face_patch.push_back(d);
+            out.face_t.push_back(P.network.t_face[patch.faces[origin[d.idx()][i]]]);
             out.face_beta.push_back({out.maps[d].beta[t[0]], out.maps[d].beta[t[1]], out.maps[d].beta[t[2]]});
         }
     }

@@ -20,7 +20,7 @@
 
 #include <fhr/core/executor.hpp>
 #include <fhr/core/trimesh.hpp>
-#include <fhr/domain/decimate.hpp>
+#include <fhr/domain/domain.hpp>
 #include <fhr/param/certificate.hpp>
 #include <fhr/param/locate.hpp>
 #include <fhr/param/patch_map.hpp>
@@ -52,18 +52,19 @@ struct Parameterization {
     /// D (final), paths, T′ before §4, patches (their faces and vertices; each patch's disk is moved
     /// to `disks`, not copied: at 10⁶ faces 57 MB)
     partition::Partition partition;
-    FaceData<param::Disk> disks;                ///< #F(D): each patch's disk after its dividing edges were split
-    FaceData<param::PatchMap> maps;             ///< #F(D): ψ_i at the disk's vertices
-    FaceData<param::Certificate> certificates;  ///< #F(D)
+    IdVector<DFaceId, param::Disk> disks;     ///< #F(D): each patch's disk after its dividing edges were split
+    IdVector<DFaceId, param::PatchMap> maps;  ///< #F(D): ψ_i at the disk's vertices
+    IdVector<DFaceId, param::Certificate> certificates;  ///< #F(D)
     std::size_t dividing_edges_split = 0;
-    // The final T′: T′ of §3 plus the dividing-edge midpoints.
+    // The final T′: T′ of §3 plus the dividing-edge midpoints, as plain arrays (for writers and numpy;
+    // nothing reads its connectivity after §4, which a TriMesh would hold: paper_notes/library.md).
     std::vector<Vec3> refined_positions;
     std::vector<Triangle> refined_faces;
     // Per face of the final T′ (parallel to refined_faces, as in the `fhr-param 1` file):
-    std::vector<std::uint32_t> face_patch;                        ///< the D face of its patch (FaceId::idx())
-    std::vector<std::array<std::array<double, 3>, 3>> face_beta;  ///< per corner: β of ψ
-    std::vector<std::uint32_t> face_t;                            ///< the face of T that holds it (FaceId::idx())
-    bool certified() const;                                       ///< every patch's certificate passed
+    IdVector<RefinedFaceId, DFaceId> face_patch;                              ///< the D face of its patch
+    IdVector<RefinedFaceId, std::array<std::array<double, 3>, 3>> face_beta;  ///< per corner: β of ψ
+    IdVector<RefinedFaceId, TFaceId> face_t;                                  ///< the face of T that holds it
+    bool certified() const;                                                   ///< every patch's certificate passed
 };
 
 /// The global maps of §4: φ = ψ⁻¹ from any point of Ω_D (a face of D and barycentric coordinates
@@ -76,13 +77,13 @@ public:
     explicit GlobalMap(const Parameterization& p);
     /// φ(d, β): the point of Ω_T whose image under ψ is β in domain face d.
     /// \throws InvalidInput for β outside the triangle (beyond 1e−12), as PatchLocator.
-    Vec3 phi(FaceId d, const std::array<double, 3>& beta) const;
+    Vec3 phi(DFaceId d, const std::array<double, 3>& beta) const;
     /// ψ(f, w): the domain face and β of the point Σ w_k · (corner k of face f of T′).
-    std::pair<FaceId, std::array<double, 3>> psi(std::size_t f, const std::array<double, 3>& w) const;
+    std::pair<DFaceId, std::array<double, 3>> psi(RefinedFaceId f, const std::array<double, 3>& w) const;
 
 private:
     const Parameterization& p_;
-    FaceData<param::PatchLocator> locators_;  // per face of D
+    IdVector<DFaceId, param::PatchLocator> locators_;
 };
 
 /// §3 and §4 for T and a domain D whose vertices are vertices of T.

@@ -1,7 +1,7 @@
 // FHR §2–§5 — one call for the whole method, in memory: the domain D (§2), the partition and the
 // certified parameterization (§3, §4), the independent oracle's verdict on it, and optionally the
 // remesh, the prewavelet decomposition and its compression (§5). `fhr run` is this call between
-// parsing its arguments and writing its files (src/cli/run.cpp, src/fhr/pipeline/outputs.hpp).
+// parsing its arguments and writing its files (src/cli/run.cpp, src/fhr/app/outputs.hpp).
 //
 // Pseudocode:
 //   mesh_reduction:   D <- decimate(T) to `faces`, or the domain given (already attached to T);
@@ -11,16 +11,13 @@
 //   with J = levels > 0: refinement, decomposition, reconstruction: D^J sampled through φ, its
 //                     prewavelet coefficients, the kept percentages reconstructed (src/fhr/wavelet),
 //                     beside the oracle (two tasks: they read different parts of the result, and
-//                     each stage's seconds are its own, so the stages' sum may exceed the wall time);
-//                     beside them also the caller's `beside_oracle` task (fhr run writes its files),
-//                     and once §5 is done its `after_wavelets` task (fhr run writes §5's meshes)
+//                     each stage's seconds are its own, so the stages' sum may exceed the wall time)
 // Thread safety: run() keeps no state between calls; concurrent calls (on the same T too) are safe.
 // Its progress lines and stage times are reported on the calling thread; its independent tasks run
 // on options.method.executor (core/executor.hpp), with the same result on any executor.
 #pragma once
 
 #include <cstddef>
-#include <functional>
 #include <optional>
 #include <vector>
 
@@ -38,15 +35,6 @@ struct RunOptions {
     Options method;                        ///< §3–§4: weights, solver, keeping D, progress, stage observer
     int levels = 0;                        ///< §5: J ≥ 1 to remesh and decompose; 0 for none
     std::vector<double> keep;              ///< §5: the percentages of coefficients to keep, each in (0, 100]
-    /// Optional: a task run beside the oracle (and §5) once the parameterization is made, such as
-    /// writing its files (`fhr run`: write_parameterization, outputs.hpp), which need no verdict.
-    /// Meanwhile p lends T′'s vertices and β to `file` (lend_param_file: exactly what param.fhrp
-    /// holds), so it reads them there; both are read-only for every task.
-    std::function<void(const Parameterization& p, const exchange::ParamFile& file)> beside_oracle;
-    /// Optional, with levels ≥ 1: a task run on §5's result as soon as it is made, on §5's thread
-    /// (so still beside the oracle and `beside_oracle`), such as writing its meshes (`fhr run`:
-    /// write_wavelets, outputs.hpp).
-    std::function<void(const wavelet::WaveletResult& wavelets)> after_wavelets;
 };
 
 struct RunResult {
@@ -57,6 +45,10 @@ struct RunResult {
     std::size_t domain_faces_requested = 0;          ///< D's faces before §3 (equal to the final ones when D is kept)
     bool certified() const { return parameterization.certified() && oracle.valid(); }
 };
+
+/// The parameterization as the exchange format holds it (spec/param.md): what `fhr run` writes as
+/// param.fhrp and the oracle judges.
+exchange::ParamFile to_param_file(const Parameterization& p);
 
 /// The method end to end. A result that is not certified is returned, not thrown: its files can
 /// still be written and inspected.

@@ -8,7 +8,7 @@
 #include <string>
 
 #include <fhr/core/errors.hpp>
-#include <fhr/io/atomic_file.hpp>
+#include <fhr/io/detail/atomic_file.hpp>
 
 namespace fhr::render {
 

@@ -10,7 +10,7 @@
 
 #include <fhr/core/errors.hpp>
 #include <fhr/render/figures.hpp>
-#include <fhr/io/atomic_file.hpp>
+#include <fhr/io/detail/atomic_file.hpp>
 
 namespace fhr::render {
 namespace {

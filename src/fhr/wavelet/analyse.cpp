@@ -9,8 +9,8 @@
 
 #include <fhr/core/detail/stopwatch.hpp>
 #include <fhr/core/geometry.hpp>
-#include <fhr/wavelet/compress.hpp>
-#include <fhr/wavelet/filter_bank.hpp>
+#include <fhr/wavelet/detail/compress.hpp>
+#include <fhr/wavelet/detail/filter_bank.hpp>
 
 namespace fhr::wavelet {
 namespace {

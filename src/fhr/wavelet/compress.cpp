@@ -1,6 +1,6 @@
 // FHR §6 (Fig. 9) — keeping the largest wavelet coefficients (see compress.hpp).
 #include <fhr/core/detail/contract.hpp>
-#include <fhr/wavelet/compress.hpp>
+#include <fhr/wavelet/detail/compress.hpp>
 
 #include <algorithm>
 #include <cmath>

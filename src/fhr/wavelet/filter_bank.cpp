@@ -1,7 +1,7 @@
 // FHR §5 — the filter bank: decomposition by one SPD solve per level, explicit reconstruction
 // (see filter_bank.hpp).
 #include <fhr/core/detail/contract.hpp>
-#include <fhr/wavelet/filter_bank.hpp>
+#include <fhr/wavelet/detail/filter_bank.hpp>
 
 #include <algorithm>
 #include <array>

@@ -1,6 +1,6 @@
 // FHR §5 — the hat-function Gram matrix of ⟨f,g⟩ = Σ_T 1/a(T) ∫_T f g and the refinement matrix
 // P (see prewavelet.hpp).
-#include <fhr/wavelet/prewavelet.hpp>
+#include <fhr/wavelet/detail/prewavelet.hpp>
 
 #include <cmath>
 

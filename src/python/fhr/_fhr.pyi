@@ -1,4 +1,4 @@
-# Type stubs of the extension fhr._fhr (src/python/module.cpp); checked against the module by
+# Type stubs of the extension fhr._fhr (src/python/module.cpp and the topics it binds); checked against the module by
 # mypy's stubtest in ./run test. Shapes: V (n, 3) float64, F (m, 3) int64.
 from typing import Any, Callable, Optional, Sequence, Tuple, Union, overload
 

@@ -41,7 +41,7 @@
 #include <optional>
 #include <vector>
 
-#include <fhr/core/predicates.hpp>
+#include <fhr/core/detail/predicates.hpp>
 #include <fhr/generate/embedding.hpp>
 
 namespace fhr::generate::detail {

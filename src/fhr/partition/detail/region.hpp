@@ -1,6 +1,6 @@
 // Beyond the paper (§3, keeping the domain): a region of T′ cut out on its own.
 //
-// Keeping D (partition/keep.hpp) changes the network one small region at a time: a flip or a
+// Keeping D (partition/detail/keep.hpp) changes the network one small region at a time: a flip or a
 // tightening replaces the curve inside the union of two patches. Embedding the whole network into
 // T again after every such round costs O(|T|) a round and hundreds of rounds (femur, man: most of
 // the run). The region, its boundary curves and the faces of T around it are all a change needs,

@@ -15,11 +15,11 @@
 #include <vector>
 
 #include <fhr/core/trimesh.hpp>
-#include <fhr/pipeline/outputs.hpp>
+#include <fhr/app/outputs.hpp>
 #include <fhr/pipeline/pipeline.hpp>
 #include <fhr/wavelet/analyse.hpp>
 
-namespace fhr::pipeline {
+namespace fhr::app {
 
 /// Whether this build holds the page's script (meson option `page`, which needs web/'s npm
 /// packages: `./run` installs them). Without it write_page throws.
@@ -44,4 +44,4 @@ struct PageContent {
 ///         the file cannot be written.
 void write_page(const std::string& path, const TriMesh& T, const Parameterization& p, const PageContent& content);
 
-}  // namespace fhr::pipeline
+}  // namespace fhr::app

@@ -2,8 +2,8 @@
 // packages absent): the page is not available (page.hpp).
 #include <string_view>
 
-namespace fhr::pipeline::detail {
+namespace fhr::app::detail {
 
 std::string_view page_script() { return {}; }
 
-}  // namespace fhr::pipeline::detail
+}  // namespace fhr::app::detail

@@ -14,7 +14,11 @@
 #include <fhr/pipeline/pipeline.hpp>
 #include <fhr/wavelet/analyse.hpp>
 
-namespace fhr::pipeline {
+namespace fhr::app {
+
+using pipeline::Options;
+using pipeline::Parameterization;
+using pipeline::StageObserver;
 
 /// Wall-clock seconds per stage, in the order run (names: paper §6's timing table): the observer
 /// of a run whose timings.json is written.
@@ -26,16 +30,6 @@ struct Timings final : StageObserver {
         (in_total ? stages : after_total).emplace_back(std::string(name), seconds);
     }
 };
-
-/// The parameterization as the exchange format holds it (spec/param.md).
-exchange::ParamFile to_param_file(const Parameterization& p);
-
-/// to_param_file(p) made from p's own arrays, which p lends it: its vertices are moved and its β
-/// freed (they are in the file's faces); take_back_param_file(p, file) returns both, bitwise. In
-/// between, p has no refined_positions and no face_beta. So the final T′ is not held twice while
-/// the oracle judges the file: at 10⁶ faces that phase sets the peak memory.
-exchange::ParamFile lend_param_file(Parameterization& p);
-void take_back_param_file(Parameterization& p, exchange::ParamFile file);
 
 /// What the report says about the input (and the domain asked for).
 struct InputInfo {
@@ -49,14 +43,14 @@ struct InputInfo {
 
 /// Writes the files of the parameterization alone into DIR (created if needed): domain.off,
 /// geodesics.obj, refined.ply, param.fhrp and textured.obj, each in parts on `executor`'s threads, from
-/// `file`, which is to_param_file(p) or the file p lends (lend_param_file: then T′'s vertices and
-/// β are in the file only). `fhr run` writes them beside the oracle (RunOptions::beside_oracle).
+/// `file`, which is pipeline::to_param_file(p) or the file p lends (pipeline::lend_param_file: then T′'s vertices and
+/// β are in the file only). `fhr run` writes them beside the oracle (pipeline::RunBeside::beside_oracle).
 void write_parameterization(const std::string& dir, const Parameterization& p, const exchange::ParamFile& file,
                             Executor* executor);
 
 /// Writes §5's meshes into DIR (created if needed): remesh_L{J}.off (f^J on D^J) and
 /// wavelet_keep{p}.off for each kept percentage, each in parts on `executor`'s threads. `fhr run` writes them
-/// as soon as §5 is done, beside the oracle (RunOptions::after_wavelets).
+/// as soon as §5 is done, beside the oracle (pipeline::RunBeside::after_wavelets).
 void write_wavelets(const std::string& dir, const wavelet::WaveletResult& wavelets, Executor* executor);
 
 /// Files the caller has written already into DIR, with the seconds each group took: they are not
@@ -120,4 +114,4 @@ std::vector<RateStep> rate_steps(const TriMesh& T, const TriMesh& D, const wavel
 void write_figures(const std::string& dir, const TriMesh& T, const Parameterization& p, int up_axis,
                    const wavelet::WaveletResult* wavelets, const std::vector<RateStep>& rate = {});
 
-}  // namespace fhr::pipeline
+}  // namespace fhr::app

@@ -48,31 +48,13 @@
 #include <vector>
 
 #include <fhr/core/executor.hpp>
-#include <fhr/domain/decimate.hpp>
+#include <fhr/domain/domain.hpp>
 #include <fhr/geodesic/ellipse.hpp>
 #include <fhr/partition/embed.hpp>
+#include <fhr/partition/partition.hpp>
 #include <fhr/partition/patches.hpp>
 
 namespace fhr::partition {
-
-/// How the curve of a domain edge was found.
-enum class CurveKind : std::uint8_t {
-    geodesic,    ///< the exact shortest geodesic Γ(x_j, x_k) of T (paper §3)
-    restricted,  ///< the restricted shortest path in the region the other curves leave free
-    boundary,    ///< a boundary edge of D: the arc of T's boundary between its ends (core/cones.hpp)
-};
-
-/// "geodesic", "restricted" or "boundary" (geodesics.obj, report.json).
-const char* name(CurveKind kind);
-
-/// What the report says of one domain edge's curve.
-struct CurveInfo {
-    CurveKind kind = CurveKind::geodesic;
-    double geodesic_length = 0;   ///< |Γ(x_j, x_k)| on T, unrestricted
-    double shortest = 0;          ///< restricted: the restricted shortest length before separation
-    double separation_bound = 0;  ///< restricted: the bound of what the separation added
-    std::string reason;           ///< restricted: the conflict of its geodesic that forced it
-};
 
 struct KeptNetwork {
     EdgeData<geodesic::GeodesicPath> paths;  ///< #E(D): the curve of D's halfedge (e, 0)
@@ -96,7 +78,7 @@ enum class Start : std::uint8_t {
 };
 
 /// The network for exactly D.
-/// \pre T is T̂ (core/cones.hpp; T itself when closed), whose vertices from `real_vertices` on are
+/// \pre T is T̂ (core/detail/cones.hpp; T itself when closed), whose vertices from `real_vertices` on are
 ///      cone apexes, and D is D̂ (domain::close_domain); `base()` gives H = Ĥ, a decimation of T
 ///      whose history describes it (domain::history_describes) with D's vertices (H = D when D is
 ///      itself that decimation), or throws PartitionFailure naming why there is none; it is called

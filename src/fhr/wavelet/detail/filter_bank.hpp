@@ -33,7 +33,7 @@
 #include <span>
 #include <vector>
 
-#include <fhr/wavelet/prewavelet.hpp>
+#include <fhr/wavelet/detail/prewavelet.hpp>
 #include <fhr/wavelet/refine.hpp>
 
 namespace fhr::wavelet {

@@ -1,5 +1,5 @@
 // FHR §6 — the files of `fhr run` (see outputs.hpp).
-#include <fhr/pipeline/outputs.hpp>
+#include <fhr/app/outputs.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -13,51 +13,20 @@
 #include <fhr/core/errors.hpp>
 #include <fhr/exchange/distortion.hpp>
 #include <fhr/exchange/verdict.hpp>
-#include <fhr/io/atomic_file.hpp>
+#include <fhr/io/detail/atomic_file.hpp>
 #include <fhr/io/detail/json.hpp>
 #include <fhr/io/detail/number_text.hpp>
 #include <fhr/io/write.hpp>
+#include <fhr/pipeline/run.hpp>
 #include <fhr/render/figures.hpp>
 #include <fhr/render/svg.hpp>
-#include <fhr/wavelet/compress.hpp>
-#include <fhr/wavelet/filter_bank.hpp>
+#include <fhr/wavelet/detail/compress.hpp>
+#include <fhr/wavelet/detail/filter_bank.hpp>
 
-namespace fhr::pipeline {
+namespace fhr::app {
 
-namespace {
-
-// The file's domain, and its faces of T′ from p's arrays (its vertices are the caller's to set).
-exchange::ParamFile param_file_faces(const Parameterization& p) {
-    const domain::Domain& D = p.partition.domain;
-    exchange::ParamFile f;
-    f.domain_vertices.assign(D.mesh.positions().begin(), D.mesh.positions().end());
-    f.domain_faces = D.mesh.triangles();
-    f.surface_faces.reserve(p.refined_faces.size());
-    for (std::size_t i = 0; i < p.refined_faces.size(); ++i)
-        f.surface_faces.push_back({p.refined_faces[i], p.face_patch[i], p.face_beta[i]});
-    return f;
-}
-
-}  // namespace
-
-exchange::ParamFile to_param_file(const Parameterization& p) {
-    exchange::ParamFile f = param_file_faces(p);
-    f.surface_vertices = p.refined_positions;
-    return f;
-}
-
-exchange::ParamFile lend_param_file(Parameterization& p) {
-    exchange::ParamFile f = param_file_faces(p);
-    f.surface_vertices = std::move(p.refined_positions);
-    std::vector<std::array<std::array<double, 3>, 3>>().swap(p.face_beta);
-    return f;
-}
-
-void take_back_param_file(Parameterization& p, exchange::ParamFile f) {
-    p.refined_positions = std::move(f.surface_vertices);
-    p.face_beta.reserve(f.surface_faces.size());
-    for (const exchange::ParamFace& face : f.surface_faces) p.face_beta.push_back(face.beta);
-}
+using pipeline::Options;
+using pipeline::Parameterization;
 
 namespace {
 
@@ -168,16 +137,16 @@ std::vector<exchange::FaceStretch> face_stretches(const Parameterization& p) {
     const TriMesh& D = p.partition.domain.mesh;
     const std::vector<Triangle> domain_faces = D.triangles();  // the corner order of the β (param.fhrp)
     std::vector<exchange::FaceStretch> stretches(p.refined_faces.size());
-    for (std::size_t f = 0; f < p.refined_faces.size(); ++f) {
-        const Triangle& d = domain_faces[p.face_patch[f]];
+    for (RefinedFaceId f : p.face_patch.ids()) {
+        const Triangle& d = domain_faces[p.face_patch[f].idx()];
         std::array<Vec3, 3> q;
         for (int c = 0; c < 3; ++c)
             q[c] = p.face_beta[f][c][0] * D.position(VertexId(d[0])) +
                    p.face_beta[f][c][1] * D.position(VertexId(d[1])) +
                    p.face_beta[f][c][2] * D.position(VertexId(d[2]));
-        const Triangle& t = p.refined_faces[f];
-        stretches[f] = exchange::face_stretch(q[0], q[1], q[2], p.refined_positions[t[0]], p.refined_positions[t[1]],
-                                              p.refined_positions[t[2]]);
+        const Triangle& t = p.refined_faces[f.idx()];
+        stretches[f.idx()] = exchange::face_stretch(q[0], q[1], q[2], p.refined_positions[t[0]],
+                                                    p.refined_positions[t[1]], p.refined_positions[t[2]]);
     }
     return stretches;
 }
@@ -206,7 +175,7 @@ std::vector<PatchAnisotropy> worst_patches(const Parameterization& p, std::size_
     for (std::uint32_t d = 0; d < patches.size(); ++d) patches[d] = {d, 0, 0};
     const std::vector<double> ratio = face_anisotropy(p);
     for (std::size_t f = 0; f < ratio.size(); ++f) {
-        PatchAnisotropy& a = patches[p.face_patch[f]];
+        PatchAnisotropy& a = patches[p.face_patch[RefinedFaceId(static_cast<RefinedFaceId::Index>(f))].idx()];
         a.max = std::max(a.max, ratio[f]);
         a.above_10 += ratio[f] > 10;
     }
@@ -404,7 +373,7 @@ std::vector<std::function<void()>> parameterization_files(const std::string& bas
     });
     files.emplace_back([&, base, executor] { exchange::write_param(base + "param.fhrp", file, executor); });
     files.emplace_back([&, base, executor] {
-        io::write_ply(base + "refined.ply", file.surface_vertices, p.refined_faces, p.face_patch, executor);
+        io::write_ply(base + "refined.ply", file.surface_vertices, p.refined_faces, p.face_patch.values(), executor);
     });
     files.emplace_back([&, base, executor] {
         const partition::Partition& P = p.partition;
@@ -468,7 +437,7 @@ RunTexts write_outputs(const std::string& dir, const InputInfo& input, const Par
     std::optional<exchange::ParamFile> file;
     std::vector<std::function<void()>> files;
     if (!written.parameterization)
-        files = parameterization_files(base, p, file.emplace(to_param_file(p)), options.executor);
+        files = parameterization_files(base, p, file.emplace(pipeline::to_param_file(p)), options.executor);
     if (wavelets && !written.wavelets)
         for (auto& f : wavelet_files(base, *wavelets, options.executor)) files.push_back(std::move(f));
     for (const auto& write : files) write();
@@ -502,8 +471,8 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
     render::write_fig6(base + "fig6.png", camera, t, d, size);
     // The network by each curve's kind: geodesic, restricted, boundary (an arc of T's boundary).
     std::array<std::vector<std::vector<std::uint32_t>>, 3> lines;
-    for (EdgeId e : P.network.path.ids()) {
-        auto& line = lines[static_cast<std::size_t>(P.curves[e].kind)].emplace_back();
+    for (DEdgeId e : P.network.path.ids()) {
+        auto& line = lines[static_cast<std::size_t>(P.curves[EdgeId(e)].kind)].emplace_back();
         for (VertexId v : P.network.path[e]) line.push_back(v.idx());
     }
     // The checkerboard coordinates: (β1, β2) of every corner, the same square cells in every patch.
@@ -545,15 +514,15 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
     // ψ_i(S_i) inside an equilateral triangle for the first patch and the one with the most faces.
     const std::array<Eigen::Vector2d, 3> corners{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0),
                                                  Eigen::Vector2d(0.5, std::sqrt(3.0) / 2)};
-    FaceId largest(0);
-    for (FaceId d : p.disks.ids())
+    DFaceId largest(0);
+    for (DFaceId d : p.disks.ids())
         if (p.disks[d].triangles.size() > p.disks[largest].triangles.size()) largest = d;
-    for (FaceId d : {FaceId(0), largest}) {
+    for (DFaceId d : {DFaceId(0), largest}) {
         std::vector<render::ImageTriangle> image;
-        for (std::size_t f = 0; f < p.face_patch.size(); ++f)
-            if (p.face_patch[f] == d.idx()) image.push_back(p.face_beta[f]);
+        for (RefinedFaceId f : p.face_patch.ids())
+            if (p.face_patch[f] == d) image.push_back(p.face_beta[f]);
         render::write_patch_svg(base + "patch" + std::to_string(d.idx()) + ".svg", corners, image);
     }
 }
 
-}  // namespace fhr::pipeline
+}  // namespace fhr::app

@@ -1,5 +1,5 @@
 // Beyond the paper — the run's interactive page (see page.hpp, spec/page.md).
-#include <fhr/pipeline/page.hpp>
+#include <fhr/app/page.hpp>
 
 #include <algorithm>
 #include <array>
@@ -14,13 +14,13 @@
 #include <unordered_map>
 
 #include <fhr/core/errors.hpp>
-#include <fhr/io/atomic_file.hpp>
+#include <fhr/io/detail/atomic_file.hpp>
 #include <fhr/io/detail/json.hpp>
 #include <fhr/render/figures.hpp>
 #include <fhr/render/svg.hpp>
 #include <fhr/wavelet/refine.hpp>
 
-namespace fhr::pipeline {
+namespace fhr::app {
 
 namespace detail {
 std::string_view page_script();  // the bundle of web/src (page_script.cpp, generated), or empty
@@ -191,7 +191,7 @@ std::vector<std::uint32_t> added_edges(const Parameterization& p) {
     std::vector<std::uint32_t> edges;
     for (std::size_t i = 0; i + 1 < sides.size(); ++i)
         if (sides[i][0] == sides[i + 1][0] && sides[i][1] == sides[i + 1][1] &&
-            p.face_t[sides[i][2]] == p.face_t[sides[i + 1][2]]) {
+            p.face_t[RefinedFaceId(sides[i][2])] == p.face_t[RefinedFaceId(sides[i + 1][2])]) {
             edges.push_back(sides[i][0]);
             edges.push_back(sides[i][1]);
         }
@@ -206,10 +206,10 @@ void write_domain_and_curves(ArrayWriter& a, const TriMesh& T, const Parameteriz
     a.triangles("d_faces", P.domain.mesh.triangles());
     std::vector<std::uint32_t> points, offsets{0};
     std::vector<std::uint8_t> kinds;
-    for (EdgeId e : P.network.path.ids()) {
+    for (DEdgeId e : P.network.path.ids()) {
         for (VertexId v : P.network.path[e]) points.push_back(v.idx());
         offsets.push_back(static_cast<std::uint32_t>(points.size()));
-        kinds.push_back(static_cast<std::uint8_t>(P.curves[e].kind));
+        kinds.push_back(static_cast<std::uint8_t>(P.curves[EdgeId(e)].kind));
     }
     std::vector<Vec3> xyz;
     xyz.reserve(points.size());
@@ -283,8 +283,9 @@ void write_refined(ArrayWriter& a, const Parameterization& p, const DisplayMesh&
     std::vector<double> beta;
     beta.reserve(6 * n);
     for (std::size_t f = 0; f < n; ++f) {
-        patch[f] = p.face_patch[original(f)];
-        for (const auto& b : p.face_beta[original(f)]) {
+        const RefinedFaceId face(static_cast<RefinedFaceId::Index>(original(f)));
+        patch[f] = p.face_patch[face].idx();
+        for (const auto& b : p.face_beta[face]) {
             beta.push_back(b[1]);
             beta.push_back(b[2]);
         }
@@ -410,4 +411,4 @@ void write_page(const std::string& path, const TriMesh& T, const Parameterizatio
     io::write_file_atomically(path, html);
 }
 
-}  // namespace fhr::pipeline
+}  // namespace fhr::app

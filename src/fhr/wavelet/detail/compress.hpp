@@ -18,7 +18,7 @@
 #include <cstddef>
 #include <vector>
 
-#include <fhr/wavelet/filter_bank.hpp>
+#include <fhr/wavelet/detail/filter_bank.hpp>
 
 namespace fhr::wavelet {
 
