@@ -42,8 +42,10 @@ namespace fhr::partition {
 /// The separation: a touched node moves to points at most this fraction of an edge of T from it.
 /// Each curve separated towards another takes at most a third of the gap between them, so curves
 /// squeezed past one vertex get closer by thirds; embed() places restricted paths without snapping,
-/// and a gap below min_separation (relative to the edge) is refused as no room.
-inline constexpr double separation_fraction = 1e-4;
+/// and a gap below min_separation (relative to the edge) is refused as no room. The strip between a
+/// restricted path and the curve it was moved off is this wide, and its faces as anisotropic as
+/// its inverse: 5 % of the edge, not a rounding distance (paper_notes/distortion_causes.md).
+inline constexpr double separation_fraction = 0.05;
 inline constexpr double min_separation = 1e-12;
 
 struct RestrictedPath {
