@@ -10,7 +10,9 @@ written, no figures) and peak resident memory (ru_maxrss of that child, os.wait4
 (bench/bench_io.cpp), and in the same run the ratio against CGAL for §2 decimation
 (bench/bench_decimate.cpp) and §3 exact geodesics (bench/bench_geodesic.cpp); then
 bench/bench_pipeline.cpp and bench/bench_wavelet.cpp on the fandisk (partition vs §4 solve; §5
-Hausdorff distances against CGAL's).
+Hausdorff distances against CGAL's). Each mesh's map is also held to the map-quality goals
+(report.json's distortion, spec/distortion.md: σ₁/σ₂ 99th percentile ≤ 3, 99.9th ≤ 10, maximum
+≤ 10³).
 
 `scaling` mode: two series, (a) generated genus-2 surfaces (`fhr generate --genus 2 --seed 7
 --noise 0.1`) at the pinned sizes 10^4, 10^5, 10^6 and (b) the fandisk refined by midpoint
@@ -181,6 +183,11 @@ def bench_meshes(build, runs, goals, results):
         m["geodesics_vs_cgal"] = number(r"CGAL/fhr +([0-9.]+)x", geo[0]) if geo else float("nan")
         m["length_deviation"] = number(r"deviation ([0-9.e+-]+)", geo[0]) if geo else float("nan")
         m["paths"] = int(number(r"faces: (\d+) paths", geo[0])) if geo else 0
+        with open(os.path.join(OUT, name, "report.json")) as f:  # the map's distortion (spec/distortion.md)
+            distortion = json.load(f)["parameterization"]["distortion"]
+        m["l2_stretch"] = distortion["l2_stretch"]
+        for key in ("p99", "p999", "max"):
+            m["anisotropy_" + key] = distortion["anisotropy"][key]
         results["meshes"][name] = m
         print("== %s: %s, domain %d faces, J = 3, keep 5 %% / 20 %%: median of %d `fhr run`" % (
             name, io_line.split()[1] + " faces", faces, runs))
@@ -189,6 +196,8 @@ def bench_meshes(build, runs, goals, results):
         print("  (hausdorff: the report's error brackets, after the total and not in it; wall: the whole process,"
               " also writing the outputs)")
         print("  read + validate %.2f ms, %.0f B/face (bench_io, median of 7)" % (m["read_ms"], m["bytes_per_face"]))
+        print("  map: L2 stretch %.4f, sigma1/sigma2 99th percentile %.3g, 99.9th %.3g, max %.3g (report.json)" % (
+            m["l2_stretch"], m["anisotropy_p99"], m["anisotropy_p999"], m["anisotropy_max"]))
         print("  CGAL/fhr: decimation %.2fx (median of 5 each); geodesic paths %.1fx (%d paths, max relative "
               "length deviation %.1e)" % (m["decimation_vs_cgal"], m["geodesics_vs_cgal"], m["paths"], m["length_deviation"]))
         for line in dec + geo:
@@ -241,6 +250,11 @@ def bench_meshes(build, runs, goals, results):
         goal(goals, "decimation faster than CGAL on %s" % name, m["decimation_vs_cgal"], "x", 3, at_least=True)
     for name, m in ms.items():
         goal(goals, "geodesic lengths equal CGAL's on %s (relative)" % name, m["length_deviation"], "", 1e-9)
+    # The map's distortion (spec/distortion.md, report.json): the tail the map-quality goals bound.
+    for name, m in ms.items():
+        goal(goals, "%s: sigma1/sigma2 99th percentile of the map" % name, m["anisotropy_p99"], "", 3)
+        goal(goals, "%s: sigma1/sigma2 99.9th percentile of the map" % name, m["anisotropy_p999"], "", 10)
+        goal(goals, "%s: sigma1/sigma2 maximum of the map" % name, m["anisotropy_max"], "", 1e3)
 
 
 def scaling_input(build, how, size):

@@ -12,8 +12,9 @@ it, up to F. Exits with fhr's code when it fails otherwise.
 With --flip it is a deliberately broken program: param.fhrp gets the β of the first two corners of
 its first face of T′ swapped (an image triangle turned over: PARAM-7, PARAM-8), textured.obj the vt of
 its first face's first corner reflected through the middle of the opposite side (the face turned
-over onto its neighbours: a fold, ATLAS-4, where the vt is shared with them, else an overlap,
-ATLAS-6), the per-vertex map the images of its first and last vertices exchanged."""
+over: a fold, ATLAS-4, where the vt is shared with its neighbours; else an overlap, ATLAS-6, or,
+where the face lands beyond its chart's boundary, a mirrored chart of its own, ATLAS-4 with
+--no-mirror), the per-vertex map the images of its first and last vertices exchanged."""
 import json
 import os
 import shutil

@@ -4,6 +4,8 @@
 // rate–distortion plot of §6's compression (spec/render.md REN-14).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -88,10 +90,19 @@ void check_rate_distortion(const std::string& svg, const std::string& report) {
 }
 
 // CLI-RUN-1's textured.obj: T′ with one vt per face corner, the patches laid out as an atlas. Each
-// patch's corners (β = e_c exactly, MAP-5) form its domain triangle in its own shape, at one scale
-// for all (side lengths in UV over side lengths in 3D: one number, to 1e-9), counter-clockwise;
-// every corner of a face of the patch lies at its β in that triangle; all of it in [0, 1]²; and no
-// two patches' triangles have intersecting bounding boxes (the charts never touch).
+// patch's corners (β = e_c exactly, MAP-5) form its domain triangle in its own shape (side lengths
+// in UV over side lengths in 3D: one number per chart, to 1e-9), counter-clockwise (turned, never
+// mirrored); every chart has the same texel density √(UV area / surface area) within 1 %; every
+// corner of a face of the patch lies at its β in that triangle; all of it in [0, 1]²; and any two
+// charts are at least 2 texels of a 2048² texture apart (the least distance between their
+// triangles, computed here from the segments).
+double segment_distance(const std::array<double, 2>& p, const std::array<double, 2>& a,
+                        const std::array<double, 2>& b) {
+    const double dx = b[0] - a[0], dy = b[1] - a[1];
+    const double t = std::clamp(((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+    return std::hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy);
+}
+
 void check_atlas(const std::string& obj, const fhr::exchange::ParamFile& param) {
     using UV = std::array<double, 2>;
     std::vector<UV> vt;
@@ -119,43 +130,52 @@ void check_atlas(const std::string& obj, const fhr::exchange::ParamFile& param) 
     const std::size_t n = param.domain_faces.size();
     std::vector<std::array<UV, 3>> corner(n);
     std::vector<int> corners_seen(n, 0);
-    for (std::size_t f = 0; f < face_vt.size(); ++f)
+    std::vector<double> surface(n, 0.0);
+    for (std::size_t f = 0; f < face_vt.size(); ++f) {
+        const auto& face = param.surface_faces[f];
+        const fhr::Vec3 &a = param.surface_vertices[face.v[0]], &b = param.surface_vertices[face.v[1]],
+                        &c = param.surface_vertices[face.v[2]];
+        surface[face.patch] += 0.5 * (b - a).cross(c - a).norm();
         for (int c = 0; c < 3; ++c)
             for (int k = 0; k < 3; ++k) {
-                const auto& beta = param.surface_faces[f].beta[c];
+                const auto& beta = face.beta[c];
                 if (beta[k] == 1 && beta[(k + 1) % 3] == 0 && beta[(k + 2) % 3] == 0) {
-                    corner[param.surface_faces[f].patch][k] = vt.at(face_vt[f][c]);
-                    corners_seen[param.surface_faces[f].patch] |= 1 << k;
+                    corner[face.patch][k] = vt.at(face_vt[f][c]);
+                    corners_seen[face.patch] |= 1 << k;
                 }
             }
+    }
     auto near = [](double a, double b) { return std::abs(a - b) <= 1e-12; };
     auto length = [](const UV& a, const UV& b) { return std::hypot(b[0] - a[0], b[1] - a[1]); };
-    std::size_t bad_triangles = 0, bad_corners = 0, touching = 0;
+    std::size_t bad_triangles = 0, bad_corners = 0;
     const auto& dv = param.domain_vertices;
-    double scale = 0;
-    std::vector<std::array<double, 4>> box(n);  // x0, y0, x1, y1
+    double least_density = 1e300, most_density = 0;
     for (std::size_t i = 0; i < n; ++i) {
         const auto& q = corner[i];
         const auto& d = param.domain_faces[i];
         bad_triangles += corners_seen[i] != 7;
         const double ccw = (q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0]);
         bad_triangles += !(ccw > 0);
+        const double density = std::sqrt(0.5 * ccw / surface[i]);
+        least_density = std::min(least_density, density);
+        most_density = std::max(most_density, density);
+        double scale = 0;
         for (int e = 0; e < 3; ++e) {
             const double ratio = length(q[e], q[(e + 1) % 3]) / (dv[d[(e + 1) % 3]] - dv[d[e]]).norm();
             if (scale == 0) scale = ratio;
             bad_triangles += std::abs(ratio / scale - 1) > 1e-9;
         }
-        box[i] = {1, 1, 0, 0};
-        for (const UV& p : q) {
-            bad_triangles += !(p[0] >= 0 && p[0] <= 1 && p[1] >= 0 && p[1] <= 1);
-            box[i] = {std::min(box[i][0], p[0]), std::min(box[i][1], p[1]), std::max(box[i][2], p[0]),
-                      std::max(box[i][3], p[1])};
-        }
+        for (const UV& p : q) bad_triangles += !(p[0] >= 0 && p[0] <= 1 && p[1] >= 0 && p[1] <= 1);
     }
+    // The gutter: the least distance between two charts' triangles is a corner of one to a side of
+    // the other (they do not overlap: the atlas oracle checks that).
+    double gutter = 1e300;
     for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t j = i + 1; j < n; ++j)
-            touching +=
-                box[i][0] <= box[j][2] && box[j][0] <= box[i][2] && box[i][1] <= box[j][3] && box[j][1] <= box[i][3];
+        for (std::size_t j = 0; j < n; ++j)
+            if (i != j)
+                for (int c = 0; c < 3; ++c)
+                    for (int e = 0; e < 3; ++e)
+                        gutter = std::min(gutter, segment_distance(corner[i][c], corner[j][e], corner[j][(e + 1) % 3]));
     for (std::size_t f = 0; f < face_vt.size(); ++f) {
         const auto& q = corner[param.surface_faces[f].patch];
         for (int c = 0; c < 3; ++c) {
@@ -165,10 +185,10 @@ void check_atlas(const std::string& obj, const fhr::exchange::ParamFile& param) 
                 bad_corners += !near(uv[k], q[0][k] + beta[1] * (q[1][k] - q[0][k]) + beta[2] * (q[2][k] - q[0][k]));
         }
     }
-    CHECK(scale > 0);
     CHECK(bad_triangles == 0);
     CHECK(bad_corners == 0);
-    CHECK(touching == 0);
+    CHECK(most_density / least_density <= 1.01);
+    CHECK(gutter >= 2.0 / 2048);
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 """fhr itself as a peer (peers/fhr-param, peers/fhr-atlas, peers/fhr-vertex-map; peers/fhr_peer.py):
 each writes fhr's output for a generated mesh, judged valid by the oracle (param.fhrp with --paper:
-it is the paper's map); with --flip each writes a broken output that the oracle catches (PARAM-7 for
-the swapped β; for the reflected vt ATLAS-4 or, where textured.obj gives the corner a vt of its
-own, ATLAS-6; for the exchanged images VMAP-5 or VMAP-6); `fhr oracle-fuzz --kind vertex-map`
+it is the paper's map; textured.obj with --no-mirror: its charts are turned, never mirrored); with
+--flip each writes a broken output that the oracle catches (PARAM-7 for the swapped β; for the
+reflected vt ATLAS-4 — a fold, or the face cut off its chart as a mirrored chart of its own — or
+ATLAS-6, an overlap; for the exchanged images VMAP-5 or VMAP-6); `fhr oracle-fuzz --kind vertex-map`
 judges the per-vertex map's folder and keeps it with a failure; --help names the output; a wrong
 call is exit code 2. FHR names the built fhr (the meson test sets it)."""
 import json
@@ -34,10 +35,11 @@ def mesh(tmp_path_factory):
 def test_fhr_as_a_peer_is_judged(adapter, out, flipped, mesh, tmp_path):
     good, bad = tmp_path / out, tmp_path / ("flipped-" + out)
     assert subprocess.run([str(PEERS / adapter), str(mesh), str(good)]).returncode == 0
-    verdict = fhr_verify(good, "--mesh", mesh, *(["--paper"] if adapter == "fhr-param" else []))
+    strict = ["--paper"] if adapter == "fhr-param" else ["--no-mirror"]
+    verdict = fhr_verify(good, "--mesh", mesh, *strict)
     assert verdict["valid"], verdict["first_failure"]
     assert subprocess.run([str(PEERS / adapter), str(mesh), str(bad), "--flip"]).returncode == 0
-    assert fhr_verify(bad, "--mesh", mesh)["first_failure"] in flipped
+    assert fhr_verify(bad, "--mesh", mesh, *strict)["first_failure"] in flipped
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([good.name, bad.name])  # no temporary left
 
 

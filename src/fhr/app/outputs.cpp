@@ -1,6 +1,8 @@
 // FHR §6 — the files of `fhr run` (see outputs.hpp).
 #include <fhr/app/outputs.hpp>
 
+#include <fhr/app/atlas.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -29,74 +31,6 @@ using pipeline::Options;
 using pipeline::Parameterization;
 
 namespace {
-
-// The patches laid out as an atlas in [0, 1]²: patch i's domain triangle T_i laid flat in its own
-// 3D shape (side lengths kept), all at one scale, so that each face of T′ keeps in UV the
-// distortion it has in param.fhrp (spec/distortion.md: the same σ₁/σ₂, the same figures up to the
-// normalisation). The triangles' bounding boxes are packed in shelves (tallest first, each shelf
-// filled left to right up to the width of a square of their total area), with a gap of 2 % of the
-// tallest box between boxes, and the whole scaled into [0, 1]²: charts never touch. The texture
-// coordinate of corner c (3f + k) of T′ is β's point in its patch's laid-out triangle, whose
-// longest side lies along x (its box then has twice its area).
-class Atlas {
-public:
-    explicit Atlas(const exchange::ParamFile& file) : file_(file) {
-        const std::size_t m = file.domain_faces.size();
-        flat_.resize(m);
-        std::vector<double> width(m), height(m);
-        for (std::size_t d = 0; d < m; ++d) {
-            // The longest side along x: the apex then lies over it, and the box is twice the area.
-            const auto& t = file.domain_faces[d];
-            int k = 0;
-            for (int e = 1; e < 3; ++e)
-                if ((file.domain_vertices[t[(e + 1) % 3]] - file.domain_vertices[t[e]]).squaredNorm() >
-                    (file.domain_vertices[t[(k + 1) % 3]] - file.domain_vertices[t[k]]).squaredNorm())
-                    k = e;
-            const Vec3 &a = file.domain_vertices[t[k]], &b = file.domain_vertices[t[(k + 1) % 3]],
-                       &c = file.domain_vertices[t[(k + 2) % 3]];
-            const double ab = (b - a).norm();
-            const double x = (c - a).dot(b - a) / ab, y = (b - a).cross(c - a).norm() / ab;
-            flat_[d][k] = io::Vec2(0, 0);
-            flat_[d][(k + 1) % 3] = io::Vec2(ab, 0);
-            flat_[d][(k + 2) % 3] = io::Vec2(std::clamp(x, 0.0, ab), y);  // over the base (x is there up to rounding)
-            width[d] = ab;
-            height[d] = y;
-        }
-        std::vector<std::size_t> order(m);
-        std::iota(order.begin(), order.end(), std::size_t{0});
-        std::stable_sort(order.begin(), order.end(),
-                         [&](std::size_t i, std::size_t j) { return height[i] > height[j]; });
-        const double gap = 0.02 * height[order.front()];
-        double area = 0;
-        for (std::size_t d = 0; d < m; ++d) area += (width[d] + gap) * (height[d] + gap);
-        const double shelf_width = std::max(std::sqrt(area), *std::max_element(width.begin(), width.end()) + gap);
-        origin_.resize(m);
-        double x = 0, y = 0, shelf_height = 0, extent = 0;
-        for (std::size_t d : order) {
-            if (x > 0 && x + width[d] > shelf_width) {
-                y += shelf_height + gap;
-                x = shelf_height = 0;
-            }
-            origin_[d] = io::Vec2(x, y);
-            x += width[d] + gap;
-            shelf_height = std::max(shelf_height, height[d]);
-            extent = std::max({extent, x, y + shelf_height});
-        }
-        scale_ = 1.0 / extent;
-    }
-    io::Vec2 operator()(std::size_t c) const {
-        const exchange::ParamFace& face = file_.surface_faces[c / 3];
-        const auto& beta = face.beta[c % 3];
-        const auto& t = flat_[face.patch];
-        return scale_ * (origin_[face.patch] + beta[0] * t[0] + beta[1] * t[1] + beta[2] * t[2]);
-    }
-
-private:
-    const exchange::ParamFile& file_;
-    std::vector<std::array<io::Vec2, 3>> flat_;  // T_i laid flat, its box's lower left corner at 0
-    std::vector<io::Vec2> origin_;               // where that box goes, before scaling
-    double scale_ = 1;
-};
 
 // The percentage as a file-name part: 5 -> "5", 2.5 -> "2.5".
 std::string percent_name(double p) {
@@ -369,7 +303,7 @@ std::vector<std::function<void()>> parameterization_files(const std::string& bas
                                                           const exchange::ParamFile& file, Executor* executor) {
     std::vector<std::function<void()>> files;
     files.emplace_back([&, base, executor] {
-        io::write_obj(base + "textured.obj", file.surface_vertices, p.refined_faces, Atlas(file), executor);
+        io::write_obj(base + "textured.obj", file.surface_vertices, p.refined_faces, ChartAtlas(file), executor);
     });
     files.emplace_back([&, base, executor] { exchange::write_param(base + "param.fhrp", file, executor); });
     files.emplace_back([&, base, executor] {
