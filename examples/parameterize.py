@@ -16,7 +16,7 @@ import fhr
 
 def main(mesh_path, faces):
     V, F = fhr.read_mesh(mesh_path)
-    p = fhr.parameterize(V, F, faces=faces)
+    p = fhr.parameterize(V, F, faces=faces, map="paper")  # the paper's §4 map, as examples/parameterize.cpp
     if not p.certified:
         sys.exit("parameterize: not certified: %s" % p.oracle["first_failure"])
     # T' keeps T's vertices under their own numbers; take each one's first corner in face order.

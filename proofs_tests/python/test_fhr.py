@@ -37,11 +37,12 @@ def fandisk():
 
 @pytest.fixture(scope="module")
 def fandisk_run(fandisk, tmp_path_factory):
-    """fhr.parameterize and `fhr run` on the fandisk with the paper's 114 faces."""
+    """fhr.parameterize and `fhr run` on the fandisk with the paper's 114 faces and its map (the
+    reference outputs' run, spec/cli.md CLI-RUN-9)."""
     out = tmp_path_factory.mktemp("cli")
-    cli("run", FANDISK, "--faces", 114, "--out", out)
+    cli("run", FANDISK, "--faces", 114, "--map", "paper", "--out", out)
     V, F = fandisk
-    return fhr.parameterize(V, F, faces=114), out
+    return fhr.parameterize(V, F, faces=114, map="paper"), out
 
 
 # --- arrays in and out ------------------------------------------------------------------------

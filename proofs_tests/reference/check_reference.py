@@ -25,6 +25,7 @@ ROOT = Path(__file__).resolve().parents[2]
 REF = ROOT / "reference_outputs"
 MESHES = Path(os.environ.get("FHR_CGAL_MESHES", ROOT / "out/cgal-data/data/meshes"))
 WAVELETS = ["--levels", "3", "--keep", "5,20", "--figures"]
+PAPER_MAP = ["--map", "paper"]  # the paper reproduction: its §4 map exactly (spec/cli.md CLI-RUN-9)
 CASES = {  # the input mesh, how it is made (None: from libcgal-demo), the size of D
     "fandisk": {"mesh": "fandisk.off", "generate": None, "faces": "114"},
     "genus1": {"mesh": "genus1.off", "faces": "48",
@@ -73,7 +74,7 @@ def produce(fhr, name, work):
         if not mesh.exists():
             raise SystemExit("%s is missing: run ./run demo to extract libcgal-demo's meshes" % mesh)
     out = work / "out"
-    run([fhr, "run", mesh.name, "--faces", case["faces"], *WAVELETS, "--out", out], cwd=mesh.parent)
+    run([fhr, "run", mesh.name, "--faces", case["faces"], *WAVELETS, *PAPER_MAP, "--out", out], cwd=mesh.parent)
     return out, mesh
 
 

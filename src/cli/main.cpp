@@ -42,11 +42,13 @@ usage:
       §3: the exact shortest path between two vertices, searched in the ellipse sub-mesh
       (K = 1.06, grown until the result is certified): length, points, K, windows
   fhr run MESH (--faces N | --domain D.off --correspondence FILE) --out DIR
-          [--weights shape-preserving|mean-value|uniform] [--solver sparse-lu|bicgstab]
+          [--weights shape-preserving|mean-value|uniform] [--solver sparse-lu|bicgstab] [--map relaxed|paper]
           [--paths keep|geodesic] [--levels J [--keep P,Q,...]] [--figures] [--html [--page-faces N]] [--up x|y|z]
           [--corner-angle DEG] [--threads N]
       §2–§4 end to end (--paths keep, the default: D is kept, edges whose geodesics conflict
-      get restricted shortest paths; geodesic: the paper's geodesics only, D changed where they conflict): writes DIR/domain.off, geodesics.obj, refined.ply, param.fhrp,
+      get restricted shortest paths; geodesic: the paper's geodesics only, D changed where they conflict;
+      --map relaxed, the default: each patch map relaxed where that lowers its distortion; paper: the
+      paper's §4 map exactly): writes DIR/domain.off, geodesics.obj, refined.ply, param.fhrp,
       textured.obj, report.json, timings.json; with --levels also §5's remesh_LJ.off and
       wavelet_keepP.off (the largest P % of the wavelet coefficients); with --figures DIR/figures/: the paper's
       Figures 6-9 as PNG, patches and the rate-distortion plot as SVG; with --html DIR/index.html: every

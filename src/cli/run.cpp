@@ -22,8 +22,8 @@ namespace fhr::cli {
 int run_run(const std::vector<std::string>& argv) {
     // Parse.
     const Args args(argv, {"figures", "html"},
-                    {"faces", "domain", "correspondence", "out", "weights", "solver", "up", "levels", "keep", "paths",
-                     "corner-angle", "threads", "page-faces"});
+                    {"faces", "domain", "correspondence", "out", "weights", "solver", "map", "up", "levels", "keep",
+                     "paths", "corner-angle", "threads", "page-faces"});
     const std::string& mesh_path = args.single_positional("MESH");
     const std::string out = args.require("out");
     const bool by_faces = args.get("faces").has_value(), by_domain = args.get("domain").has_value();
@@ -32,6 +32,10 @@ int run_run(const std::vector<std::string>& argv) {
     pipeline::Options& method = options.method;
     if (const auto w = args.get("weights")) method.map.weights = param::parse_weights(*w);
     if (const auto s = args.get("solver")) method.map.solver = param::parse_solver(*s);
+    if (const auto map = args.get("map")) {
+        if (*map != "relaxed" && *map != "paper") usage_error("--map must be relaxed or paper, not '" + *map + "'");
+        method.relax = *map == "relaxed";
+    }
     if (const auto paths = args.get("paths")) {
         if (*paths != "keep" && *paths != "geodesic")
             usage_error("--paths must be keep or geodesic, not '" + *paths + "'");

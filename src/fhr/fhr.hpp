@@ -1,8 +1,9 @@
 // <fhr/fhr.hpp> — the public API of the fhr library in one include (spec/library.md LIB-5): the
 // paper's pipeline end to end (pipeline::run), one call per stage (§2 domain::decimate, §3
-// geodesic::ellipse_shortest_path and partition::partition, §4 param::map_patch, §5 wavelet::analyse), the
-// mesh (core), its readers and writers (io), the `fhr-param 1` exchange file with its independent
-// oracle (exchange::verify, UV atlases, per-vertex maps, distortion) and the random mesh generator.
+// geodesic::ellipse_shortest_path and partition::partition, §4 param::map_patch and param::relax,
+// §5 wavelet::analyse), the mesh (core), its readers and writers (io), the `fhr-param 1` exchange
+// file with its independent oracle (exchange::verify, UV atlases, per-vertex maps, distortion) and
+// the random mesh generator.
 // Exactly the installed headers: everything else is in detail/ folders or the command's and the
 // Python module's application layer (src/fhr/app, src/fhr/render), neither installed.
 // <fhr/testing/rapidcheck.hpp>, which needs RapidCheck, is included separately.
@@ -40,6 +41,7 @@
 #include <fhr/param/disk.hpp>
 #include <fhr/param/locate.hpp>
 #include <fhr/param/patch_map.hpp>
+#include <fhr/param/relax.hpp>
 #include <fhr/param/weights.hpp>
 #include <fhr/partition/embed.hpp>
 #include <fhr/partition/partition.hpp>

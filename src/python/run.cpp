@@ -265,7 +265,8 @@ void bind_run(py::module_& m) {
     m.def(
         "parameterize",
         [](const py::array& V, const py::array& F, std::size_t faces, std::optional<py::tuple> domain,
-           const std::string& weights, int levels, const std::vector<double>& keep, py::object progress) {
+           const std::string& weights, const std::string& map, int levels, const std::vector<double>& keep,
+           py::object progress) {
             TriMesh T = mesh_of(V, F);
             Interruptible interruptible(std::move(progress));
             pipeline::RunOptions options;
@@ -290,6 +291,9 @@ void bind_run(py::module_& m) {
                                           entries, {"domain", "t_vertex"});
             }
             options.method.map.weights = param::parse_weights(weights);
+            if (map != "relaxed" && map != "paper")
+                throw InvalidInput("map must be 'relaxed' or 'paper', not '" + map + "'");
+            options.method.relax = map == "relaxed";
             options.method.progress = [&](const std::string& text) { interruptible.line(text); };
             options.method.observer = &interruptible;
             options.levels = levels;
@@ -305,12 +309,12 @@ void bind_run(py::module_& m) {
             return Result(std::move(T), std::move(result), std::move(interruptible.timings), std::move(kept));
         },
         py::arg("V"), py::arg("F"), py::arg("faces") = 0, py::arg("domain") = py::none(),
-        py::arg("weights") = "shape-preserving", py::arg("levels") = 0, py::arg("keep") = std::vector<double>{},
-        py::arg("progress") = py::none(),
-        "parameterize(V, F, faces=0, domain=None, weights='shape-preserving', levels=0, keep=[], progress=None) -> "
-        "Parameterization: the paper's method (§2 decimation to `faces`, or a given domain=(DV, DF, t_vertex) with "
-        "domain "
-        "vertex j at vertex t_vertex[j] of T; §3 partition keeping D; §4 certified patch maps; the oracle; §5 with "
+        py::arg("weights") = "shape-preserving", py::arg("map") = "relaxed", py::arg("levels") = 0,
+        py::arg("keep") = std::vector<double>{}, py::arg("progress") = py::none(),
+        "parameterize(V, F, faces=0, domain=None, weights='shape-preserving', map='relaxed', levels=0, keep=[], "
+        "progress=None) -> Parameterization: the paper's method (§2 decimation to `faces`, or a given domain=(DV, DF, "
+        "t_vertex) with domain vertex j at vertex t_vertex[j] of T; §3 partition keeping D; §4 certified patch maps, "
+        "relaxed where that lowers their distortion, or map='paper' for the paper's own; the oracle; §5 with "
         "levels ≥ 1). progress(line) is called with each progress line; Ctrl-C interrupts between steps "
         "(KeyboardInterrupt).");
     m.def(

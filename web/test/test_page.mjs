@@ -339,8 +339,8 @@ async function main() {
   const pages = [];
   await check('the pages are written (fhr run --html)', async () => {
     assert(fs.existsSync(fandisk), `${fandisk} is missing: libcgal-demo's meshes (./run extracts them; FHR_CGAL_MESHES)`);
-    fhr('run', fandisk, '--faces', '114', '--levels', '3', '--keep', '5,20', '--html', '--out', path.join(runs, 'fandisk'));
-    fhr('run', fandisk, '--faces', '114', '--levels', '3', '--keep', '5,20', '--html', '--out', path.join(runs, 'fandisk-again'));
+    fhr('run', fandisk, '--faces', '114', '--levels', '3', '--keep', '5,20', '--map', 'paper', '--html', '--out', path.join(runs, 'fandisk'));
+    fhr('run', fandisk, '--faces', '114', '--levels', '3', '--keep', '5,20', '--map', 'paper', '--html', '--out', path.join(runs, 'fandisk-again'));
     pages.push(['fandisk', path.join(runs, 'fandisk')]);
     fhr('run', fandisk, '--faces', '114', '--html', '--page-faces', '8000', '--out', path.join(runs, 'fandisk-display'));
     // A genus-1 surface with one boundary loop: boundary arcs among the curves.

@@ -5,10 +5,12 @@
 #include <fhr/pipeline/pipeline.hpp>
 
 #include <algorithm>
+#include <optional>
 #include <utility>
 
 #include <fhr/core/errors.hpp>
 #include <fhr/param/detail/dividing_edges.hpp>
+#include <fhr/param/relax.hpp>
 
 namespace fhr::pipeline {
 
@@ -31,6 +33,25 @@ std::pair<DFaceId, std::array<double, 3>> GlobalMap::psi(RefinedFaceId f, const 
         for (int r = 0; r < 3; ++r) beta[r] += w[k] * p_.face_beta[f][k][r];
     return {p_.face_patch[f], beta};
 }
+
+namespace {
+
+// Beyond the paper: patch d's certified map replaced by its relaxed one when that one is certified
+// too (param/relax.hpp); `relaxed` says whether it was.
+void relax_patch(const TriMesh& D, FaceId d, const param::Disk& disk, Parameterization& out, std::uint8_t& relaxed) {
+    const auto corners = D.face_vertices(d);
+    const DFaceId i(d);
+    std::optional<param::PatchMap> psi =
+        param::relax(disk, out.maps[i], {D.position(corners[0]), D.position(corners[1]), D.position(corners[2])});
+    if (!psi) return;
+    param::Certificate certificate = param::certify(disk, *psi);
+    if (!certificate.passed) return;  // rounding onto the 2^-53 grid turned an image over: the paper's map stays
+    out.maps[i] = std::move(*psi);
+    out.certificates[i] = std::move(certificate);
+    relaxed = 1;
+}
+
+}  // namespace
 
 Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options) {
     auto say = [&](const std::string& line) {
@@ -60,6 +81,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     FHR_DCHECK(out.disks.size() == n_patches);
     std::vector<std::size_t> split(n_patches, 0);
     std::vector<std::vector<std::uint32_t>> origin(n_patches);  // per patch: the triangle before the splits
+    std::vector<std::uint8_t> relaxed(n_patches, 0);
     executor_or_default(options.executor).for_each(n_patches, 16, [&](std::size_t i) {
         const DFaceId d(static_cast<DFaceId::Index>(i));
         param::Disk disk = std::move(out.partition.patches.patch[FaceId(d)].disk);  // each task its own patch
@@ -71,9 +93,11 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
                                 " that §3 made is refused by §4: " + e.problem());
         }
         out.certificates[d] = param::certify(disk, out.maps[d]);
+        if (options.relax && out.certificates[d].passed) relax_patch(P.domain.mesh, FaceId(d), disk, out, relaxed[i]);
         out.disks[d] = std::move(disk);
     });
     for (std::size_t s : split) out.dividing_edges_split += s;
+    for (std::uint8_t r : relaxed) out.relaxed_patches += r;
     // The final T′: the vertices of T′ of §3, then each patch's dividing-edge midpoints; faces
     // patch by patch, each with the β of its corners.
     const TriMesh& M = P.network.mesh;
@@ -108,7 +132,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     const std::size_t failed = static_cast<std::size_t>(std::count_if(
         out.certificates.begin(), out.certificates.end(), [](const param::Certificate& c) { return !c.passed; }));
     say("parameterization: " + std::to_string(n_patches) + " patches, " + std::to_string(out.dividing_edges_split) +
-        " dividing edges split, " +
+        " dividing edges split, " + (options.relax ? std::to_string(out.relaxed_patches) + " relaxed, " : "") +
         (failed ? std::to_string(failed) + " NOT certified" : std::string("all certified")));
     return out;
 }

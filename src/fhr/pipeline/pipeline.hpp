@@ -6,6 +6,8 @@
 //   geodesic_paths:   paths, T′, patches <- partition(T, D)       (D may be refined: §3 recovery)
 //   parameterization: for each patch S_i: split its dividing edges (Floater 2003, Thm 6.1);
 //                     ψ_i <- chord-length boundary + convex combinations inside (eq. 2);
+//                     beyond the paper (unless the paper's map is asked for): ψ_i relaxed, kept
+//                     when its certificate passes (param/relax.hpp);
 //                     certify ψ_i (exact orientation, boundary monotone, areas)
 //   the final T′ (with the dividing-edge midpoints) and, per face, its patch and the β of ψ
 //   at its corners: the `fhr-param 1` content (spec/param.md)
@@ -40,6 +42,9 @@ public:
 
 struct Options {
     param::PatchMapOptions map;
+    /// Beyond the paper: each patch map relaxed (param/relax.hpp) where that lowers its distortion
+    /// and keeps its certificate; false: the paper's §4 map exactly (`fhr run --map paper`).
+    bool relax = true;
     bool keep_domain = true;  ///< §3: keep D (restricted paths where geodesics conflict), else change it
     std::function<void(const std::string&)> progress;  ///< optional: one line per step, on the calling thread
     StageObserver* observer = nullptr;                 ///< optional: the seconds of each stage
@@ -56,6 +61,7 @@ struct Parameterization {
     IdVector<DFaceId, param::PatchMap> maps;  ///< #F(D): ψ_i at the disk's vertices
     IdVector<DFaceId, param::Certificate> certificates;  ///< #F(D)
     std::size_t dividing_edges_split = 0;
+    std::size_t relaxed_patches = 0;  ///< patches whose map is the relaxed one (Options::relax)
     // The final T′: T′ of §3 plus the dividing-edge midpoints, as plain arrays (for writers and numpy;
     // nothing reads its connectivity after §4, which a TriMesh would hold: paper_notes/library.md).
     std::vector<Vec3> refined_positions;

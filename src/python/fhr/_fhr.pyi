@@ -50,6 +50,7 @@ def parameterize(
     faces: int = ...,
     domain: Optional[Tuple[npt.ArrayLike, npt.ArrayLike, npt.ArrayLike]] = ...,
     weights: str = ...,
+    map: str = ...,
     levels: int = ...,
     keep: Sequence[float] = ...,
     progress: Optional[Callable[[str], object]] = ...,
