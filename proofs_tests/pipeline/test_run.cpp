@@ -9,7 +9,10 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <cmath>
+#include <functional>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -19,7 +22,9 @@
 #include <fhr/app/outputs.hpp>
 #include <fhr/exchange/distortion.hpp>
 #include <fhr/generate/random_mesh.hpp>
+#include <fhr/domain/domain.hpp>
 #include <fhr/pipeline/detail/run_beside.hpp>
+#include <fhr/pipeline/pipeline.hpp>
 #include "render/png_reader.hpp"
 #include "support/test_support.hpp"
 
@@ -266,4 +271,84 @@ TEST_CASE("PART-10, DIST-1: the bull's restricted paths leave no sliver strip: i
     const exchange::Distortion d = exchange::summarize(app::face_stretches(r.parameterization));
     REQUIRE(d.anisotropy_max);
     CHECK(*d.anisotropy_max < 1e3);
+}
+
+namespace {
+
+// A pillow: the unit square [0, 1]² as a flat lattice of n × n squares on top (z = 0) and a bulging
+// one below, glued along the square's sides (closed, genus 0). Top vertex (i, j) is i·(n + 1) + j.
+TriMesh pillow(int n, const std::function<Vec3(int, int)>& top) {
+    std::vector<Vec3> positions;
+    std::vector<Triangle> faces;
+    auto top_id = [&](int i, int j) { return static_cast<std::uint32_t>(i * (n + 1) + j); };
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) positions.push_back(top(i, j));
+    std::vector<std::uint32_t> bottom((n + 1) * (n + 1));
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) {
+            const bool side = i == 0 || j == 0 || i == n || j == n;
+            if (side) {
+                bottom[i * (n + 1) + j] = top_id(i, j);
+                continue;
+            }
+            const double x = double(i) / n, y = double(j) / n;
+            bottom[i * (n + 1) + j] = static_cast<std::uint32_t>(positions.size());
+            positions.push_back({x, y, -0.5 * std::sin(M_PI * x) * std::sin(M_PI * y)});
+        }
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const std::uint32_t a = top_id(i, j), b = top_id(i + 1, j), c = top_id(i + 1, j + 1), d = top_id(i, j + 1);
+            faces.push_back({a, b, c});  // counter-clockwise seen from above: outward on top
+            faces.push_back({a, c, d});
+            const auto at = [&](int u, int v) { return bottom[u * (n + 1) + v]; };
+            // Reversed below, across the other diagonal (the top's may join two vertices of the sides).
+            faces.push_back({at(i + 1, j), at(i, j), at(i, j + 1)});
+            faces.push_back({at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)});
+        }
+    return TriMesh::from_triangles(std::move(positions), faces);
+}
+
+}  // namespace
+
+TEST_CASE("PART-3 snapping, DIST-1: a curve passing 1e-14 or 1e-8 from a vertex of T leaves no sliver in the map",
+          "[pipeline][distortion]") {
+    // D: the square's corners, the top's centre and the bottom's; the curve from the top's centre to
+    // the corner (0, 0) is the diagonal y = x, and the lattice vertex (n/4, n/4) is moved `off` away
+    // from it. Left as it is, the curve would cross that vertex's edges `off` from it and cut faces
+    // that thin out of T′. At 1e-14 the exact geodesic goes through the vertex (shorter by 1e-28
+    // the other way: below rounding); at 1e-8 (1.1e-7 of the edges there) it passes the vertex and
+    // is snapped onto it (PART-3: within snap_fraction = 1e-6 of an edge; at 1e-7, 1.1e-6 of an
+    // edge, it is not). Either way the vertex is on the curve and no face of the map is a sliver.
+    const int n = 16;
+    for (const double off : {1e-14, 1e-8}) {
+        CAPTURE(off);
+        const TriMesh T = pillow(n, [&](int i, int j) {
+            const Vec3 p(double(i) / n, double(j) / n, 0);
+            return i == n / 4 && j == n / 4 ? Vec3(p.x() + off / std::sqrt(2.0), p.y() - off / std::sqrt(2.0), 0) : p;
+        });
+        const auto top = [&](int i, int j) { return VertexId(static_cast<VertexId::Index>(i * (n + 1) + j)); };
+        VertexId below;  // the bottom's centre
+        for (VertexId v : T.vertices())
+            if (T.position(v).x() == 0.5 && T.position(v).y() == 0.5 && T.position(v).z() < 0) below = v;
+        REQUIRE(below.valid());
+        const std::array<VertexId, 6> x{top(0, 0), top(n, 0), top(n, n), top(0, n), top(n / 2, n / 2), below};
+        domain::Domain D;
+        std::vector<Vec3> corners;
+        for (VertexId v : x) corners.push_back(T.position(v));
+        D.mesh = TriMesh::from_triangles(
+            corners, std::vector<Triangle>{
+                         {4, 0, 1}, {4, 1, 2}, {4, 2, 3}, {4, 3, 0}, {5, 1, 0}, {5, 2, 1}, {5, 3, 2}, {5, 0, 3}});
+        for (VertexId v : x) D.t_vertex.push_back(v);
+        const pipeline::Parameterization p = pipeline::parameterize(T, D, {});
+        REQUIRE(p.certified());
+        REQUIRE(p.partition.domain.mesh.n_faces() == 8);  // D kept
+        const HalfedgeId diagonal = p.partition.domain.mesh.find_halfedge(VertexId(4), VertexId(0));
+        REQUIRE(diagonal.valid());
+        const auto& curve = p.partition.network.path[DEdgeId(TriMesh::edge(diagonal))];
+        CHECK(std::find(curve.begin(), curve.end(), top(n / 4, n / 4)) != curve.end());
+        if (off > 1e-10) CHECK(p.partition.network.max_snap_distance > 0);
+        const exchange::Distortion d = exchange::summarize(app::face_stretches(p));
+        REQUIRE(d.anisotropy_max);
+        CHECK(*d.anisotropy_max <= 1e3);
+    }
 }
