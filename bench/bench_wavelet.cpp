@@ -70,7 +70,7 @@ int main(int argc, char** argv) try {
     const pipeline::Parameterization p = pipeline::parameterize(T, domain::decimate(T, {.target_faces = faces}), {});
     if (!p.certified()) throw NumericalFailure("the parameterization of " + name + " is not certified");
     const pipeline::GlobalMap global(p);
-    const wavelet::DomainMap phi = [&](FaceId f, const std::array<double, 3>& b) { return global.phi(f, b); };
+    const wavelet::DomainMap phi = [&](FaceId f, const std::array<double, 3>& b) { return global.phi(DFaceId(f), b); };
     const TriMesh& D = p.partition.domain.mesh;
     const double diag = bounding_box(T).diagonal();
     std::printf(
