@@ -97,6 +97,7 @@ public:
     }
 
     const std::vector<Vec2>& uv() const { return uv_; }
+    double worst() const { return measures(uv_).worst; }
 
 private:
     Mat2 jacobian(const std::vector<Vec2>& uv, std::size_t f) const {
@@ -228,8 +229,9 @@ std::optional<PatchMap> relax(const Disk& disk, const PatchMap& start, const std
                               const RelaxOptions& options) {
     Relaxer r(disk, start, domain_triangle);
     const double e = r.energy(r.uv());
-    // Near the isometry's energy already, or an image triangle too thin for a finite energy.
-    if (e <= 4 * (1 + options.threshold) * r.area() || !std::isfinite(e)) return std::nullopt;
+    // Near the isometry's energy already with no sliver, or an image triangle too thin for a finite energy.
+    if (!std::isfinite(e) || (e <= 4 * (1 + options.threshold) * r.area() && r.worst() <= options.worst))
+        return std::nullopt;
     bool moved = false;
     for (int i = 0; i < options.iterations && r.conformal_step(); ++i) moved = true;
     if (!moved) return std::nullopt;

@@ -9,7 +9,8 @@
 // Pseudocode (J_f: the map from face f, laid flat and scaled so that the patch's area is its
 // triangle's, onto its image in the triangle laid flat):
 //   u <- ψ_i in T_i laid flat (true shape);  fixed: the boundary loop
-//   if Σ_f A_f (‖J_f‖² + ‖J_f⁻¹‖²) ≤ 4 (1 + threshold) Σ_f A_f: stop (near an isometry already)
+//   if Σ_f A_f (‖J_f‖² + ‖J_f⁻¹‖²) ≤ 4 (1 + threshold) Σ_f A_f and max_f σ₁/σ₂ ≤ worst: stop
+//       (near an isometry already)
 //   repeat up to `iterations` times:
 //       u* <- argmin Σ_f A_f ((a − d)² + (b + c)²), J_f = [[a, b], [c, d]]    (least squares
 //             conformal, Lévy et al. 2002, with the boundary fixed: one sparse SPD solve)
@@ -31,9 +32,11 @@ namespace fhr::param {
 
 struct RelaxOptions {
     int iterations = 8;  ///< steps towards the conformal images at most
-    /// Relax only a patch whose energy per unit area exceeds the isometry's (4) by this fraction:
-    /// most patches are already near their optimum, and relaxing them costs time for nothing.
+    /// Relax only a patch whose energy per unit area exceeds the isometry's (4) by this fraction, or
+    /// that has a face more anisotropic than `worst`: most patches are already near their optimum,
+    /// and relaxing them costs time for nothing; a sliver's share of the energy is its tiny area's.
     double threshold = 0.02;
+    double worst = 10;
 };
 
 /// ψ_i relaxed, starting from the paper's map `start` of `disk` (one-to-one: certified);
