@@ -95,7 +95,8 @@ def certify(fhr, path, out, faces, genus, loops, components, timeout):
             r = json.load(f)
         d, p = r["domain"], r["partition"]
         row["delivered"], row["final"], row["retries"] = d["faces_requested"], d["faces"], d["retries"]
-        row["curves"] = "%d / %d / %d" % (p["geodesic_edges"], p["restricted_edges"], p["boundary_edges"])
+        row["curves"] = "%d / %d / %d / %d" % (p["geodesic_edges"], p["restricted_edges"], p["boundary_edges"],
+                                               p["straightened_edges"])
         dist = r["parameterization"].get("distortion")  # spec/distortion.md, as fhr verify measures it
         if dist:
             row["distortion"] = {"l2": dist["l2_stretch"], "p50": dist["anisotropy"]["p50"], "p99": dist["anisotropy"]["p99"],

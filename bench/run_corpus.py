@@ -81,7 +81,7 @@ def summary(rows, label):
 def report(all_rows):
     rows = [r for r in all_rows if r["valid"]]
     print("%-33s %5s %5s %5s %8s %22s %7s %17s %9s %8s  %s" % (
-        "mesh", "genus", "loops", "comp.", "faces", "domain faces", "retries", "geod/restr/bound", "certified", "time s", "note"))
+        "mesh", "genus", "loops", "comp.", "faces", "domain faces", "retries", "geod/restr/bound/moved", "certified", "time s", "note"))
     for row in rows:
         domain = "%s -> %s" % (row["requested"], row["final"])
         if row["delivered"] not in ("-", row["requested"]):

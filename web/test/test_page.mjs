@@ -342,7 +342,7 @@ async function main() {
     fhr('run', fandisk, '--faces', '114', '--levels', '3', '--keep', '5,20', '--map', 'paper', '--html', '--out', path.join(runs, 'fandisk'));
     fhr('run', fandisk, '--faces', '114', '--levels', '3', '--keep', '5,20', '--map', 'paper', '--html', '--out', path.join(runs, 'fandisk-again'));
     pages.push(['fandisk', path.join(runs, 'fandisk')]);
-    fhr('run', fandisk, '--faces', '114', '--html', '--page-faces', '8000', '--out', path.join(runs, 'fandisk-display'));
+    fhr('run', fandisk, '--faces', '114', '--map', 'paper', '--html', '--page-faces', '8000', '--out', path.join(runs, 'fandisk-display'));
     // A genus-1 surface with one boundary loop: boundary arcs among the curves.
     const mesh = path.join(runs, 'genus1-hole.off');
     fhr('generate', '--genus', '1', '--holes', '1', '--faces', '2000', '--seed', '3', '--noise', '0.1', '--out', mesh);

@@ -163,10 +163,11 @@ void write_partition(io::JsonWriter& j, const Parameterization& p) {
     j.key("paths").value(P.paths.size()).key("total_length").value(total_length);
     j.key("max_K").value(max_K).key("max_attempts").value(max_attempts).key("windows_created").value(windows);
     j.key("max_snap_distance").value(P.network.max_snap_distance);
-    std::size_t restricted = 0, boundary_curves = 0;
+    std::size_t restricted = 0, boundary_curves = 0, straightened = 0;
     double restricted_length = 0, excess = 0, separation = 0;
     for (EdgeId e : P.curves.ids()) {
         boundary_curves += P.curves[e].kind == partition::CurveKind::boundary;
+        straightened += P.curves[e].kind == partition::CurveKind::straightened;
         if (P.curves[e].kind != partition::CurveKind::restricted) continue;
         ++restricted;
         restricted_length += P.paths[e].path.length;
@@ -174,10 +175,10 @@ void write_partition(io::JsonWriter& j, const Parameterization& p) {
         separation = std::max(separation, P.curves[e].separation_bound);
     }
     j.key("geodesic_edges")
-        .value(P.curves.size() - restricted - boundary_curves)
+        .value(P.curves.size() - restricted - boundary_curves - straightened)
         .key("restricted_edges")
         .value(restricted);
-    j.key("boundary_edges").value(boundary_curves);
+    j.key("boundary_edges").value(boundary_curves).key("straightened_edges").value(straightened);
     j.key("restricted_length").value(restricted_length).key("restricted_excess").value(excess);
     j.key("max_separation_bound").value(separation).key("keep_start_faces").value(P.keep_start_faces);
     j.key("restricted").begin_array();
@@ -404,8 +405,9 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
     const std::vector<Triangle> t_faces = T.triangles(), d_faces = P.domain.mesh.triangles();
     const render::MeshData t{T.positions(), t_faces}, d{P.domain.mesh.positions(), d_faces};
     render::write_fig6(base + "fig6.png", camera, t, d, size);
-    // The network by each curve's kind: geodesic, restricted, boundary (an arc of T's boundary).
-    std::array<std::vector<std::vector<std::uint32_t>>, 3> lines;
+    // The network by each curve's kind: geodesic, restricted, boundary (an arc of T's boundary),
+    // straightened (drawn as the restricted ones: not geodesics).
+    std::array<std::vector<std::vector<std::uint32_t>>, 4> lines;
     for (DEdgeId e : P.network.path.ids()) {
         auto& line = lines[static_cast<std::size_t>(P.curves[EdgeId(e)].kind)].emplace_back();
         for (VertexId v : P.network.path[e]) line.push_back(v.idx());
@@ -415,6 +417,11 @@ void write_figures(const std::string& dir, const TriMesh& T, const Parameterizat
     uv.reserve(3 * p.refined_faces.size());
     for (const auto& face : p.face_beta)
         for (const auto& beta : face) uv.emplace_back(beta[1], beta[2]);
+    const auto straightened = static_cast<std::size_t>(partition::CurveKind::straightened);
+    lines[static_cast<std::size_t>(partition::CurveKind::restricted)].insert(
+        lines[static_cast<std::size_t>(partition::CurveKind::restricted)].end(), lines[straightened].begin(),
+        lines[straightened].end());
+    lines[straightened].clear();
     const auto paths_of = [&](partition::CurveKind kind) {
         return render::PathData{P.network.mesh.positions(), lines[static_cast<std::size_t>(kind)]};
     };

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -51,13 +52,13 @@ void place_side(const Disk& disk, unsigned c, std::vector<std::array<double, 3>>
 // The neighbours of interior vertex v in cyclic order, from the triangles' successor pairs.
 class Rings {
 public:
-    explicit Rings(const Disk& disk) : start_(disk.positions.size() + 1, 0) {
-        for (const auto& f : disk.triangles)
+    Rings(std::size_t n_vertices, std::span<const std::array<std::uint32_t, 3>> triangles) : start_(n_vertices + 1, 0) {
+        for (const auto& f : triangles)
             for (int k = 0; k < 3; ++k) ++start_[f[k] + 1];
         for (std::size_t v = 1; v < start_.size(); ++v) start_[v] += start_[v - 1];
         pairs_.resize(start_.back());
         std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-        for (const auto& f : disk.triangles)
+        for (const auto& f : triangles)
             for (int k = 0; k < 3; ++k) pairs_[fill[f[k]]++] = {f[(k + 1) % 3], f[(k + 2) % 3]};
     }
     /// \pre v is interior: its pairs (b, c) of triangles (v, b, c) chain into one cycle.
@@ -123,23 +124,19 @@ Solver parse_solver(std::string_view text) {
     throw InvalidInput("unknown solver '" + std::string(text) + "' (expected sparse-lu or bicgstab)");
 }
 
-PatchMap map_patch(const Disk& disk, const PatchMapOptions& options) {
-    validate(disk);
-    const std::size_t nv = disk.positions.size();
-    PatchMap result;
-    result.beta.assign(nv, {0.0, 0.0, 0.0});
-    for (unsigned c = 0; c < 3; ++c) place_side(disk, c, result.beta);
-
-    // Interior vertices get unknowns 0..n-1 in vertex order.
-    std::vector<std::uint32_t> unknown(nv, 0);
-    for (std::uint32_t v : disk.boundary) unknown[v] = none;
+void convex_combination(std::span<const Vec3> positions, std::span<const std::array<std::uint32_t, 3>> triangles,
+                        std::span<const std::uint8_t> fixed, std::size_t midpoints,
+                        std::vector<std::array<double, 2>>& images, const PatchMapOptions& options) {
+    const std::size_t nv = positions.size();
+    // The free vertices get unknowns 0..n-1 in vertex order.
+    std::vector<std::uint32_t> unknown(nv, none);
     std::uint32_t n = 0;
     for (std::size_t v = 0; v < nv; ++v)
-        if (unknown[v] != none) unknown[v] = n++;
-    if (n == 0) return result;
+        if (!fixed[v]) unknown[v] = n++;
+    if (n == 0) return;
 
-    // FHR §4: ψ(v) − Σ_{w interior} λ_vw ψ(w) = Σ_{w boundary} λ_vw ψ(w), in (β1, β2).
-    const Rings rings(disk);
+    // FHR §4: ψ(v) − Σ_{w free} λ_vw ψ(w) = Σ_{w fixed} λ_vw ψ(w), in the plane of `images`.
+    const Rings rings(nv, triangles);
     std::vector<Eigen::Triplet<double>> entries;
     Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
     std::vector<std::uint32_t> ring;
@@ -149,34 +146,49 @@ PatchMap map_patch(const Disk& disk, const PatchMapOptions& options) {
         if (i == none) continue;
         rings.ring(v, ring);
         ring_positions.clear();
-        for (std::uint32_t w : ring) ring_positions.push_back(disk.positions[w]);
+        for (std::uint32_t w : ring) ring_positions.push_back(positions[w]);
         // A dividing edge's midpoint (MAP-4) is ours, not a vertex of T: any positive weights keep
         // Proposition 1, and uniform ones pull it off the side its edge joined. Weights from its
         // geometry could leave it far closer to that side than 2⁻⁵³ when the side's vertices are
         // a needle's (`./run families`, quality 45: its β rounded onto the side, three image
         // triangles degenerate).
         const std::vector<double> lambda_vw =
-            v + disk.midpoints >= nv ? std::vector<double>(ring.size(), 1.0 / static_cast<double>(ring.size()))
-                                     : one_ring_weights(options.weights, disk.positions[v], ring_positions, v);
+            v + midpoints >= nv ? std::vector<double>(ring.size(), 1.0 / static_cast<double>(ring.size()))
+                                : one_ring_weights(options.weights, positions[v], ring_positions, v);
         entries.emplace_back(i, i, 1.0);
         for (std::size_t k = 0; k < ring.size(); ++k) {
             const std::uint32_t w = ring[k];
             if (unknown[w] != none) {
                 entries.emplace_back(i, unknown[w], -lambda_vw[k]);
             } else {
-                rhs(i, 0) += lambda_vw[k] * result.beta[w][1];
-                rhs(i, 1) += lambda_vw[k] * result.beta[w][2];
+                rhs(i, 0) += lambda_vw[k] * images[w][0];
+                rhs(i, 1) += lambda_vw[k] * images[w][1];
             }
         }
     }
     Eigen::SparseMatrix<double> A(n, n);
     A.setFromTriplets(entries.begin(), entries.end());
     const Eigen::MatrixXd x = solve(A, rhs, options.solver);
-    for (std::uint32_t v = 0; v < nv; ++v) {
-        const std::uint32_t i = unknown[v];
-        if (i == none) continue;
+    for (std::uint32_t v = 0; v < nv; ++v)
+        if (unknown[v] != none) images[v] = {x(unknown[v], 0), x(unknown[v], 1)};
+}
+
+PatchMap map_patch(const Disk& disk, const PatchMapOptions& options) {
+    validate(disk);
+    const std::size_t nv = disk.positions.size();
+    PatchMap result;
+    result.beta.assign(nv, {0.0, 0.0, 0.0});
+    for (unsigned c = 0; c < 3; ++c) place_side(disk, c, result.beta);
+    // The interior in the reference plane (β1, β2).
+    std::vector<std::uint8_t> fixed(nv, 0);
+    for (std::uint32_t v : disk.boundary) fixed[v] = 1;
+    std::vector<std::array<double, 2>> images(nv);
+    for (std::size_t v = 0; v < nv; ++v) images[v] = {result.beta[v][1], result.beta[v][2]};
+    convex_combination(disk.positions, disk.triangles, fixed, disk.midpoints, images, options);
+    for (std::size_t v = 0; v < nv; ++v) {
+        if (fixed[v]) continue;
         // On the 2^-53 grid, β0 = 1 − β1 − β2 is exact and the triple sums to exactly 1.
-        const double b1 = detail::snap(x(i, 0)), b2 = detail::snap(x(i, 1));
+        const double b1 = detail::snap(images[v][0]), b2 = detail::snap(images[v][1]);
         result.beta[v] = {1 - b1 - b2, b1, b2};
     }
     return result;

@@ -17,6 +17,8 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -58,6 +60,18 @@ struct PatchMap {
     /// 2^-53, so the three sum to exactly 1 (MAP-5, MAP-6).
     std::vector<std::array<double, 3>> beta;
 };
+
+/// Eq. 2 in any plane, for any triangulated disk: every vertex not `fixed` gets the image
+/// Σ_w λ_vw ψ(w), the convex combination of its neighbours' images with the weights of
+/// options.weights at its 3-D position (uniform for the last `midpoints` vertices, MAP-4); the
+/// fixed vertices keep `images`. One sparse system, two right-hand sides. map_patch() is this with
+/// the chord-length boundary in the reference plane (β1, β2).
+/// \pre positions.size() == fixed.size() == images.size(); every vertex not fixed is interior (its
+///      triangles form one cycle around it) and joined to a fixed one through free vertices.
+/// \throws NumericalFailure when weights fail (MAP-2) or the solver fails or does not converge.
+void convex_combination(std::span<const Vec3> positions, std::span<const std::array<std::uint32_t, 3>> triangles,
+                        std::span<const std::uint8_t> fixed, std::size_t midpoints,
+                        std::vector<std::array<double, 2>>& images, const PatchMapOptions& options = {});
 
 /// The map ψ_i of `disk` onto its triangle (paper §4).
 /// \pre validate(disk) passes (checked). For Proposition 1, split_dividing_edges(disk) has run.

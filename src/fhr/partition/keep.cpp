@@ -1307,6 +1307,7 @@ const char* name(CurveKind kind) {
         case CurveKind::geodesic: return "geodesic";
         case CurveKind::restricted: return "restricted";
         case CurveKind::boundary: return "boundary";
+        case CurveKind::straightened: return "straightened";
     }
     return "";
 }

@@ -51,9 +51,11 @@ enum class CurveKind : std::uint8_t {
     geodesic,    ///< the exact shortest geodesic Γ(x_j, x_k) of T (paper §3)
     restricted,  ///< the restricted shortest path in the region the other curves leave free
     boundary,    ///< a boundary edge of D: the arc of T's boundary between its ends (core/detail/cones.hpp)
+    /// beyond the paper: moved into the middle of its two patches (pipeline/detail/straighten.hpp)
+    straightened,
 };
 
-/// "geodesic", "restricted" or "boundary" (geodesics.obj, report.json).
+/// "geodesic", "restricted", "boundary" or "straightened" (geodesics.obj, report.json).
 const char* name(CurveKind kind);
 
 /// What the report says of one domain edge's curve.

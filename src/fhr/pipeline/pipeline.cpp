@@ -11,6 +11,7 @@
 #include <fhr/core/errors.hpp>
 #include <fhr/param/detail/dividing_edges.hpp>
 #include <fhr/param/relax.hpp>
+#include <fhr/pipeline/detail/straighten.hpp>
 
 namespace fhr::pipeline {
 
@@ -36,19 +37,72 @@ std::pair<DFaceId, std::array<double, 3>> GlobalMap::psi(RefinedFaceId f, const 
 
 namespace {
 
-// Beyond the paper: patch d's certified map replaced by its relaxed one when that one is certified
-// too (param/relax.hpp); `relaxed` says whether it was.
-void relax_patch(const TriMesh& D, FaceId d, const param::Disk& disk, Parameterization& out, std::uint8_t& relaxed) {
+// §4 for one patch: its dividing edges split, ψ_i, its certificate, and (beyond the paper, when
+// asked) the relaxed map in its place when that is certified too (param/relax.hpp).
+struct MappedPatch {
+    param::Disk disk;
+    param::PatchMap map;
+    param::Certificate certificate;
+    std::size_t split = 0;
+    std::vector<std::uint32_t> origin;  // the triangle of the disk before the splits
+    std::uint8_t relaxed = 0;
+};
+
+std::array<Vec3, 3> triangle_of(const TriMesh& D, FaceId d) {
     const auto corners = D.face_vertices(d);
-    const DFaceId i(d);
-    std::optional<param::PatchMap> psi =
-        param::relax(disk, out.maps[i], {D.position(corners[0]), D.position(corners[1]), D.position(corners[2])});
-    if (!psi) return;
-    param::Certificate certificate = param::certify(disk, *psi);
-    if (!certificate.passed) return;  // rounding onto the 2^-53 grid turned an image over: the paper's map stays
-    out.maps[i] = std::move(*psi);
-    out.certificates[i] = std::move(certificate);
-    relaxed = 1;
+    return {D.position(corners[0]), D.position(corners[1]), D.position(corners[2])};
+}
+
+MappedPatch map_one(const TriMesh& D, FaceId d, param::Disk disk, const Options& options) {
+    MappedPatch out;
+    out.disk = std::move(disk);
+    out.split = param::split_dividing_edges(out.disk, &out.origin);
+    try {
+        out.map = param::map_patch(out.disk, options.map);
+    } catch (const InvalidInput& e) {  // the patch is fhr's own (§3), not the caller's input
+        throw InternalError("the patch of domain face " + std::to_string(d.idx()) +
+                            " that §3 made is refused by §4: " + e.problem());
+    }
+    out.certificate = param::certify(out.disk, out.map);
+    if (!options.relax || !out.certificate.passed) return out;
+    std::optional<param::PatchMap> psi = param::relax(out.disk, out.map, triangle_of(D, d));
+    if (!psi) return out;
+    param::Certificate certificate = param::certify(out.disk, *psi);
+    if (!certificate.passed) return out;  // rounding onto the 2^-53 grid turned an image over: the paper's map stays
+    out.map = std::move(*psi);
+    out.certificate = std::move(certificate);
+    out.relaxed = 1;
+    return out;
+}
+
+bool same_disk(const param::Disk& a, const param::Disk& b) {
+    return a.triangles == b.triangles && a.boundary == b.boundary && a.corners == b.corners &&
+           a.midpoints == b.midpoints && a.positions == b.positions;
+}
+
+// Beyond the paper: the curves beside poorly mapped patches moved (pipeline/detail/straighten.hpp),
+// then §4 again for every patch whose disk changed.
+template <class Keep>
+void straighten_poor_patches(const TriMesh& T, Parameterization& out, const Options& options, const Keep& keep) {
+    const TriMesh& D = out.partition.domain.mesh;
+    std::vector<PatchScore> scores(D.n_faces());
+    for (FaceId d : D.faces()) {
+        const DFaceId i(d);
+        if (out.certificates[i].passed) scores[d.idx()] = score(out.disks[i], out.maps[i], triangle_of(D, d));
+    }
+    const Evaluate evaluate = [&](FaceId d, param::Disk disk) {
+        const MappedPatch m = map_one(D, d, std::move(disk), options);
+        return m.certificate.passed ? score(m.disk, m.map, triangle_of(D, d)) : PatchScore{};
+    };
+    Executor& executor = executor_or_default(options.executor);
+    if (straighten(T, out.partition, executor, scores, evaluate) == 0) return;
+    executor.for_each(D.n_faces(), 16, [&](std::size_t i) {
+        const FaceId d(static_cast<FaceId::Index>(i));
+        param::Disk disk = std::move(out.partition.patches.patch[d].disk);
+        param::Disk split = disk;
+        param::split_dividing_edges(split);
+        if (!same_disk(split, out.disks[DFaceId(d)])) keep(i, map_one(D, d, std::move(disk), options));
+    });
 }
 
 }  // namespace
@@ -82,20 +136,21 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
     std::vector<std::size_t> split(n_patches, 0);
     std::vector<std::vector<std::uint32_t>> origin(n_patches);  // per patch: the triangle before the splits
     std::vector<std::uint8_t> relaxed(n_patches, 0);
-    executor_or_default(options.executor).for_each(n_patches, 16, [&](std::size_t i) {
+    const TriMesh& Dm = P.domain.mesh;
+    auto keep = [&](std::size_t i, MappedPatch m) {
         const DFaceId d(static_cast<DFaceId::Index>(i));
-        param::Disk disk = std::move(out.partition.patches.patch[FaceId(d)].disk);  // each task its own patch
-        split[i] = param::split_dividing_edges(disk, &origin[i]);
-        try {
-            out.maps[d] = param::map_patch(disk, options.map);
-        } catch (const InvalidInput& e) {  // the patch is fhr's own (§3), not the caller's input
-            throw InternalError("the patch of domain face " + std::to_string(i) +
-                                " that §3 made is refused by §4: " + e.problem());
-        }
-        out.certificates[d] = param::certify(disk, out.maps[d]);
-        if (options.relax && out.certificates[d].passed) relax_patch(P.domain.mesh, FaceId(d), disk, out, relaxed[i]);
-        out.disks[d] = std::move(disk);
+        split[i] = m.split;
+        origin[i] = std::move(m.origin);
+        relaxed[i] = m.relaxed;
+        out.maps[d] = std::move(m.map);
+        out.certificates[d] = std::move(m.certificate);
+        out.disks[d] = std::move(m.disk);
+    };
+    executor_or_default(options.executor).for_each(n_patches, 16, [&](std::size_t i) {
+        const FaceId d(static_cast<FaceId::Index>(i));  // each task its own patch
+        keep(i, map_one(Dm, d, std::move(out.partition.patches.patch[d].disk), options));
     });
+    if (options.relax) straighten_poor_patches(T, out, options, keep);
     for (std::size_t s : split) out.dividing_edges_split += s;
     for (std::uint8_t r : relaxed) out.relaxed_patches += r;
     // The final T′: the vertices of T′ of §3, then each patch's dividing-edge midpoints; faces

@@ -1,0 +1,397 @@
+// Beyond the paper (§3 → §4) — the curves moved between neighbouring patches (see straighten.hpp).
+#include <fhr/pipeline/detail/straighten.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include <fhr/core/errors.hpp>
+#include <fhr/core/surface_point.hpp>
+#include <fhr/geodesic/exact.hpp>
+#include <fhr/partition/embed.hpp>
+#include <fhr/partition/patches.hpp>
+
+namespace fhr::pipeline {
+namespace {
+
+using Point2 = std::array<double, 2>;
+
+// Where a vertex of T′ lies on T, as a SurfacePoint of T.
+SurfacePoint surface_point(const TriMesh& T, const partition::Origin& o) {
+    if (o.vertex.valid()) return SurfacePoint::at_vertex(VertexId(o.vertex));
+    return canonical(T, SurfacePoint::on_edge(TriMesh::halfedge(EdgeId(o.edge), 0), o.t));
+}
+
+// The curve of domain edge e as it lies in T′ now: its nodes, exactly where they were embedded.
+geodesic::GeodesicPath current_path(const TriMesh& T, const partition::Network& N, DEdgeId e) {
+    geodesic::GeodesicPath path;
+    for (VertexId v : N.path[e]) {
+        path.points.push_back(surface_point(T, N.origin[v]));
+        if (path.points.size() > 1)
+            path.length += (N.mesh.position(v) - N.mesh.position(N.path[e][path.points.size() - 2])).norm();
+    }
+    return path;
+}
+
+// The edge of T that a segment of T′ from a to b lies on, with a's and b's parameters along
+// T's halfedge (edge, 0); nothing when the segment is a chord inside a face of T.
+struct OnEdge {
+    EdgeId edge;
+    double ta = 0, tb = 0;
+};
+
+std::optional<double> parameter_of_vertex(const TriMesh& T, EdgeId edge, TVertexId v) {
+    const HalfedgeId h = TriMesh::halfedge(edge, 0);
+    if (T.from(h) == VertexId(v)) return 0.0;
+    if (T.to(h) == VertexId(v)) return 1.0;
+    return std::nullopt;
+}
+
+std::optional<OnEdge> on_t_edge(const TriMesh& T, const partition::Origin& a, const partition::Origin& b) {
+    if (a.vertex.valid() && b.vertex.valid()) {
+        const HalfedgeId h = T.find_halfedge(VertexId(a.vertex), VertexId(b.vertex));
+        if (!h.valid()) return std::nullopt;
+        const EdgeId edge = TriMesh::edge(h);
+        return OnEdge{edge, *parameter_of_vertex(T, edge, a.vertex), *parameter_of_vertex(T, edge, b.vertex)};
+    }
+    if (!a.vertex.valid() && !b.vertex.valid()) {
+        if (a.edge != b.edge) return std::nullopt;
+        return OnEdge{EdgeId(a.edge), a.t, b.t};
+    }
+    const partition::Origin& point = a.vertex.valid() ? b : a;
+    const partition::Origin& corner = a.vertex.valid() ? a : b;
+    const std::optional<double> t = parameter_of_vertex(T, EdgeId(point.edge), corner.vertex);
+    if (!t) return std::nullopt;
+    return a.vertex.valid() ? OnEdge{EdgeId(point.edge), *t, point.t} : OnEdge{EdgeId(point.edge), point.t, *t};
+}
+
+// The faces of T holding a vertex or an edge point.
+std::vector<FaceId> faces_at(const TriMesh& T, const SurfacePoint& p) {
+    std::vector<FaceId> out;
+    if (p.kind == SurfacePoint::Kind::vertex) {
+        T.for_each_outgoing(p.vertex, [&](HalfedgeId h) {
+            if (T.face(h).valid()) out.push_back(T.face(h));
+        });
+    } else {
+        for (HalfedgeId h : {p.halfedge, TriMesh::twin(p.halfedge)})
+            if (T.face(h).valid()) out.push_back(T.face(h));
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+bool share_face(const TriMesh& T, const SurfacePoint& a, const SurfacePoint& b) {
+    const std::vector<FaceId> fa = faces_at(T, a), fb = faces_at(T, b);
+    std::vector<FaceId> common;
+    std::set_intersection(fa.begin(), fa.end(), fb.begin(), fb.end(), std::back_inserter(common));
+    return !common.empty();
+}
+
+// The quadrilateral Q of the pseudocode: A, C, B (above AC), E (below), convex.
+std::array<Point2, 4> lay_out_quad(const std::array<Vec3, 4>& acbe, double max_angle) {
+    const double L = (acbe[1] - acbe[0]).norm();
+    auto apex = [&](const Vec3& p, double sign) -> Point2 {
+        const double a2 = (p - acbe[0]).squaredNorm(), c2 = (p - acbe[1]).squaredNorm();
+        const double x = (L * L + a2 - c2) / (2 * L);
+        return {x, sign * std::sqrt(std::max(a2 - x * x, 0.0))};
+    };
+    Point2 B = apex(acbe[2], 1), E = apex(acbe[3], -1);
+    auto angle = [](Point2 u, Point2 v) {
+        return std::atan2(std::abs(u[0] * v[1] - u[1] * v[0]), u[0] * v[0] + u[1] * v[1]);
+    };
+    const double limit = max_angle * std::numbers::pi / 180;
+    const double at_A = angle(B, {L, 0}) + angle({L, 0}, E);
+    const double at_C = angle({B[0] - L, B[1]}, {-L, 0}) + angle({-L, 0}, {E[0] - L, E[1]});
+    const double tiny = 1e-3 * L;  // a flat domain triangle still leaves Q a width
+    if (!(at_A <= limit && at_C <= limit && B[1] > tiny && E[1] < -tiny)) {
+        B = {L / 2, std::max(B[1], L / 4)};
+        E = {L / 2, std::min(E[1], -L / 4)};
+    }
+    return {Point2{0, 0}, Point2{L, 0}, B, E};
+}
+
+// The new curve of domain edge e (D halfedge (e, 0) from A to C), or nothing when its union of
+// patches does not allow one (see straighten.hpp).
+class UnionCurve {
+public:
+    UnionCurve(const TriMesh& T, const partition::Partition& P, const StraightenOptions& options)
+        : T_(T), P_(P), D_(P.domain.mesh), options_(options) {}
+
+    std::optional<geodesic::GeodesicPath> operator()(DEdgeId e) const {
+        const HalfedgeId h = TriMesh::halfedge(EdgeId(e), 0);
+        const FaceId left = D_.face(h), right = D_.face(TriMesh::twin(h));
+        if (!left.valid() || !right.valid()) return std::nullopt;
+        const VertexId a = D_.from(h), c = D_.to(h);
+        const VertexId b = D_.to(D_.next(h)), other = D_.to(D_.next(TriMesh::twin(h)));
+        if (b == other) return std::nullopt;  // the union is not a disk
+        const partition::Network& N = P_.network;
+        const std::array<VertexId, 4> quad{a, c, b, other};
+        std::array<Vec3, 4> corners;
+        for (int k = 0; k < 4; ++k) corners[k] = T_.position(P_.domain.t_vertex[quad[k]]);
+        const std::array<Point2, 4> layout = lay_out_quad(corners, options_.max_quad_angle);
+
+        // U: the faces of both patches, their vertices numbered in the order of their T′ ids.
+        std::vector<VertexId> global;
+        for (FaceId f : {left, right})
+            for (VertexId v : P_.patches.patch[f].vertices) global.push_back(v);
+        std::sort(global.begin(), global.end());
+        global.erase(std::unique(global.begin(), global.end()), global.end());
+        auto local = [&](VertexId v) {
+            return static_cast<std::uint32_t>(std::lower_bound(global.begin(), global.end(), v) - global.begin());
+        };
+        const std::size_t n = global.size();
+        std::vector<Vec3> positions(n);
+        for (std::size_t i = 0; i < n; ++i) positions[i] = N.mesh.position(global[i]);
+        std::vector<std::array<std::uint32_t, 3>> triangles;
+        for (FaceId f : {left, right})
+            for (FaceId face : P_.patches.patch[f].faces) {
+                const auto t = N.mesh.face_vertices(face);
+                triangles.push_back({local(t[0]), local(t[1]), local(t[2])});
+            }
+        // U's boundary, the four other curves, onto Q's sides by chord length.
+        std::vector<std::uint8_t> fixed(n, 0);
+        std::vector<Point2> images(n, Point2{0, 0});
+        const HalfedgeId twin = TriMesh::twin(h);
+        for (HalfedgeId g : {D_.next(h), D_.next(D_.next(h)), D_.next(twin), D_.next(D_.next(twin))}) {
+            const EdgeId side = TriMesh::edge(g);
+            const HalfedgeId along = TriMesh::halfedge(side, 0);
+            const Point2 p = layout[slot(quad, D_.from(along))], q = layout[slot(quad, D_.to(along))];
+            const std::vector<VertexId>& curve = N.path[DEdgeId(side)];
+            std::vector<double> L(1, 0.0);
+            for (std::size_t k = 1; k < curve.size(); ++k)
+                L.push_back(L.back() + (N.mesh.position(curve[k]) - N.mesh.position(curve[k - 1])).norm());
+            for (std::size_t k = 0; k < curve.size(); ++k) {
+                const double lambda = L.back() > 0 ? L[k] / L.back() : 0.0;
+                const std::uint32_t u = local(curve[k]);
+                fixed[u] = 1;
+                images[u] = {(1 - lambda) * p[0] + lambda * q[0], (1 - lambda) * p[1] + lambda * q[1]};
+            }
+        }
+        // The old curve's inner vertices become U's interior; one on T's boundary cannot.
+        for (VertexId v : N.path[e])
+            if (v != N.path[e].front() && v != N.path[e].back() && N.mesh.is_boundary(v)) return std::nullopt;
+        try {
+            param::convex_combination(positions, triangles, fixed, 0, images, options_.weights);
+        } catch (const NumericalFailure&) {
+            return std::nullopt;  // a degenerate ring in U: the curve stays
+        }
+        return preimage_of_diagonal(N, global, triangles, images, N.path[e].front(), N.path[e].back());
+    }
+
+private:
+    static int slot(const std::array<VertexId, 4>& quad, VertexId v) {
+        return static_cast<int>(std::find(quad.begin(), quad.end(), v) - quad.begin());
+    }
+
+    // The points of T whose images lie on AC (the x-axis), ordered along it, from x_a to x_c.
+    std::optional<geodesic::GeodesicPath> preimage_of_diagonal(
+        const partition::Network& N, const std::vector<VertexId>& global,
+        const std::vector<std::array<std::uint32_t, 3>>& triangles, const std::vector<Point2>& images, VertexId xa,
+        VertexId xc) const {
+        std::vector<std::pair<double, SurfacePoint>> nodes;
+        for (std::size_t i = 0; i < global.size(); ++i)
+            if (images[i][1] == 0 && global[i] != xa && global[i] != xc)
+                nodes.emplace_back(images[i][0], surface_point(T_, N.origin[global[i]]));
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+        for (const auto& t : triangles)
+            for (int k = 0; k < 3; ++k) edges.emplace_back(std::minmax(t[k], t[(k + 1) % 3]));
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+        for (const auto& [u, w] : edges) {
+            const double yu = images[u][1], yw = images[w][1];
+            if (!((yu < 0 && yw > 0) || (yu > 0 && yw < 0))) continue;
+            const std::optional<OnEdge> on = on_t_edge(T_, N.origin[global[u]], N.origin[global[w]]);
+            if (!on) continue;  // a chord inside a face of T: the curve runs straight there
+            const double lambda = yu / (yu - yw);
+            const double t = on->ta + lambda * (on->tb - on->ta);
+            nodes.emplace_back(images[u][0] + lambda * (images[w][0] - images[u][0]),
+                               canonical(T_, SurfacePoint::on_edge(TriMesh::halfedge(on->edge, 0), t)));
+        }
+        std::sort(nodes.begin(), nodes.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
+        geodesic::GeodesicPath path;
+        path.points.push_back(SurfacePoint::at_vertex(xa));
+        for (const auto& node : nodes)
+            if (!same_location(T_, node.second, path.points.back())) path.points.push_back(node.second);
+        path.points.push_back(SurfacePoint::at_vertex(xc));
+        for (std::size_t k = 1; k < path.points.size(); ++k) {
+            if (same_location(T_, path.points[k - 1], path.points[k]) ||
+                !share_face(T_, path.points[k - 1], path.points[k]))
+                return std::nullopt;  // rounding put two nodes out of order: the curve stays
+            path.length += (position(T_, path.points[k]) - position(T_, path.points[k - 1])).norm();
+        }
+        return path;
+    }
+
+    const TriMesh& T_;
+    const partition::Partition& P_;
+    const TriMesh& D_;
+    const StraightenOptions& options_;
+};
+
+// The interior edges of D beside a poor patch, in rounds whose edges share no face of D (greedy
+// colouring).
+std::vector<std::vector<DEdgeId>> rounds_of(const partition::Partition& P, const std::vector<std::uint8_t>& poor) {
+    const TriMesh& D = P.domain.mesh;
+    std::vector<std::vector<DEdgeId>> rounds;
+    std::vector<std::vector<std::size_t>> used(D.n_faces());  // per face: the rounds of its edges so far
+    for (EdgeId e : D.edges()) {
+        const FaceId f = D.face(TriMesh::halfedge(e, 0)), g = D.face(TriMesh::halfedge(e, 1));
+        if (!f.valid() || !g.valid() || P.curves[e].kind == partition::CurveKind::boundary) continue;
+        if (!poor[f.idx()] && !poor[g.idx()]) continue;
+        auto taken = [&](std::size_t k) {
+            return std::find(used[f.idx()].begin(), used[f.idx()].end(), k) != used[f.idx()].end() ||
+                   std::find(used[g.idx()].begin(), used[g.idx()].end(), k) != used[g.idx()].end();
+        };
+        std::size_t r = 0;
+        while (taken(r)) ++r;
+        if (r == rounds.size()) rounds.emplace_back();
+        rounds[r].push_back(DEdgeId(e));
+        used[f.idx()].push_back(r);
+        used[g.idx()].push_back(r);
+    }
+    return rounds;
+}
+
+// Whether the pair of patches beside a moved curve got better (straighten.hpp's pseudocode).
+bool better(const std::array<PatchScore, 2>& now, const std::array<PatchScore, 2>& before,
+            const StraightenOptions& options) {
+    if (!now[0].certified || !now[1].certified) return false;
+    const double worst = std::max(now[0].worst, now[1].worst),
+                 worst_before = std::max(before[0].worst, before[1].worst);
+    const double l2 = now[0].l2_energy + now[1].l2_energy, l2_before = before[0].l2_energy + before[1].l2_energy;
+    return (worst < worst_before && l2 <= (1 + options.l2_slack) * l2_before) ||
+           (worst <= std::max(worst_before, options.poor) && l2 < l2_before);
+}
+
+// Every curve embedded into T: the new ones of `fresh` (snapped as geodesics), the others exactly
+// where they lay (`base`); the new ones that break (1) or (2) put back until none does.
+partition::Embedding embed_with(const TriMesh& T, const domain::Domain& D,
+                                const std::vector<geodesic::GeodesicPath>& base,
+                                std::vector<std::optional<geodesic::GeodesicPath>>& fresh, Executor& executor) {
+    for (;;) {
+        std::vector<geodesic::GeodesicPath> paths;
+        std::vector<std::uint8_t> exact;
+        for (std::size_t e = 0; e < base.size(); ++e) {
+            paths.push_back(fresh[e] ? *fresh[e] : base[e]);
+            exact.push_back(fresh[e] ? 0 : 1);
+        }
+        partition::Embedding embedding = partition::embed(T, D, paths, exact, &executor);
+        if (embedding.conflicts.empty()) return embedding;
+        bool put_back = false;
+        for (const partition::Conflict& c : embedding.conflicts)
+            for (DEdgeId e : {c.d_edge_a, c.d_edge_b})
+                if (e.valid() && fresh[e.idx()]) {
+                    fresh[e.idx()].reset();
+                    put_back = true;
+                }
+        if (!put_back)
+            throw InternalError("moving the curves: the network as it was breaks (1)/(2): " +
+                                embedding.conflicts.front().describe());
+    }
+}
+
+// The network of `embedding` in P, its patches cut.
+void take(partition::Partition& P, partition::Embedding& embedding, Executor& executor) {
+    P.patches = partition::extract_patches(P.domain, embedding.network, &executor);
+    P.network = std::move(embedding.network);
+}
+
+}  // namespace
+
+PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<Vec3, 3>& triangle) {
+    PatchScore out;
+    out.certified = true;
+    for (const auto& t : disk.triangles) {
+        // The face and its image, each in a frame of its own plane: J = S · I⁻¹.
+        std::array<Vec3, 3> image;
+        for (int k = 0; k < 3; ++k)
+            image[k] =
+                psi.beta[t[k]][0] * triangle[0] + psi.beta[t[k]][1] * triangle[1] + psi.beta[t[k]][2] * triangle[2];
+        auto frame = [](const Vec3& a, const Vec3& b, const Vec3& c) {
+            const Vec3 u = b - a, v = c - a;
+            const double lu = u.norm();
+            const Vec3 x = u / lu;
+            Eigen::Matrix2d m;
+            m << lu, x.dot(v), 0, (v - x.dot(v) * x).norm();
+            return m;
+        };
+        const Eigen::Matrix2d S = frame(disk.positions[t[0]], disk.positions[t[1]], disk.positions[t[2]]);
+        const Eigen::Matrix2d I = frame(image[0], image[1], image[2]);
+        if (!(I.determinant() > 0)) {
+            out.worst = INFINITY;
+            out.l2_energy = INFINITY;
+            continue;
+        }
+        const Eigen::Matrix2d J = S * I.inverse();
+        const Eigen::JacobiSVD<Eigen::Matrix2d> svd(J);
+        const double s1 = svd.singularValues()(0), s2 = svd.singularValues()(1);
+        out.worst = std::max(out.worst, s2 > 0 ? s1 / s2 : INFINITY);
+        out.l2_energy += 0.5 * I(0, 0) * I(1, 1) * (s1 * s1 + s2 * s2) / 2;
+    }
+    return out;
+}
+
+std::size_t straighten(const TriMesh& T, partition::Partition& P, Executor& executor, std::vector<PatchScore>& scores,
+                       const Evaluate& evaluate, const StraightenOptions& options) {
+    const TriMesh& D = P.domain.mesh;
+    std::vector<std::uint8_t> moved(D.n_edges(), 0);
+    for (int sweep = 0; sweep < options.sweeps; ++sweep) {
+        std::vector<std::uint8_t> poor(D.n_faces(), 0);
+        for (std::size_t f = 0; f < poor.size(); ++f) poor[f] = !(scores[f].worst <= options.poor);
+        for (const std::vector<DEdgeId>& round : rounds_of(P, poor)) {
+            std::vector<std::optional<geodesic::GeodesicPath>> fresh(D.n_edges());
+            const UnionCurve union_curve(T, P, options);
+            executor.for_each(round.size(), 4, [&](std::size_t i) { fresh[round[i].idx()] = union_curve(round[i]); });
+            if (std::none_of(fresh.begin(), fresh.end(), [](const auto& c) { return c.has_value(); })) continue;
+            std::vector<geodesic::GeodesicPath> base;  // the curves as they lie now
+            for (EdgeId e : P.curves.ids()) base.push_back(current_path(T, P.network, DEdgeId(e)));
+            partition::Embedding embedding = embed_with(T, P.domain, base, fresh, executor);
+            const std::vector<PatchScore> before = scores;
+            take(P, embedding, executor);
+            // The new pairs of patches, mapped and scored; the curves that made them worse go back.
+            std::vector<DEdgeId> tried;
+            for (DEdgeId e : round)
+                if (fresh[e.idx()]) tried.push_back(e);
+            std::vector<std::array<PatchScore, 2>> now(tried.size());
+            executor.for_each(tried.size(), 1, [&](std::size_t i) {
+                const HalfedgeId h = TriMesh::halfedge(EdgeId(tried[i]), 0);
+                for (int s = 0; s < 2; ++s) {
+                    const FaceId f = D.face(s ? TriMesh::twin(h) : h);
+                    now[i][s] = evaluate(f, P.patches.patch[f].disk);
+                }
+            });
+            bool put_back = false;
+            for (std::size_t i = 0; i < tried.size(); ++i) {
+                const HalfedgeId h = TriMesh::halfedge(EdgeId(tried[i]), 0);
+                const FaceId f = D.face(h), g = D.face(TriMesh::twin(h));
+                if (better(now[i], {before[f.idx()], before[g.idx()]}, options)) {
+                    scores[f.idx()] = now[i][0];
+                    scores[g.idx()] = now[i][1];
+                    P.paths[EdgeId(tried[i])].path = *fresh[tried[i].idx()];
+                    P.curves[EdgeId(tried[i])].kind = partition::CurveKind::straightened;
+                    moved[tried[i].idx()] = 1;
+                } else {
+                    fresh[tried[i].idx()].reset();
+                    put_back = true;
+                }
+            }
+            if (!put_back) continue;
+            // Embed again: the kept new curves placed as before, the others as they were.
+            std::vector<std::optional<geodesic::GeodesicPath>> kept = fresh;
+            partition::Embedding again = embed_with(T, P.domain, base, kept, executor);
+            for (std::size_t e = 0; e < kept.size(); ++e)
+                if (fresh[e] && !kept[e])
+                    throw InternalError("moving the curves: a kept curve broke (1)/(2) when embedded again");
+            take(P, again, executor);
+        }
+    }
+    return static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
+}
+
+}  // namespace fhr::pipeline

@@ -1,0 +1,74 @@
+// Beyond the paper (§3 → §4) — the curves moved between neighbouring patches. A geodesic that
+// leaves a corner at a tiny angle to another, or a restricted curve squeezed beside the curves it
+// had to avoid, bounds patches far from their domain triangles' shapes; no map of the patch with
+// that boundary can be much better (paper_notes/distortion_causes.md). The curve of an interior
+// domain edge is therefore replaced by the one that the two patches beside it, mapped together,
+// put in the middle of their union.
+//
+// Pseudocode (for D's halfedge A → C of edge e, with faces [A, C, B] on its left and [C, A, E] on
+// its right):
+//   Q <- the two domain triangles laid flat along AC (A = (0, 0), C = (|AC|, 0), B above, E below);
+//        where Q is not convex enough (an angle at A or C above max_quad_angle), B and E are moved
+//        over AC's midpoint at their heights (a kite)
+//   U <- the union of the two patches (the old curve inside it); its boundary, the four other
+//        curves, onto Q's sides by chord length; every other vertex the convex combination of its
+//        neighbours (eq. 2, the patches' own weights): a one-to-one map onto the convex Q
+//   the new curve <- the preimage of the diagonal AC: the points of T's edges (and T's vertices)
+//        inside U whose images lie on it, in the order of their images along it; between two of
+//        them it runs straight in one face of T (a face's part of U is convex)
+//   only the curves of patches whose map is poor (a face above `poor` σ₁/σ₂) move, in rounds of
+//   edges that share no patch; after each round every curve is embedded again into T
+//   (partition/embed.hpp, the old curves exactly as they were) and the patches cut; a new curve
+//   that breaks (1) or (2) there (snapping onto a vertex another curve uses) is put back and the
+//   round embedded again
+//   each moved curve's two new patches are mapped (the caller's §4) and scored: the curve is
+//   kept only when its pair got better — its worst face less anisotropic with the pair's L2 energy
+//   at most `l2_slack` higher, or that energy lower with the worst face no worse (or below `poor`)
+//   — else put back (one more embedding)
+// What it gives up: the curves are no longer Γ(x_j, x_k) (spec/cli.md CLI-RUN-9); report.json says how many moved.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include <fhr/core/executor.hpp>
+#include <fhr/core/trimesh.hpp>
+#include <fhr/param/patch_map.hpp>
+#include <fhr/partition/partition.hpp>
+
+namespace fhr::pipeline {
+
+struct StraightenOptions {
+    int sweeps = 2;                    ///< rounds over the curves of the patches still poor
+    double poor = 10;                  ///< a patch whose worst face's σ₁/σ₂ exceeds this is poor
+    double l2_slack = 0;               ///< see the pseudocode
+    double max_quad_angle = 170;       ///< degrees: the largest angle of Q at A or C laid flat
+    param::PatchMapOptions weights{};  ///< the union's map (eq. 2)
+};
+
+/// How good a patch's map is: its worst face's σ₁/σ₂ (the map from the face's image in the
+/// domain triangle, laid flat, onto the face) and Σ_f A_f (σ₁² + σ₂²) / 2 over its faces
+/// (A_f the area of the face's image), the L2 stretch's numerator before its normalisation
+/// (a factor the same for every map of the mesh onto D).
+struct PatchScore {
+    bool certified = false;
+    double worst = 0;
+    double l2_energy = 0;
+};
+
+/// The score of map ψ of `disk` onto the triangle with corners `triangle` (3-D).
+PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<Vec3, 3>& triangle);
+
+/// The caller's §4 for the patch of D's face d, scored.
+using Evaluate = std::function<PatchScore(FaceId d, Disk disk)>;
+
+/// Moves the curves of `P`'s interior domain edges as above; P.network, P.patches, P.paths (the
+/// moved ones' points and lengths) and P.curves (their kind: straightened) follow. `scores` holds
+/// each patch's score now (#F(D)) and is kept up to date. Returns the number of curves moved.
+/// \pre P is partition()'s result for T, its network satisfying (1) and (2).
+std::size_t straighten(const TriMesh& T, partition::Partition& P, Executor& executor, std::vector<PatchScore>& scores,
+                       const Evaluate& evaluate, const StraightenOptions& options = {});
+
+}  // namespace fhr::pipeline
