@@ -1,6 +1,9 @@
 // FHR core — SurfacePoint evaluation and canonical form (see surface_point.hpp).
 #include <fhr/core/surface_point.hpp>
 
+#include <algorithm>
+#include <vector>
+
 namespace fhr {
 
 Vec3 position(const TriMesh& m, const SurfacePoint& p) {
@@ -50,6 +53,29 @@ bool same_location(const TriMesh& m, const SurfacePoint& a, const SurfacePoint& 
         case SurfacePoint::Kind::face: return x.face == y.face && x.bary == y.bary;
     }
     return false;
+}
+
+namespace {
+
+// The faces of a mesh at a vertex or an edge point (an edge of the boundary has one).
+std::vector<FaceId> faces_at(const TriMesh& mesh, const SurfacePoint& p) {
+    std::vector<FaceId> faces;
+    if (p.kind == SurfacePoint::Kind::vertex) {
+        mesh.for_each_outgoing(p.vertex, [&](HalfedgeId h) {
+            if (mesh.face(h).valid()) faces.push_back(mesh.face(h));
+        });
+    } else {
+        for (HalfedgeId h : {p.halfedge, TriMesh::twin(p.halfedge)})
+            if (mesh.face(h).valid()) faces.push_back(mesh.face(h));
+    }
+    return faces;
+}
+
+}  // namespace
+
+bool share_face(const TriMesh& mesh, const SurfacePoint& a, const SurfacePoint& b) {
+    const std::vector<FaceId> fa = faces_at(mesh, a), fb = faces_at(mesh, b);
+    return std::any_of(fa.begin(), fa.end(), [&](FaceId f) { return std::find(fb.begin(), fb.end(), f) != fb.end(); });
 }
 
 }  // namespace fhr

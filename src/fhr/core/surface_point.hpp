@@ -57,6 +57,11 @@ Vec3 position(const TriMesh& mesh, const SurfacePoint& p);
 /// equal. Exact: no tolerance is applied.
 SurfacePoint canonical(const TriMesh& mesh, const SurfacePoint& p);
 
+/// Whether two vertices or edge points lie in one face of the mesh (consecutive nodes of a curve
+/// on it do). A vertex lies in its faces, an edge point in its edge's one or two.
+/// \pre neither is a face point.
+bool share_face(const TriMesh& mesh, const SurfacePoint& a, const SurfacePoint& b);
+
 /// True when both name the same location (after canonical()).
 bool same_location(const TriMesh& mesh, const SurfacePoint& a, const SurfacePoint& b);
 

@@ -57,26 +57,6 @@ std::vector<FaceId> closed_faces(const TriMesh& T, std::span<const FaceId> touch
     return faces;
 }
 
-// The faces of a mesh at a vertex or an edge point (an edge of the boundary has one).
-std::vector<FaceId> faces_at(const TriMesh& m, const SurfacePoint& p) {
-    std::vector<FaceId> faces;
-    if (p.kind == SurfacePoint::Kind::vertex) {
-        m.for_each_outgoing(p.vertex, [&](HalfedgeId h) {
-            if (m.face(h).valid()) faces.push_back(m.face(h));
-        });
-    } else {
-        for (HalfedgeId h : {p.halfedge, TriMesh::twin(p.halfedge)})
-            if (m.face(h).valid()) faces.push_back(m.face(h));
-    }
-    return faces;
-}
-
-// Whether two vertices or edge points of m lie in one face of m (consecutive nodes of a curve do).
-bool share_face(const TriMesh& m, const SurfacePoint& a, const SurfacePoint& b) {
-    const std::vector<FaceId> fa = faces_at(m, a), fb = faces_at(m, b);
-    return std::any_of(fa.begin(), fa.end(), [&](FaceId f) { return std::find(fb.begin(), fb.end(), f) != fb.end(); });
-}
-
 }  // namespace
 
 Outcome<Region> Region::cut_out(const TriMesh& T, std::span<const FaceId> touched,

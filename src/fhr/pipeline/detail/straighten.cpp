@@ -71,28 +71,6 @@ std::optional<OnEdge> on_t_edge(const TriMesh& T, const partition::Origin& a, co
     return a.vertex.valid() ? OnEdge{EdgeId(point.edge), *t, point.t} : OnEdge{EdgeId(point.edge), point.t, *t};
 }
 
-// The faces of T holding a vertex or an edge point.
-std::vector<FaceId> faces_at(const TriMesh& T, const SurfacePoint& p) {
-    std::vector<FaceId> out;
-    if (p.kind == SurfacePoint::Kind::vertex) {
-        T.for_each_outgoing(p.vertex, [&](HalfedgeId h) {
-            if (T.face(h).valid()) out.push_back(T.face(h));
-        });
-    } else {
-        for (HalfedgeId h : {p.halfedge, TriMesh::twin(p.halfedge)})
-            if (T.face(h).valid()) out.push_back(T.face(h));
-    }
-    std::sort(out.begin(), out.end());
-    return out;
-}
-
-bool share_face(const TriMesh& T, const SurfacePoint& a, const SurfacePoint& b) {
-    const std::vector<FaceId> fa = faces_at(T, a), fb = faces_at(T, b);
-    std::vector<FaceId> common;
-    std::set_intersection(fa.begin(), fa.end(), fb.begin(), fb.end(), std::back_inserter(common));
-    return !common.empty();
-}
-
 // The quadrilateral Q of the pseudocode: A, C, B (above AC), E (below), convex.
 std::array<Point2, 4> lay_out_quad(const std::array<Vec3, 4>& acbe, double max_angle) {
     const double L = (acbe[1] - acbe[0]).norm();
