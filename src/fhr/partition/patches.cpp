@@ -1,6 +1,7 @@
 // FHR §3 — the patches S_i of T′ (see patches.hpp for the pseudocode).
 #include <fhr/core/detail/contract.hpp>
 #include <fhr/partition/patches.hpp>
+#include <fhr/partition/detail/cut_disk.hpp>
 
 #include <algorithm>
 #include <string>
@@ -58,10 +59,26 @@ Regions regions(const domain::Domain& D, const Network& net) {
     return out;
 }
 
-// Patch df's disk on its own, `local` numbering its vertices (−1 elsewhere, restored after).
-void make_disk(const domain::Domain& D, const Network& net, const Regions& regions, FaceId df, Patch& p,
-               std::vector<std::int32_t>& local) {
-    const TriMesh& M = net.mesh;
+// Patch df's disk on its own: the curves of D's halfedges around T_i = (v_j, v_k, v_l), from x_j.
+void make_disk(const domain::Domain& D, const Network& net, FaceId df, Patch& p, std::vector<std::int32_t>& local) {
+    std::array<std::vector<VertexId>, 3> curves;
+    HalfedgeId dh = D.mesh.halfedge(df);
+    for (std::size_t c = 0; c < 3; ++c, dh = D.mesh.next(dh)) {
+        curves[c] = net.path[DEdgeId(TriMesh::edge(dh))];
+        if (dh.idx() & 1u) std::reverse(curves[c].begin(), curves[c].end());
+    }
+    Outcome<Patch> cut =
+        cut_disk(net.mesh, net.d_halfedge, std::move(p.faces), {curves[0], curves[1], curves[2]}, local);
+    if (!cut) fail(df, cut.why());
+    p = std::move(cut.value());
+}
+
+}  // namespace
+
+Outcome<Patch> cut_disk(const TriMesh& M, const HalfedgeData<DHalfedgeId>& labels, std::vector<FaceId> faces,
+                        const std::array<std::span<const VertexId>, 3>& sides, std::vector<std::int32_t>& local) {
+    Patch p;
+    p.faces = std::move(faces);
     auto local_of = [&](VertexId v) {
         if (local[v.idx()] < 0) {
             local[v.idx()] = static_cast<std::int32_t>(p.vertices.size());
@@ -76,39 +93,38 @@ void make_disk(const domain::Domain& D, const Network& net, const Regions& regio
         std::array<std::uint32_t, 3> tri{};
         for (int i = 0; i < 3; ++i, h = M.next(h)) {
             tri[static_cast<std::size_t>(i)] = local_of(M.from(h));
-            if (net.d_halfedge[h].valid()) ++boundary_halfedges;
+            if (labels[h].valid()) ++boundary_halfedges;
         }
         p.disk.triangles.push_back(tri);
     }
-    // The boundary: the curves of D's halfedges around T_i = (v_j, v_k, v_l), from x_j.
-    HalfedgeId dh = D.mesh.halfedge(df);
+    auto why = [&](const char* what) {
+        for (VertexId v : p.vertices) local[v.idx()] = -1;
+        return Outcome<Patch>::failure(what);
+    };
     std::vector<VertexId> loop;
-    for (std::size_t c = 0; c < 3; ++c, dh = D.mesh.next(dh)) {
+    for (std::size_t c = 0; c < 3; ++c) {
         p.disk.corners[c] = loop.size();
-        std::vector<VertexId> curve = net.path[DEdgeId(TriMesh::edge(dh))];
-        if (dh.idx() & 1u) std::reverse(curve.begin(), curve.end());
-        loop.insert(loop.end(), curve.begin(), curve.end() - 1);
+        loop.insert(loop.end(), sides[c].begin(), sides[c].end() - 1);
     }
     for (std::size_t i = 0; i < loop.size(); ++i) {
         const HalfedgeId h = M.find_halfedge(loop[i], loop[(i + 1) % loop.size()]);
-        if (!h.valid() || regions.region_face[static_cast<std::size_t>(regions.region[M.face(h).idx()])] != df)
-            fail(df, "is not on the left of its curves");
-        if (local[loop[i].idx()] < 0) fail(df, "has a corner or curve vertex outside it");
+        if (!h.valid() || !std::binary_search(p.faces.begin(), p.faces.end(), M.face(h)))
+            return why("is not on the left of its curves");
+        if (local[loop[i].idx()] < 0) return why("has a corner or curve vertex outside it");
         p.disk.boundary.push_back(static_cast<std::uint32_t>(local[loop[i].idx()]));
     }
     // Theorem (Euler): a connected triangulated surface with one boundary loop of L edges,
     // V vertices and F faces is a disk iff V − (3F + L)/2 + F = 1.
     std::vector<std::uint32_t> sorted = p.disk.boundary;
     std::sort(sorted.begin(), sorted.end());
-    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) fail(df, "touches itself on its boundary");
-    if (boundary_halfedges != loop.size()) fail(df, "has a second boundary loop");
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return why("touches itself on its boundary");
+    if (boundary_halfedges != loop.size()) return why("has a second boundary loop");
     const long V = static_cast<long>(p.vertices.size()), F = static_cast<long>(p.faces.size()),
                L = static_cast<long>(loop.size());
-    if (2 * V - (3 * F + L) + 2 * F != 2) fail(df, "is not a topological disk");
+    if (2 * V - (3 * F + L) + 2 * F != 2) return why("is not a topological disk");
     for (VertexId v : p.vertices) local[v.idx()] = -1;
+    return p;
 }
-
-}  // namespace
 
 Patches extract_patches(const domain::Domain& D, const Network& net, Executor* executor) {
     const TriMesh& M = net.mesh;
@@ -140,7 +156,7 @@ Patches extract_patches(const domain::Domain& D, const Network& net, Executor* e
         std::vector<std::int32_t> local(M.n_vertices(), -1);
         for (std::size_t d = first; d < end; ++d) {
             const FaceId df(static_cast<FaceId::Index>(d));
-            make_disk(D, net, r, df, out.patch[df], local);
+            make_disk(D, net, df, out.patch[df], local);
         }
     });
     return out;

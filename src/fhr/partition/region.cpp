@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include <fhr/core/errors.hpp>
+#include <fhr/partition/detail/cut_disk.hpp>
 
 namespace fhr::partition {
 namespace {
@@ -173,6 +174,21 @@ Outcome<FaceData<std::uint8_t>> Region::side(std::size_t curve, bool left) const
         }
     }
     return mask;
+}
+
+Outcome<Patch> Region::patch(const FaceData<std::uint8_t>& mask,
+                             const std::array<std::pair<std::size_t, bool>, 3>& sides) const {
+    const Network& net = cut_.network;
+    std::vector<FaceId> faces;
+    for (FaceId f : net.mesh.faces())
+        if (mask[f]) faces.push_back(f);
+    std::array<std::vector<VertexId>, 3> curves;
+    for (std::size_t c = 0; c < 3; ++c) {
+        curves[c] = net.path.at(DEdgeId(static_cast<DEdgeId::Index>(sides[c].first)));
+        if (sides[c].second) std::reverse(curves[c].begin(), curves[c].end());
+    }
+    std::vector<std::int32_t> local(net.mesh.n_vertices(), -1);
+    return cut_disk(net.mesh, net.d_halfedge, std::move(faces), {curves[0], curves[1], curves[2]}, local);
 }
 
 std::vector<FaceId> Region::t_faces(const FaceData<std::uint8_t>& mask) const {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <tuple>
 #include <utility>
 
 #include <fhr/core/errors.hpp>
@@ -75,33 +76,79 @@ MappedPatch map_one(const TriMesh& D, FaceId d, param::Disk disk, const Options&
     return out;
 }
 
-bool same_disk(const param::Disk& a, const param::Disk& b) {
-    return a.triangles == b.triangles && a.boundary == b.boundary && a.corners == b.corners &&
-           a.midpoints == b.midpoints && a.positions == b.positions;
+// ψ carried over from `before` to `disk`, when the two are one disk up to the order of their
+// vertices and triangles (the same positions, triangles and boundary loop); else nothing.
+std::optional<param::PatchMap> carried_over(const param::Disk& before, const param::PatchMap& psi,
+                                            const param::Disk& disk) {
+    const std::size_t n = disk.positions.size();
+    if (before.positions.size() != n || before.triangles.size() != disk.triangles.size() ||
+        before.boundary.size() != disk.boundary.size() || before.corners != disk.corners ||
+        before.midpoints != disk.midpoints)
+        return std::nullopt;
+    auto by_position = [](const std::vector<Vec3>& p) {
+        std::vector<std::uint32_t> order(p.size());
+        for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+        std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+            return std::tie(p[a].x(), p[a].y(), p[a].z()) < std::tie(p[b].x(), p[b].y(), p[b].z());
+        });
+        return order;
+    };
+    const std::vector<std::uint32_t> a = by_position(before.positions), b = by_position(disk.positions);
+    std::vector<std::uint32_t> to_before(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        if (before.positions[a[k]] != disk.positions[b[k]]) return std::nullopt;
+        to_before[b[k]] = a[k];
+    }
+    for (std::size_t p = 0; p < disk.boundary.size(); ++p)
+        if (to_before[disk.boundary[p]] != before.boundary[p]) return std::nullopt;
+    auto from_least = [](std::array<std::uint32_t, 3> t) {  // the same triangle, its least corner first
+        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+        return t;
+    };
+    std::vector<std::array<std::uint32_t, 3>> x, y;
+    for (const auto& t : before.triangles) x.push_back(from_least(t));
+    for (const auto& t : disk.triangles) y.push_back(from_least({to_before[t[0]], to_before[t[1]], to_before[t[2]]}));
+    std::sort(x.begin(), x.end());
+    std::sort(y.begin(), y.end());
+    if (x != y) return std::nullopt;
+    param::PatchMap out;
+    out.beta.resize(n);
+    for (std::size_t k = 0; k < n; ++k) out.beta[k] = psi.beta[to_before[k]];
+    return out;
 }
 
 // Beyond the paper: the curves beside poorly mapped patches moved (pipeline/detail/straighten.hpp),
-// then §4 again for every patch whose disk changed.
+// then §4 again for every patch whose disk changed. Most patches are their old disks up to order
+// (T′ embedded again puts the pieces of a face of T cut by several curves in another order): their
+// maps are carried over.
 template <class Keep>
-void straighten_poor_patches(const TriMesh& T, Parameterization& out, const Options& options, const Keep& keep) {
+void straighten_poor_patches(const TriMesh& T, Parameterization& out, const Options& options,
+                             const std::vector<std::uint8_t>& relaxed, const Keep& keep) {
     const TriMesh& D = out.partition.domain.mesh;
+    Executor& executor = executor_or_default(options.executor);
     std::vector<PatchScore> scores(D.n_faces());
-    for (FaceId d : D.faces()) {
-        const DFaceId i(d);
-        if (out.certificates[i].passed) scores[d.idx()] = score(out.disks[i], out.maps[i], triangle_of(D, d));
-    }
+    executor.for_each(D.n_faces(), 16, [&](std::size_t i) {
+        const DFaceId d(static_cast<DFaceId::Index>(i));
+        if (out.certificates[d].passed) scores[i] = score(out.disks[d], out.maps[d], triangle_of(D, FaceId(d)));
+    });
     const Evaluate evaluate = [&](FaceId d, param::Disk disk) {
         const MappedPatch m = map_one(D, d, std::move(disk), options);
         return m.certificate.passed ? score(m.disk, m.map, triangle_of(D, d)) : PatchScore{};
     };
-    Executor& executor = executor_or_default(options.executor);
     if (straighten(T, out.partition, executor, scores, evaluate) == 0) return;
     executor.for_each(D.n_faces(), 16, [&](std::size_t i) {
         const FaceId d(static_cast<FaceId::Index>(i));
-        param::Disk disk = std::move(out.partition.patches.patch[d].disk);
-        param::Disk split = disk;
-        param::split_dividing_edges(split);
-        if (!same_disk(split, out.disks[DFaceId(d)])) keep(i, map_one(D, d, std::move(disk), options));
+        const DFaceId di(d);
+        partition::Patch& patch = out.partition.patches.patch[d];
+        MappedPatch m;
+        m.disk = patch.disk;
+        m.split = param::split_dividing_edges(m.disk, &m.origin);
+        std::optional<param::PatchMap> psi = carried_over(out.disks[di], out.maps[di], m.disk);
+        if (!psi) return keep(i, map_one(D, d, std::move(patch.disk), options));
+        m.map = std::move(*psi);
+        m.certificate = out.certificates[di];  // the same triangles, the same images
+        m.relaxed = relaxed[i];
+        keep(i, std::move(m));
     });
 }
 
@@ -150,7 +197,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
         const FaceId d(static_cast<FaceId::Index>(i));  // each task its own patch
         keep(i, map_one(Dm, d, std::move(out.partition.patches.patch[d].disk), options));
     });
-    if (options.relax) straighten_poor_patches(T, out, options, keep);
+    if (options.relax) straighten_poor_patches(T, out, options, relaxed, keep);
     for (std::size_t s : split) out.dividing_edges_split += s;
     for (std::uint8_t r : relaxed) out.relaxed_patches += r;
     // The final T′: the vertices of T′ of §3, then each patch's dividing-edge midpoints; faces

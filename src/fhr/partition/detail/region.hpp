@@ -20,9 +20,11 @@
 // Decisions and their reasons: paper_notes/partition.md, "Keeping the domain".
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -30,6 +32,7 @@
 #include <fhr/core/trimesh.hpp>
 #include <fhr/geodesic/exact.hpp>
 #include <fhr/partition/embed.hpp>
+#include <fhr/partition/patches.hpp>
 
 namespace fhr::partition {
 
@@ -56,6 +59,11 @@ public:
     /// The faces of T′_S on the left (or right) of curve i, as a mask over T′_S's faces; or why
     /// not: the curves do not enclose that side.
     Outcome<FaceData<std::uint8_t>> side(std::size_t curve, bool left) const;
+    /// The patch of the masked faces of T′_S bounded by three of the curves (curve index, and
+    /// whether the loop runs against it), the first curve's start its corner 0; or why not
+    /// (partition/detail/cut_disk.hpp).
+    Outcome<Patch> patch(const FaceData<std::uint8_t>& mask,
+                         const std::array<std::pair<std::size_t, bool>, 3>& sides) const;
     /// The faces of T holding the masked faces of T′_S, in increasing order.
     std::vector<FaceId> t_faces(const FaceData<std::uint8_t>& mask) const;
 

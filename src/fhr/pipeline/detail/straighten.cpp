@@ -2,6 +2,7 @@
 #include <fhr/pipeline/detail/straighten.hpp>
 
 #include <algorithm>
+#include <iterator>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -14,6 +15,7 @@
 #include <fhr/core/errors.hpp>
 #include <fhr/core/surface_point.hpp>
 #include <fhr/geodesic/exact.hpp>
+#include <fhr/partition/detail/region.hpp>
 #include <fhr/partition/embed.hpp>
 #include <fhr/partition/patches.hpp>
 
@@ -94,88 +96,159 @@ std::array<Point2, 4> lay_out_quad(const std::array<Vec3, 4>& acbe, double max_a
     return {Point2{0, 0}, Point2{L, 0}, B, E};
 }
 
-// The new curve of domain edge e (D halfedge (e, 0) from A to C), or nothing when its union of
-// patches does not allow one (see straighten.hpp).
+// Where a curve lies on T, and whether embed() snaps it (a moved curve, placed as a geodesic) or
+// places it exactly (a curve as §3 left it: its nodes are T′'s vertices already).
+struct Placed {
+    geodesic::GeodesicPath path;
+    bool snapped = false;
+};
+
+// A moved curve of domain edge e tried in the union of its two patches, cut out on its own: the
+// curve on T, and per side (the patch on the left of D's halfedge (e, 0), then the right) the
+// score of the new patch's map and the faces of T it touches.
+struct Trial {
+    geodesic::GeodesicPath path;
+    std::array<PatchScore, 2> scores;
+    std::array<std::vector<FaceId>, 2> touched;
+};
+
+// The new curve of domain edge e (D halfedge (e, 0) from A to C) and its two new patches, or
+// nothing when its union of patches does not allow one (see straighten.hpp).
 class UnionCurve {
 public:
-    UnionCurve(const TriMesh& T, const partition::Partition& P, const StraightenOptions& options)
-        : T_(T), P_(P), D_(P.domain.mesh), options_(options) {}
+    UnionCurve(const TriMesh& T, const partition::Partition& P, const std::vector<Placed>& curves,
+               const std::vector<std::vector<FaceId>>& touched, const Evaluate& evaluate,
+               const StraightenOptions& options)
+        : T_(T), P_(P), D_(P.domain.mesh), curves_(curves), touched_(touched), evaluate_(evaluate), options_(options) {}
 
-    std::optional<geodesic::GeodesicPath> operator()(DEdgeId e) const {
-        const HalfedgeId h = TriMesh::halfedge(EdgeId(e), 0);
-        const FaceId left = D_.face(h), right = D_.face(TriMesh::twin(h));
+    std::optional<Trial> operator()(DEdgeId e) const {
+        const HalfedgeId h = TriMesh::halfedge(EdgeId(e), 0), twin = TriMesh::twin(h);
+        const FaceId left = D_.face(h), right = D_.face(twin);
         if (!left.valid() || !right.valid()) return std::nullopt;
         const VertexId a = D_.from(h), c = D_.to(h);
-        const VertexId b = D_.to(D_.next(h)), other = D_.to(D_.next(TriMesh::twin(h)));
+        const VertexId b = D_.to(D_.next(h)), other = D_.to(D_.next(twin));
         if (b == other) return std::nullopt;  // the union is not a disk
-        const partition::Network& N = P_.network;
         const std::array<VertexId, 4> quad{a, c, b, other};
         std::array<Vec3, 4> corners;
         for (int k = 0; k < 4; ++k) corners[k] = T_.position(P_.domain.t_vertex[quad[k]]);
         const std::array<Point2, 4> layout = lay_out_quad(corners, options_.max_quad_angle);
 
-        // U: the faces of both patches, their vertices numbered in the order of their T′ ids.
-        std::vector<VertexId> global;
-        for (FaceId f : {left, right})
-            for (VertexId v : P_.patches.patch[f].vertices) global.push_back(v);
-        std::sort(global.begin(), global.end());
-        global.erase(std::unique(global.begin(), global.end()), global.end());
-        auto local = [&](VertexId v) {
-            return static_cast<std::uint32_t>(std::lower_bound(global.begin(), global.end(), v) - global.begin());
-        };
+        // The union U, cut out of T with the four other curves around it (curves 0..3 of the region).
+        const std::array<HalfedgeId, 4> outer{D_.next(h), D_.next(D_.next(h)), D_.next(twin), D_.next(D_.next(twin))};
+        std::vector<partition::RegionCurve> around;
+        for (HalfedgeId g : outer) {
+            const Placed& placed = curves_[TriMesh::edge(g).idx()];
+            around.push_back({&placed.path, placed.snapped});
+        }
+        std::vector<FaceId> touched;
+        std::set_union(touched_[left.idx()].begin(), touched_[left.idx()].end(), touched_[right.idx()].begin(),
+                       touched_[right.idx()].end(), std::back_inserter(touched));
+        Outcome<partition::Region> region = partition::Region::cut_out(T_, touched, around);
+        if (!region) return std::nullopt;
+        // U lies on the left of D's halfedge next(h), so on the left of curve 0 when it runs along it.
+        Outcome<FaceData<std::uint8_t>> inside = region->side(0, outer[0].idx() % 2 == 0);
+        if (!inside) return std::nullopt;
+        const partition::Network& N = region->cut();
+        std::vector<std::int32_t> local(N.mesh.n_vertices(), -1);
+        std::vector<VertexId> global;  // U's vertices, vertices of T′_S
+        std::vector<std::array<std::uint32_t, 3>> triangles;
+        for (FaceId f : N.mesh.faces()) {
+            if (!(*inside)[f]) continue;
+            std::array<std::uint32_t, 3> t{};
+            const auto corners_f = N.mesh.face_vertices(f);
+            for (int k = 0; k < 3; ++k) {
+                std::int32_t& l = local[corners_f[k].idx()];
+                if (l < 0) {
+                    l = static_cast<std::int32_t>(global.size());
+                    global.push_back(corners_f[k]);
+                }
+                t[k] = static_cast<std::uint32_t>(l);
+            }
+            triangles.push_back(t);
+        }
         const std::size_t n = global.size();
         std::vector<Vec3> positions(n);
         for (std::size_t i = 0; i < n; ++i) positions[i] = N.mesh.position(global[i]);
-        std::vector<std::array<std::uint32_t, 3>> triangles;
-        for (FaceId f : {left, right})
-            for (FaceId face : P_.patches.patch[f].faces) {
-                const auto t = N.mesh.face_vertices(face);
-                triangles.push_back({local(t[0]), local(t[1]), local(t[2])});
-            }
         // U's boundary, the four other curves, onto Q's sides by chord length.
         std::vector<std::uint8_t> fixed(n, 0);
         std::vector<Point2> images(n, Point2{0, 0});
-        const HalfedgeId twin = TriMesh::twin(h);
-        for (HalfedgeId g : {D_.next(h), D_.next(D_.next(h)), D_.next(twin), D_.next(D_.next(twin))}) {
-            const EdgeId side = TriMesh::edge(g);
-            const HalfedgeId along = TriMesh::halfedge(side, 0);
+        for (std::size_t k = 0; k < 4; ++k) {
+            const HalfedgeId along = TriMesh::halfedge(TriMesh::edge(outer[k]), 0);
             const Point2 p = layout[slot(quad, D_.from(along))], q = layout[slot(quad, D_.to(along))];
-            const std::vector<VertexId>& curve = N.path[DEdgeId(side)];
+            const std::vector<VertexId>& curve = N.path.at(DEdgeId(static_cast<DEdgeId::Index>(k)));
             std::vector<double> L(1, 0.0);
-            for (std::size_t k = 1; k < curve.size(); ++k)
-                L.push_back(L.back() + (N.mesh.position(curve[k]) - N.mesh.position(curve[k - 1])).norm());
-            for (std::size_t k = 0; k < curve.size(); ++k) {
-                const double lambda = L.back() > 0 ? L[k] / L.back() : 0.0;
-                const std::uint32_t u = local(curve[k]);
+            for (std::size_t i = 1; i < curve.size(); ++i)
+                L.push_back(L.back() + (N.mesh.position(curve[i]) - N.mesh.position(curve[i - 1])).norm());
+            for (std::size_t i = 0; i < curve.size(); ++i) {
+                if (local[curve[i].idx()] < 0) return std::nullopt;  // not around U after all
+                const double lambda = L.back() > 0 ? L[i] / L.back() : 0.0;
+                const auto u = static_cast<std::uint32_t>(local[curve[i].idx()]);
                 fixed[u] = 1;
                 images[u] = {(1 - lambda) * p[0] + lambda * q[0], (1 - lambda) * p[1] + lambda * q[1]};
             }
         }
-        // The old curve's inner vertices become U's interior; one on T's boundary cannot.
-        for (VertexId v : N.path[e])
-            if (v != N.path[e].front() && v != N.path[e].back() && N.mesh.is_boundary(v)) return std::nullopt;
+        // U's interior (where the old curve ran) on T's boundary cannot be crossed.
+        for (std::size_t i = 0; i < n; ++i)
+            if (!fixed[i] && N.mesh.is_boundary(global[i])) return std::nullopt;
         try {
             param::convex_combination(positions, triangles, fixed, 0, images, options_.weights);
         } catch (const NumericalFailure&) {
             return std::nullopt;  // a degenerate ring in U: the curve stays
         }
-        return preimage_of_diagonal(N, global, triangles, images, N.path[e].front(), N.path[e].back());
+        Trial trial;
+        const VertexId xa = region->in_sub(VertexId(P_.domain.t_vertex[a]));
+        const VertexId xc = region->in_sub(VertexId(P_.domain.t_vertex[c]));
+        std::optional<geodesic::GeodesicPath> path = preimage_of_diagonal(*region, global, triangles, images, xa, xc);
+        if (!path) return std::nullopt;
+        trial.path = std::move(*path);
+        // The two new patches: cut again along the new curve (curve 4 of the region).
+        if (!region->add({&trial.path, true}) || !cut_pair(*region, e, outer, trial)) return std::nullopt;
+        return trial;
     }
 
 private:
+    // The patches on the left and the right of the new curve (region curve 4, the others those of
+    // `outer`) mapped and scored into `trial`; false when one is not a patch of its three curves.
+    bool cut_pair(const partition::Region& region, DEdgeId e, const std::array<HalfedgeId, 4>& outer,
+                  Trial& trial) const {
+        const HalfedgeId h = TriMesh::halfedge(EdgeId(e), 0);
+        for (int s = 0; s < 2; ++s) {
+            Outcome<FaceData<std::uint8_t>> mask = region.side(4, s == 0);
+            if (!mask) return false;
+            const FaceId d = D_.face(s == 0 ? h : TriMesh::twin(h));
+            std::array<std::pair<std::size_t, bool>, 3> sides;
+            HalfedgeId dh = D_.halfedge(d);
+            for (std::size_t k = 0; k < 3; ++k, dh = D_.next(dh)) {
+                const EdgeId edge = TriMesh::edge(dh);
+                const auto at =
+                    std::find_if(outer.begin(), outer.end(), [&](HalfedgeId g) { return TriMesh::edge(g) == edge; });
+                sides[k] = {edge == EdgeId(e) ? 4 : static_cast<std::size_t>(at - outer.begin()), (dh.idx() & 1u) != 0};
+            }
+            Outcome<partition::Patch> patch = region.patch(*mask, sides);
+            if (!patch) return false;
+            trial.scores[s] = evaluate_(d, std::move(patch->disk));
+            trial.touched[s] = region.t_faces(*mask);
+        }
+        return true;
+    }
+
     static int slot(const std::array<VertexId, 4>& quad, VertexId v) {
         return static_cast<int>(std::find(quad.begin(), quad.end(), v) - quad.begin());
     }
 
-    // The points of T whose images lie on AC (the x-axis), ordered along it, from x_a to x_c.
+    // The points of T whose images lie on AC (the x-axis), ordered along it, from x_a to x_c
+    // (vertices of T′_S: of T_S, which keeps their numbers).
     std::optional<geodesic::GeodesicPath> preimage_of_diagonal(
-        const partition::Network& N, const std::vector<VertexId>& global,
+        const partition::Region& region, const std::vector<VertexId>& global,
         const std::vector<std::array<std::uint32_t, 3>>& triangles, const std::vector<Point2>& images, VertexId xa,
         VertexId xc) const {
+        const partition::Network& N = region.cut();
+        const TriMesh& S = region.sub();
+        auto on_t = [&](const SurfacePoint& p) { return canonical(T_, region.in_t(p)); };
         std::vector<std::pair<double, SurfacePoint>> nodes;
         for (std::size_t i = 0; i < global.size(); ++i)
             if (images[i][1] == 0 && global[i] != xa && global[i] != xc)
-                nodes.emplace_back(images[i][0], surface_point(T_, N.origin[global[i]]));
+                nodes.emplace_back(images[i][0], on_t(surface_point(S, N.origin[global[i]])));
         std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
         for (const auto& t : triangles)
             for (int k = 0; k < 3; ++k) edges.emplace_back(std::minmax(t[k], t[(k + 1) % 3]));
@@ -184,19 +257,19 @@ private:
         for (const auto& [u, w] : edges) {
             const double yu = images[u][1], yw = images[w][1];
             if (!((yu < 0 && yw > 0) || (yu > 0 && yw < 0))) continue;
-            const std::optional<OnEdge> on = on_t_edge(T_, N.origin[global[u]], N.origin[global[w]]);
+            const std::optional<OnEdge> on = on_t_edge(S, N.origin[global[u]], N.origin[global[w]]);
             if (!on) continue;  // a chord inside a face of T: the curve runs straight there
             const double lambda = yu / (yu - yw);
             const double t = on->ta + lambda * (on->tb - on->ta);
             nodes.emplace_back(images[u][0] + lambda * (images[w][0] - images[u][0]),
-                               canonical(T_, SurfacePoint::on_edge(TriMesh::halfedge(on->edge, 0), t)));
+                               on_t(SurfacePoint::on_edge(TriMesh::halfedge(on->edge, 0), t)));
         }
         std::sort(nodes.begin(), nodes.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
         geodesic::GeodesicPath path;
-        path.points.push_back(SurfacePoint::at_vertex(xa));
+        path.points.push_back(SurfacePoint::at_vertex(region.in_t(xa)));
         for (const auto& node : nodes)
             if (!same_location(T_, node.second, path.points.back())) path.points.push_back(node.second);
-        path.points.push_back(SurfacePoint::at_vertex(xc));
+        path.points.push_back(SurfacePoint::at_vertex(region.in_t(xc)));
         for (std::size_t k = 1; k < path.points.size(); ++k) {
             if (same_location(T_, path.points[k - 1], path.points[k]) ||
                 !share_face(T_, path.points[k - 1], path.points[k]))
@@ -209,6 +282,9 @@ private:
     const TriMesh& T_;
     const partition::Partition& P_;
     const TriMesh& D_;
+    const std::vector<Placed>& curves_;
+    const std::vector<std::vector<FaceId>>& touched_;
+    const Evaluate& evaluate_;
     const StraightenOptions& options_;
 };
 
@@ -245,39 +321,6 @@ bool better(const std::array<PatchScore, 2>& now, const std::array<PatchScore, 2
     const double l2 = now[0].l2_energy + now[1].l2_energy, l2_before = before[0].l2_energy + before[1].l2_energy;
     return (worst < worst_before && l2 <= (1 + options.l2_slack) * l2_before) ||
            (worst <= std::max(worst_before, options.poor) && l2 < l2_before);
-}
-
-// Every curve embedded into T: the new ones of `fresh` (snapped as geodesics), the others exactly
-// where they lay (`base`); the new ones that break (1) or (2) put back until none does.
-partition::Embedding embed_with(const TriMesh& T, const domain::Domain& D,
-                                const std::vector<geodesic::GeodesicPath>& base,
-                                std::vector<std::optional<geodesic::GeodesicPath>>& fresh, Executor& executor) {
-    for (;;) {
-        std::vector<geodesic::GeodesicPath> paths;
-        std::vector<std::uint8_t> exact;
-        for (std::size_t e = 0; e < base.size(); ++e) {
-            paths.push_back(fresh[e] ? *fresh[e] : base[e]);
-            exact.push_back(fresh[e] ? 0 : 1);
-        }
-        partition::Embedding embedding = partition::embed(T, D, paths, exact, &executor);
-        if (embedding.conflicts.empty()) return embedding;
-        bool put_back = false;
-        for (const partition::Conflict& c : embedding.conflicts)
-            for (DEdgeId e : {c.d_edge_a, c.d_edge_b})
-                if (e.valid() && fresh[e.idx()]) {
-                    fresh[e.idx()].reset();
-                    put_back = true;
-                }
-        if (!put_back)
-            throw InternalError("moving the curves: the network as it was breaks (1)/(2): " +
-                                embedding.conflicts.front().describe());
-    }
-}
-
-// The network of `embedding` in P, its patches cut.
-void take(partition::Partition& P, partition::Embedding& embedding, Executor& executor) {
-    P.patches = partition::extract_patches(P.domain, embedding.network, &executor);
-    P.network = std::move(embedding.network);
 }
 
 }  // namespace
@@ -318,58 +361,55 @@ PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<
 std::size_t straighten(const TriMesh& T, partition::Partition& P, Executor& executor, std::vector<PatchScore>& scores,
                        const Evaluate& evaluate, const StraightenOptions& options) {
     const TriMesh& D = P.domain.mesh;
-    std::vector<std::uint8_t> moved(D.n_edges(), 0);
+    std::vector<Placed> curves;  // where each curve lies now
+    for (EdgeId e : P.curves.ids()) curves.push_back({current_path(T, P.network, DEdgeId(e)), false});
+    std::vector<std::vector<FaceId>> touched(D.n_faces());  // per patch now: the faces of T it touches
+    for (FaceId d : D.faces()) {
+        for (FaceId f : P.patches.patch[d].faces) touched[d.idx()].push_back(FaceId(P.network.t_face[f]));
+        std::sort(touched[d.idx()].begin(), touched[d.idx()].end());
+        touched[d.idx()].erase(std::unique(touched[d.idx()].begin(), touched[d.idx()].end()), touched[d.idx()].end());
+    }
+    std::size_t moved = 0;
     for (int sweep = 0; sweep < options.sweeps; ++sweep) {
         std::vector<std::uint8_t> poor(D.n_faces(), 0);
         for (std::size_t f = 0; f < poor.size(); ++f) poor[f] = !(scores[f].worst <= options.poor);
         for (const std::vector<DEdgeId>& round : rounds_of(P, poor)) {
-            std::vector<std::optional<geodesic::GeodesicPath>> fresh(D.n_edges());
-            const UnionCurve union_curve(T, P, options);
-            executor.for_each(round.size(), 4, [&](std::size_t i) { fresh[round[i].idx()] = union_curve(round[i]); });
-            if (std::none_of(fresh.begin(), fresh.end(), [](const auto& c) { return c.has_value(); })) continue;
-            std::vector<geodesic::GeodesicPath> base;  // the curves as they lie now
-            for (EdgeId e : P.curves.ids()) base.push_back(current_path(T, P.network, DEdgeId(e)));
-            partition::Embedding embedding = embed_with(T, P.domain, base, fresh, executor);
-            const std::vector<PatchScore> before = scores;
-            take(P, embedding, executor);
-            // The new pairs of patches, mapped and scored; the curves that made them worse go back.
-            std::vector<DEdgeId> tried;
-            for (DEdgeId e : round)
-                if (fresh[e.idx()]) tried.push_back(e);
-            std::vector<std::array<PatchScore, 2>> now(tried.size());
-            executor.for_each(tried.size(), 1, [&](std::size_t i) {
-                const HalfedgeId h = TriMesh::halfedge(EdgeId(tried[i]), 0);
+            // The edges of a round share no patch: each is tried in its own union, all at once.
+            std::vector<std::optional<Trial>> trials(round.size());
+            const UnionCurve union_curve(T, P, curves, touched, evaluate, options);
+            executor.for_each(round.size(), 1, [&](std::size_t i) { trials[i] = union_curve(round[i]); });
+            for (std::size_t i = 0; i < round.size(); ++i) {
+                if (!trials[i]) continue;
+                const HalfedgeId h = TriMesh::halfedge(EdgeId(round[i]), 0);
+                const std::array<FaceId, 2> pair{D.face(h), D.face(TriMesh::twin(h))};
+                if (!better(trials[i]->scores, {scores[pair[0].idx()], scores[pair[1].idx()]}, options)) continue;
                 for (int s = 0; s < 2; ++s) {
-                    const FaceId f = D.face(s ? TriMesh::twin(h) : h);
-                    now[i][s] = evaluate(f, P.patches.patch[f].disk);
+                    scores[pair[s].idx()] = trials[i]->scores[s];
+                    touched[pair[s].idx()] = std::move(trials[i]->touched[s]);
                 }
-            });
-            bool put_back = false;
-            for (std::size_t i = 0; i < tried.size(); ++i) {
-                const HalfedgeId h = TriMesh::halfedge(EdgeId(tried[i]), 0);
-                const FaceId f = D.face(h), g = D.face(TriMesh::twin(h));
-                if (better(now[i], {before[f.idx()], before[g.idx()]}, options)) {
-                    scores[f.idx()] = now[i][0];
-                    scores[g.idx()] = now[i][1];
-                    P.paths[EdgeId(tried[i])].path = *fresh[tried[i].idx()];
-                    P.curves[EdgeId(tried[i])].kind = partition::CurveKind::straightened;
-                    moved[tried[i].idx()] = 1;
-                } else {
-                    fresh[tried[i].idx()].reset();
-                    put_back = true;
-                }
+                P.paths[EdgeId(round[i])].path = trials[i]->path;
+                P.curves[EdgeId(round[i])].kind = partition::CurveKind::straightened;
+                curves[round[i].idx()] = {std::move(trials[i]->path), true};
+                ++moved;
             }
-            if (!put_back) continue;
-            // Embed again: the kept new curves placed as before, the others as they were.
-            std::vector<std::optional<geodesic::GeodesicPath>> kept = fresh;
-            partition::Embedding again = embed_with(T, P.domain, base, kept, executor);
-            for (std::size_t e = 0; e < kept.size(); ++e)
-                if (fresh[e] && !kept[e])
-                    throw InternalError("moving the curves: a kept curve broke (1)/(2) when embedded again");
-            take(P, again, executor);
         }
     }
-    return static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
+    if (moved == 0) return 0;
+    // The whole network once more, each curve where its region put it: (1) and (2) held in every
+    // region, so they hold here (checked all the same), and T′ around each patch is its region's.
+    std::vector<geodesic::GeodesicPath> paths;
+    std::vector<std::uint8_t> exact;
+    for (Placed& c : curves) {
+        paths.push_back(std::move(c.path));
+        exact.push_back(c.snapped ? 0 : 1);
+    }
+    partition::Embedding embedding = partition::embed(T, P.domain, paths, exact, &executor);
+    if (!embedding.conflicts.empty())
+        throw InternalError("moving the curves: the network breaks (1)/(2) where no region did: " +
+                            embedding.conflicts.front().describe());
+    P.patches = partition::extract_patches(P.domain, embedding.network, &executor);
+    P.network = std::move(embedding.network);
+    return moved;
 }
 
 }  // namespace fhr::pipeline

@@ -10,21 +10,23 @@
 //   Q <- the two domain triangles laid flat along AC (A = (0, 0), C = (|AC|, 0), B above, E below);
 //        where Q is not convex enough (an angle at A or C above max_quad_angle), B and E are moved
 //        over AC's midpoint at their heights (a kite)
-//   U <- the union of the two patches (the old curve inside it); its boundary, the four other
-//        curves, onto Q's sides by chord length; every other vertex the convex combination of its
+//   U <- the union of the two patches, cut out of T on its own with the four other curves around it
+//        (partition/detail/region.hpp: a cost of U's size, not T's); its boundary, those curves,
+//        onto Q's sides by chord length; every other vertex the convex combination of its
 //        neighbours (eq. 2, the patches' own weights): a one-to-one map onto the convex Q
 //   the new curve <- the preimage of the diagonal AC: the points of T's edges (and T's vertices)
 //        inside U whose images lie on it, in the order of their images along it; between two of
 //        them it runs straight in one face of T (a face's part of U is convex)
-//   only the curves of patches whose map is poor (a face above `poor` σ₁/σ₂) move, in rounds of
-//   edges that share no patch; after each round every curve is embedded again into T
-//   (partition/embed.hpp, the old curves exactly as they were) and the patches cut; a new curve
-//   that breaks (1) or (2) there (snapping onto a vertex another curve uses) is put back and the
-//   round embedded again
-//   each moved curve's two new patches are mapped (the caller's §4) and scored: the curve is
-//   kept only when its pair got better — its worst face less anisotropic with the pair's L2 energy
-//   at most `l2_slack` higher, or that energy lower with the worst face no worse (or below `poor`)
-//   — else put back (one more embedding)
+//   U cut again along the new curve (placed as embed() places a geodesic, snapped): a conflict
+//        with the curves around it (snapping onto a vertex one of them uses) leaves the old curve;
+//        else its two new patches are mapped (the caller's §4) and scored, and the curve is kept
+//        only when its pair got better — its worst face less anisotropic with the pair's L2 energy
+//        at most `l2_slack` higher, or that energy lower with the worst face no worse (or below
+//        `poor`)
+//   only the curves of patches whose map is poor (a face above `poor` σ₁/σ₂) are tried, in rounds
+//   of edges that share no patch (each round's unions are disjoint: tried at once)
+//   finally the whole network is embedded into T once (partition/embed.hpp: the unmoved curves
+//   exactly as they were, (1) and (2) checked again) and the patches cut
 // What it gives up: the curves are no longer Γ(x_j, x_k) (spec/cli.md CLI-RUN-9); report.json says how many moved.
 #pragma once
 
