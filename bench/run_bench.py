@@ -38,7 +38,12 @@ never committed; out/ is git-ignored); a mode replaces only its own goals there.
 `page` mode: the run's page (spec/page.md PAGE-8) of the fandisk and the horse in headless
 Chromium: size and first frame against the budgets.
 
-Usage: run_bench.py BUILD_DIR [scaling|oracle|page] [--runs N]"""
+`map` mode: what the default map costs beside the paper's §4 map: `fhr run` on the horse (1000
+faces, as the default mode) and on the generated 10^6 mesh (10^4 faces, as the scaling series),
+alternately with and without `--map paper`, RUNS of each; the ratio of the median walls against
+DEFAULT_MAP_COST, and both maps' distortion.
+
+Usage: run_bench.py BUILD_DIR [scaling|oracle|page|map] [--runs N]"""
 import argparse
 import json
 import math
@@ -433,6 +438,47 @@ def bench_oracle(build, runs, goals, results):
     shutil.rmtree(out, ignore_errors=True)
 
 
+# What the default map (relaxed, curves moved: src/fhr/pipeline/detail/straighten.hpp) costs beside
+# the paper's §4 map (`--map paper`), as the ratio of the median walls of `fhr run`, the two
+# alternating so that both meet the same phases of the machine.
+DEFAULT_MAP_COST = 1.20
+
+
+def bench_map(build, runs, goals, results):
+    fhr = os.path.join(build, "src", "fhr")
+    horse = os.path.join(SHARED_MESHES, "horse.off")
+    if not os.path.isfile(horse):
+        raise SystemExit("bench map: %s is missing (the horse is one of the two meshes of this goal)" % horse)
+    million, n = scaling_input(build, "generate", 1_000_000)
+    print("== the default map against the paper's (--map paper): wall of fhr run, median of %d each, alternating" % runs)
+    for name, mesh, faces, options in [("horse", horse, 1000, FHR_RUN), ("genus-2 generated", million, n // 100, [])]:
+        walls = {"default": [], "paper": []}
+        reports = {}
+        for _ in range(runs):
+            for which, extra in (("default", []), ("paper", ["--map", "paper"])):
+                out = os.path.join(OUT, "map", which)
+                _, wall, _ = fhr_run(fhr, mesh, faces, out, [*options, *extra], RUN_TIMEOUT)
+                walls[which].append(wall)
+                with open(os.path.join(out, "report.json")) as f:
+                    reports[which] = json.load(f)
+        m = {which: statistics.median(w) for which, w in walls.items()}
+        m["ratio"] = m["default"] / m["paper"]
+        for which, report in reports.items():
+            d = report["parameterization"]["distortion"]
+            m[which + "_distortion"] = {"l2": d["l2_stretch"], "p99": d["anisotropy"]["p99"],
+                                        "p999": d["anisotropy"]["p999"], "max": d["anisotropy"]["max"]}
+        m["moved_curves"] = reports["default"]["partition"]["straightened_edges"]
+        results["map"][name] = m
+        print("  %-18s default %7.3f s, paper %7.3f s, ratio %.3f; %d curves moved" % (
+            name, m["default"], m["paper"], m["ratio"], m["moved_curves"]))
+        for which in ("paper", "default"):
+            d = m[which + "_distortion"]
+            print("    %-8s L2 %.4f, sigma1/sigma2 99th %.3g, 99.9th %.3g, max %.3g" % (which, d["l2"], d["p99"], d["p999"], d["max"]))
+        goal(goals, "%s: wall of fhr run with the default map / with --map paper (%d faces)" % (name, faces), m["ratio"], "x",
+             DEFAULT_MAP_COST)
+    shutil.rmtree(os.path.join(OUT, "map"), ignore_errors=True)
+
+
 # The run's page (spec/page.md PAGE-8): its size, and the milliseconds from navigation start to
 # the first frame with T drawn in headless Chromium (web/test/bench_page.mjs), median of `runs`.
 PAGE_BUDGETS = {"fandisk": (5.0, 1.0), "horse": (25.0, 3.0)}  # MB, s
@@ -507,19 +553,20 @@ def bench_vertex_map(fhr, mesh, run, runs, goals, results):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("build")
-    parser.add_argument("mode", nargs="?", choices=["meshes", "scaling", "oracle", "page"], default="meshes")
+    parser.add_argument("mode", nargs="?", choices=["meshes", "scaling", "oracle", "page", "map"], default="meshes")
     parser.add_argument("--runs", type=int, help="fhr runs per mesh (default 5; scaling 3)")
     options = parser.parse_args()
     runs = options.runs or (5 if options.mode == "meshes" else 3)
     path = os.path.join(OUT, "results.json")
     os.makedirs(OUT, exist_ok=True)
-    results = {"goals": [], "meshes": {}, "scaling": {}, "oracle": {}, "page": {}}
+    results = {"goals": [], "meshes": {}, "scaling": {}, "oracle": {}, "page": {}, "map": {}}
     if os.path.isfile(path):
         with open(path) as f:
             results.update(json.load(f))
     goals = []
     results[options.mode] = {}
-    {"meshes": bench_meshes, "scaling": bench_scaling, "oracle": bench_oracle, "page": bench_page}[options.mode](options.build, runs, goals, results)
+    {"meshes": bench_meshes, "scaling": bench_scaling, "oracle": bench_oracle, "page": bench_page,
+     "map": bench_map}[options.mode](options.build, runs, goals, results)
     names = {g["name"] for g in goals}
     results["goals"] = [g for g in results["goals"] if g["name"] not in names] + goals
     with open(path, "w") as f:
