@@ -109,7 +109,7 @@ def certify(fhr, path, out, faces, genus, loops, components, timeout):
     if code != 0:
         row["failure"] = "fhr run exit %d: %s" % (code, error_line(stderr))
         return row
-    verify = subprocess.run([fhr, "verify", os.path.join(out, "param.fhrp"), "--mesh", path, "--paper"], capture_output=True,
+    verify = subprocess.run([fhr, "verify", os.path.join(out, "param.fhrp"), "--mesh", path], capture_output=True,
                             text=True, errors="replace")
     if verify.returncode != 0:
         row["failure"] = "fhr verify exit %d: %s" % (verify.returncode,

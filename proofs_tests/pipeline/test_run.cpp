@@ -281,11 +281,12 @@ TEST_CASE("PART-10, DIST-1: the bull's restricted paths leave no sliver strip: i
 }
 
 TEST_CASE(
-    "CLI-RUN-9, DIST-4, DIST-7: moving the curves of poor patches lowers the worst face and never the L2 "
-    "stretch, certified",
+    "CLI-RUN-9, DIST-4, DIST-7: moving the curves of poor patches and sliding their vertices lowers the worst "
+    "face, the 99th percentile and the L2 stretch, certified and continuous",
     "[pipeline][distortion]") {
     // The bull, a cow and a genus-2 femur at the corpus's sizes: restricted curves squeezed beside
     // others bound patches far from their triangles' shapes (paper_notes/distortion_causes.md).
+    // The slid vertices give up chord length (PARAM-10, reported as info), not continuity (PARAM-7).
     for (const auto& [name, faces] :
          {std::pair<const char*, std::size_t>{"bull.off", 122}, {"cow.off", 58}, {"femur.off", 76}}) {
         CAPTURE(name);
@@ -303,7 +304,19 @@ TEST_CASE(
         const exchange::Distortion b = exchange::summarize(app::face_stretches(paper.parameterization));
         REQUIRE((a.anisotropy_max && b.anisotropy_max && a.l2_stretch && b.l2_stretch));
         CHECK(*a.anisotropy_max < *b.anisotropy_max);
-        CHECK(*a.l2_stretch <= *b.l2_stretch);
+        CHECK(*a.l2_stretch < *b.l2_stretch);
+        CHECK(*a.anisotropy_p99 < *b.anisotropy_p99);
+        CHECK(moved.parameterization.slid_patches > 0);
+        CHECK(paper.parameterization.slid_patches == 0);
+        auto status = [](const pipeline::RunResult& r, const std::string& id) {
+            for (const exchange::CheckResult& c : r.oracle.checks)
+                if (c.id == id) return c.status;
+            FAIL("no check " << id);
+            return exchange::CheckStatus::skipped;
+        };
+        CHECK(status(moved, "PARAM-7") == exchange::CheckStatus::pass);
+        CHECK(status(moved, "PARAM-10") == exchange::CheckStatus::info);
+        CHECK(status(paper, "PARAM-10") == exchange::CheckStatus::pass);
         // T′ grows by at most a quarter.
         CHECK(moved.parameterization.refined_faces.size() <= 1.25 * paper.parameterization.refined_faces.size());
     }

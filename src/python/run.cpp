@@ -155,10 +155,10 @@ void bind_run(py::module_& m) {
             "oracle",
             [](const Result& r) {
                 const exchange::ParamFile file = r.file();
-                return verdict(file, &r.T(), true);
+                return verdict(file, &r.T(), !r.options.relax);
             },
-            "The independent oracle's verdict on this parameterization against T (as fhr.verify with paper=True: "
-            "fhr's map is the paper's).")
+            "The independent oracle's verdict on this parameterization against T (as fhr.verify with paper=True "
+            "when the map is the paper's, map=\"paper\": chord length judged).")
         .def(
             "phi",
             [](Result& r, const py::array& faces, const py::array& beta) {

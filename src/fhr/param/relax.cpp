@@ -13,6 +13,7 @@
 #include <Eigen/SparseCholesky>
 
 #include <fhr/param/detail/disk_topology.hpp>
+#include <fhr/param/detail/mips.hpp>
 
 namespace fhr::param {
 namespace {
@@ -185,7 +186,55 @@ public:
         return true;
     }
 
+    // Sweeps of one vertex at a time, each interior vertex's image moved to lower Σ_f A_f m_f²
+    // over its faces (param/detail/mips.hpp), never taking a face above the ring's worst or σ₁/σ₂ = 2,
+    // until a sweep lowers Σ_f A_f m_f by less than a millionth of it; kept only when Σ_f A_f m_f fell.
+    bool mips_descent(int sweeps) {
+        ring_.resize(n_);
+        for (std::size_t f = 0; f < faces_.size(); ++f)
+            for (int k = 0; k < 3; ++k) ring_[disk_.triangles[f][k]].push_back({static_cast<std::uint32_t>(f), k});
+        const std::vector<Vec2> start = uv_;
+        const double start_energy = mips();
+        double before = start_energy;
+        for (int i = 0; i < sweeps; ++i) {
+            for (std::size_t v = 0; v < n_; ++v)
+                if (!fixed_[v]) mips_vertex(v);
+            const double after = mips();
+            if (!(after < (1 - 1e-4) * before)) break;
+            before = after;
+        }
+        if (mips() < start_energy) return true;
+        uv_ = start;  // Σ A m_f² fell but Σ A m_f did not: the L2 stretch would rise
+        return false;
+    }
+
 private:
+    struct Corner {
+        std::uint32_t face;
+        int k;  // the vertex's place in the face
+    };
+
+    double mips() const {
+        double e = 0;
+        for (std::size_t f = 0; f < faces_.size(); ++f) {
+            const Mat2 j = jacobian(uv_, f);
+            e += faces_[f].area * j.squaredNorm() / j.determinant();
+        }
+        return e;
+    }
+
+    void mips_vertex(std::size_t v) {
+        constexpr double cap = 2.5;  // m_f at σ₁/σ₂ = 2
+        detail::MipsRing<2>& ring = ring_scratch_;
+        ring.u0 = uv_[v];
+        ring.m = Mat2::Identity();
+        ring.terms.clear();
+        for (const Corner& c : ring_[v])
+            ring.terms.push_back(detail::mips_term(jacobian(uv_, c.face), uv_[v], faces_[c.face].g.row(c.k).transpose(),
+                                                   faces_[c.face].area));
+        uv_[v] += detail::mips_descend<2>(std::span<const detail::MipsRing<2>>(&ring, 1), 1, cap);
+    }
+
     // The least t > 0 at which some face of uv + t·d has zero area (its signed area is a
     // quadratic in t), or infinity.
     double max_step(const std::vector<Vec2>& d) const {
@@ -221,6 +270,8 @@ private:
     std::vector<std::uint8_t> fixed_;
     std::vector<Eigen::Index> index_;
     std::size_t unknowns_ = 0;
+    std::vector<std::vector<Corner>> ring_;  // per vertex: its faces
+    detail::MipsRing<2> ring_scratch_;
 };
 
 }  // namespace
@@ -234,6 +285,7 @@ std::optional<PatchMap> relax(const Disk& disk, const PatchMap& start, const std
         return std::nullopt;
     bool moved = false;
     for (int i = 0; i < options.iterations && r.conformal_step(); ++i) moved = true;
+    if (r.mips_descent(options.sweeps)) moved = true;
     if (!moved) return std::nullopt;
     return r.result();
 }

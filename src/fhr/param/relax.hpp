@@ -7,7 +7,7 @@
 // (PARAM-10) nor the certificate.
 //
 // Pseudocode (J_f: the map from face f, laid flat and scaled so that the patch's area is its
-// triangle's, onto its image in the triangle laid flat):
+// triangle's, onto its image in the triangle laid flat; m_f = ‖J_f‖² / det J_f = σ₁/σ₂ + σ₂/σ₁):
 //   u <- ψ_i in T_i laid flat (true shape);  fixed: the boundary loop
 //   if Σ_f A_f (‖J_f‖² + ‖J_f⁻¹‖²) ≤ 4 (1 + threshold) Σ_f A_f and max_f σ₁/σ₂ ≤ worst: stop
 //       (near an isometry already)
@@ -17,6 +17,13 @@
 //       t <- min(1, 0.9 · the least t > 0 at which a face of u + t (u* − u) degenerates)
 //       keep u + t (u* − u) only if Σ_f A_img(f) σ₁/σ₂ falls and neither max_f σ₁/σ₂ nor the
 //             patch's share of the L2 stretch grows; else stop
+//   up to `sweeps` sweeps over the interior vertices, one at a time: its image moved by a damped
+//       Newton step lowering Σ_{f ∋ v} A_f m_f² (param/detail/mips.hpp: convex in the
+//       vertex's image, infinite where a face turns over), no face taken above the worst of its
+//       ring or σ₁/σ₂ = 2; until a sweep lowers Σ_f A_f m_f by less than a millionth; the sweeps
+//       kept only when Σ_f A_f m_f (the patch's share of the L2 stretch) fell. A face whose image
+//       is a sliver while the surface's is not (the only kind the LSCM steps, which weigh it by
+//       its tiny area, leave) has a huge m_f: the sweeps open it up
 //   β of u in the triangle, on the 2^-53 grid (β0 = 1 − β1 − β2 exactly, MAP-5)
 // The caller certifies the result and keeps the paper's map when it fails (pipeline.cpp).
 #pragma once
@@ -32,6 +39,7 @@ namespace fhr::param {
 
 struct RelaxOptions {
     int iterations = 8;  ///< steps towards the conformal images at most
+    int sweeps = 30;     ///< sweeps of the vertices' MIPS steps at most
     /// Relax only a patch whose energy per unit area exceeds the isometry's (4) by this fraction, or
     /// that has a face more anisotropic than `worst`: most patches are already near their optimum,
     /// and relaxing them costs time for nothing; a sliver's share of the energy is its tiny area's.

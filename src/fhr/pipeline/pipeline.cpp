@@ -12,6 +12,7 @@
 #include <fhr/core/errors.hpp>
 #include <fhr/param/detail/dividing_edges.hpp>
 #include <fhr/param/relax.hpp>
+#include <fhr/pipeline/detail/slide.hpp>
 #include <fhr/pipeline/detail/straighten.hpp>
 
 namespace fhr::pipeline {
@@ -152,6 +153,24 @@ void straighten_poor_patches(const TriMesh& T, Parameterization& out, const Opti
     });
 }
 
+// Beyond the paper: the curves' vertices slid along their domain edges (pipeline/detail/slide.hpp),
+// kept when every changed patch is certified.
+void slide_curves(Parameterization& out, const Options& options) {
+    std::vector<std::pair<DFaceId, param::PatchMap>> slid = slide(
+        out.partition.domain.mesh, out.partition.patches, out.disks, out.maps, executor_or_default(options.executor));
+    std::vector<param::Certificate> certificates(slid.size());
+    executor_or_default(options.executor).for_each(slid.size(), 4, [&](std::size_t i) {
+        certificates[i] = param::certify(out.disks[slid[i].first], slid[i].second);
+    });
+    if (!std::all_of(certificates.begin(), certificates.end(), [](const param::Certificate& c) { return c.passed; }))
+        return;  // rounding onto the 2^-53 grid turned an image over: the maps stay as they were
+    for (std::size_t i = 0; i < slid.size(); ++i) {
+        out.maps[slid[i].first] = std::move(slid[i].second);
+        out.certificates[slid[i].first] = std::move(certificates[i]);
+    }
+    out.slid_patches = slid.size();
+}
+
 }  // namespace
 
 Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options) {
@@ -197,7 +216,10 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
         const FaceId d(static_cast<FaceId::Index>(i));  // each task its own patch
         keep(i, map_one(Dm, d, std::move(out.partition.patches.patch[d].disk), options));
     });
-    if (options.relax) straighten_poor_patches(T, out, options, relaxed, keep);
+    if (options.relax) {
+        straighten_poor_patches(T, out, options, relaxed, keep);
+        slide_curves(out, options);
+    }
     for (std::size_t s : split) out.dividing_edges_split += s;
     for (std::uint8_t r : relaxed) out.relaxed_patches += r;
     // The final T′: the vertices of T′ of §3, then each patch's dividing-edge midpoints; faces

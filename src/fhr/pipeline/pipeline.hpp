@@ -8,7 +8,11 @@
 //                     ψ_i <- chord-length boundary + convex combinations inside (eq. 2);
 //                     beyond the paper (unless the paper's map is asked for): ψ_i relaxed, kept
 //                     when its certificate passes (param/relax.hpp);
-//                     certify ψ_i (exact orientation, boundary monotone, areas)
+//                     certify ψ_i (exact orientation, boundary monotone, areas);
+//                     beyond the paper: the curves beside poorly mapped patches moved
+//                     (detail/straighten.hpp) and the patches cut anew mapped again; the curves'
+//                     vertices slid along D's edges (detail/slide.hpp), kept when every changed
+//                     patch's certificate passes
 //   the final T′ (with the dividing-edge midpoints) and, per face, its patch and the β of ψ
 //   at its corners: the `fhr-param 1` content (spec/param.md)
 #pragma once
@@ -62,6 +66,7 @@ struct Parameterization {
     IdVector<DFaceId, param::Certificate> certificates;  ///< #F(D)
     std::size_t dividing_edges_split = 0;
     std::size_t relaxed_patches = 0;  ///< patches whose map is the relaxed one (Options::relax)
+    std::size_t slid_patches = 0;     ///< patches whose curves' vertices slid along D's edges (Options::relax)
     // The final T′: T′ of §3 plus the dividing-edge midpoints, as plain arrays (for writers and numpy;
     // nothing reads its connectivity after §4, which a TriMesh would hold: paper_notes/library.md).
     std::vector<Vec3> refined_positions;

@@ -165,9 +165,10 @@ RunResult run(const TriMesh& T, RunOptions options, const RunBeside& beside) {
             if (beside.beside_oracle) beside.beside_oracle(out.parameterization, lent);
         } else if (task == 0) {
             const auto start = detail::Clock::now();
-            // fhr's map is the paper's: chord length (PARAM-10) is judged.
-            out.oracle = prepared.oracle_t ? exchange::verify(lent, *prepared.oracle_t, method.executor, true)
-                                           : exchange::verify(lent, &T, method.executor, true);
+            // Chord length (PARAM-10) is judged when fhr's map is the paper's (the default slides it).
+            const bool paper = !method.relax;
+            out.oracle = prepared.oracle_t ? exchange::verify(lent, *prepared.oracle_t, method.executor, paper)
+                                           : exchange::verify(lent, &T, method.executor, paper);
             verifying = detail::seconds_since(start);
         } else if (options.levels > 0) {
             locating = wavelets(out, lent, T, options, prepared.t_tree, beside);
