@@ -171,7 +171,7 @@ public:
             if (settled) break;
         }
         std::vector<std::pair<DFaceId, param::PatchMap>> out = maps_after();
-        while (put_back_folded(out)) out = maps_after();
+        put_back_folded(out);
         double start = 0, end = 0;
         for (std::size_t i = 0; i < moving_.size(); ++i) {
             start += before[i].first;
@@ -288,37 +288,48 @@ private:
     }
 
     // The images on the 2^-53 grid can turn a face that the optimisation left thin over (a sliver
-    // of T′ whose image it made as thin): every vertex of such a face goes back to where it
-    // started (a sliding vertex in all its patches), and so to its β (maps_after). Whether any
-    // did; once all have, the map is the certified one it started from.
-    bool put_back_folded(const std::vector<std::pair<DFaceId, param::PatchMap>>& maps) {
-        bool any = false;
-        for (std::size_t i = 0; i < moving_.size(); ++i) {
-            const param::Disk& disk = disks_[moving_[i]];
+    // of T′ whose image it made as thin): every moved vertex of such a face goes back to where it
+    // started, with its β (a sliding vertex in all its patches), and its faces are looked at
+    // again. Each vertex goes back at most once, and a face of vertices that all started where
+    // they are is as the certified start had it.
+    void put_back_folded(std::vector<std::pair<DFaceId, param::PatchMap>>& maps) {
+        std::vector<std::pair<std::size_t, std::uint32_t>> work;  // (moving patch, face)
+        for (std::size_t i = 0; i < moving_.size(); ++i)
+            for (std::uint32_t f = 0; f < disks_[moving_[i]].triangles.size(); ++f) work.emplace_back(i, f);
+        while (!work.empty()) {
+            const auto [i, f] = work.back();
+            work.pop_back();
+            const auto& t = disks_[moving_[i]].triangles[f];
             const param::PatchMap& psi = maps[i].second;
-            for (const auto& t : disk.triangles) {
-                std::array<Vec2, 3> q;
-                for (int k = 0; k < 3; ++k) q[k] = Vec2(psi.beta[t[k]][1], psi.beta[t[k]][2]);
-                if (orient2d(q[0], q[1], q[2]) > 0) continue;
-                for (std::uint32_t v : t) put_back(i, v);
-                any = true;
-            }
+            std::array<Vec2, 3> q;
+            for (int k = 0; k < 3; ++k) q[k] = Vec2(psi.beta[t[k]][1], psi.beta[t[k]][2]);
+            if (orient2d(q[0], q[1], q[2]) > 0) continue;
+            for (std::uint32_t v : t) put_back(i, v, maps, work);
         }
-        return any;
     }
 
-    void put_back(std::size_t i, std::uint32_t v) {
+    void put_back(std::size_t i, std::uint32_t v, std::vector<std::pair<DFaceId, param::PatchMap>>& maps,
+                  std::vector<std::pair<std::size_t, std::uint32_t>>& work) {
+        auto restore = [&](std::size_t patch, std::uint32_t local) {
+            maps[patch].second.beta[local] = maps_[moving_[patch]].beta[local];
+            for (const auto& [face, k] : flats_[patch].ring[local]) work.emplace_back(patch, face);
+        };
         Flat& flat = flats_[i];
         if (!flat.on_boundary[v]) {
+            if (flat.uv[v] == start_uv_[i][v]) return;
             flat.uv[v] = start_uv_[i][v];
+            restore(i, v);
             return;
         }
         const std::int64_t k = sliding_at_[i][v];
         if (k < 0) return;  // a corner, or a vertex of a curve that does not slide: never moved
         Sliding& s = sliding_[static_cast<std::size_t>(k)];
+        if (s.s == start_s_[static_cast<std::size_t>(k)]) return;
         s.s = start_s_[static_cast<std::size_t>(k)];
-        for (const Occurrence& o : s.at)
+        for (const Occurrence& o : s.at) {
             flats_[o.patch].uv[o.local] = on_side(flats_[o.patch], o.side, o.reversed ? 1 - s.s : s.s);
+            restore(o.patch, o.local);
+        }
     }
 
     std::vector<std::pair<DFaceId, param::PatchMap>> maps_after() const {

@@ -18,8 +18,9 @@
 //       each sliding vertex: a MIPS step of s over its faces in both patches
 //   β of the interior on the 2^-53 grid (MAP-5), a sliding vertex's β (1 − s, s) on D's edge with
 //   s on it, so that both patches hold the same two numbers (MAP-11's canonical direction,
-//   PARAM-7); while a face's image is then turned over (exact orient2d; the grid can turn a sliver
-//   of T′ whose image was made as thin), its three vertices go back to where they started
+//   PARAM-7); a face whose image is then turned over (exact orient2d; the grid can turn a sliver
+//   of T′ whose image was made as thin) sends its moved vertices back to where they started, with
+//   their β, and the faces around them are looked at again (each vertex goes back once at most)
 //   kept only when Σ_f A_f m_f (the L2 stretch's numerator) fell
 // The caller certifies every changed patch and keeps the maps as they were when one fails.
 #pragma once

@@ -325,7 +325,8 @@ bool better(const std::array<PatchScore, 2>& now, const std::array<PatchScore, 2
 
 }  // namespace
 
-PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<Vec3, 3>& triangle) {
+PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<Vec3, 3>& triangle,
+                 const StraightenOptions& options) {
     PatchScore out;
     out.certified = true;
     for (const auto& t : disk.triangles) {
@@ -352,8 +353,12 @@ PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<
         const Eigen::Matrix2d J = S * I.inverse();
         const Eigen::JacobiSVD<Eigen::Matrix2d> svd(J);
         const double s1 = svd.singularValues()(0), s2 = svd.singularValues()(1);
-        out.worst = std::max(out.worst, s2 > 0 ? s1 / s2 : INFINITY);
-        out.l2_energy += 0.5 * I(0, 0) * I(1, 1) * (s1 * s1 + s2 * s2) / 2;
+        const double ratio = s2 > 0 ? s1 / s2 : INFINITY, area = 0.5 * I(0, 0) * I(1, 1);
+        out.worst = std::max(out.worst, ratio);
+        out.l2_energy += area * (s1 * s1 + s2 * s2) / 2;
+        out.image_area += area;
+        if (ratio > options.tail) out.above_tail += area;
+        if (ratio > options.poor) out.above_poor += area;
     }
     return out;
 }
@@ -372,7 +377,15 @@ std::size_t straighten(const TriMesh& T, partition::Partition& P, Executor& exec
     std::size_t moved = 0;
     for (int sweep = 0; sweep < options.sweeps; ++sweep) {
         std::vector<std::uint8_t> poor(D.n_faces(), 0);
-        for (std::size_t f = 0; f < poor.size(); ++f) poor[f] = !(scores[f].worst <= options.poor);
+        double area = 0, above_tail = 0, above_poor = 0;
+        for (const PatchScore& s : scores) {
+            area += s.image_area;
+            above_tail += s.above_tail;
+            above_poor += s.above_poor;
+        }
+        const bool missed = above_tail > options.tail_share * area || above_poor > options.poor_share * area;
+        const double limit = missed ? options.tail : options.poor;
+        for (std::size_t f = 0; f < poor.size(); ++f) poor[f] = !(scores[f].worst <= limit);
         for (const std::vector<DEdgeId>& round : rounds_of(P, poor)) {
             // The edges of a round share no patch: each is tried in its own union, all at once.
             std::vector<std::optional<Trial>> trials(round.size());

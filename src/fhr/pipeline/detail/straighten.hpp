@@ -23,8 +23,11 @@
 //        only when its pair got better — its worst face less anisotropic with the pair's L2 energy
 //        at most `l2_slack` higher, or that energy lower with the worst face no worse (or below
 //        `poor`)
-//   only the curves of patches whose map is poor (a face above `poor` σ₁/σ₂) are tried, in rounds
-//   of edges that share no patch (each round's unions are disjoint: tried at once)
+//   only the curves of patches whose map is poor are tried — a face above `poor` σ₁/σ₂, or above
+//   `tail` while more than `tail_share` of the map's image area is above `tail` or more than
+//   `poor_share` above `poor` (a percentile goal missed: where both are met, moving curves for
+//   them costs time for nothing) — in rounds of edges that share no patch (each round's unions
+//   are disjoint: tried at once)
 //   finally the whole network is embedded into T once (partition/embed.hpp: the unmoved curves
 //   exactly as they were, (1) and (2) checked again) and the patches cut
 // What it gives up: the curves are no longer Γ(x_j, x_k) (spec/cli.md CLI-RUN-9); report.json says how many moved.
@@ -43,8 +46,14 @@
 namespace fhr::pipeline {
 
 struct StraightenOptions {
-    int sweeps = 2;                    ///< rounds over the curves of the patches still poor
-    double poor = 10;                  ///< a patch whose worst face's σ₁/σ₂ exceeds this is poor
+    int sweeps = 2;    ///< rounds over the curves of the patches still poor
+    double poor = 10;  ///< a patch whose worst face's σ₁/σ₂ exceeds this is poor
+    /// While more than `tail_share` of the map's image area has faces above σ₁/σ₂ = `tail`, or
+    /// more than `poor_share` above `poor` (the goals of the 99th and 99.9th percentiles missed,
+    /// spec/distortion.md), a patch with a face above `tail` is poor.
+    double tail = 3;
+    double tail_share = 0.01;
+    double poor_share = 0.001;
     double l2_slack = 0;               ///< see the pseudocode
     double max_quad_angle = 170;       ///< degrees: the largest angle of Q at A or C laid flat
     param::PatchMapOptions weights{};  ///< the union's map (eq. 2)
@@ -58,10 +67,15 @@ struct PatchScore {
     bool certified = false;
     double worst = 0;
     double l2_energy = 0;
+    double image_area = 0;  ///< Σ_f A_f
+    double above_tail = 0;  ///< Σ_f A_f over the faces above StraightenOptions::tail
+    double above_poor = 0;  ///< Σ_f A_f over the faces above StraightenOptions::poor
 };
 
-/// The score of map ψ of `disk` onto the triangle with corners `triangle` (3-D).
-PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<Vec3, 3>& triangle);
+/// The score of map ψ of `disk` onto the triangle with corners `triangle` (3-D), `options`'s
+/// thresholds counted.
+PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<Vec3, 3>& triangle,
+                 const StraightenOptions& options = {});
 
 /// The caller's §4 for the patch of D's face d, scored.
 using Evaluate = std::function<PatchScore(FaceId d, Disk disk)>;
