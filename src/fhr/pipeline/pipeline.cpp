@@ -141,6 +141,10 @@ void straighten_poor_patches(const TriMesh& T, Parameterization& out, const Opti
         const FaceId d(static_cast<FaceId::Index>(i));
         const DFaceId di(d);
         partition::Patch& patch = out.partition.patches.patch[d];
+        const param::Disk& before = out.disks[di];
+        if (before.midpoints == 0 && before.triangles == patch.disk.triangles &&
+            before.boundary == patch.disk.boundary && before.positions == patch.disk.positions)
+            return;  // the very same disk (and no dividing edge split): its map stands as it is
         MappedPatch m;
         m.disk = patch.disk;
         m.split = param::split_dividing_edges(m.disk, &m.origin);
