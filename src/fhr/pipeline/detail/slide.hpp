@@ -13,7 +13,8 @@
 //   moving <- the active patches and their neighbours across D's edges
 //   sliding <- every vertex of a curve beside an active patch, but its ends: its parameter s along
 //              D's halfedge (e, 0), the same in both patches (1 − s from the other end)
-//   sweeps until one lowers Σ_f A_f m_f over the moving patches by less than `settled` of it:
+//   sweeps until one lowers Σ_f A_f m_f over the moving patches by less than `settled` of it (more
+//   and finer where the map misses a percentile goal, `sweeps_missed`):
 //       each interior vertex of a moving patch: a MIPS step in its patch
 //       each sliding vertex: a MIPS step of s over its faces in both patches
 //   β of the interior on the 2^-53 grid (MAP-5), a sliding vertex's β (1 − s, s) on D's edge with
@@ -38,8 +39,16 @@
 namespace fhr::pipeline {
 
 struct SlideOptions {
-    int sweeps = 20;         ///< sweeps at most
-    double settled = 1e-4;   ///< a sweep that lowers the energy by less than this fraction is the last
+    int sweeps = 20;        ///< sweeps at most
+    double settled = 1e-4;  ///< a sweep that lowers the energy by less than this fraction is the last
+    /// Where the map misses a percentile goal — more than `tail_share` of its image area above
+    /// σ₁/σ₂ = `tail`, or more than `worst_share` above `worst` (spec/distortion.md's 99th and
+    /// 99.9th) — Gauss–Seidel's slow convergence is worth more sweeps: these instead.
+    int sweeps_missed = 200;
+    double settled_missed = 1e-7;
+    double tail = 3;
+    double tail_share = 0.01;
+    double worst_share = 0.001;
     double threshold = 0.1;  ///< see `active` in the pseudocode
     double worst = 10;       ///< see `active` in the pseudocode
 };
