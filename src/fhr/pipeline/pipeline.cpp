@@ -121,9 +121,10 @@ std::optional<param::PatchMap> carried_over(const param::Disk& before, const par
 // Beyond the paper: the curves beside poorly mapped patches moved (pipeline/detail/straighten.hpp),
 // then §4 again for every patch whose disk changed. Most patches are their old disks up to order
 // (T′ embedded again puts the pieces of a face of T cut by several curves in another order): their
-// maps are carried over.
+// maps are carried over. Whether the map, its moved pairs as they were scored, misses a percentile
+// goal (goals_missed).
 template <class Keep>
-void straighten_poor_patches(const TriMesh& T, Parameterization& out, const Options& options,
+bool straighten_poor_patches(const TriMesh& T, Parameterization& out, const Options& options,
                              const std::vector<std::uint8_t>& relaxed, const Keep& keep) {
     const TriMesh& D = out.partition.domain.mesh;
     Executor& executor = executor_or_default(options.executor);
@@ -136,7 +137,7 @@ void straighten_poor_patches(const TriMesh& T, Parameterization& out, const Opti
         const MappedPatch m = map_one(D, d, std::move(disk), options);
         return m.certificate.passed ? score(m.disk, m.map, triangle_of(D, d)) : PatchScore{};
     };
-    if (straighten(T, out.partition, executor, scores, evaluate) == 0) return;
+    if (straighten(T, out.partition, executor, scores, evaluate) == 0) return goals_missed(scores);
     executor.for_each(D.n_faces(), 16, [&](std::size_t i) {
         const FaceId d(static_cast<FaceId::Index>(i));
         const DFaceId di(d);
@@ -155,19 +156,23 @@ void straighten_poor_patches(const TriMesh& T, Parameterization& out, const Opti
         m.relaxed = relaxed[i];
         keep(i, std::move(m));
     });
+    return goals_missed(scores);
 }
 
 // Beyond the paper: the curves' vertices slid along their domain edges (pipeline/detail/slide.hpp),
-// kept when every changed patch is certified.
-void slide_curves(Parameterization& out, const Options& options) {
-    std::vector<std::pair<DFaceId, param::PatchMap>> slid = slide(
-        out.partition.domain.mesh, out.partition.patches, out.disks, out.maps, executor_or_default(options.executor));
+// longer where the map misses a percentile goal, kept when every changed patch is certified.
+void slide_curves(Parameterization& out, const Options& options, bool missed) {
+    SlideOptions slide_options;
+    slide_options.missed = missed;
+    std::vector<std::pair<DFaceId, param::PatchMap>> slid =
+        slide(out.partition.domain.mesh, out.partition.patches, out.disks, out.maps,
+              executor_or_default(options.executor), slide_options);
     std::vector<param::Certificate> certificates(slid.size());
     executor_or_default(options.executor).for_each(slid.size(), 4, [&](std::size_t i) {
         certificates[i] = param::certify(out.disks[slid[i].first], slid[i].second);
     });
     if (!std::all_of(certificates.begin(), certificates.end(), [](const param::Certificate& c) { return c.passed; }))
-        return;  // rounding onto the 2^-53 grid turned an image over: the maps stay as they were
+        return;  // MAP-8's other checks (slide() already put back what the grid turned over): as they were
     for (std::size_t i = 0; i < slid.size(); ++i) {
         out.maps[slid[i].first] = std::move(slid[i].second);
         out.certificates[slid[i].first] = std::move(certificates[i]);
@@ -221,8 +226,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
         keep(i, map_one(Dm, d, std::move(out.partition.patches.patch[d].disk), options));
     });
     if (options.relax) {
-        straighten_poor_patches(T, out, options, relaxed, keep);
-        slide_curves(out, options);
+        slide_curves(out, options, straighten_poor_patches(T, out, options, relaxed, keep));
     }
     for (std::size_t s : split) out.dividing_edges_split += s;
     for (std::uint8_t r : relaxed) out.relaxed_patches += r;

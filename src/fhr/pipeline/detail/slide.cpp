@@ -97,15 +97,12 @@ struct Flat {
     }
 };
 
-// Σ_f A_f m_f, Σ_f A_f and the largest σ₁/σ₂ of a patch's map, and its image area in all and
-// where σ₁/σ₂ is above `tail` and above `worst`, without laying it out.
+// Σ_f A_f m_f, Σ_f A_f and the largest σ₁/σ₂ of a patch's map, without laying it out.
 struct Activity {
     double energy = 0, area = 0, worst = 0;
-    double image = 0, above_tail = 0, above_worst = 0;
 };
 
-Activity activity(const param::Disk& disk, const param::PatchMap& psi, const std::array<Vec2, 3>& corner,
-                  const SlideOptions& options) {
+Activity activity(const param::Disk& disk, const param::PatchMap& psi, const std::array<Vec2, 3>& corner) {
     Activity out;
     for (const auto& t : disk.triangles) {
         const auto [grad, a] = hat_gradients(disk, t);
@@ -115,11 +112,7 @@ Activity activity(const param::Disk& disk, const param::PatchMap& psi, const std
         const double m = j.squaredNorm() / j.determinant();
         out.energy += a * m;
         out.area += a;
-        const double ratio = m > 0 ? anisotropy(m) : INFINITY, image = a * j.determinant();
-        out.worst = std::max(out.worst, ratio);
-        out.image += image;
-        if (ratio > options.tail) out.above_tail += image;
-        if (ratio > options.worst) out.above_worst += image;
+        out.worst = std::max(out.worst, m > 0 ? anisotropy(m) : INFINITY);
     }
     return out;
 }
@@ -168,8 +161,8 @@ public:
             worst = std::max(worst, b.second);
         }
         cap_ = worst + 1 / worst;
-        const int sweeps = missed_ ? options_.sweeps_missed : options_.sweeps;
-        const double settle = missed_ ? options_.settled_missed : options_.settled;
+        const int sweeps = options_.missed ? options_.sweeps_missed : options_.sweeps;
+        const double settle = options_.missed ? options_.settled_missed : options_.settled;
         for (int sweep = 0; sweep < sweeps; ++sweep) {
             executor_.for_each(moving_.size(), 1, [&](std::size_t i) { interior_sweep(i); });
             for (Sliding& v : sliding_) slide_vertex(v);
@@ -194,19 +187,11 @@ private:
     // The active patches and their neighbours; false when none is active.
     bool choose() {
         std::vector<std::uint8_t> active(D_.n_faces(), 0);
-        std::vector<Activity> all(D_.n_faces());
         executor_.for_each(D_.n_faces(), 16, [&](std::size_t i) {
             const DFaceId d(static_cast<DFaceId::Index>(i));
-            all[i] = activity(disks_[d], maps_[d], flat_triangle(D_, FaceId(d)), options_);
-            active[i] = all[i].energy > 2 * (1 + options_.threshold) * all[i].area || all[i].worst > options_.worst;
+            const Activity a = activity(disks_[d], maps_[d], flat_triangle(D_, FaceId(d)));
+            active[i] = a.energy > 2 * (1 + options_.threshold) * a.area || a.worst > options_.worst;
         });
-        double image = 0, above_tail = 0, above_worst = 0;
-        for (const Activity& a : all) {
-            image += a.image;
-            above_tail += a.above_tail;
-            above_worst += a.above_worst;
-        }
-        missed_ = above_tail > options_.tail_share * image || above_worst > options_.worst_share * image;
         if (std::none_of(active.begin(), active.end(), [](std::uint8_t a) { return a != 0; })) return false;
         active_ = active;
         std::vector<std::uint8_t> moving = active;
@@ -395,7 +380,6 @@ private:
     std::vector<std::vector<Vec2>> start_uv_;            // per moving patch: the images before the sweeps
     std::vector<double> start_s_;                        // per sliding vertex: its parameter before the sweeps
     double cap_ = 0;
-    bool missed_ = false;  // the map misses a percentile goal (SlideOptions::sweeps_missed)
 };
 
 }  // namespace

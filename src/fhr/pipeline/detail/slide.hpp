@@ -41,14 +41,11 @@ namespace fhr::pipeline {
 struct SlideOptions {
     int sweeps = 20;        ///< sweeps at most
     double settled = 1e-4;  ///< a sweep that lowers the energy by less than this fraction is the last
-    /// Where the map misses a percentile goal — more than `tail_share` of its image area above
-    /// σ₁/σ₂ = `tail`, or more than `worst_share` above `worst` (spec/distortion.md's 99th and
-    /// 99.9th) — Gauss–Seidel's slow convergence is worth more sweeps: these instead.
+    /// Where the map misses a percentile goal (pipeline/detail/straighten.hpp's goals_missed),
+    /// Gauss–Seidel's slow convergence is worth more sweeps: these instead, when `missed`.
     int sweeps_missed = 200;
     double settled_missed = 1e-7;
-    double tail = 3;
-    double tail_share = 0.01;
-    double worst_share = 0.001;
+    bool missed = false;
     double threshold = 0.1;  ///< see `active` in the pseudocode
     double worst = 10;       ///< see `active` in the pseudocode
 };

@@ -363,6 +363,16 @@ PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<
     return out;
 }
 
+bool goals_missed(const std::vector<PatchScore>& scores, const StraightenOptions& options) {
+    double area = 0, above_tail = 0, above_poor = 0;
+    for (const PatchScore& s : scores) {
+        area += s.image_area;
+        above_tail += s.above_tail;
+        above_poor += s.above_poor;
+    }
+    return above_tail > options.tail_share * area || above_poor > options.poor_share * area;
+}
+
 std::size_t straighten(const TriMesh& T, partition::Partition& P, Executor& executor, std::vector<PatchScore>& scores,
                        const Evaluate& evaluate, const StraightenOptions& options) {
     const TriMesh& D = P.domain.mesh;
@@ -377,14 +387,7 @@ std::size_t straighten(const TriMesh& T, partition::Partition& P, Executor& exec
     std::size_t moved = 0;
     for (int sweep = 0; sweep < options.sweeps; ++sweep) {
         std::vector<std::uint8_t> poor(D.n_faces(), 0);
-        double area = 0, above_tail = 0, above_poor = 0;
-        for (const PatchScore& s : scores) {
-            area += s.image_area;
-            above_tail += s.above_tail;
-            above_poor += s.above_poor;
-        }
-        const bool missed = above_tail > options.tail_share * area || above_poor > options.poor_share * area;
-        const double limit = missed ? options.tail : options.poor;
+        const double limit = goals_missed(scores, options) ? options.tail : options.poor;
         for (std::size_t f = 0; f < poor.size(); ++f) poor[f] = !(scores[f].worst <= limit);
         for (const std::vector<DEdgeId>& round : rounds_of(P, poor)) {
             // The edges of a round share no patch: each is tried in its own union, all at once.

@@ -77,6 +77,12 @@ struct PatchScore {
 PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<Vec3, 3>& triangle,
                  const StraightenOptions& options = {});
 
+/// Whether the map of these scores misses a percentile goal: more than `tail_share` of its image
+/// area above σ₁/σ₂ = `tail`, or more than `poor_share` above `poor` (spec/distortion.md's 99th
+/// and 99.9th percentiles). Where it does, the curves of patches above `tail` move, and the
+/// sliding sweeps longer (pipeline/detail/slide.hpp).
+bool goals_missed(const std::vector<PatchScore>& scores, const StraightenOptions& options = {});
+
 /// The caller's §4 for the patch of D's face d, scored.
 using Evaluate = std::function<PatchScore(FaceId d, Disk disk)>;
 
