@@ -14,6 +14,7 @@
 
 #include <fhr/param/detail/disk_topology.hpp>
 #include <fhr/param/detail/mips.hpp>
+#include <fhr/param/detail/mips_newton.hpp>
 
 namespace fhr::param {
 namespace {
@@ -239,25 +240,7 @@ private:
     // quadratic in t), or infinity.
     double max_step(const std::vector<Vec2>& d) const {
         double best = std::numeric_limits<double>::infinity();
-        for (const auto& t : disk_.triangles) {
-            const Vec2 a = uv_[t[1]] - uv_[t[0]], b = uv_[t[2]] - uv_[t[0]];
-            const Vec2 da = d[t[1]] - d[t[0]], db = d[t[2]] - d[t[0]];
-            auto cross = [](const Vec2& x, const Vec2& y) { return x.x() * y.y() - x.y() * y.x(); };
-            const double qa = cross(da, db), qb = cross(a, db) + cross(da, b), qc = cross(a, b);
-            auto take = [&](double r) {
-                if (r > 0) best = std::min(best, r);
-            };
-            if (std::abs(qa) < 1e-300) {
-                if (qb != 0) take(-qc / qb);
-            } else {
-                const double disc = qb * qb - 4 * qa * qc;
-                if (disc >= 0) {
-                    const double s = std::sqrt(disc);
-                    take((-qb - s) / (2 * qa));
-                    take((-qb + s) / (2 * qa));
-                }
-            }
-        }
+        for (const auto& t : disk_.triangles) best = std::min(best, detail::first_degenerate(uv_, d, t));
         return best;
     }
 

@@ -19,6 +19,45 @@ MipsTerm mips_term(const Mat2& j, const Vec2& u, const Vec2& g, double area) {
     return t;
 }
 
+namespace {
+
+// Symmetric `a` with its negative eigenvalues set to 0: cyclic Jacobi rotations diagonalise it.
+Eigen::Matrix4d nonnegative_part(Eigen::Matrix4d a) {
+    Eigen::Matrix4d v = Eigen::Matrix4d::Identity();
+    for (int sweep = 0; sweep < 32; ++sweep) {
+        double off = 0;
+        for (int p = 0; p < 4; ++p)
+            for (int q = p + 1; q < 4; ++q) off += a(p, q) * a(p, q);
+        if (!(off > 1e-30 * a.squaredNorm())) break;
+        for (int p = 0; p < 4; ++p)
+            for (int q = p + 1; q < 4; ++q) {
+                Eigen::JacobiRotation<double> r;
+                if (!r.makeJacobi(a, p, q)) continue;
+                a.applyOnTheLeft(p, q, r.adjoint());
+                a.applyOnTheRight(p, q, r);
+                v.applyOnTheRight(p, q, r);
+            }
+    }
+    return v * a.diagonal().cwiseMax(0.0).asDiagonal() * v.transpose();
+}
+
+}  // namespace
+
+MipsFace mips_face(const Mat2& j) {
+    using Vec4 = Eigen::Vector4d;
+    using Mat4 = Eigen::Matrix4d;
+    const Vec4 x(j(0, 0), j(0, 1), j(1, 0), j(1, 1));
+    const double q = x.squaredNorm(), l = j.determinant(), m = q / l;
+    const Vec4 dl(x(3), -x(2), -x(1), x(0));  // ∇ det J
+    Mat4 hl = Mat4::Zero();                   // ∇² det J
+    hl(0, 3) = hl(3, 0) = 1;
+    hl(1, 2) = hl(2, 1) = -1;
+    const Vec4 dm = 2 * x / l - q * dl / (l * l);
+    const Mat4 hm = 2 * Mat4::Identity() / l - 2 * (x * dl.transpose() + dl * x.transpose()) / (l * l) +
+                    2 * q * dl * dl.transpose() / (l * l * l) - q * hl / (l * l);
+    return {m * m, 2 * m * dm, nonnegative_part(2 * (dm * dm.transpose() + m * hm))};
+}
+
 template <int K>
 double mips_energy(std::span<const MipsRing<K>> rings, const Eigen::Matrix<double, K, 1>& x) {
     double e = 0;

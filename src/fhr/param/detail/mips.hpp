@@ -41,6 +41,16 @@ struct MipsTerm {
 /// The term of a face whose Jacobian is `j` now, with the corner at `u` and hat gradient `g`.
 MipsTerm mips_term(const Mat2& j, const Vec2& u, const Vec2& g, double area);
 
+/// A face's m_f² as a function of the entries (J₀₀, J₀₁, J₁₀, J₁₁) of its Jacobian: the value, the
+/// gradient, and the Hessian with its negative eigenvalues set to 0 (a Newton step on all of a
+/// map's images at once then descends: projected Newton, Teran et al. 2005). \pre det J > 0.
+struct MipsFace {
+    double energy = 0;
+    Eigen::Vector4d gradient;
+    Eigen::Matrix4d hessian;
+};
+MipsFace mips_face(const Mat2& j);
+
 /// The faces around one vertex as seen from one patch, and how the variable moves the vertex there.
 template <int K>
 struct MipsRing {

@@ -12,6 +12,7 @@
 #include <fhr/core/errors.hpp>
 #include <fhr/param/detail/disk_topology.hpp>
 #include <fhr/param/detail/mips.hpp>
+#include <fhr/param/detail/mips_newton.hpp>
 
 namespace fhr::pipeline {
 namespace {
@@ -27,17 +28,6 @@ std::array<Vec2, 3> flat_triangle(const TriMesh& D, FaceId d) {
     const Vec3 e1 = D.position(v[1]) - D.position(v[0]), e2 = D.position(v[2]) - D.position(v[0]);
     const double l1 = e1.norm();
     return {Vec2(0, 0), Vec2(l1, 0), Vec2(e2.dot(e1) / l1, e1.cross(e2).norm() / l1)};
-}
-
-// A surface triangle laid flat in its own plane: its hat gradients and its area.
-std::pair<Grad, double> hat_gradients(const param::Disk& disk, const std::array<std::uint32_t, 3>& t) {
-    const Vec3 a = disk.positions[t[1]] - disk.positions[t[0]], b = disk.positions[t[2]] - disk.positions[t[0]];
-    const double la = a.norm(), twice = a.cross(b).norm();
-    Mat2 flat;
-    flat << la, b.dot(a) / la, 0, twice / la;
-    Grad d;
-    d << -1, -1, 1, 0, 0, 1;
-    return {d * flat.inverse(), 0.5 * twice};
 }
 
 double anisotropy(double m) { return 0.5 * (m + std::sqrt(std::max(m * m - 4, 0.0))); }  // σ₁/σ₂ from m
@@ -58,7 +48,9 @@ struct Flat {
           on_boundary(disk.positions.size(), 0) {
         for (std::size_t v = 0; v < uv.size(); ++v) uv[v] = psi.beta[v][1] * corner[1] + psi.beta[v][2] * corner[2];
         for (std::size_t f = 0; f < disk.triangles.size(); ++f) {
-            const auto [grad, a] = hat_gradients(disk, disk.triangles[f]);
+            const auto& t = disk.triangles[f];
+            const auto [grad, a] =
+                param::detail::hat_gradients(disk.positions[t[0]], disk.positions[t[1]], disk.positions[t[2]]);
             g.push_back(grad);
             area.push_back(a);
             for (int k = 0; k < 3; ++k) ring[disk.triangles[f][k]].emplace_back(static_cast<std::uint32_t>(f), k);
@@ -105,7 +97,8 @@ struct Activity {
 Activity activity(const param::Disk& disk, const param::PatchMap& psi, const std::array<Vec2, 3>& corner) {
     Activity out;
     for (const auto& t : disk.triangles) {
-        const auto [grad, a] = hat_gradients(disk, t);
+        const auto [grad, a] =
+            param::detail::hat_gradients(disk.positions[t[0]], disk.positions[t[1]], disk.positions[t[2]]);
         Eigen::Matrix<double, 2, 3> u;
         for (int k = 0; k < 3; ++k) u.col(k) = psi.beta[t[k]][1] * corner[1] + psi.beta[t[k]][2] * corner[2];
         const Mat2 j = u * grad;
@@ -161,6 +154,7 @@ public:
             worst = std::max(worst, b.second);
         }
         cap_ = worst + 1 / worst;
+        if (options_.missed) newton();
         const int sweeps = options_.missed ? options_.sweeps_missed : options_.sweeps;
         const double settle = options_.missed ? options_.settled_missed : options_.settled;
         for (int sweep = 0; sweep < sweeps; ++sweep) {
@@ -184,6 +178,53 @@ public:
     }
 
 private:
+    // Newton steps on Σ_f A_f m_f² over all the moving patches' images and sliding parameters at
+    // once (param/detail/mips_newton.hpp), the sweeps' ceiling kept; then s from the images.
+    void newton() {
+        param::detail::MipsProblem problem;
+        std::vector<std::size_t> offset;
+        for (std::size_t i = 0; i < flats_.size(); ++i) {
+            const Flat& flat = flats_[i];
+            offset.push_back(problem.uv.size());
+            for (std::size_t v = 0; v < flat.uv.size(); ++v) {
+                problem.uv.push_back(flat.uv[v]);
+                problem.lifts.emplace_back();
+                if (flat.on_boundary[v]) continue;
+                problem.lifts.back() = {param::detail::Lift{problem.variables, Vec2(1, 0)},
+                                        param::detail::Lift{problem.variables + 1, Vec2(0, 1)}};
+                problem.variables += 2;
+            }
+            for (auto t : disks_[moving_[i]].triangles) {
+                for (std::uint32_t& v : t) v += static_cast<std::uint32_t>(offset[i]);
+                problem.triangles.push_back(t);
+            }
+            problem.gradients.insert(problem.gradients.end(), flat.g.begin(), flat.g.end());
+            problem.areas.insert(problem.areas.end(), flat.area.begin(), flat.area.end());
+        }
+        for (const Sliding& v : sliding_) {
+            for (const Occurrence& o : v.at)
+                problem.lifts[offset[o.patch] + o.local][0] = {problem.variables, along(o)};
+            ++problem.variables;
+        }
+        param::detail::mips_newton(problem, options_.newton_steps, options_.settled_missed, cap_);
+        for (std::size_t i = 0; i < flats_.size(); ++i)
+            std::copy_n(problem.uv.begin() + static_cast<std::ptrdiff_t>(offset[i]), flats_[i].uv.size(),
+                        flats_[i].uv.begin());
+        for (Sliding& v : sliding_) {
+            const Occurrence& o = v.at.front();
+            const Flat& flat = flats_[o.patch];
+            const Vec2 side = flat.corner[(o.side + 1) % 3] - flat.corner[o.side];
+            const double t = (flat.uv[o.local] - flat.corner[o.side]).dot(side) / side.squaredNorm();
+            v.s = o.reversed ? 1 - t : t;
+        }
+    }
+
+    // How s moves a sliding vertex's image in one of its patches.
+    Vec2 along(const Occurrence& o) const {
+        const Flat& flat = flats_[o.patch];
+        return (o.reversed ? -1.0 : 1.0) * (flat.corner[(o.side + 1) % 3] - flat.corner[o.side]);
+    }
+
     // The active patches and their neighbours; false when none is active.
     bool choose() {
         std::vector<std::uint8_t> active(D_.n_faces(), 0);
@@ -280,9 +321,7 @@ private:
         rings.resize(v.at.size());
         for (std::size_t k = 0; k < v.at.size(); ++k) {
             const Occurrence& o = v.at[k];
-            const Flat& flat = flats_[o.patch];
-            const Vec2 along = (o.reversed ? -1.0 : 1.0) * (flat.corner[(o.side + 1) % 3] - flat.corner[o.side]);
-            flat.ring_of<1>(disks_[moving_[o.patch]], o.local, along, rings[k]);
+            flats_[o.patch].ring_of<1>(disks_[moving_[o.patch]], o.local, along(o), rings[k]);
         }
         v.s += param::detail::mips_descend<1>(std::span<const MipsRing<1>>(rings), 1, cap())(0);
         for (const Occurrence& o : v.at)

@@ -13,6 +13,9 @@
 //   moving <- the active patches and their neighbours across D's edges
 //   sliding <- every vertex of a curve beside an active patch, but its ends: its parameter s along
 //              D's halfedge (e, 0), the same in both patches (1 − s from the other end)
+//   where the map misses a percentile goal: first Newton steps on Σ_f A_f m_f² over all the moving
+//       images and parameters s at once (param/detail/mips_newton.hpp, the same ceiling), then s
+//       read back from the images — the sweeps alone settle slowly where a whole patch must bend
 //   sweeps until one lowers Σ_f A_f m_f over the moving patches by less than `settled` of it (more
 //   and finer where the map misses a percentile goal, `sweeps_missed`):
 //       each interior vertex of a moving patch: a MIPS step in its patch
@@ -46,6 +49,7 @@ struct SlideOptions {
     int sweeps_missed = 200;
     double settled_missed = 1e-7;
     bool missed = false;
+    int newton_steps = 50;   ///< Newton steps on all the moving images at once first, when `missed`
     double threshold = 0.1;  ///< see `active` in the pseudocode
     double worst = 10;       ///< see `active` in the pseudocode
 };

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <limits>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -15,6 +16,7 @@
 #include <fhr/core/errors.hpp>
 #include <fhr/core/surface_point.hpp>
 #include <fhr/geodesic/exact.hpp>
+#include <fhr/param/detail/mips_newton.hpp>
 #include <fhr/partition/detail/region.hpp>
 #include <fhr/partition/embed.hpp>
 #include <fhr/partition/patches.hpp>
@@ -121,7 +123,8 @@ public:
                const StraightenOptions& options)
         : T_(T), P_(P), D_(P.domain.mesh), curves_(curves), touched_(touched), evaluate_(evaluate), options_(options) {}
 
-    std::optional<Trial> operator()(DEdgeId e) const {
+    /// `conformal`: the union's map made nearer conformal before the diagonal's preimage is taken.
+    std::optional<Trial> operator()(DEdgeId e, bool conformal) const {
         const HalfedgeId h = TriMesh::halfedge(EdgeId(e), 0), twin = TriMesh::twin(h);
         const FaceId left = D_.face(h), right = D_.face(twin);
         if (!left.valid() || !right.valid()) return std::nullopt;
@@ -172,6 +175,8 @@ public:
         // U's boundary, the four other curves, onto Q's sides by chord length.
         std::vector<std::uint8_t> fixed(n, 0);
         std::vector<Point2> images(n, Point2{0, 0});
+        std::vector<param::detail::Vec2> sides(
+            n, param::detail::Vec2::Zero());  // a boundary vertex's side, or 0 at a corner
         for (std::size_t k = 0; k < 4; ++k) {
             const HalfedgeId along = TriMesh::halfedge(TriMesh::edge(outer[k]), 0);
             const Point2 p = layout[slot(quad, D_.from(along))], q = layout[slot(quad, D_.to(along))];
@@ -185,6 +190,7 @@ public:
                 const auto u = static_cast<std::uint32_t>(local[curve[i].idx()]);
                 fixed[u] = 1;
                 images[u] = {(1 - lambda) * p[0] + lambda * q[0], (1 - lambda) * p[1] + lambda * q[1]};
+                if (i > 0 && i + 1 < curve.size()) sides[u] = {q[0] - p[0], q[1] - p[1]};
             }
         }
         // U's interior (where the old curve ran) on T's boundary cannot be crossed.
@@ -195,6 +201,7 @@ public:
         } catch (const NumericalFailure&) {
             return std::nullopt;  // a degenerate ring in U: the curve stays
         }
+        if (conformal) make_conformal(positions, triangles, sides, fixed, images);
         Trial trial;
         const VertexId xa = region->in_sub(VertexId(P_.domain.t_vertex[a]));
         const VertexId xc = region->in_sub(VertexId(P_.domain.t_vertex[c]));
@@ -230,6 +237,34 @@ private:
             trial.touched[s] = region.t_faces(*mask);
         }
         return true;
+    }
+
+    // The union's map made nearer conformal (param/detail/mips_newton.hpp): the interior moved, the
+    // boundary slid along Q's sides, the corners kept. Where the convex combination's floating
+    // images turned a face over, left as it is.
+    void make_conformal(const std::vector<Vec3>& positions, const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                        const std::vector<param::detail::Vec2>& sides, const std::vector<std::uint8_t>& fixed,
+                        std::vector<Point2>& images) const {
+        param::detail::MipsProblem p;
+        p.triangles = triangles;
+        for (const auto& t : triangles) {
+            const auto [g, a] = param::detail::hat_gradients(positions[t[0]], positions[t[1]], positions[t[2]]);
+            p.gradients.push_back(g);
+            p.areas.push_back(a);
+        }
+        p.lifts.resize(images.size());
+        for (std::size_t v = 0; v < images.size(); ++v) {
+            p.uv.emplace_back(images[v][0], images[v][1]);
+            if (!fixed[v]) {
+                p.lifts[v] = {param::detail::Lift{p.variables, {1, 0}}, param::detail::Lift{p.variables + 1, {0, 1}}};
+                p.variables += 2;
+            } else if (sides[v] != param::detail::Vec2::Zero()) {
+                p.lifts[v][0] = {p.variables++, sides[v]};
+            }
+        }
+        if (!std::isfinite(param::detail::mips_total(p)[0])) return;
+        param::detail::mips_newton(p, options_.newton_steps, 1e-6, std::numeric_limits<double>::infinity());
+        for (std::size_t v = 0; v < images.size(); ++v) images[v] = {p.uv[v].x(), p.uv[v].y()};
     }
 
     static int slot(const std::array<VertexId, 4>& quad, VertexId v) {
@@ -323,6 +358,16 @@ bool better(const std::array<PatchScore, 2>& now, const std::array<PatchScore, 2
            (worst <= std::max(worst_before, options.poor) && l2 < l2_before);
 }
 
+// The trial of the union's convex-combination map and, where `both`, of its nearer conformal map:
+// the better (as better() judges the second against the first).
+std::optional<Trial> best_trial(const UnionCurve& union_curve, DEdgeId e, bool both, const StraightenOptions& options) {
+    std::optional<Trial> plain = union_curve(e, false);
+    if (!both) return plain;
+    std::optional<Trial> bent = union_curve(e, true);
+    if (!bent || (plain && !better(bent->scores, plain->scores, options))) return plain;
+    return bent;
+}
+
 }  // namespace
 
 PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<Vec3, 3>& triangle,
@@ -387,13 +432,15 @@ std::size_t straighten(const TriMesh& T, partition::Partition& P, Executor& exec
     std::size_t moved = 0;
     for (int sweep = 0; sweep < options.sweeps; ++sweep) {
         std::vector<std::uint8_t> poor(D.n_faces(), 0);
-        const double limit = goals_missed(scores, options) ? options.tail : options.poor;
+        const bool missed = goals_missed(scores, options);
+        const double limit = missed ? options.tail : options.poor;
         for (std::size_t f = 0; f < poor.size(); ++f) poor[f] = !(scores[f].worst <= limit);
         for (const std::vector<DEdgeId>& round : rounds_of(P, poor)) {
             // The edges of a round share no patch: each is tried in its own union, all at once.
             std::vector<std::optional<Trial>> trials(round.size());
             const UnionCurve union_curve(T, P, curves, touched, evaluate, options);
-            executor.for_each(round.size(), 1, [&](std::size_t i) { trials[i] = union_curve(round[i]); });
+            executor.for_each(round.size(), 1,
+                              [&](std::size_t i) { trials[i] = best_trial(union_curve, round[i], missed, options); });
             for (std::size_t i = 0; i < round.size(); ++i) {
                 if (!trials[i]) continue;
                 const HalfedgeId h = TriMesh::halfedge(EdgeId(round[i]), 0);

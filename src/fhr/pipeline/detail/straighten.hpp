@@ -13,7 +13,11 @@
 //   U <- the union of the two patches, cut out of T on its own with the four other curves around it
 //        (partition/detail/region.hpp: a cost of U's size, not T's); its boundary, those curves,
 //        onto Q's sides by chord length; every other vertex the convex combination of its
-//        neighbours (eq. 2, the patches' own weights): a one-to-one map onto the convex Q
+//        neighbours (eq. 2, the patches' own weights): a one-to-one map onto the convex Q;
+//        where the map misses a percentile goal (below), also a second map, nearer conformal:
+//        this one moved by Newton steps on Σ_f A_f m_f² (param/detail/mips_newton.hpp), U's
+//        boundary sliding along Q's sides, Q's corners kept — each gives a new curve as follows,
+//        and the pair better by the rule below is the one tried against the old curve
 //   the new curve <- the preimage of the diagonal AC: the points of T's edges (and T's vertices)
 //        inside U whose images lie on it, in the order of their images along it; between two of
 //        them it runs straight in one face of T (a face's part of U is convex)
@@ -57,6 +61,7 @@ struct StraightenOptions {
     double l2_slack = 0;               ///< see the pseudocode
     double max_quad_angle = 170;       ///< degrees: the largest angle of Q at A or C laid flat
     param::PatchMapOptions weights{};  ///< the union's map (eq. 2)
+    int newton_steps = 50;             ///< the union's nearer conformal map: Newton steps at most
 };
 
 /// How good a patch's map is: its worst face's σ₁/σ₂ (the map from the face's image in the
