@@ -125,19 +125,17 @@ std::optional<param::PatchMap> carried_over(const param::Disk& before, const par
 // goal (goals_missed).
 template <class Keep>
 bool straighten_poor_patches(const TriMesh& T, Parameterization& out, const Options& options,
-                             const std::vector<std::uint8_t>& relaxed, const Keep& keep) {
+                             const std::vector<std::uint8_t>& relaxed, const Keep& keep, std::vector<PatchScore> scores,
+                             bool thorough) {
     const TriMesh& D = out.partition.domain.mesh;
     Executor& executor = executor_or_default(options.executor);
-    std::vector<PatchScore> scores(D.n_faces());
-    executor.for_each(D.n_faces(), 16, [&](std::size_t i) {
-        const DFaceId d(static_cast<DFaceId::Index>(i));
-        if (out.certificates[d].passed) scores[i] = score(out.disks[d], out.maps[d], triangle_of(D, FaceId(d)));
-    });
     const Evaluate evaluate = [&](FaceId d, param::Disk disk) {
         const MappedPatch m = map_one(D, d, std::move(disk), options);
         return m.certificate.passed ? score(m.disk, m.map, triangle_of(D, d)) : PatchScore{};
     };
-    if (straighten(T, out.partition, executor, scores, evaluate) == 0) return goals_missed(scores);
+    StraightenOptions straighten_options;
+    straighten_options.thorough = thorough;
+    if (straighten(T, out.partition, executor, scores, evaluate, straighten_options) == 0) return goals_missed(scores);
     executor.for_each(D.n_faces(), 16, [&](std::size_t i) {
         const FaceId d(static_cast<FaceId::Index>(i));
         const DFaceId di(d);
@@ -157,6 +155,25 @@ bool straighten_poor_patches(const TriMesh& T, Parameterization& out, const Opti
         keep(i, std::move(m));
     });
     return goals_missed(scores);
+}
+
+// Every patch's map scored (straighten.hpp), the uncertified ones left at their default.
+std::vector<PatchScore> scores_of(const Parameterization& out, const Options& options) {
+    const TriMesh& D = out.partition.domain.mesh;
+    std::vector<PatchScore> scores(D.n_faces());
+    executor_or_default(options.executor).for_each(D.n_faces(), 16, [&](std::size_t i) {
+        const DFaceId d(static_cast<DFaceId::Index>(i));
+        if (out.certificates[d].passed) scores[i] = score(out.disks[d], out.maps[d], triangle_of(D, FaceId(d)));
+    });
+    return scores;
+}
+
+// Σ over the patches of their part of the L2 stretch (the same normalisation for every map of T
+// onto D: comparable between two).
+double l2_energy(const std::vector<PatchScore>& scores) {
+    double sum = 0;
+    for (const PatchScore& s : scores) sum += s.l2_energy;
+    return sum;
 }
 
 // Beyond the paper: the curves' vertices slid along their domain edges (pipeline/detail/slide.hpp),
@@ -226,7 +243,21 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
         keep(i, map_one(Dm, d, std::move(out.partition.patches.patch[d].disk), options));
     });
     if (options.relax) {
-        slide_curves(out, options, straighten_poor_patches(T, out, options, relaxed, keep));
+        // Where the map misses a percentile goal, thorough sweeps of moved curves first
+        // (straighten.hpp), kept only when the L2 stretch ends no higher than the map's before them
+        // (so never above the paper map's); else, and everywhere else, the sweeps as they are.
+        std::vector<PatchScore> scores = scores_of(out, options);
+        const bool missed = goals_missed(scores);
+        bool thorough_kept = false;
+        if (missed) {
+            auto saved = std::make_tuple(out, split, origin, relaxed);
+            slide_curves(out, options, straighten_poor_patches(T, out, options, relaxed, keep, scores, true));
+            thorough_kept = l2_energy(scores_of(out, options)) <= l2_energy(scores);
+            if (!thorough_kept) std::tie(out, split, origin, relaxed) = std::move(saved);
+        }
+        if (!thorough_kept)
+            slide_curves(out, options,
+                         straighten_poor_patches(T, out, options, relaxed, keep, std::move(scores), false));
     }
     for (std::size_t s : split) out.dividing_edges_split += s;
     for (std::uint8_t r : relaxed) out.relaxed_patches += r;

@@ -358,12 +358,25 @@ bool better(const std::array<PatchScore, 2>& now, const std::array<PatchScore, 2
            (worst <= std::max(worst_before, options.poor) && l2 < l2_before);
 }
 
-// The trial of the union's convex-combination map and, where `both`, of its nearer conformal map:
-// the better (as better() judges the second against the first).
-std::optional<Trial> best_trial(const UnionCurve& union_curve, DEdgeId e, bool both, const StraightenOptions& options) {
-    std::optional<Trial> plain = union_curve(e, false);
-    if (!both) return plain;
+// Whether a thorough sweep keeps the pair of a moved curve: both maps certified, its worst face no
+// worse than before or than `poor` (its L2 part under chord length not asked: the sliding moves
+// that boundary after).
+bool acceptable(const std::array<PatchScore, 2>& now, const std::array<PatchScore, 2>& before,
+                const StraightenOptions& options) {
+    return now[0].certified && now[1].certified &&
+           std::max(now[0].worst, now[1].worst) <= std::max({before[0].worst, before[1].worst, options.poor});
+}
+
+enum class Mode { plain, both, conformal };
+
+// The trial of the union's convex-combination map (`plain`), of its nearer conformal map
+// (`conformal`, the other where that gives none), or of both the better, as better() judges the
+// second against the first (`both`).
+std::optional<Trial> trial_of(const UnionCurve& union_curve, DEdgeId e, Mode mode, const StraightenOptions& options) {
+    if (mode == Mode::plain) return union_curve(e, false);
     std::optional<Trial> bent = union_curve(e, true);
+    if (mode == Mode::conformal && bent) return bent;
+    std::optional<Trial> plain = union_curve(e, false);
     if (!bent || (plain && !better(bent->scores, plain->scores, options))) return plain;
     return bent;
 }
@@ -374,6 +387,7 @@ PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<
                  const StraightenOptions& options) {
     PatchScore out;
     out.certified = true;
+    out.faces = disk.triangles.size();
     for (const auto& t : disk.triangles) {
         // The face and its image, each in a frame of its own plane: J = S · I⁻¹.
         std::array<Vec3, 3> image;
@@ -429,23 +443,32 @@ std::size_t straighten(const TriMesh& T, partition::Partition& P, Executor& exec
         std::sort(touched[d.idx()].begin(), touched[d.idx()].end());
         touched[d.idx()].erase(std::unique(touched[d.idx()].begin(), touched[d.idx()].end()), touched[d.idx()].end());
     }
-    std::size_t moved = 0;
-    for (int sweep = 0; sweep < options.sweeps; ++sweep) {
+    std::size_t moved = 0, faces = 0;
+    for (const PatchScore& s : scores) faces += s.faces;
+    const auto budget = static_cast<std::size_t>((1 + options.thorough_growth) * static_cast<double>(faces));
+    for (int sweep = 0; sweep < (options.thorough ? options.thorough_sweeps : options.sweeps); ++sweep) {
         std::vector<std::uint8_t> poor(D.n_faces(), 0);
-        const bool missed = goals_missed(scores, options);
-        const double limit = missed ? options.tail : options.poor;
+        const bool missed = goals_missed(scores, options), thorough = missed && options.thorough;
+        const Mode mode = thorough ? Mode::conformal : missed ? Mode::both : Mode::plain;
+        const double limit = thorough ? 0 : missed ? options.tail : options.poor;
         for (std::size_t f = 0; f < poor.size(); ++f) poor[f] = !(scores[f].worst <= limit);
         for (const std::vector<DEdgeId>& round : rounds_of(P, poor)) {
             // The edges of a round share no patch: each is tried in its own union, all at once.
             std::vector<std::optional<Trial>> trials(round.size());
             const UnionCurve union_curve(T, P, curves, touched, evaluate, options);
             executor.for_each(round.size(), 1,
-                              [&](std::size_t i) { trials[i] = best_trial(union_curve, round[i], missed, options); });
+                              [&](std::size_t i) { trials[i] = trial_of(union_curve, round[i], mode, options); });
             for (std::size_t i = 0; i < round.size(); ++i) {
                 if (!trials[i]) continue;
                 const HalfedgeId h = TriMesh::halfedge(EdgeId(round[i]), 0);
                 const std::array<FaceId, 2> pair{D.face(h), D.face(TriMesh::twin(h))};
-                if (!better(trials[i]->scores, {scores[pair[0].idx()], scores[pair[1].idx()]}, options)) continue;
+                const std::array<PatchScore, 2> before{scores[pair[0].idx()], scores[pair[1].idx()]};
+                const std::size_t after =
+                    faces - before[0].faces - before[1].faces + trials[i]->scores[0].faces + trials[i]->scores[1].faces;
+                if (!(thorough ? acceptable(trials[i]->scores, before, options) && after <= budget
+                               : better(trials[i]->scores, before, options)))
+                    continue;
+                faces = after;
                 for (int s = 0; s < 2; ++s) {
                     scores[pair[s].idx()] = trials[i]->scores[s];
                     touched[pair[s].idx()] = std::move(trials[i]->touched[s]);

@@ -32,6 +32,13 @@
 //   `poor_share` above `poor` (a percentile goal missed: where both are met, moving curves for
 //   them costs time for nothing) — in rounds of edges that share no patch (each round's unions
 //   are disjoint: tried at once)
+//   thorough sweeps (when the caller asks, `thorough_sweeps` of them, each while a percentile goal
+//   is missed): every interior curve is tried, by the nearer conformal map's curve, and kept when
+//   both new maps are certified, the pair's worst face is no worse than before or than `poor`, and
+//   T′ stays within `thorough_growth` of its faces before the moves. The new pair's L2 energy is
+//   not asked: it is measured under the chord-length boundary, which the sliding that follows
+//   moves (slide.hpp) — the caller keeps the thorough result only when the final map's L2 stretch
+//   is no higher than before
 //   finally the whole network is embedded into T once (partition/embed.hpp: the unmoved curves
 //   exactly as they were, (1) and (2) checked again) and the patches cut
 // What it gives up: the curves are no longer Γ(x_j, x_k) (spec/cli.md CLI-RUN-9); report.json says how many moved.
@@ -62,6 +69,13 @@ struct StraightenOptions {
     double max_quad_angle = 170;       ///< degrees: the largest angle of Q at A or C laid flat
     param::PatchMapOptions weights{};  ///< the union's map (eq. 2)
     int newton_steps = 50;             ///< the union's nearer conformal map: Newton steps at most
+    /// Thorough sweeps (see the pseudocode) while a percentile goal is missed, this many instead of
+    /// `sweeps`.
+    bool thorough = false;
+    int thorough_sweeps = 4;
+    /// A thorough sweep keeps no move that takes T′ to more than this fraction above its faces
+    /// before the moves.
+    double thorough_growth = 0.2;
 };
 
 /// How good a patch's map is: its worst face's σ₁/σ₂ (the map from the face's image in the
@@ -75,6 +89,7 @@ struct PatchScore {
     double image_area = 0;  ///< Σ_f A_f
     double above_tail = 0;  ///< Σ_f A_f over the faces above StraightenOptions::tail
     double above_poor = 0;  ///< Σ_f A_f over the faces above StraightenOptions::poor
+    std::size_t faces = 0;  ///< the patch's triangles
 };
 
 /// The score of map ψ of `disk` onto the triangle with corners `triangle` (3-D), `options`'s
