@@ -280,6 +280,20 @@ TEST_CASE("PART-10, DIST-1: the bull's restricted paths leave no sliver strip: i
     CHECK(*d.anisotropy_max < 1e3);
 }
 
+namespace {
+
+// A corpus mesh run at `faces` domain faces with the default map, then with the paper's.
+std::pair<pipeline::RunResult, pipeline::RunResult> default_and_paper(const char* name, std::size_t faces) {
+    const TriMesh T = test::load_mesh(test::cgal_mesh(name));
+    pipeline::RunOptions options;
+    options.faces = faces;
+    pipeline::RunResult moved = pipeline::run(T, options);
+    options.method.relax = false;
+    return {std::move(moved), pipeline::run(T, options)};
+}
+
+}  // namespace
+
 TEST_CASE(
     "CLI-RUN-9, DIST-4, DIST-7: moving the curves of poor patches and sliding their vertices lowers the worst "
     "face, the 99th percentile and the L2 stretch, certified and continuous",
@@ -290,12 +304,7 @@ TEST_CASE(
     for (const auto& [name, faces] :
          {std::pair<const char*, std::size_t>{"bull.off", 122}, {"cow.off", 58}, {"femur.off", 76}}) {
         CAPTURE(name);
-        const TriMesh T = test::load_mesh(test::cgal_mesh(name));
-        pipeline::RunOptions options;
-        options.faces = faces;
-        const pipeline::RunResult moved = pipeline::run(T, options);
-        options.method.relax = false;
-        const pipeline::RunResult paper = pipeline::run(T, options);
+        const auto [moved, paper] = default_and_paper(name, faces);
         REQUIRE(moved.certified());
         REQUIRE(moved.oracle.valid());
         CHECK(count_curves(moved, partition::CurveKind::straightened) > 0);
@@ -330,12 +339,7 @@ TEST_CASE("CLI-RUN-9, DIST-7: where the map misses a percentile goal, the thorou
     for (const auto& [name, faces] :
          {std::pair<const char*, std::size_t>{"poly2x^2+y^2-0.062500.off", 24}, {"cross.off", 24}}) {
         CAPTURE(name);
-        const TriMesh T = test::load_mesh(test::cgal_mesh(name));
-        pipeline::RunOptions options;
-        options.faces = faces;
-        const pipeline::RunResult moved = pipeline::run(T, options);
-        options.method.relax = false;
-        const pipeline::RunResult paper = pipeline::run(T, options);
+        const auto [moved, paper] = default_and_paper(name, faces);
         REQUIRE(moved.certified());
         const exchange::Distortion a = exchange::summarize(app::face_stretches(moved.parameterization));
         const exchange::Distortion b = exchange::summarize(app::face_stretches(paper.parameterization));
