@@ -28,7 +28,7 @@ Eigen::Matrix4d nonnegative_part(Eigen::Matrix4d a) {
         double off = 0;
         for (int p = 0; p < 4; ++p)
             for (int q = p + 1; q < 4; ++q) off += a(p, q) * a(p, q);
-        if (!(off > 1e-30 * a.squaredNorm())) break;
+        if (!(off > 1e-24 * a.squaredNorm())) break;
         for (int p = 0; p < 4; ++p)
             for (int q = p + 1; q < 4; ++q) {
                 Eigen::JacobiRotation<double> r;

@@ -53,11 +53,15 @@ void assemble(const MipsProblem& p, Eigen::VectorXd& gradient, Eigen::SparseMatr
 }
 
 // One step; false when it found none that lowers E by more than `settled` of it.
-bool step(MipsProblem& p, double settled, double ceiling) {
+// `solver` keeps its analysis of the Hessian's pattern (the same at every step) once it has one.
+bool step(MipsProblem& p, double settled, double ceiling, Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& solver,
+          bool& analysed) {
     Eigen::VectorXd gradient;
     Eigen::SparseMatrix<double> hessian;
     assemble(p, gradient, hessian);
-    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(hessian);
+    if (!analysed) solver.analyzePattern(hessian);
+    analysed = true;
+    solver.factorize(hessian);
     if (solver.info() != Eigen::Success) return false;
     const Eigen::VectorXd d = -solver.solve(gradient);
     const double slope = gradient.dot(d);
@@ -126,7 +130,9 @@ std::array<double, 2> mips_total(const MipsProblem& p) {
 
 void mips_newton(MipsProblem& problem, int steps, double settled, double ceiling) {
     if (problem.variables == 0) return;
-    for (int i = 0; i < steps && step(problem, settled, ceiling); ++i) {}
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+    bool analysed = false;
+    for (int i = 0; i < steps && step(problem, settled, ceiling, solver, analysed); ++i) {}
 }
 
 }  // namespace fhr::param::detail
