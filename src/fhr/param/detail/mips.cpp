@@ -19,43 +19,47 @@ MipsTerm mips_term(const Mat2& j, const Vec2& u, const Vec2& g, double area) {
     return t;
 }
 
-namespace {
-
-// Symmetric `a` with its negative eigenvalues set to 0: cyclic Jacobi rotations diagonalise it.
-Eigen::Matrix4d nonnegative_part(Eigen::Matrix4d a) {
-    Eigen::Matrix4d v = Eigen::Matrix4d::Identity();
-    for (int sweep = 0; sweep < 32; ++sweep) {
-        double off = 0;
-        for (int p = 0; p < 4; ++p)
-            for (int q = p + 1; q < 4; ++q) off += a(p, q) * a(p, q);
-        if (!(off > 1e-24 * a.squaredNorm())) break;
-        for (int p = 0; p < 4; ++p)
-            for (int q = p + 1; q < 4; ++q) {
-                Eigen::JacobiRotation<double> r;
-                if (!r.makeJacobi(a, p, q)) continue;
-                a.applyOnTheLeft(p, q, r.adjoint());
-                a.applyOnTheRight(p, q, r);
-                v.applyOnTheRight(p, q, r);
-            }
-    }
-    return v * a.diagonal().cwiseMax(0.0).asDiagonal() * v.transpose();
-}
-
-}  // namespace
-
 MipsFace mips_face(const Mat2& j) {
+    // m_f depends on J through q = ‖J‖² and l = det J only. In J's singular frames, J = U Σ Vᵀ with
+    // U, V rotations (det J > 0) and Σ = diag(s1, s2), the Hessian of m² splits into the twist
+    // U [[0, 1], [−1, 0]] Vᵀ / √2 (eigenvalue 2m (2l − q) / l² ≤ 0: dropped), the flip
+    // U [[0, 1], [1, 0]] Vᵀ / √2 (eigenvalue 2m (2l + q) / l²) and a 2 × 2 block on U diag(·, ·) Vᵀ.
     using Vec4 = Eigen::Vector4d;
-    using Mat4 = Eigen::Matrix4d;
-    const Vec4 x(j(0, 0), j(0, 1), j(1, 0), j(1, 1));
-    const double q = x.squaredNorm(), l = j.determinant(), m = q / l;
-    const Vec4 dl(x(3), -x(2), -x(1), x(0));  // ∇ det J
-    Mat4 hl = Mat4::Zero();                   // ∇² det J
-    hl(0, 3) = hl(3, 0) = 1;
-    hl(1, 2) = hl(2, 1) = -1;
-    const Vec4 dm = 2 * x / l - q * dl / (l * l);
-    const Mat4 hm = 2 * Mat4::Identity() / l - 2 * (x * dl.transpose() + dl * x.transpose()) / (l * l) +
-                    2 * q * dl * dl.transpose() / (l * l * l) - q * hl / (l * l);
-    return {m * m, 2 * m * dm, nonnegative_part(2 * (dm * dm.transpose() + m * hm))};
+    const double q = j.squaredNorm(), l = j.determinant(), m = q / l;
+    Mat2 cof;  // ∇ det J
+    cof << j(1, 1), -j(1, 0), -j(0, 1), j(0, 0);
+    const Mat2 dm = (2 * j - m * cof) / l;
+    MipsFace out;
+    out.energy = m * m;
+    out.gradient = 2 * m * Vec4(dm(0, 0), dm(0, 1), dm(1, 0), dm(1, 1));
+    const Eigen::JacobiSVD<Mat2> svd(j, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Mat2 u = svd.matrixU(), v = svd.matrixV();
+    if (u.determinant() < 0) {  // both reflections (det J > 0): both made rotations
+        u.col(1) *= -1;
+        v.col(1) *= -1;
+    }
+    const double s1 = svd.singularValues()(0), s2 = svd.singularValues()(1);
+    auto mode = [&](const Mat2& b) {
+        const Mat2 w = u * b * v.transpose();
+        return Vec4(w(0, 0), w(0, 1), w(1, 0), w(1, 1));
+    };
+    // The block on diag(1, 0), diag(0, 1): 2 ∇m ∇mᵀ + 2m ∇²m there, at J = Σ (where cof = diag(s2, s1)).
+    const Vec2 g((2 * s1 - m * s2) / l, (2 * s2 - m * s1) / l);
+    Mat2 hm;
+    hm(0, 0) = 2 / l - 4 * s1 * s2 / (l * l) + 2 * q * s2 * s2 / (l * l * l);
+    hm(1, 1) = 2 / l - 4 * s1 * s2 / (l * l) + 2 * q * s1 * s1 / (l * l * l);
+    hm(0, 1) = hm(1, 0) = -2 * q / (l * l) + 2 * q * s1 * s2 / (l * l * l) - q / (l * l);
+    Eigen::SelfAdjointEigenSolver<Mat2> block;
+    block.computeDirect(2 * (g * g.transpose() + m * hm));
+    const Vec4 flip = mode((Mat2() << 0, 1, 1, 0).finished()) / std::sqrt(2.0);
+    out.hessian = 2 * m * (2 * l + q) / (l * l) * flip * flip.transpose();
+    for (int k = 0; k < 2; ++k) {
+        const double lambda = block.eigenvalues()(k);
+        if (!(lambda > 0)) continue;
+        const Vec4 w = mode(Mat2(block.eigenvectors().col(k).asDiagonal()));
+        out.hessian += lambda * w * w.transpose();
+    }
+    return out;
 }
 
 template <int K>
