@@ -75,15 +75,22 @@ std::optional<OnEdge> on_t_edge(const TriMesh& T, const partition::Origin& a, co
     return a.vertex.valid() ? OnEdge{EdgeId(point.edge), *t, point.t} : OnEdge{EdgeId(point.edge), point.t, *t};
 }
 
-// The quadrilateral Q of the pseudocode: A, C, B (above AC), E (below), convex.
-std::array<Point2, 4> lay_out_quad(const std::array<Vec3, 4>& acbe, double max_angle) {
+// The two domain triangles laid flat along AC: A, C, B (above AC), E (below).
+std::array<Point2, 4> lay_out_triangles(const std::array<Vec3, 4>& acbe) {
     const double L = (acbe[1] - acbe[0]).norm();
     auto apex = [&](const Vec3& p, double sign) -> Point2 {
         const double a2 = (p - acbe[0]).squaredNorm(), c2 = (p - acbe[1]).squaredNorm();
         const double x = (L * L + a2 - c2) / (2 * L);
         return {x, sign * std::sqrt(std::max(a2 - x * x, 0.0))};
     };
-    Point2 B = apex(acbe[2], 1), E = apex(acbe[3], -1);
+    return {Point2{0, 0}, Point2{L, 0}, apex(acbe[2], 1), apex(acbe[3], -1)};
+}
+
+// The quadrilateral Q of the pseudocode: the triangles laid flat where that is convex enough,
+// else a kite.
+std::array<Point2, 4> lay_out_quad(const std::array<Point2, 4>& flat, double max_angle) {
+    const double L = flat[1][0];
+    Point2 B = flat[2], E = flat[3];
     auto angle = [](Point2 u, Point2 v) {
         return std::atan2(std::abs(u[0] * v[1] - u[1] * v[0]), u[0] * v[0] + u[1] * v[1]);
     };
@@ -134,7 +141,8 @@ public:
         const std::array<VertexId, 4> quad{a, c, b, other};
         std::array<Vec3, 4> corners;
         for (int k = 0; k < 4; ++k) corners[k] = T_.position(P_.domain.t_vertex[quad[k]]);
-        const std::array<Point2, 4> layout = lay_out_quad(corners, options_.max_quad_angle);
+        const std::array<Point2, 4> flat = lay_out_triangles(corners);
+        const std::array<Point2, 4> layout = lay_out_quad(flat, options_.max_quad_angle);
 
         // The union U, cut out of T with the four other curves around it (curves 0..3 of the region).
         const std::array<HalfedgeId, 4> outer{D_.next(h), D_.next(D_.next(h)), D_.next(twin), D_.next(D_.next(twin))};
@@ -175,11 +183,11 @@ public:
         // U's boundary, the four other curves, onto Q's sides by chord length.
         std::vector<std::uint8_t> fixed(n, 0);
         std::vector<Point2> images(n, Point2{0, 0});
-        std::vector<param::detail::Vec2> sides(
-            n, param::detail::Vec2::Zero());  // a boundary vertex's side, or 0 at a corner
+        std::vector<std::array<int, 2>> ends(n, {-1, -1});  // a boundary vertex's side: its corners' slots
         for (std::size_t k = 0; k < 4; ++k) {
             const HalfedgeId along = TriMesh::halfedge(TriMesh::edge(outer[k]), 0);
-            const Point2 p = layout[slot(quad, D_.from(along))], q = layout[slot(quad, D_.to(along))];
+            const std::array<int, 2> end{slot(quad, D_.from(along)), slot(quad, D_.to(along))};
+            const Point2 p = layout[end[0]], q = layout[end[1]];
             const std::vector<VertexId>& curve = N.path.at(DEdgeId(static_cast<DEdgeId::Index>(k)));
             std::vector<double> L(1, 0.0);
             for (std::size_t i = 1; i < curve.size(); ++i)
@@ -190,7 +198,7 @@ public:
                 const auto u = static_cast<std::uint32_t>(local[curve[i].idx()]);
                 fixed[u] = 1;
                 images[u] = {(1 - lambda) * p[0] + lambda * q[0], (1 - lambda) * p[1] + lambda * q[1]};
-                if (i > 0 && i + 1 < curve.size()) sides[u] = {q[0] - p[0], q[1] - p[1]};
+                if (i > 0 && i + 1 < curve.size()) ends[u] = end;
             }
         }
         // U's interior (where the old curve ran) on T's boundary cannot be crossed.
@@ -201,7 +209,11 @@ public:
         } catch (const NumericalFailure&) {
             return std::nullopt;  // a degenerate ring in U: the curve stays
         }
-        if (conformal) make_conformal(positions, triangles, sides, fixed, images);
+        if (conformal) {
+            // Towards the triangles' own shape where Q had to be a kite (and they are not flat).
+            const bool open = flat[2][1] > 1e-3 * flat[1][0] && flat[3][1] < -1e-3 * flat[1][0];
+            make_conformal(positions, triangles, ends, fixed, layout, open ? flat : layout, images);
+        }
         Trial trial;
         const VertexId xa = region->in_sub(VertexId(P_.domain.t_vertex[a]));
         const VertexId xc = region->in_sub(VertexId(P_.domain.t_vertex[c]));
@@ -240,11 +252,16 @@ private:
     }
 
     // The union's map made nearer conformal (param/detail/mips_newton.hpp): the interior moved, the
-    // boundary slid along Q's sides, the corners kept. Where the convex combination's floating
+    // boundary slid along Q's sides, the corners kept. Then, where Q is not `target` (a kite in
+    // place of the triangles laid flat), B and E moved towards target's in steps, every image
+    // carried along by the affine maps of the triangles ACB and ACE, each step followed by Newton
+    // steps, halved where it would turn a face over. Where the convex combination's floating
     // images turned a face over, left as it is.
     void make_conformal(const std::vector<Vec3>& positions, const std::vector<std::array<std::uint32_t, 3>>& triangles,
-                        const std::vector<param::detail::Vec2>& sides, const std::vector<std::uint8_t>& fixed,
+                        const std::vector<std::array<int, 2>>& ends, const std::vector<std::uint8_t>& fixed,
+                        const std::array<Point2, 4>& layout, const std::array<Point2, 4>& target,
                         std::vector<Point2>& images) const {
+        using param::detail::Vec2;
         param::detail::MipsProblem p;
         p.triangles = triangles;
         for (const auto& t : triangles) {
@@ -258,12 +275,42 @@ private:
             if (!fixed[v]) {
                 p.lifts[v] = {param::detail::Lift{p.variables, {1, 0}}, param::detail::Lift{p.variables + 1, {0, 1}}};
                 p.variables += 2;
-            } else if (sides[v] != param::detail::Vec2::Zero()) {
-                p.lifts[v][0] = {p.variables++, sides[v]};
+            } else if (ends[v][0] >= 0) {
+                p.lifts[v][0].variable = p.variables++;
             }
         }
+        auto at = [](const Point2& q) { return Vec2(q[0], q[1]); };
+        auto set_sides = [&](const std::array<Point2, 4>& quad) {
+            for (std::size_t v = 0; v < images.size(); ++v)
+                if (fixed[v] && ends[v][0] >= 0) p.lifts[v][0].direction = at(quad[ends[v][1]]) - at(quad[ends[v][0]]);
+        };
+        set_sides(layout);
         if (!std::isfinite(param::detail::mips_total(p)[0])) return;
-        param::detail::mips_newton(p, options_.newton_steps, 1e-6, std::numeric_limits<double>::infinity());
+        const double unbounded = std::numeric_limits<double>::infinity();
+        param::detail::mips_newton(p, options_.newton_steps, 1e-6, unbounded);
+        std::array<Point2, 4> now = layout;
+        for (double t = 0, step = 0.25; t < 1 && step >= 1.0 / 64 && target != layout;) {
+            const double next = std::min(1.0, t + step);
+            std::array<Point2, 4> to = now;
+            for (int k : {2, 3})
+                to[k] = {layout[k][0] + next * (target[k][0] - layout[k][0]),
+                         layout[k][1] + next * (target[k][1] - layout[k][1])};
+            const std::vector<Vec2> before = p.uv;
+            for (Vec2& q : p.uv) {  // q = c C + x X in the triangle A C X (X = B above AC, E below)
+                const int k = q.y() >= 0 ? 2 : 3;
+                const double x = q.y() / now[k][1], c = (q.x() - x * now[k][0]) / now[1][0];
+                q = c * at(now[1]) + x * at(to[k]);
+            }
+            if (!std::isfinite(param::detail::mips_total(p)[0])) {
+                p.uv = before;
+                step /= 2;
+                continue;
+            }
+            now = to;
+            t = next;
+            set_sides(now);
+            param::detail::mips_newton(p, options_.newton_steps, 1e-6, unbounded);
+        }
         for (std::size_t v = 0; v < images.size(); ++v) images[v] = {p.uv[v].x(), p.uv[v].y()};
     }
 

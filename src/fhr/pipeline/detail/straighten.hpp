@@ -16,7 +16,9 @@
 //        neighbours (eq. 2, the patches' own weights): a one-to-one map onto the convex Q;
 //        where the map misses a percentile goal (below), also a second map, nearer conformal:
 //        this one moved by Newton steps on Σ_f A_f m_f² (param/detail/mips_newton.hpp), U's
-//        boundary sliding along Q's sides, Q's corners kept — each gives a new curve as follows,
+//        boundary sliding along Q's sides, Q's corners kept (where Q is a kite, B and E then moved
+//        in steps to the triangles' own places, the images carried along, Newton steps after
+//        each) — each gives a new curve as follows,
 //        and the pair better by the rule below is the one tried against the old curve
 //   the new curve <- the preimage of the diagonal AC: the points of T's edges (and T's vertices)
 //        inside U whose images lie on it, in the order of their images along it; between two of
