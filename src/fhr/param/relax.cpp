@@ -33,29 +33,21 @@ public:
     Relaxer(const Disk& disk, const PatchMap& start, const std::array<Vec3, 3>& corners)
         : disk_(disk), start_(start), n_(disk.positions.size()) {
         // T_i laid flat: corner 0 at the origin, corner 1 along x.
-        const Vec3 e1 = corners[1] - corners[0], e2 = corners[2] - corners[0];
-        const double l1 = e1.norm();
-        const Vec2 q1(l1, 0), q2(e2.dot(e1) / l1, e1.cross(e2).norm() / l1);
-        basis_ << q1, q2;
+        const std::array<Vec2, 3> q = detail::lay_flat(corners[0], corners[1], corners[2]);
+        basis_ << q[1], q[2];
         uv_.resize(n_);
-        for (std::size_t v = 0; v < n_; ++v) uv_[v] = start.beta[v][1] * q1 + start.beta[v][2] * q2;
+        for (std::size_t v = 0; v < n_; ++v) uv_[v] = start.beta[v][1] * q[1] + start.beta[v][2] * q[2];
         // Each face laid flat in its own plane, the patch scaled to its triangle's area.
         double surface = 0;
         faces_.resize(disk.triangles.size());
-        std::vector<Mat2> flat(disk.triangles.size());
-        for (std::size_t f = 0; f < faces_.size(); ++f) {
+        auto hat = [&](std::size_t f, double scale) {
             const auto& t = disk.triangles[f];
-            const Vec3 a = disk.positions[t[1]] - disk.positions[t[0]], b = disk.positions[t[2]] - disk.positions[t[0]];
-            const double la = a.norm(), twice = a.cross(b).norm();
-            flat[f] << la, b.dot(a) / la, 0, twice / la;
-            faces_[f].area = 0.5 * twice;
-            surface += faces_[f].area;
-        }
-        const double scale = std::sqrt(0.5 * std::abs(q1.x() * q2.y()) / surface);
-        Eigen::Matrix<double, 3, 2> d;
-        d << -1, -1, 1, 0, 0, 1;
+            return detail::hat_gradients(disk.positions[t[0]], disk.positions[t[1]], disk.positions[t[2]], scale);
+        };
+        for (std::size_t f = 0; f < faces_.size(); ++f) surface += faces_[f].area = hat(f, 1).second;
+        const double scale = std::sqrt(0.5 * q[1].x() * q[2].y() / surface);
         for (std::size_t f = 0; f < faces_.size(); ++f) {
-            faces_[f].g = d * (scale * flat[f]).inverse();
+            faces_[f].g = hat(f, scale).first;
             faces_[f].area *= scale * scale;
         }
         fixed_.assign(n_, 0);

@@ -105,14 +105,20 @@ double first_degenerate(const std::vector<Vec2>& uv, const std::vector<Vec2>& du
     return best;
 }
 
-std::pair<Eigen::Matrix<double, 3, 2>, double> hat_gradients(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+std::array<Vec2, 3> lay_flat(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
     const Vec3 a = p1 - p0, b = p2 - p0;
-    const double la = a.norm(), twice = a.cross(b).norm();
+    const double la = a.norm();
+    return {Vec2(0, 0), Vec2(la, 0), Vec2(b.dot(a) / la, a.cross(b).norm() / la)};
+}
+
+std::pair<Eigen::Matrix<double, 3, 2>, double> hat_gradients(const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                                                             double scale) {
+    const std::array<Vec2, 3> q = lay_flat(p0, p1, p2);
     Mat2 flat;
-    flat << la, b.dot(a) / la, 0, twice / la;
+    flat << q[1], q[2];
     Eigen::Matrix<double, 3, 2> d;
     d << -1, -1, 1, 0, 0, 1;
-    return {d * flat.inverse(), 0.5 * twice};
+    return {d * (scale * flat).inverse(), 0.5 * (p1 - p0).cross(p2 - p0).norm()};
 }
 
 std::array<double, 2> mips_total(const MipsProblem& p) {

@@ -44,8 +44,13 @@ struct MipsProblem {
     std::int64_t variables = 0;
 };
 
-/// Triangle (p0, p1, p2) laid flat in its own plane: its corners' hat gradients and its area.
-std::pair<Eigen::Matrix<double, 3, 2>, double> hat_gradients(const Vec3& p0, const Vec3& p1, const Vec3& p2);
+/// Triangle (p0, p1, p2) laid flat in its own plane: p0 at the origin, p1 along x, p2 above.
+std::array<Vec2, 3> lay_flat(const Vec3& p0, const Vec3& p1, const Vec3& p2);
+
+/// Triangle (p0, p1, p2) laid flat in its own plane and scaled by `scale`: its corners' hat
+/// gradients, and its area unscaled.
+std::pair<Eigen::Matrix<double, 3, 2>, double> hat_gradients(const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                                                             double scale = 1);
 
 /// The least t > 0 at which triangle t of uv + t·du has zero signed area (a quadratic in t), or
 /// infinity.

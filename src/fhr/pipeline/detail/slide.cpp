@@ -25,9 +25,7 @@ using Grad = Eigen::Matrix<double, 3, 2>;
 // The triangle's corners laid flat: corner 0 at the origin, corner 1 along x.
 std::array<Vec2, 3> flat_triangle(const TriMesh& D, FaceId d) {
     const auto v = D.face_vertices(d);
-    const Vec3 e1 = D.position(v[1]) - D.position(v[0]), e2 = D.position(v[2]) - D.position(v[0]);
-    const double l1 = e1.norm();
-    return {Vec2(0, 0), Vec2(l1, 0), Vec2(e2.dot(e1) / l1, e1.cross(e2).norm() / l1)};
+    return param::detail::lay_flat(D.position(v[0]), D.position(v[1]), D.position(v[2]));
 }
 
 double anisotropy(double m) { return 0.5 * (m + std::sqrt(std::max(m * m - 4, 0.0))); }  // σ₁/σ₂ from m
