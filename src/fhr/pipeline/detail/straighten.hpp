@@ -41,6 +41,25 @@
 //   not asked: it is measured under the chord-length boundary, which the sliding that follows
 //   moves (slide.hpp) — the caller keeps the thorough result only when the final map's L2 stretch
 //   is no higher than before
+//   stars (when the caller asks, before the thorough sweeps, while a percentile goal is missed):
+//   for each vertex v of D inside D whose corner spread — the largest over the least ratio, over
+//   the patches at x_v, of a patch's angle at x_v on the surface to its domain triangle's there —
+//   is above `star_spread` (largest first, in rounds of vertices no two of them neighbours: their
+//   stars share no patch and no moved curve, tried at once):
+//       S <- v's domain triangles around v, their angles at v scaled to a full turn, the rim's
+//            vertices w_i on a circle (a convex polygon; none scaled to above max_quad_angle)
+//       U <- the union of v's patches, cut out with the rim's curves and the spokes (the curves
+//            from v); each patch onto its triangle of S by eq. 2 (rim and spokes by chord length:
+//            one-to-one), then Newton steps on Σ_f A_f m_f² with the spokes' vertices free, the
+//            rim's sliding along S's sides, x_v and the w_i kept
+//       the new spoke to w_i <- the preimage of the segment from v's image to w_i's, as for AC
+//       U cut out again with the rim's curves alone and cut along the new spokes; its patches
+//            mapped and scored; all kept when every one is certified, their worst face is no worse
+//            than before or than `poor`, their image area above `tail` smaller and above `poor` no
+//            larger, and T′ within `thorough_growth` — a union moves one curve between two fixed
+//            ones; where a corner's angle is split far from D's proportions across several patches
+//            (the knot's: 4° to 157° on the surface against 24° to 100° in D), the star's map moves
+//            all the curves there at once
 //   finally the whole network is embedded into T once (partition/embed.hpp: the unmoved curves
 //   exactly as they were, (1) and (2) checked again) and the patches cut
 // What it gives up: the curves are no longer Γ(x_j, x_k) (spec/cli.md CLI-RUN-9); report.json says how many moved.
@@ -78,6 +97,11 @@ struct StraightenOptions {
     /// A thorough sweep keeps no move that takes T′ to more than this fraction above its faces
     /// before the moves.
     double thorough_growth = 0.2;
+    /// Before the thorough sweeps, the stars of D's vertices whose corner spread (the largest over
+    /// the least ratio of a patch's angle there on the surface to its domain triangle's) is above
+    /// `star_spread` are moved, each at once (see the pseudocode).
+    bool stars = false;
+    double star_spread = 1.5;
 };
 
 /// How good a patch's map is: its worst face's σ₁/σ₂ (the map from the face's image in the
