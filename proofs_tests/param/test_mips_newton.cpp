@@ -32,13 +32,7 @@ const std::array<Vec3, 3> right_triangle{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1
 param::detail::MipsProblem problem_of(const param::Disk& disk, const std::vector<Vec2>& uv, std::vector<int>& side) {
     param::detail::MipsProblem p;
     p.uv = uv;
-    p.triangles = disk.triangles;
-    for (const auto& t : disk.triangles) {
-        const auto [g, a] =
-            param::detail::hat_gradients(disk.positions[t[0]], disk.positions[t[1]], disk.positions[t[2]]);
-        p.gradients.push_back(g);
-        p.areas.push_back(a);
-    }
+    param::detail::set_faces(p, disk.positions, disk.triangles);
     p.lifts.resize(uv.size());
     side.assign(uv.size(), -1);
     std::vector<char> on_boundary(uv.size(), 0);

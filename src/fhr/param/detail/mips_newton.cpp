@@ -121,6 +121,18 @@ std::pair<Eigen::Matrix<double, 3, 2>, double> hat_gradients(const Vec3& p0, con
     return {d * (scale * flat).inverse(), 0.5 * (p1 - p0).cross(p2 - p0).norm()};
 }
 
+void set_faces(MipsProblem& problem, const std::vector<Vec3>& positions,
+               const std::vector<std::array<std::uint32_t, 3>>& triangles) {
+    problem.triangles = triangles;
+    problem.gradients.clear();
+    problem.areas.clear();
+    for (const auto& t : triangles) {
+        const auto [g, a] = hat_gradients(positions[t[0]], positions[t[1]], positions[t[2]]);
+        problem.gradients.push_back(g);
+        problem.areas.push_back(a);
+    }
+}
+
 std::array<double, 2> mips_total(const MipsProblem& p) {
     double e = 0, most = 0;
     for (std::size_t f = 0; f < p.triangles.size(); ++f) {

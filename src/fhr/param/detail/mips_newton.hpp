@@ -52,6 +52,11 @@ std::array<Vec2, 3> lay_flat(const Vec3& p0, const Vec3& p1, const Vec3& p2);
 std::pair<Eigen::Matrix<double, 3, 2>, double> hat_gradients(const Vec3& p0, const Vec3& p1, const Vec3& p2,
                                                              double scale = 1);
 
+/// `triangles` of a surface with vertices at `positions` as `problem`'s faces: each laid flat, its
+/// hat gradients and area.
+void set_faces(MipsProblem& problem, const std::vector<Vec3>& positions,
+               const std::vector<std::array<std::uint32_t, 3>>& triangles);
+
 /// The least t > 0 at which triangle t of uv + t·du has zero signed area (a quadratic in t), or
 /// infinity.
 double first_degenerate(const std::vector<Vec2>& uv, const std::vector<Vec2>& du,

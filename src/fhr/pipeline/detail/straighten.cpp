@@ -162,13 +162,7 @@ param::detail::MipsProblem mips_problem(const Piece& piece, const std::vector<Po
                                         const std::vector<std::uint8_t>& fixed,
                                         const std::vector<param::detail::Vec2>& along) {
     param::detail::MipsProblem p;
-    p.triangles = piece.triangles;
-    for (const auto& t : piece.triangles) {
-        const auto [g, a] =
-            param::detail::hat_gradients(piece.positions[t[0]], piece.positions[t[1]], piece.positions[t[2]]);
-        p.gradients.push_back(g);
-        p.areas.push_back(a);
-    }
+    param::detail::set_faces(p, piece.positions, piece.triangles);
     p.lifts.resize(images.size());
     for (std::size_t v = 0; v < images.size(); ++v) {
         p.uv.emplace_back(images[v][0], images[v][1]);
