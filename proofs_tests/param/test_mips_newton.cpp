@@ -98,6 +98,33 @@ TEST_CASE(
     CHECK(projected >= 100);  // m_f² is not convex in J: most faces' Hessians lose a negative part
 }
 
+TEST_CASE(
+    "CLI-RUN-9: a Jacobian's singular values in closed form are the known ones and Eigen's SVD's, σ₁/σ₂ up to 10¹²",
+    "[param][mips]") {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> angle(0, 6.283185307179586), exponent(-12, 12);
+    for (int trial = 0; trial < 2000; ++trial) {
+        // J = R(a) diag(s1, ±s2) R(b): its singular values s1, s2 known, σ₁/σ₂ from 1 to 10¹².
+        const double s1 = std::pow(10.0, exponent(rng) / 4), s2 = s1 * std::pow(10.0, -std::abs(exponent(rng)));
+        const double a = angle(rng), b = angle(rng), sign = trial % 2 ? 1 : -1;
+        param::detail::Mat2 ra, rb, sigma;
+        ra << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+        rb << std::cos(b), -std::sin(b), std::sin(b), std::cos(b);
+        sigma << s1, 0, 0, sign * s2;
+        const param::detail::Mat2 j = ra * sigma * rb;
+        CAPTURE(j, s1, s2);
+        const Vec2 closed = param::detail::singular_values(j);
+        const Eigen::Vector2d svd = Eigen::JacobiSVD<param::detail::Mat2>(j).singularValues();
+        // σ₂ is known to a relative 2⁻⁵² σ₁/σ₂ at best: J's entries are rounded at σ₁'s scale.
+        const double small = 64 * 2.2e-16 * s1 / s2 + 1e-13;
+        CHECK(closed[0] == Approx(s1).epsilon(1e-13));
+        CHECK(closed[1] == Approx(s2).epsilon(small));
+        CHECK(closed[0] == Approx(svd[0]).epsilon(1e-13));
+        CHECK(closed[1] == Approx(svd[1]).epsilon(2 * small));
+    }
+    CHECK(param::detail::singular_values(param::detail::Mat2::Zero()) == Vec2(0, 0));
+}
+
 TEST_CASE("CLI-RUN-9: Newton's MIPS steps bring a warped map of a flat patch back to the identity", "[param][mips]") {
     for (std::uint64_t seed = 0; seed < 5; ++seed) {
         CAPTURE(seed);

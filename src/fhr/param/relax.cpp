@@ -112,8 +112,8 @@ private:
         Measures m;
         for (std::size_t f = 0; f < faces_.size(); ++f) {
             const Mat2 j = jacobian(uv, f);
-            const Eigen::JacobiSVD<Mat2> svd(j);
-            const double s1 = svd.singularValues()[0], s2 = svd.singularValues()[1];
+            const Vec2 sigma = detail::singular_values(j);
+            const double s1 = sigma[0], s2 = sigma[1];
             m.anisotropy += faces_[f].area * j.determinant() * s1 / s2;
             m.worst = std::max(m.worst, s1 / s2);
             m.l2 += faces_[f].area * j.determinant() * (1 / (s1 * s1) + 1 / (s2 * s2));

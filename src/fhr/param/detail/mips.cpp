@@ -7,6 +7,12 @@
 
 namespace fhr::param::detail {
 
+Vec2 singular_values(const Mat2& j) {
+    const double q = j.squaredNorm(), d = std::abs(j.determinant());
+    const double s1 = 0.5 * (std::sqrt(q + 2 * d) + std::sqrt(std::max(q - 2 * d, 0.0)));
+    return {s1, s1 > 0 ? d / s1 : 0.0};
+}
+
 MipsTerm mips_term(const Mat2& j, const Vec2& u, const Vec2& g, double area) {
     MipsTerm t;
     t.g = g;

@@ -29,6 +29,11 @@ namespace fhr::param::detail {
 using Vec2 = Eigen::Vector2d;
 using Mat2 = Eigen::Matrix2d;
 
+/// J's singular values σ₁ ≥ σ₂ in closed form: σ₁σ₂ = |det J| and σ₁² + σ₂² = ‖J‖², so
+/// σ₁ = (√(‖J‖² + 2|det J|) + √(‖J‖² − 2|det J|)) / 2 and σ₂ = |det J| / σ₁ (no cancellation
+/// where J is far from a similarity); both 0 for J = 0.
+Vec2 singular_values(const Mat2& j);
+
 /// Face f's term as a function of one corner's image u.
 struct MipsTerm {
     Mat2 c;           ///< J_f with that corner's part taken out

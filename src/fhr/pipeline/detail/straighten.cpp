@@ -790,8 +790,8 @@ PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<
             continue;
         }
         const Eigen::Matrix2d J = S * I.inverse();
-        const Eigen::JacobiSVD<Eigen::Matrix2d> svd(J);
-        const double s1 = svd.singularValues()(0), s2 = svd.singularValues()(1);
+        const param::detail::Vec2 sigma = param::detail::singular_values(J);
+        const double s1 = sigma[0], s2 = sigma[1];
         const double ratio = s2 > 0 ? s1 / s2 : INFINITY, area = 0.5 * I(0, 0) * I(1, 1);
         out.worst = std::max(out.worst, ratio);
         out.l2_energy += area * (s1 * s1 + s2 * s2) / 2;
