@@ -58,9 +58,11 @@ param::detail::MipsProblem problem_of(const param::Disk& disk, const std::vector
 }  // namespace
 
 TEST_CASE(
-    "CLI-RUN-9: a face's m_f² has the gradient of its finite differences and a positive semidefinite Hessian "
-    "that is theirs without its negative part",
+    "CLI-RUN-9: a face's m_f^p (p = 2, 3, 4, 8) has the gradient of its finite differences and a positive "
+    "semidefinite Hessian that is theirs without its negative part",
     "[param][mips]") {
+    const double power = GENERATE(2.0, 3.0, 4.0, 8.0);
+    CAPTURE(power);
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> entry(-2, 2);
     std::size_t projected = 0;
@@ -69,9 +71,9 @@ TEST_CASE(
         do j << entry(rng), entry(rng), entry(rng), entry(rng);
         while (!(j.determinant() > 0.2));
         CAPTURE(j);
-        const param::detail::MipsFace face = param::detail::mips_face(j);
+        const param::detail::MipsFace face = param::detail::mips_face(j, power);
         const double m = j.squaredNorm() / j.determinant();
-        CHECK(face.energy == Approx(m * m).epsilon(1e-12));
+        CHECK(face.energy == Approx(std::pow(m, power)).epsilon(1e-12));
         constexpr double h = 1e-5;
         Eigen::Matrix4d exact;  // the Hessian by central differences of the gradient
         for (int k = 0; k < 4; ++k) {
@@ -79,9 +81,11 @@ TEST_CASE(
             plus(k / 2, k % 2) += h;
             minus(k / 2, k % 2) -= h;
             const double mp = plus.squaredNorm() / plus.determinant(), mm = minus.squaredNorm() / minus.determinant();
-            CHECK(face.gradient(k) == Approx((mp * mp - mm * mm) / (2 * h)).epsilon(1e-6).margin(1e-6));
+            CHECK(face.gradient(k) ==
+                  Approx((std::pow(mp, power) - std::pow(mm, power)) / (2 * h)).epsilon(1e-6).margin(1e-6));
             exact.col(k) =
-                (param::detail::mips_face(plus).gradient - param::detail::mips_face(minus).gradient) / (2 * h);
+                (param::detail::mips_face(plus, power).gradient - param::detail::mips_face(minus, power).gradient) /
+                (2 * h);
         }
         // Positive semidefinite, up to the differences' error: definite once that is added.
         const double slack = 1e-6 * exact.norm();
@@ -95,7 +99,7 @@ TEST_CASE(
         CHECK(face.hessian.trace() > 0);
         if ((face.hessian - exact).norm() > 1e-3 * exact.norm()) ++projected;
     }
-    CHECK(projected >= 100);  // m_f² is not convex in J: most faces' Hessians lose a negative part
+    CHECK(projected >= 100);  // m_f^p is not convex in J: most faces' Hessians lose a negative part
 }
 
 TEST_CASE(
@@ -125,9 +129,11 @@ TEST_CASE(
     CHECK(param::detail::singular_values(param::detail::Mat2::Zero()) == Vec2(0, 0));
 }
 
-TEST_CASE("CLI-RUN-9: Newton's MIPS steps bring a warped map of a flat patch back to the identity", "[param][mips]") {
+TEST_CASE("CLI-RUN-9: Newton's MIPS steps (p = 2, 4, 8) bring a warped map of a flat patch back to the identity",
+          "[param][mips]") {
+    const double power = GENERATE(2.0, 4.0, 8.0);
     for (std::uint64_t seed = 0; seed < 5; ++seed) {
-        CAPTURE(seed);
+        CAPTURE(power, seed);
         std::mt19937_64 rng(seed);
         std::vector<std::array<double, 2>> st;
         param::Disk disk = test::lattice_triangle(10, 0.2, rng, st);
@@ -142,6 +148,7 @@ TEST_CASE("CLI-RUN-9: Newton's MIPS steps bring a warped map of a flat patch bac
         }
         std::vector<int> side;
         param::detail::MipsProblem p = problem_of(disk, uv, side);
+        p.power = power;
         REQUIRE(std::isfinite(param::detail::mips_total(p)[0]));
         REQUIRE(param::detail::mips_total(p)[1] > 2.01);  // the start is not the optimum
         param::detail::mips_newton(p, 100, 1e-15, 0);
@@ -154,12 +161,13 @@ TEST_CASE("CLI-RUN-9: Newton's MIPS steps bring a warped map of a flat patch bac
 }
 
 TEST_CASE(
-    "CLI-RUN-9: Newton's MIPS steps from the paper's map never raise the energy nor the worst face, "
+    "CLI-RUN-9: Newton's MIPS steps (p = 2, 8) from the paper's map never raise the energy nor the worst face, "
     "never turn a face over, and keep the boundary on its sides",
     "[param][mips]") {
+    const double power = GENERATE(2.0, 8.0);
     std::size_t lowered = 0;
     for (std::uint64_t seed = 0; seed < 40; ++seed) {
-        CAPTURE(seed);
+        CAPTURE(power, seed);
         const int genus = static_cast<int>(seed % 4);
         const TriMesh m = generate::random_mesh({genus, generate::min_faces(genus) + 600, seed, 0.1});
         param::Disk disk = test::disk_from_mesh(m, seed, 150);
@@ -169,6 +177,7 @@ TEST_CASE(
         for (const auto& b : start.beta) uv.emplace_back(b[1], b[2]);
         std::vector<int> side;
         param::detail::MipsProblem p = problem_of(disk, uv, side);
+        p.power = power;
         const auto before = param::detail::mips_total(p);
         REQUIRE(std::isfinite(before[0]));
         param::detail::mips_newton(p, 20, 1e-9, 0);

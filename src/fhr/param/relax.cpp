@@ -179,10 +179,10 @@ public:
         return true;
     }
 
-    // Sweeps of one vertex at a time, each interior vertex's image moved to lower Σ_f A_f m_f²
+    // Sweeps of one vertex at a time, each interior vertex's image moved to lower Σ_f A_f m_f^p
     // over its faces (param/detail/mips.hpp), never taking a face above the ring's worst or σ₁/σ₂ = 2,
     // until a sweep lowers Σ_f A_f m_f by less than a millionth of it; kept only when Σ_f A_f m_f fell.
-    bool mips_descent(int sweeps) {
+    bool mips_descent(int sweeps, double power) {
         ring_.resize(n_);
         for (std::size_t f = 0; f < faces_.size(); ++f)
             for (int k = 0; k < 3; ++k) ring_[disk_.triangles[f][k]].push_back({static_cast<std::uint32_t>(f), k});
@@ -191,13 +191,13 @@ public:
         double before = start_energy;
         for (int i = 0; i < sweeps; ++i) {
             for (std::size_t v = 0; v < n_; ++v)
-                if (!fixed_[v]) mips_vertex(v);
+                if (!fixed_[v]) mips_vertex(v, power);
             const double after = mips();
             if (!(after < (1 - 1e-4) * before)) break;
             before = after;
         }
         if (mips() < start_energy) return true;
-        uv_ = start;  // Σ A m_f² fell but Σ A m_f did not: the L2 stretch would rise
+        uv_ = start;  // Σ A m_f^p fell but Σ A m_f did not: the L2 stretch would rise
         return false;
     }
 
@@ -216,7 +216,7 @@ private:
         return e;
     }
 
-    void mips_vertex(std::size_t v) {
+    void mips_vertex(std::size_t v, double power) {
         constexpr double cap = 2.5;  // m_f at σ₁/σ₂ = 2
         detail::MipsRing<2>& ring = ring_scratch_;
         ring.u0 = uv_[v];
@@ -225,7 +225,7 @@ private:
         for (const Corner& c : ring_[v])
             ring.terms.push_back(detail::mips_term(jacobian(uv_, c.face), uv_[v], faces_[c.face].g.row(c.k).transpose(),
                                                    faces_[c.face].area));
-        uv_[v] += detail::mips_descend<2>(std::span<const detail::MipsRing<2>>(&ring, 1), 1, cap);
+        uv_[v] += detail::mips_descend<2>(std::span<const detail::MipsRing<2>>(&ring, 1), 1, cap, power);
     }
 
     // The least t > 0 at which some face of uv + t·d has zero area (its signed area is a
@@ -260,7 +260,7 @@ std::optional<PatchMap> relax(const Disk& disk, const PatchMap& start, const std
         return std::nullopt;
     bool moved = false;
     for (int i = 0; i < options.iterations && r.conformal_step(); ++i) moved = true;
-    if (r.mips_descent(options.sweeps)) moved = true;
+    if (r.mips_descent(options.sweeps, options.power)) moved = true;
     if (!moved) return std::nullopt;
     return r.result();
 }

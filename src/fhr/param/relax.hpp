@@ -18,7 +18,7 @@
 //       keep u + t (u* − u) only if Σ_f A_img(f) σ₁/σ₂ falls and neither max_f σ₁/σ₂ nor the
 //             patch's share of the L2 stretch grows; else stop
 //   up to `sweeps` sweeps over the interior vertices, one at a time: its image moved by a damped
-//       Newton step lowering Σ_{f ∋ v} A_f m_f² (param/detail/mips.hpp: convex in the
+//       Newton step lowering Σ_{f ∋ v} A_f m_f^p (param/detail/mips.hpp: convex in the
 //       vertex's image, infinite where a face turns over), no face taken above the worst of its
 //       ring or σ₁/σ₂ = 2; until a sweep lowers Σ_f A_f m_f by less than a millionth; the sweeps
 //       kept only when Σ_f A_f m_f (the patch's share of the L2 stretch) fell. A face whose image
@@ -45,6 +45,7 @@ struct RelaxOptions {
     /// and relaxing them costs time for nothing; a sliver's share of the energy is its tiny area's.
     double threshold = 0.02;
     double worst = 10;
+    double power = 2;  ///< p of the sweeps' energy Σ_f A_f m_f^p (param/detail/mips.hpp)
 };
 
 /// ψ_i relaxed, starting from the paper's map `start` of `disk` (one-to-one: certified);

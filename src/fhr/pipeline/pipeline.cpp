@@ -57,7 +57,7 @@ std::array<Vec3, 3> triangle_of(const TriMesh& D, FaceId d) {
     return {D.position(corners[0]), D.position(corners[1]), D.position(corners[2])};
 }
 
-MappedPatch map_one(const TriMesh& D, FaceId d, param::Disk disk, const Options& options) {
+MappedPatch map_one(const TriMesh& D, FaceId d, param::Disk disk, const Options& options, double power = 2) {
     MappedPatch out;
     out.disk = std::move(disk);
     out.split = param::split_dividing_edges(out.disk, &out.origin);
@@ -69,7 +69,9 @@ MappedPatch map_one(const TriMesh& D, FaceId d, param::Disk disk, const Options&
     }
     out.certificate = param::certify(out.disk, out.map);
     if (!options.relax || !out.certificate.passed) return out;
-    std::optional<param::PatchMap> psi = param::relax(out.disk, out.map, triangle_of(D, d));
+    param::RelaxOptions relax_options;
+    relax_options.power = power;
+    std::optional<param::PatchMap> psi = param::relax(out.disk, out.map, triangle_of(D, d), relax_options);
     if (!psi) return out;
     param::Certificate certificate = param::certify(out.disk, *psi);
     if (!certificate.passed) return out;  // rounding onto the 2^-53 grid turned an image over: the paper's map stays
@@ -123,21 +125,20 @@ std::optional<param::PatchMap> carried_over(const param::Disk& before, const par
 // Beyond the paper: the curves beside poorly mapped patches moved (pipeline/detail/straighten.hpp),
 // then §4 again for every patch whose disk changed. Most patches are their old disks up to order
 // (T′ embedded again puts the pieces of a face of T cut by several curves in another order): their
-// maps are carried over. Whether the map, its moved pairs as they were scored, misses a percentile
-// goal (goals_missed).
+// maps are carried over; every map made here with `straighten_options.power`, the MIPS energy's
+// exponent (param/detail/mips.hpp). Whether the map, its moved pairs as they were scored, misses a
+// percentile goal (goals_missed).
 template <class Keep>
 bool straighten_poor_patches(const TriMesh& T, Parameterization& out, const Options& options,
                              const std::vector<std::uint8_t>& relaxed, const Keep& keep, std::vector<PatchScore> scores,
-                             bool thorough, bool stars = false) {
+                             const StraightenOptions& straighten_options) {
     const TriMesh& D = out.partition.domain.mesh;
     Executor& executor = executor_or_default(options.executor);
+    const double power = straighten_options.power;
     const Evaluate evaluate = [&](FaceId d, param::Disk disk) {
-        const MappedPatch m = map_one(D, d, std::move(disk), options);
+        const MappedPatch m = map_one(D, d, std::move(disk), options, power);
         return m.certificate.passed ? score(m.disk, m.map, triangle_of(D, d)) : PatchScore{};
     };
-    StraightenOptions straighten_options;
-    straighten_options.thorough = thorough;
-    straighten_options.stars = stars;
     if (straighten(T, out.partition, executor, scores, evaluate, straighten_options) == 0) return goals_missed(scores);
     executor.for_each(D.n_faces(), 16, [&](std::size_t i) {
         const FaceId d(static_cast<FaceId::Index>(i));
@@ -151,7 +152,7 @@ bool straighten_poor_patches(const TriMesh& T, Parameterization& out, const Opti
         m.disk = patch.disk;
         m.split = param::split_dividing_edges(m.disk, &m.origin);
         std::optional<param::PatchMap> psi = carried_over(out.disks[di], out.maps[di], m.disk);
-        if (!psi) return keep(i, map_one(D, d, std::move(patch.disk), options));
+        if (!psi) return keep(i, map_one(D, d, std::move(patch.disk), options, power));
         m.map = std::move(*psi);
         m.certificate = out.certificates[di];  // the same triangles, the same images
         m.relaxed = relaxed[i];
@@ -189,9 +190,10 @@ std::array<double, 2> tail_areas(const std::vector<PatchScore>& scores) {
 
 // Beyond the paper: the curves' vertices slid along their domain edges (pipeline/detail/slide.hpp),
 // longer where the map misses a percentile goal, kept when every changed patch is certified.
-void slide_curves(Parameterization& out, const Options& options, bool missed) {
+void slide_curves(Parameterization& out, const Options& options, bool missed, double power = 2) {
     SlideOptions slide_options;
     slide_options.missed = missed;
+    slide_options.power = power;
     std::vector<std::pair<DFaceId, param::PatchMap>> slid =
         slide(out.partition.domain.mesh, out.partition.patches, out.disks, out.maps,
               executor_or_default(options.executor), slide_options);
@@ -208,12 +210,28 @@ void slide_curves(Parameterization& out, const Options& options, bool missed) {
     out.slid_patches = slid.size();
 }
 
-// Beyond the paper, where the map misses a percentile goal: thorough sweeps of moved curves
-// (straighten.hpp), then the sliding; kept only when the L2 stretch ends no higher than the map's
-// before them (so never above the paper map's). Where that still misses a goal, the same from the
-// same start with the stars moved first, kept instead when it too ends no higher in L2 stretch and
-// has less image area above σ₁/σ₂ = 3 with no more above 10 (or the first was not kept). `state`
-// (the map and its per-patch bookkeeping) is left as the kept path made it, or as it was.
+// The largest σ₁/σ₂ of a map (spec/distortion.md's goal for it: 10³).
+double worst_of(const std::vector<PatchScore>& scores) {
+    double worst = 0;
+    for (const PatchScore& s : scores) worst = std::max(worst, s.worst);
+    return worst;
+}
+
+// The thorough path's tries, in order: the MIPS energy's exponent p (param/detail/mips.hpp) of every
+// map it makes, and whether the stars move first. A larger p weighs the most anisotropic faces
+// more, its minimum nearer the map whose worst face is least (paper_notes/distortion_causes.md).
+struct Try {
+    double power;
+    bool stars;
+};
+constexpr std::array<Try, 4> thorough_tries{{{2, false}, {2, true}, {4, false}, {8, false}}};
+
+// Beyond the paper, where the map misses a percentile goal: for each try in turn while the best so
+// far misses a goal, thorough sweeps of moved curves (straighten.hpp) from the map as it was, then
+// the sliding. A try is a candidate only when its L2 stretch ends no higher than the map's before
+// them (so never above the paper map's); it replaces the best so far when it has less image area
+// above σ₁/σ₂ = 3, no more above 10, and no worse a worst face than the best's or 10³. `state` (the
+// map and its per-patch bookkeeping) is left as the best try made it, or as it was.
 template <class Keep, class State>
 bool thorough_path(const TriMesh& T, Parameterization& out, const Options& options,
                    const std::vector<std::uint8_t>& relaxed, const Keep& keep, const std::vector<PatchScore>& scores,
@@ -221,25 +239,47 @@ bool thorough_path(const TriMesh& T, Parameterization& out, const Options& optio
     using Copy = std::tuple<
         std::remove_reference_t<decltype(std::get<0>(state))>, std::remove_reference_t<decltype(std::get<1>(state))>,
         std::remove_reference_t<decltype(std::get<2>(state))>, std::remove_reference_t<decltype(std::get<3>(state))>>;
+    constexpr double worst_goal = 1e3;
     const Copy saved = state;
-    auto thorough = [&](bool stars) {
-        slide_curves(out, options, straighten_poor_patches(T, out, options, relaxed, keep, scores, true, stars));
-        return scores_of(out, options);
-    };
-    const std::vector<PatchScore> plain = thorough(false);
-    bool kept = l2_energy(plain) <= l2_energy(scores);
-    if (goals_missed(plain)) {
-        Copy first = state;
+    std::optional<Copy> best;
+    std::vector<PatchScore> best_scores;
+    StraightenOptions straighten_options;
+    straighten_options.thorough = true;
+    for (const Try& t : thorough_tries) {
+        if (best && !goals_missed(best_scores)) break;
         state = saved;
-        const std::vector<PatchScore> starred = thorough(true);
-        const std::array<double, 2> a = tail_areas(starred), b = tail_areas(plain);
-        if (l2_energy(starred) <= l2_energy(scores) && (!kept || (a[1] < b[1] && a[0] <= b[0])))
-            kept = true;
-        else
-            state = std::move(first);
+        straighten_options.stars = t.stars;
+        straighten_options.power = t.power;
+        slide_curves(out, options, straighten_poor_patches(T, out, options, relaxed, keep, scores, straighten_options),
+                     t.power);
+        std::vector<PatchScore> now = scores_of(out, options);
+        if (!(l2_energy(now) <= l2_energy(scores))) continue;
+        if (best) {
+            const std::array<double, 2> a = tail_areas(now), b = tail_areas(best_scores);
+            if (!(a[1] < b[1] && a[0] <= b[0] && worst_of(now) <= std::max(worst_of(best_scores), worst_goal)))
+                continue;
+        }
+        best = Copy(state);
+        best_scores = std::move(now);
     }
-    if (!kept) state = saved;
-    return kept;
+    state = best ? std::move(*best) : saved;
+    return best.has_value();
+}
+
+// Beyond the paper: where the map misses a percentile goal, the thorough path first; where it is
+// not kept, and everywhere else, the sweeps as they are. Where those leave a map that met the goals
+// missing one (the sliding lowers the L2 stretch, and may move image area above σ₁/σ₂ = 3), the
+// thorough path from there.
+template <class Keep, class State>
+void improve(const TriMesh& T, Parameterization& out, const Options& options, const std::vector<std::uint8_t>& relaxed,
+             const Keep& keep, State state) {
+    std::vector<PatchScore> scores = scores_of(out, options);
+    const bool missed = goals_missed(scores);
+    if (missed && thorough_path(T, out, options, relaxed, keep, scores, state)) return;
+    slide_curves(out, options, straighten_poor_patches(T, out, options, relaxed, keep, std::move(scores), {}));
+    if (missed) return;
+    const std::vector<PatchScore> after = scores_of(out, options);
+    if (goals_missed(after)) thorough_path(T, out, options, relaxed, keep, after, state);
 }
 
 }  // namespace
@@ -287,16 +327,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
         const FaceId d(static_cast<FaceId::Index>(i));  // each task its own patch
         keep(i, map_one(Dm, d, std::move(out.partition.patches.patch[d].disk), options));
     });
-    if (options.relax) {
-        // Where the map misses a percentile goal, the thorough path first; where it is not kept,
-        // and everywhere else, the sweeps as they are.
-        std::vector<PatchScore> scores = scores_of(out, options);
-        const bool thorough_kept = goals_missed(scores) && thorough_path(T, out, options, relaxed, keep, scores,
-                                                                         std::tie(out, split, origin, relaxed));
-        if (!thorough_kept)
-            slide_curves(out, options,
-                         straighten_poor_patches(T, out, options, relaxed, keep, std::move(scores), false));
-    }
+    if (options.relax) improve(T, out, options, relaxed, keep, std::tie(out, split, origin, relaxed));
     for (std::size_t s : split) out.dividing_edges_split += s;
     for (std::uint8_t r : relaxed) out.relaxed_patches += r;
     // The final T′: the vertices of T′ of §3, then each patch's dividing-edge midpoints; faces

@@ -24,7 +24,7 @@ void assemble(const MipsProblem& p, Eigen::VectorXd& gradient, Eigen::SparseMatr
     std::vector<Eigen::Triplet<double>> entries;
     gradient = Eigen::VectorXd::Zero(p.variables);
     for (std::size_t f = 0; f < p.triangles.size(); ++f) {
-        const MipsFace face = mips_face(jacobian(p, p.uv, f));
+        const MipsFace face = mips_face(jacobian(p, p.uv, f), p.power);
         Eigen::Matrix<double, 4, 6> b = Eigen::Matrix<double, 4, 6>::Zero();  // ∂J / ∂(u_0, u_1, u_2)
         for (int k = 0; k < 3; ++k) {
             b(0, 2 * k) = b(2, 2 * k + 1) = p.gradients[f](k, 0);
@@ -140,7 +140,7 @@ std::array<double, 2> mips_total(const MipsProblem& p) {
         const double l = j.determinant();
         if (!(l > 0)) return {infinity, infinity};
         const double m = j.squaredNorm() / l;
-        e += p.areas[f] * m * m;
+        e += p.areas[f] * (p.power == 2 ? m * m : std::pow(m, p.power));
         most = std::max(most, m);
     }
     return {e, most};
@@ -150,7 +150,12 @@ void mips_newton(MipsProblem& problem, int steps, double settled, double ceiling
     if (problem.variables == 0) return;
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
     bool analysed = false;
-    for (int i = 0; i < steps && step(problem, settled, ceiling, solver, analysed); ++i) {}
+    const double power = problem.power;
+    for (double p = std::min(2.0, power);; p = std::min(2 * p, power)) {
+        problem.power = p;
+        for (int i = 0; i < steps && step(problem, settled, ceiling, solver, analysed); ++i) {}
+        if (p == power) break;
+    }
 }
 
 }  // namespace fhr::param::detail

@@ -1,5 +1,5 @@
-// Beyond the paper (§4) — Newton's method on the MIPS energy Σ_f A_f m_f² of a whole map at once
-// (param/detail/mips.hpp for m_f), the images' variables coupled through every face. One vertex
+// Beyond the paper (§4) — Newton's method on the MIPS energy Σ_f A_f m_f^p of a whole map at once
+// (param/detail/mips.hpp for m_f and the exponent p), the images' variables coupled through every face. One vertex
 // at a time (mips.hpp's step) settles slowly where a whole region must bend, as at a corner whose
 // angle on the surface is far from its angle in the domain: a Newton step moves every vertex.
 //
@@ -9,7 +9,9 @@
 // one or two vertices' images along fixed directions (a vertex's image in its plane: two
 // variables; a vertex of a curve along its domain edge, seen from each patch beside it: one).
 //
-// Pseudocode:
+// Pseudocode (for p > 2, first the steps at p = 2, then 4, … up to p, each exponent's result the
+// next one's start: far from its minimum, m^p's quadratic model is poor — from a warped map of a
+// flat patch, p = 8 alone stalls with faces at σ₁/σ₂ ≈ 45 whose steps would raise the worst face):
 //   repeat up to `steps` times:
 //       d <- −H⁻¹ ∇E                   (H the projected Hessian, assembled sparse, LDLᵀ)
 //       t <- min(1, 0.9 · the least t > 0 at which a face of u + t·du degenerates)
@@ -42,6 +44,7 @@ struct MipsProblem {
     std::vector<double> areas;                            ///< per face: its area on the surface
     std::vector<std::array<Lift, 2>> lifts;               ///< per vertex: the variables that move it
     std::int64_t variables = 0;
+    double power = 2;  ///< p of the energy Σ_f A_f m_f^p
 };
 
 /// Triangle (p0, p1, p2) laid flat in its own plane: p0 at the origin, p1 along x, p2 above.
@@ -62,7 +65,7 @@ void set_faces(MipsProblem& problem, const std::vector<Vec3>& positions,
 double first_degenerate(const std::vector<Vec2>& uv, const std::vector<Vec2>& du,
                         const std::array<std::uint32_t, 3>& t);
 
-/// Σ_f A_f m_f² and the largest m_f (both infinite when a face is not positively oriented).
+/// Σ_f A_f m_f^p and the largest m_f (both infinite when a face is not positively oriented).
 std::array<double, 2> mips_total(const MipsProblem& problem);
 
 /// Up to `steps` Newton steps on `problem` as above, never taking a face's m_f above `ceiling`

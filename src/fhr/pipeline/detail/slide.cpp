@@ -176,10 +176,11 @@ public:
     }
 
 private:
-    // Newton steps on Σ_f A_f m_f² over all the moving patches' images and sliding parameters at
+    // Newton steps on Σ_f A_f m_f^p over all the moving patches' images and sliding parameters at
     // once (param/detail/mips_newton.hpp), the sweeps' ceiling kept; then s from the images.
     void newton() {
         param::detail::MipsProblem problem;
+        problem.power = options_.power;
         std::vector<std::size_t> offset;
         for (std::size_t i = 0; i < flats_.size(); ++i) {
             const Flat& flat = flats_[i];
@@ -305,7 +306,8 @@ private:
         for (std::uint32_t v = 0; v < flat.uv.size(); ++v) {
             if (flat.on_boundary[v]) continue;
             flat.ring_of<2>(disk, v, Mat2::Identity(), ring);
-            flat.uv[v] += param::detail::mips_descend<2>(std::span<const MipsRing<2>>(&ring, 1), 1, cap());
+            flat.uv[v] +=
+                param::detail::mips_descend<2>(std::span<const MipsRing<2>>(&ring, 1), 1, cap(), options_.power);
         }
     }
 
@@ -321,7 +323,7 @@ private:
             const Occurrence& o = v.at[k];
             flats_[o.patch].ring_of<1>(disks_[moving_[o.patch]], o.local, along(o), rings[k]);
         }
-        v.s += param::detail::mips_descend<1>(std::span<const MipsRing<1>>(rings), 1, cap())(0);
+        v.s += param::detail::mips_descend<1>(std::span<const MipsRing<1>>(rings), 1, cap(), options_.power)(0);
         for (const Occurrence& o : v.at)
             flats_[o.patch].uv[o.local] = on_side(flats_[o.patch], o.side, o.reversed ? 1 - v.s : v.s);
     }

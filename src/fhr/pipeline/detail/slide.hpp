@@ -13,7 +13,7 @@
 //   moving <- the active patches and their neighbours across D's edges
 //   sliding <- every vertex of a curve beside an active patch, but its ends: its parameter s along
 //              D's halfedge (e, 0), the same in both patches (1 − s from the other end)
-//   where the map misses a percentile goal: first Newton steps on Σ_f A_f m_f² over all the moving
+//   where the map misses a percentile goal: first Newton steps on Σ_f A_f m_f^p over all the moving
 //       images and parameters s at once (param/detail/mips_newton.hpp, the same ceiling), then s
 //       read back from the images — the sweeps alone settle slowly where a whole patch must bend
 //   sweeps until one lowers Σ_f A_f m_f over the moving patches by less than `settled` of it (more
@@ -52,6 +52,7 @@ struct SlideOptions {
     int newton_steps = 50;   ///< Newton steps on all the moving images at once first, when `missed`
     double threshold = 0.1;  ///< see `active` in the pseudocode
     double worst = 10;       ///< see `active` in the pseudocode
+    double power = 2;        ///< p of the steps' energy Σ_f A_f m_f^p (param/detail/mips.hpp)
 };
 
 /// The maps of the patches (disks[d] split, maps[d] certified, patches.patch[d].vertices naming

@@ -156,12 +156,14 @@ std::optional<std::vector<std::uint32_t>> place_on_segment(const partition::Netw
     return out;
 }
 
-// The MIPS problem of a piece's map (param/detail/mips_newton.hpp): an image not `fixed` moves in
-// the plane, a fixed one with a direction `along` (not zero) slides along it, the rest stay.
+// The MIPS problem of a piece's map (param/detail/mips_newton.hpp), its energy's exponent `power`:
+// an image not `fixed` moves in the plane, a fixed one with a direction `along` (not zero) slides
+// along it, the rest stay.
 param::detail::MipsProblem mips_problem(const Piece& piece, const std::vector<Point2>& images,
                                         const std::vector<std::uint8_t>& fixed,
-                                        const std::vector<param::detail::Vec2>& along) {
+                                        const std::vector<param::detail::Vec2>& along, double power) {
     param::detail::MipsProblem p;
+    p.power = power;
     param::detail::set_faces(p, piece.positions, piece.triangles);
     p.lifts.resize(images.size());
     for (std::size_t v = 0; v < images.size(); ++v) {
@@ -362,7 +364,7 @@ private:
         std::vector<Vec2> along(images.size(), Vec2::Zero());
         for (std::size_t v = 0; v < images.size(); ++v)
             if (fixed[v] && ends[v][0] >= 0) along[v] = at(layout[ends[v][1]]) - at(layout[ends[v][0]]);
-        param::detail::MipsProblem p = mips_problem(piece, images, fixed, along);
+        param::detail::MipsProblem p = mips_problem(piece, images, fixed, along, c_.options.power);
         auto set_sides = [&](const std::array<Point2, 4>& quad) {
             for (std::size_t v = 0; v < images.size(); ++v)
                 if (fixed[v] && ends[v][0] >= 0) p.lifts[v][0].direction = at(quad[ends[v][1]]) - at(quad[ends[v][0]]);
@@ -531,7 +533,7 @@ private:
         }
         for (std::size_t i = 0; i < n; ++i)
             if (spoke[i]) fixed[i] = 0;
-        param::detail::MipsProblem p = mips_problem(piece, images, fixed, along);
+        param::detail::MipsProblem p = mips_problem(piece, images, fixed, along, c_.options.power);
         if (!std::isfinite(param::detail::mips_total(p)[0])) return false;
         param::detail::mips_newton(p, c_.options.newton_steps, 1e-6, std::numeric_limits<double>::infinity());
         const VertexId xv = region->in_sub(VertexId(c_.P.domain.t_vertex[v]));

@@ -15,7 +15,7 @@
 //        onto Q's sides by chord length; every other vertex the convex combination of its
 //        neighbours (eq. 2, the patches' own weights): a one-to-one map onto the convex Q;
 //        where the map misses a percentile goal (below), also a second map, nearer conformal:
-//        this one moved by Newton steps on Σ_f A_f m_f² (param/detail/mips_newton.hpp), U's
+//        this one moved by Newton steps on Σ_f A_f m_f^p (param/detail/mips_newton.hpp), U's
 //        boundary sliding along Q's sides, Q's corners kept (where Q is a kite, B and E then moved
 //        in steps to the triangles' own places, the images carried along, Newton steps after
 //        each) — each gives a new curve as follows,
@@ -50,7 +50,7 @@
 //            vertices w_i on a circle (a convex polygon; none scaled to above max_quad_angle)
 //       U <- the union of v's patches, cut out with the rim's curves and the spokes (the curves
 //            from v); each patch onto its triangle of S by eq. 2 (rim and spokes by chord length:
-//            one-to-one), then Newton steps on Σ_f A_f m_f² with the spokes' vertices free, the
+//            one-to-one), then Newton steps on Σ_f A_f m_f^p with the spokes' vertices free, the
 //            rim's sliding along S's sides, x_v and the w_i kept
 //       the new spoke to w_i <- the preimage of the segment from v's image to w_i's, as for AC
 //       U cut out again with the rim's curves alone and cut along the new spokes; its patches
@@ -90,6 +90,7 @@ struct StraightenOptions {
     double max_quad_angle = 170;       ///< degrees: the largest angle of Q at A or C laid flat
     param::PatchMapOptions weights{};  ///< the union's map (eq. 2)
     int newton_steps = 50;             ///< the union's nearer conformal map: Newton steps at most
+    double power = 2;                  ///< p of those steps' energy Σ_f A_f m_f^p (param/detail/mips.hpp)
     /// Thorough sweeps (see the pseudocode) while a percentile goal is missed, this many instead of
     /// `sweeps`.
     bool thorough = false;
