@@ -6,6 +6,9 @@
 // certified, genus ≥ 1 at least 95 %, and every other run refused with the §3 message that names
 // the conflicting domain edges and why the domain cannot be kept (exit 3 in the CLI). Beyond the
 // paper, the same with boundary: lion-head and random meshes with 1 and 3 holes (PART-12, DOM-21).
+// Keeping D is §3's; §4's map is the default one (pipeline/pipeline.hpp, Options::relax) on the
+// first seed of each k, whose certificate is checked too, and the paper's on the others (the
+// default map's thorough paths on these poor domains would be most of the suite's time).
 #include <catch2/catch.hpp>
 
 #include <cstdio>
@@ -51,7 +54,7 @@ Tally run_mesh(const std::string& name, const TriMesh& T, std::size_t faces) {
             ++t.runs;
             INFO(name << ": " << k << " flips, seed " << seed);
             try {
-                const pipeline::Parameterization p = pipeline::parameterize(T, D, {});
+                const pipeline::Parameterization p = pipeline::parameterize(T, D, {.relax = seed == 1});
                 CHECK(p.certified());
                 CHECK(p.partition.retries == 0);
                 CHECK(p.partition.domain.mesh.triangles() == D.mesh.triangles());

@@ -125,13 +125,14 @@ std::optional<param::PatchMap> carried_over(const param::Disk& before, const par
 // Beyond the paper: the curves beside poorly mapped patches moved (pipeline/detail/straighten.hpp),
 // then §4 again for every patch whose disk changed. Most patches are their old disks up to order
 // (T′ embedded again puts the pieces of a face of T cut by several curves in another order): their
-// maps are carried over; every map made here with `straighten_options.power`, the MIPS energy's
-// exponent (param/detail/mips.hpp). Whether the map, its moved pairs as they were scored, misses a
-// percentile goal (goals_missed).
+// maps are carried over, unless `fresh` (every patch mapped again: a map whose curves slid cannot be
+// mended patch by patch, a new chord-length side would meet its neighbour's slid one); every map
+// made here with `straighten_options.power`, the MIPS energy's exponent (param/detail/mips.hpp).
+// Whether the map, its moved pairs as they were scored, misses a percentile goal (goals_missed).
 template <class Keep>
 bool straighten_poor_patches(const TriMesh& T, Parameterization& out, const Options& options,
                              const std::vector<std::uint8_t>& relaxed, const Keep& keep, std::vector<PatchScore> scores,
-                             const StraightenOptions& straighten_options) {
+                             const StraightenOptions& straighten_options, bool fresh = false) {
     const TriMesh& D = out.partition.domain.mesh;
     Executor& executor = executor_or_default(options.executor);
     const double power = straighten_options.power;
@@ -145,6 +146,7 @@ bool straighten_poor_patches(const TriMesh& T, Parameterization& out, const Opti
         const DFaceId di(d);
         partition::Patch& patch = out.partition.patches.patch[d];
         const param::Disk& before = out.disks[di];
+        if (fresh) return keep(i, map_one(D, d, std::move(patch.disk), options, power));
         if (before.midpoints == 0 && before.triangles == patch.disk.triangles &&
             before.boundary == patch.disk.boundary && before.positions == patch.disk.positions)
             return;  // the very same disk (and no dividing edge split): its map stands as it is
@@ -218,17 +220,21 @@ double worst_of(const std::vector<PatchScore>& scores) {
 }
 
 // The thorough path's tries, in order: the MIPS energy's exponent p (param/detail/mips.hpp) of every
-// map it makes, and whether the stars move first. A larger p weighs the most anisotropic faces
-// more, its minimum nearer the map whose worst face is least (paper_notes/distortion_causes.md).
+// map it makes, whether the stars move first, and whether it starts from the best map so far (its
+// curves moved again, every patch mapped afresh) instead of from the map before the path. A larger
+// p weighs the most anisotropic faces more, its minimum nearer the map whose worst face is least
+// (paper_notes/distortion_causes.md).
 struct Try {
     double power;
     bool stars;
+    bool from_best;
 };
-constexpr std::array<Try, 4> thorough_tries{{{2, false}, {2, true}, {4, false}, {8, false}}};
+constexpr std::array<Try, 6> thorough_tries{
+    {{2, false, false}, {2, true, false}, {4, false, false}, {8, false, false}, {4, false, true}, {8, false, true}}};
 
 // Beyond the paper, where the map misses a percentile goal: for each try in turn while the best so
-// far misses a goal, thorough sweeps of moved curves (straighten.hpp) from the map as it was, then
-// the sliding. A try is a candidate only when its L2 stretch ends no higher than the map's before
+// far misses a goal, thorough sweeps of moved curves (straighten.hpp) from the map as it was or
+// from the best so far, then the sliding. A try is a candidate only when its L2 stretch ends no higher than the map's before
 // them (so never above the paper map's); it replaces the best so far when it has less image area
 // above σ₁/σ₂ = 3, no more above 10, and no worse a worst face than the best's or 10³. `state` (the
 // map and its per-patch bookkeeping) is left as the best try made it, or as it was.
@@ -245,13 +251,16 @@ bool thorough_path(const TriMesh& T, Parameterization& out, const Options& optio
     std::vector<PatchScore> best_scores;
     StraightenOptions straighten_options;
     straighten_options.thorough = true;
+    for (const PatchScore& s : scores) straighten_options.growth_from += s.faces;
     for (const Try& t : thorough_tries) {
         if (best && !goals_missed(best_scores)) break;
-        state = saved;
+        if (t.from_best && !best) continue;  // the same as the try from the map before the path
+        state = t.from_best ? *best : saved;
         straighten_options.stars = t.stars;
         straighten_options.power = t.power;
-        slide_curves(out, options, straighten_poor_patches(T, out, options, relaxed, keep, scores, straighten_options),
-                     t.power);
+        const bool missed = straighten_poor_patches(T, out, options, relaxed, keep, t.from_best ? best_scores : scores,
+                                                    straighten_options, t.from_best);
+        slide_curves(out, options, missed, t.power);
         std::vector<PatchScore> now = scores_of(out, options);
         if (!(l2_energy(now) <= l2_energy(scores))) continue;
         if (best) {

@@ -827,7 +827,8 @@ std::size_t straighten(const TriMesh& T, partition::Partition& P, Executor& exec
         touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     }
     for (const PatchScore& s : scores) m.faces += s.faces;
-    m.budget = static_cast<std::size_t>((1 + options.thorough_growth) * static_cast<double>(m.faces));
+    m.budget = static_cast<std::size_t>((1 + options.thorough_growth) *
+                                        static_cast<double>(options.growth_from ? options.growth_from : m.faces));
     if (options.thorough && options.stars && goals_missed(scores, options))
         move_stars(T, P, executor, scores, evaluate, options, m);
     std::vector<Placed>& curves = m.curves;

@@ -96,8 +96,10 @@ struct StraightenOptions {
     bool thorough = false;
     int thorough_sweeps = 4;
     /// A thorough sweep keeps no move that takes T′ to more than this fraction above its faces
-    /// before the moves.
+    /// before the moves, or above `growth_from` faces when that is not 0 (curves that moved
+    /// before, counted from T′ before those moves).
     double thorough_growth = 0.2;
+    std::size_t growth_from = 0;
     /// Before the thorough sweeps, the stars of D's vertices whose corner spread (the largest over
     /// the least ratio of a patch's angle there on the surface to its domain triangle's) is above
     /// `star_spread` are moved, each at once (see the pseudocode).
