@@ -234,10 +234,11 @@ constexpr std::array<Try, 6> thorough_tries{
 
 // Beyond the paper, where the map misses a percentile goal: for each try in turn while the best so
 // far misses a goal, thorough sweeps of moved curves (straighten.hpp) from the map as it was or
-// from the best so far, then the sliding. A try is a candidate only when its L2 stretch ends no higher than the map's before
-// them (so never above the paper map's); it replaces the best so far when it has less image area
-// above σ₁/σ₂ = 3, no more above 10, and no worse a worst face than the best's or 10³. `state` (the
-// map and its per-patch bookkeeping) is left as the best try made it, or as it was.
+// from the best so far, then the sliding. A try is a candidate only when its L2 stretch ends no
+// higher than the map's before them (so never above the paper map's); it replaces the best so far
+// when it has less image area above σ₁/σ₂ = 3, no more above 10, and no worse a worst face than the
+// best's or 10³. `state` (the map and its per-patch bookkeeping) is left as the best try made it,
+// or as it was.
 template <class Keep, class State>
 bool thorough_path(const TriMesh& T, Parameterization& out, const Options& options,
                    const std::vector<std::uint8_t>& relaxed, const Keep& keep, const std::vector<PatchScore>& scores,
