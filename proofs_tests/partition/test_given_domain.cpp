@@ -54,7 +54,9 @@ Tally run_mesh(const std::string& name, const TriMesh& T, std::size_t faces) {
             ++t.runs;
             INFO(name << ": " << k << " flips, seed " << seed);
             try {
-                const pipeline::Parameterization p = pipeline::parameterize(T, D, {.relax = seed == 1});
+                pipeline::Options options;
+                options.relax = seed == 1;
+                const pipeline::Parameterization p = pipeline::parameterize(T, D, options);
                 CHECK(p.certified());
                 CHECK(p.partition.retries == 0);
                 CHECK(p.partition.domain.mesh.triangles() == D.mesh.triangles());

@@ -145,7 +145,8 @@ void write_input_and_domain(io::JsonWriter& j, const InputInfo& input, const Par
         .value(P.vertices_added)
         .key("kept_vertices")
         .value(P.kept.size());
-    j.key("conflicts_resolved").value(P.resolved.size()).end_object();
+    j.key("conflicts_resolved").value(P.resolved.size());
+    j.key("graded_normal_rule").value(p.graded_normal_rule).key("domains_tried").value(p.domains_tried).end_object();
 }
 
 // report.json's `partition` section.

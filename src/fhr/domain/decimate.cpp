@@ -317,7 +317,10 @@ public:
             if (!cone_face(f)) ++faces_[component(corners[0])];
         }
         for (std::size_t c = 0; c < comps.count; ++c) excess_ += faces_[c] > target_[c] ? faces_[c] - target_[c] : 0;
-        cos_max_turn_ = std::cos(o.max_normal_deviation_deg * M_PI / 180.0);
+        normal_rule_deg_ = o.first_normal_deviation_deg > 0 && o.first_normal_deviation_deg < o.max_normal_deviation_deg
+                               ? o.first_normal_deviation_deg
+                               : o.max_normal_deviation_deg;
+        cos_max_turn_ = std::cos(normal_rule_deg_ * M_PI / 180.0);
         tan_min_angle_ = std::tan(o.min_angle_deg * M_PI / 180.0);
         // The volume rule, per closed component (a sum over components would let a small one turn
         // inside out beside a large one); a component with boundary has no rule: T̂'s cones are no
@@ -341,14 +344,12 @@ public:
             d.cell_collapses = d.history.size();
             drop_garbage();
         }
-        std::vector<Candidate> all;
-        all.reserve(m_.n_edges());
-        for (EdgeId e : m_.edges())
-            if (!m_.is_deleted(e)) all.push_back(edge_candidate(e));
-        queue_.assign(std::move(all));
-        // Every edge is queued with both directions untried: no edge has a rejected direction.
-        for (VertexState& s : vertex_) s.suspect = false;
+        queue_every_edge();
         while (excess_ > 0) {
+            if (queue_.empty() && normal_rule_deg_ < options_.max_normal_deviation_deg) {
+                relax_normal_rule();
+                continue;
+            }
             if (queue_.empty()) {
                 // A component with boundary may stop above its share (its loops and corners may need
                 // more faces); a closed one may not, unless best_effort.
@@ -380,6 +381,27 @@ public:
     }
 
 private:
+    // The graded normal rule (DOM-24) one step looser, and every edge queued again as at the start:
+    // what was rejected was rejected under the tighter rule.
+    void relax_normal_rule() {
+        normal_rule_deg_ =
+            std::min(normal_rule_deg_ + DecimateOptions::graded_step_deg, options_.max_normal_deviation_deg);
+        cos_max_turn_ = std::cos(normal_rule_deg_ * M_PI / 180.0);
+        std::fill(rejected_.begin(), rejected_.end(), false);
+        std::fill(rejection_.begin(), rejection_.end(), Rejection{});
+        queue_every_edge();
+    }
+
+    // Every edge queued, with both directions untried: no edge has a rejected direction.
+    void queue_every_edge() {
+        std::vector<Candidate> all;
+        all.reserve(m_.n_edges());
+        for (EdgeId e : m_.edges())
+            if (!m_.is_deleted(e)) all.push_back(edge_candidate(e));
+        queue_.assign(std::move(all));
+        for (VertexState& s : vertex_) s.suspect = false;
+    }
+
     // Pops the cheapest candidate and collapses it if it is valid; true when it did.
     bool step(std::vector<Collapse>& history) {
         const Candidate c = queue_.top();
@@ -520,6 +542,7 @@ private:
     std::size_t excess_ = 0;                   // Σ over the components of the faces above their target
     CandidateQueue queue_;
     double cos_max_turn_ = 0, tan_min_angle_ = 0;
+    double normal_rule_deg_ = 0;  // the normal rule now: max_normal_deviation_deg, or a graded rule's step
     // Per component: D's signed volume, kept above min_volume_ (a small part of T's) so that a
     // closed component stays outward oriented like T's: per-face normal rules alone let a coarse
     // domain turn inside out.

@@ -38,6 +38,11 @@ struct DecimateOptions {
     std::size_t target_faces = 0;            ///< the faces of D asked for (see decimate)
     double max_normal_deviation_deg = 90.0;  ///< no face may turn by more than this (flips)
     double min_angle_deg = 1.0;              ///< no new corner angle below this (needles, degeneracy)
+    /// Beyond the paper, the graded normal rule: when in (0, max_normal_deviation_deg), the
+    /// normal rule starts at this angle and, each time no collapse is left valid under it, is
+    /// relaxed by graded_step_deg, up to max_normal_deviation_deg (DOM-24). 0: the plain rule.
+    double first_normal_deviation_deg = 0;
+    static constexpr double graded_step_deg = 15;
     /// A boundary vertex where T's boundary turns by more than this angle (between the directions
     /// of its two boundary edges) is a corner of the boundary: D keeps it.
     double corner_angle_deg = 60.0;

@@ -284,6 +284,8 @@ template <class Keep, class State>
 void improve(const TriMesh& T, Parameterization& out, const Options& options, const std::vector<std::uint8_t>& relaxed,
              const Keep& keep, State state) {
     std::vector<PatchScore> scores = scores_of(out, options);
+    out.unmoved.l2_energy = l2_energy(scores);
+    for (const PatchScore& s : scores) out.unmoved.faces += s.faces;
     const bool missed = goals_missed(scores);
     if (missed && thorough_path(T, out, options, relaxed, keep, scores, state)) return;
     slide_curves(out, options, straighten_poor_patches(T, out, options, relaxed, keep, std::move(scores), {}));
@@ -377,6 +379,90 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
         " dividing edges split, " + (options.relax ? std::to_string(out.relaxed_patches) + " relaxed, " : "") +
         (failed ? std::to_string(failed) + " NOT certified" : std::string("all certified")));
     return out;
+}
+
+namespace {
+
+// What another_domain weighs of a map, from its own scores (straighten.hpp): σ₁/σ₂'s 99th and
+// 99.9th percentiles weighted by image area (the rule of spec/distortion.md DIST-9), its worst
+// face, its L2 energy, and whether it misses a percentile goal.
+struct Tail {
+    bool missed;  // a goal of spec/distortion.md: the percentiles' (goals_missed) or the worst face's
+    double p99, p999, worst, l2;
+};
+
+constexpr double p999_goal = 10, worst_goal = 1e3;  // spec/distortion.md's goals
+
+Tail tail_of(const Parameterization& p, const Options& options) {
+    const TriMesh& D = p.partition.domain.mesh;
+    std::vector<std::vector<std::array<double, 2>>> per_patch(D.n_faces());
+    std::vector<PatchScore> scores(D.n_faces());
+    executor_or_default(options.executor).for_each(D.n_faces(), 16, [&](std::size_t i) {
+        const DFaceId d(static_cast<DFaceId::Index>(i));
+        scores[i] = score(p.disks[d], p.maps[d], triangle_of(D, FaceId(d)), {}, &per_patch[i]);
+    });
+    std::vector<std::array<double, 2>> faces;
+    for (const auto& f : per_patch) faces.insert(faces.end(), f.begin(), f.end());
+    std::sort(faces.begin(), faces.end());
+    double area = 0;
+    for (const auto& f : faces) area += f[1];
+    auto percentile = [&](double q) {
+        double sum = 0;
+        for (const auto& f : faces)
+            if ((sum += f[1]) >= q * area) return f[0];
+        return faces.empty() ? 0.0 : faces.back()[0];
+    };
+    const double worst = worst_of(scores);
+    return {goals_missed(scores) || !(worst <= worst_goal), percentile(0.99), percentile(0.999), worst,
+            l2_energy(scores)};
+}
+
+}  // namespace
+
+Parameterization another_domain(const TriMesh& T, Parameterization p, const domain::DecimateOptions& decimated_with,
+                                const Options& options) {
+    const auto start = detail::Clock::now();
+    Tail best = tail_of(p, options);
+    const Parameterization::Unmoved bound = p.unmoved;
+    const double most_faces = (1 + StraightenOptions{}.thorough_growth) * static_cast<double>(bound.faces);
+    std::size_t tried = 1;
+    Options quiet = options;
+    quiet.observer = nullptr;  // the stages of the first domain are the ones timed; these are `other_domains`
+    // The domains parameterized so far, by their vertices and faces: a rule that never bound gives
+    // a D already tried, whose map would be the same.
+    std::vector<std::pair<std::vector<VertexId>, std::vector<Triangle>>> seen{
+        {{p.partition.domain.t_vertex.begin(), p.partition.domain.t_vertex.end()},
+         p.partition.domain.mesh.triangles()}};
+    for (double rule : graded_rules) {
+        if (!best.missed || !options.relax) break;
+        domain::DecimateOptions graded = decimated_with;
+        graded.first_normal_deviation_deg = rule;
+        graded.best_effort = true;
+        domain::Domain D = domain::decimate(T, graded);
+        if (D.mesh.n_faces() != p.partition.domain.mesh.n_faces()) continue;
+        std::pair<std::vector<VertexId>, std::vector<Triangle>> key{{D.t_vertex.begin(), D.t_vertex.end()},
+                                                                    D.mesh.triangles()};
+        if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+        seen.push_back(std::move(key));
+        if (options.progress)
+            options.progress("domain again, the normal rule from " + std::to_string(static_cast<int>(rule)) +
+                             "°: the map on D misses a percentile goal");
+        Parameterization q = parameterize(T, std::move(D), quiet);
+        ++tried;
+        const Tail tail = tail_of(q, options);
+        if (!q.certified() || !(tail.l2 <= bound.l2_energy) || static_cast<double>(q.refined_faces.size()) > most_faces)
+            continue;
+        const bool better = !tail.missed || (tail.p99 < best.p99 && tail.p999 <= std::max(best.p999, p999_goal) &&
+                                             tail.worst <= std::max(best.worst, worst_goal));
+        if (!better) continue;
+        q.graded_normal_rule = rule;
+        q.unmoved = bound;
+        p = std::move(q);
+        best = tail;
+    }
+    p.domains_tried = tried;
+    if (options.observer && tried > 1) options.observer->stage("other_domains", detail::seconds_since(start), true);
+    return p;
 }
 
 }  // namespace fhr::pipeline

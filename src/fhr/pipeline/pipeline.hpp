@@ -26,6 +26,7 @@
 
 #include <fhr/core/executor.hpp>
 #include <fhr/core/trimesh.hpp>
+#include <fhr/domain/decimate.hpp>
 #include <fhr/domain/domain.hpp>
 #include <fhr/param/certificate.hpp>
 #include <fhr/param/locate.hpp>
@@ -67,6 +68,16 @@ struct Parameterization {
     std::size_t dividing_edges_split = 0;
     std::size_t relaxed_patches = 0;  ///< patches whose map is the relaxed one (Options::relax)
     std::size_t slid_patches = 0;     ///< patches whose curves' vertices slid along D's edges (Options::relax)
+    /// Options::relax: the relaxed map before any curve moved, the bounds every choice of the default
+    /// map keeps to: Σ over its patches of Σ_f a_f (σ₁² + σ₂²) / 2 (a_f the image area: DIST-3's
+    /// numerator, T's area its denominator whatever D), and its faces
+    struct Unmoved {
+        double l2_energy = 0;
+        std::size_t faces = 0;
+    } unmoved;
+    /// another_domain: the graded normal rule's first angle (degrees) of the D it chose; 0: §2's D
+    double graded_normal_rule = 0;
+    std::size_t domains_tried = 1;  ///< the domains parameterized to choose this one (another_domain)
     // The final T′: T′ of §3 plus the dividing-edge midpoints, as plain arrays (for writers and numpy;
     // nothing reads its connectivity after §4, which a TriMesh would hold: paper_notes/library.md).
     std::vector<Vec3> refined_positions;
@@ -101,5 +112,20 @@ private:
 /// \throws PartitionFailure (§3 conditions unrecoverable), NumericalFailure (a weight or solve),
 ///         InternalError (a patch §3 made that §4 refuses).
 Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options);
+
+/// Beyond the paper, for the default map (Options::relax) on fhr's own D, decimated from T with
+/// `decimated_with` (the plain normal rule): where p's map misses a percentile goal of
+/// spec/distortion.md, T is decimated again under the graded normal rule (domain::DecimateOptions::
+/// first_normal_deviation_deg) from each angle of graded_rules in turn, and each D with p's faces is
+/// parameterized, until one's map meets the goals. Returned: the first that does, else the best, or
+/// p itself. A map is a candidate only when its L2 energy is at most p.unmoved's (so its L2 stretch
+/// is never above the paper map's on §2's D) and its faces at most 20 % more than p.unmoved's; it
+/// replaces the best so far when it meets all three goals, or when its σ₁/σ₂ 99th percentile
+/// (image-area weighted, measured by the map's own scores) is lower, its 99.9th no higher than the
+/// best's or 10, and its worst face no worse than the best's or 10³. Its seconds are the stage
+/// `other_domains` (Options::observer), reported when another D was tried.
+inline constexpr std::array<double, 4> graded_rules{45, 60, 30, 20};
+Parameterization another_domain(const TriMesh& T, Parameterization p, const domain::DecimateOptions& decimated_with,
+                                const Options& options);
 
 }  // namespace fhr::pipeline

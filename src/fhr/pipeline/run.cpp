@@ -59,6 +59,11 @@ void check(const RunOptions& options) {
     if (!options.keep.empty() && options.levels == 0) throw InvalidInput("kept percentages need levels >= 1");
 }
 
+// §2's rules for `fhr run --faces`.
+domain::DecimateOptions decimating(const RunOptions& options) {
+    return {.target_faces = options.faces, .corner_angle_deg = options.corner_angle_deg};
+}
+
 // §2's result, and what was prepared beside it.
 struct Prepared {
     domain::Domain D;
@@ -87,7 +92,7 @@ Prepared domain_and_beside(const TriMesh& T, RunOptions& options, Executor& exec
         } else if (options.domain) {
             p.D = std::move(*options.domain);
         } else {
-            p.D = domain::decimate(T, {.target_faces = options.faces, .corner_angle_deg = options.corner_angle_deg});
+            p.D = domain::decimate(T, decimating(options));
             p.decimating = detail::seconds_since(start);
         }
     });
@@ -154,6 +159,8 @@ RunResult run(const TriMesh& T, RunOptions options, const RunBeside& beside) {
         std::to_string(prepared.D.mesh.n_faces()) + " faces" + more_faces(T, options.faces, prepared.D.mesh.n_faces()));
     // §3, §4.
     out.parameterization = parameterize(T, std::move(prepared.D), method);
+    if (options.faces > 0 && method.relax)
+        out.parameterization = another_domain(T, std::move(out.parameterization), decimating(options), method);
     // The independent oracle (src/fhr/exchange) judges exactly what param.fhrp will hold; §5 reads
     // the patches' maps, which the oracle does not touch; the caller's task (fhr run: writing the
     // files) reads both: the three run side by side on the executor (most of the oracle runs on

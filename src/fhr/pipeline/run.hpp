@@ -7,6 +7,9 @@
 //   mesh_reduction:   D <- decimate(T) to `faces`, or the domain given (already attached to T);
 //                     beside it (T below 2^18 faces) the oracle's side of T and §5's tree of T
 //   geodesic_paths, parameterization: parameterize(T, D)                  (pipeline.hpp)
+//   other_domains:    beyond the paper, the default map on §2's own D: where it misses a
+//                     percentile goal, D decimated again under graded normal rules and
+//                     parameterized, the better map kept               (pipeline.hpp, another_domain)
 //   verification:     the oracle (src/fhr/exchange) on exactly what param.fhrp would hold
 //   with J = levels > 0: refinement, decomposition, reconstruction: D^J sampled through φ, its
 //                     prewavelet coefficients, the kept percentages reconstructed (src/fhr/wavelet),

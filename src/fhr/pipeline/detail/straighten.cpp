@@ -766,7 +766,7 @@ std::optional<Trial> trial_of(const UnionCurve& union_curve, DEdgeId e, Mode mod
 }  // namespace
 
 PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<Vec3, 3>& triangle,
-                 const StraightenOptions& options) {
+                 const StraightenOptions& options, std::vector<std::array<double, 2>>* faces) {
     PatchScore out;
     out.certified = true;
     out.faces = disk.triangles.size();
@@ -789,6 +789,7 @@ PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<
         if (!(I.determinant() > 0)) {
             out.worst = INFINITY;
             out.l2_energy = INFINITY;
+            if (faces) faces->push_back({INFINITY, 0});
             continue;
         }
         const Eigen::Matrix2d J = S * I.inverse();
@@ -800,6 +801,7 @@ PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<
         out.image_area += area;
         if (ratio > options.tail) out.above_tail += area;
         if (ratio > options.poor) out.above_poor += area;
+        if (faces) faces->push_back({ratio, area});
     }
     return out;
 }

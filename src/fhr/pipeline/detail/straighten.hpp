@@ -122,9 +122,9 @@ struct PatchScore {
 };
 
 /// The score of map ψ of `disk` onto the triangle with corners `triangle` (3-D), `options`'s
-/// thresholds counted.
+/// thresholds counted; with `faces`, each triangle's {σ₁/σ₂, image area} appended to it.
 PatchScore score(const Disk& disk, const param::PatchMap& psi, const std::array<Vec3, 3>& triangle,
-                 const StraightenOptions& options = {});
+                 const StraightenOptions& options = {}, std::vector<std::array<double, 2>>* faces = nullptr);
 
 /// Whether the map of these scores misses a percentile goal: more than `tail_share` of its image
 /// area above σ₁/σ₂ = `tail`, or more than `poor_share` above `poor` (spec/distortion.md's 99th
