@@ -434,7 +434,7 @@ Parameterization another_domain(const TriMesh& T, Parameterization p, const doma
         {{p.partition.domain.t_vertex.begin(), p.partition.domain.t_vertex.end()},
          p.partition.domain.mesh.triangles()}};
     for (double rule : graded_rules) {
-        if (!best.missed || !options.relax) break;
+        if (!best.missed || !options.relax || p.partition.domain.mesh.n_faces() > coarse_domain_faces) break;
         domain::DecimateOptions graded = decimated_with;
         graded.first_normal_deviation_deg = rule;
         graded.best_effort = true;
