@@ -421,6 +421,7 @@ Tail tail_of(const Parameterization& p, const Options& options) {
 
 Parameterization another_domain(const TriMesh& T, Parameterization p, const domain::DecimateOptions& decimated_with,
                                 const Options& options) {
+    if (!options.relax || p.partition.domain.mesh.n_faces() > coarse_domain_faces) return p;
     const auto start = detail::Clock::now();
     Tail best = tail_of(p, options);
     const Parameterization::Unmoved bound = p.unmoved;
@@ -434,7 +435,7 @@ Parameterization another_domain(const TriMesh& T, Parameterization p, const doma
         {{p.partition.domain.t_vertex.begin(), p.partition.domain.t_vertex.end()},
          p.partition.domain.mesh.triangles()}};
     for (double rule : graded_rules) {
-        if (!best.missed || !options.relax || p.partition.domain.mesh.n_faces() > coarse_domain_faces) break;
+        if (!best.missed) break;
         domain::DecimateOptions graded = decimated_with;
         graded.first_normal_deviation_deg = rule;
         graded.best_effort = true;
@@ -446,7 +447,7 @@ Parameterization another_domain(const TriMesh& T, Parameterization p, const doma
         seen.push_back(std::move(key));
         if (options.progress)
             options.progress("domain again, the normal rule from " + std::to_string(static_cast<int>(rule)) +
-                             "°: the map on D misses a percentile goal");
+                             "°: the map on D misses a goal");
         Parameterization q = parameterize(T, std::move(D), quiet);
         ++tried;
         const Tail tail = tail_of(q, options);

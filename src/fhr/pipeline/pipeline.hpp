@@ -118,10 +118,9 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
 /// where p's map misses a goal of spec/distortion.md, T is decimated again under the graded normal
 /// rule (domain::DecimateOptions::first_normal_deviation_deg) from each angle of graded_rules in
 /// turn, and each D with p's faces and not yet tried is parameterized, until one's map meets the
-/// goals. Returned: the first that does, else the best, or
-/// p itself. A map is a candidate only when its L2 energy is at most p.unmoved's (so its L2 stretch
-/// is never above the paper map's on §2's D) and its faces at most 20 % more than p.unmoved's; it
-/// replaces the best so far when it meets all three goals, or when its σ₁/σ₂ 99th percentile
+/// goals. Returned: the first that does, else the best, or p itself. A map is a candidate only
+/// when its L2 energy is at most p.unmoved's (so its L2 stretch is never above the paper map's on
+/// §2's D) and its faces at most 20 % more than p.unmoved's; it replaces the best so far when it meets all three goals, or when its σ₁/σ₂ 99th percentile
 /// (image-area weighted, measured by the map's own scores) is lower, its 99.9th no higher than the
 /// best's or 10, and its worst face no worse than the best's or 10³. Its seconds are the stage
 /// `other_domains` (Options::observer), reported when another D was tried.
