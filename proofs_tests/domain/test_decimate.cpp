@@ -142,41 +142,78 @@ TEST_CASE("DOM-1..8: decimation of random closed meshes of genus 0-4", "[propert
     });
 }
 
+namespace {
+
+// A coarse target for T, where a tight rule stops early, set in o; D decimated under o, or nothing
+// where §2 refuses (DOM-9: the last step is the plain rules, which may stop too).
+std::optional<Domain> graded_decimation(const fhr::testing::GeneratedMesh& T, DecimateOptions& o) {
+    const std::size_t lowest = 2 * domain::min_closed_faces(T.options.genus);
+    o.target_faces = 2 * *rc::gen::inRange(lowest / 2, std::max(lowest, T.n_faces() / 4) / 2 + 1);
+    try {
+        return decimate(T, o);
+    } catch (const InvalidInput& e) {
+        RC_ASSERT(std::string(e.what()).find("decimation stopped at") != std::string::npos);
+        RC_TAG("refused");
+        return std::nullopt;
+    }
+}
+
+// D under graded rules keeps every rule and undoes to T; its first collapses are those of the
+// first angles' rules alone (`tight`, best effort), as far as they go; deterministic (DOM-7).
+void check_graded(const TriMesh& T, const Domain& d, const DecimateOptions& o, DecimateOptions tight) {
+    RC_ASSERT(domain_violation(T, d, o) == "");
+    RC_ASSERT(undo_gives_back(T, d));
+    tight.first_normal_deviation_deg = tight.first_min_angle_deg = 0;
+    tight.best_effort = true;
+    const Domain t = decimate(T, tight);
+    RC_ASSERT(t.history.size() <= d.history.size());
+    RC_ASSERT(std::equal(t.history.begin(), t.history.end(), d.history.begin()));
+    RC_TAG(t.history.size() < d.history.size() ? "the rules were relaxed" : "the first rules reached the target");
+    RC_ASSERT(decimate(T, o).history == d.history);
+}
+
+}  // namespace
+
 TEST_CASE(
     "DOM-24: the graded normal rule makes the tighter rule's collapses first, then keeps every rule (random closed "
     "meshes of genus 0-4)",
     "[property][domain]") {
     rc::prop("decimate graded, check, undo", [] {
         const fhr::testing::GeneratedMesh T = *fhr::testing::gen_closed_mesh(0, 4, 1500);
-        // Coarse targets, where a tight rule stops early.
-        const std::size_t lowest = 2 * domain::min_closed_faces(T.options.genus);
         DecimateOptions o;
-        o.target_faces = 2 * *rc::gen::inRange(lowest / 2, std::max(lowest, T.n_faces() / 4) / 2 + 1);
         o.first_normal_deviation_deg = *rc::gen::element(5.0, 10.0, 20.0, 45.0, 75.0);
-        Domain d;
-        try {
-            d = decimate(T, o);
-        } catch (const InvalidInput& e) {  // DOM-9: the last step is the plain rule, which may stop too
-            RC_ASSERT(std::string(e.what()).find("decimation stopped at") != std::string::npos);
-            RC_TAG("refused");
-            return;
-        }
-        RC_ASSERT(domain_violation(T, d, o) == "");
-        RC_ASSERT(undo_gives_back(T, d));
-        // The first collapses are those of the first angle's rule alone, as far as it goes.
+        const std::optional<Domain> d = graded_decimation(T, o);
+        if (!d) return;
         DecimateOptions tight = o;
         tight.max_normal_deviation_deg = o.first_normal_deviation_deg;
-        tight.first_normal_deviation_deg = 0;
-        tight.best_effort = true;
-        const Domain t = decimate(T, tight);
-        RC_ASSERT(t.history.size() <= d.history.size());
-        RC_ASSERT(std::equal(t.history.begin(), t.history.end(), d.history.begin()));
-        RC_TAG(t.history.size() < d.history.size() ? "the rule was relaxed" : "the first rule reached the target");
-        // DOM-7: deterministic; a first angle at the plain rule's is the plain rule.
-        RC_ASSERT(decimate(T, o).history == d.history);
+        check_graded(T, *d, o, tight);
+        // A first angle at the plain rule's is the plain rule.
         DecimateOptions plain = o;
         plain.first_normal_deviation_deg = plain.max_normal_deviation_deg;
         o.first_normal_deviation_deg = 0;
+        RC_ASSERT(decimate(T, plain).history == decimate(T, o).history);
+    });
+}
+
+TEST_CASE(
+    "DOM-25: the graded angle rule makes the tighter rules' collapses first, then keeps every rule (random closed "
+    "meshes of genus 0-4)",
+    "[property][domain]") {
+    rc::prop("decimate under both graded rules, check, undo", [] {
+        const fhr::testing::GeneratedMesh T = *fhr::testing::gen_closed_mesh(0, 4, 1500);
+        DecimateOptions o;
+        o.first_normal_deviation_deg = *rc::gen::element(0.0, 30.0, 45.0);
+        o.first_min_angle_deg = *rc::gen::element(5.0, 10.0, 15.0, 20.0);
+        const std::optional<Domain> d = graded_decimation(T, o);
+        if (!d) return;
+        DecimateOptions tight = o;
+        if (o.first_normal_deviation_deg > 0) tight.max_normal_deviation_deg = o.first_normal_deviation_deg;
+        tight.min_angle_deg = o.first_min_angle_deg;
+        check_graded(T, *d, o, tight);
+        // A first angle at the plain rule's is the plain rule.
+        DecimateOptions plain = o;
+        plain.first_min_angle_deg = plain.min_angle_deg;
+        o.first_min_angle_deg = 0;
         RC_ASSERT(decimate(T, plain).history == decimate(T, o).history);
     });
 }
@@ -722,6 +759,7 @@ TEST_CASE(
         if (T.is_closed()) o.target_faces += o.target_faces % 2;
         o.best_effort = *rc::gen::arbitrary<bool>();
         o.first_normal_deviation_deg = *rc::gen::element(0.0, 30.0, 45.0, 60.0);  // DOM-24's graded rule too
+        o.first_min_angle_deg = *rc::gen::element(0.0, 0.0, 10.0, 20.0);          // and DOM-25's
         if (*rc::gen::arbitrary<bool>()) {  // the pass over small cells first (where the target allows it)
             pass_over_small_cells(o, 600);
         }

@@ -146,7 +146,8 @@ void write_input_and_domain(io::JsonWriter& j, const InputInfo& input, const Par
         .key("kept_vertices")
         .value(P.kept.size());
     j.key("conflicts_resolved").value(P.resolved.size());
-    j.key("graded_normal_rule").value(p.graded_normal_rule).key("domains_tried").value(p.domains_tried).end_object();
+    j.key("graded_normal_rule").value(p.graded_normal_rule).key("graded_min_angle").value(p.graded_min_angle);
+    j.key("domains_tried").value(p.domains_tried).end_object();
 }
 
 // report.json's `partition` section.

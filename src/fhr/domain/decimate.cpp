@@ -317,11 +317,8 @@ public:
             if (!cone_face(f)) ++faces_[component(corners[0])];
         }
         for (std::size_t c = 0; c < comps.count; ++c) excess_ += faces_[c] > target_[c] ? faces_[c] - target_[c] : 0;
-        normal_rule_deg_ = o.first_normal_deviation_deg > 0 && o.first_normal_deviation_deg < o.max_normal_deviation_deg
-                               ? o.first_normal_deviation_deg
-                               : o.max_normal_deviation_deg;
-        cos_max_turn_ = std::cos(normal_rule_deg_ * M_PI / 180.0);
-        tan_min_angle_ = std::tan(o.min_angle_deg * M_PI / 180.0);
+        set_rules(first_normal_rule(),
+                  o.first_min_angle_deg > o.min_angle_deg ? o.first_min_angle_deg : o.min_angle_deg);
         // The volume rule, per closed component (a sum over components would let a small one turn
         // inside out beside a large one); a component with boundary has no rule: T̂'s cones are no
         // part of the surface.
@@ -346,10 +343,7 @@ public:
         }
         queue_every_edge();
         while (excess_ > 0) {
-            if (queue_.empty() && normal_rule_deg_ < options_.max_normal_deviation_deg) {
-                relax_normal_rule();
-                continue;
-            }
+            if (queue_.empty() && relax_rules()) continue;
             if (queue_.empty()) {
                 // A component with boundary may stop above its share (its loops and corners may need
                 // more faces); a closed one may not, unless best_effort.
@@ -381,15 +375,37 @@ public:
     }
 
 private:
-    // The graded normal rule (DOM-24) one step looser, and every edge queued again as at the start:
-    // what was rejected was rejected under the tighter rule.
-    void relax_normal_rule() {
-        normal_rule_deg_ =
-            std::min(normal_rule_deg_ + DecimateOptions::graded_step_deg, options_.max_normal_deviation_deg);
-        cos_max_turn_ = std::cos(normal_rule_deg_ * M_PI / 180.0);
+    // The graded rules (DOM-24, DOM-25): the normal rule's first angle, or the plain rule's maximum.
+    double first_normal_rule() const {
+        const DecimateOptions& o = options_;
+        return o.first_normal_deviation_deg > 0 && o.first_normal_deviation_deg < o.max_normal_deviation_deg
+                   ? o.first_normal_deviation_deg
+                   : o.max_normal_deviation_deg;
+    }
+    // Where no collapse is left valid: the normal rule one step looser, or, at its maximum, the
+    // angle rule one step looser with the normal rule from its first angle again; false when both
+    // are at their plain values.
+    bool relax_rules() {
+        const DecimateOptions& o = options_;
+        if (normal_rule_deg_ < o.max_normal_deviation_deg) {
+            set_rules(std::min(normal_rule_deg_ + DecimateOptions::graded_step_deg, o.max_normal_deviation_deg),
+                      angle_rule_deg_);
+        } else if (angle_rule_deg_ > o.min_angle_deg) {
+            set_rules(first_normal_rule(),
+                      std::max(angle_rule_deg_ - DecimateOptions::graded_angle_step_deg, o.min_angle_deg));
+        } else {
+            return false;
+        }
         std::fill(rejected_.begin(), rejected_.end(), false);
         std::fill(rejection_.begin(), rejection_.end(), Rejection{});
-        queue_every_edge();
+        queue_every_edge();  // what was rejected was rejected under the tighter rules
+        return true;
+    }
+    void set_rules(double normal_deg, double angle_deg) {
+        normal_rule_deg_ = normal_deg;
+        angle_rule_deg_ = angle_deg;
+        cos_max_turn_ = std::cos(normal_deg * M_PI / 180.0);
+        tan_min_angle_ = std::tan(angle_deg * M_PI / 180.0);
     }
 
     // Every edge queued, with both directions untried: no edge has a rejected direction.
@@ -542,7 +558,8 @@ private:
     std::size_t excess_ = 0;                   // Σ over the components of the faces above their target
     CandidateQueue queue_;
     double cos_max_turn_ = 0, tan_min_angle_ = 0;
-    double normal_rule_deg_ = 0;  // the normal rule now: max_normal_deviation_deg, or a graded rule's step
+    // The rules now: max_normal_deviation_deg and min_angle_deg, or a graded rule's step.
+    double normal_rule_deg_ = 0, angle_rule_deg_ = 0;
     // Per component: D's signed volume, kept above min_volume_ (a small part of T's) so that a
     // closed component stays outward oriented like T's: per-face normal rules alone let a coarse
     // domain turn inside out.

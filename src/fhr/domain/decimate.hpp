@@ -43,6 +43,12 @@ struct DecimateOptions {
     /// relaxed by graded_step_deg, up to max_normal_deviation_deg (DOM-24). 0: the plain rule.
     double first_normal_deviation_deg = 0;
     static constexpr double graded_step_deg = 15;
+    /// Beyond the paper, the graded angle rule: when above min_angle_deg, no new corner may be
+    /// below this angle at first; each time no collapse is left valid under it and the normal
+    /// rule is at its maximum, it is lowered by graded_angle_step_deg, down to min_angle_deg, and
+    /// the normal rule starts from its first angle again (DOM-25). 0: the plain rule.
+    double first_min_angle_deg = 0;
+    static constexpr double graded_angle_step_deg = 5;
     /// A boundary vertex where T's boundary turns by more than this angle (between the directions
     /// of its two boundary edges) is a corner of the boundary: D keeps it.
     double corner_angle_deg = 60.0;

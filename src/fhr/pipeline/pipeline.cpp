@@ -294,13 +294,32 @@ void improve(const TriMesh& T, Parameterization& out, const Options& options, co
     if (goals_missed(after)) thorough_path(T, out, options, relaxed, keep, after, state);
 }
 
-}  // namespace
+// §3 and each patch's first map (§4, relaxed under Options::relax): what the improvement of the
+// default map and the final T′ start from, with the per-patch bookkeeping both keep up to date.
+struct FirstMaps {
+    Parameterization out;
+    std::vector<std::size_t> split;                  // per patch: its dividing edges split
+    std::vector<std::vector<std::uint32_t>> origin;  // per patch: the triangle before the splits
+    std::vector<std::uint8_t> relaxed;               // per patch: its map is the relaxed one
+    double mapping = 0;                              // the seconds of the first maps
+};
 
-Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options) {
+void keep_patch(FirstMaps& m, std::size_t i, MappedPatch mapped) {
+    const DFaceId d(static_cast<DFaceId::Index>(i));
+    m.split[i] = mapped.split;
+    m.origin[i] = std::move(mapped.origin);
+    m.relaxed[i] = mapped.relaxed;
+    m.out.maps[d] = std::move(mapped.map);
+    m.out.certificates[d] = std::move(mapped.certificate);
+    m.out.disks[d] = std::move(mapped.disk);
+}
+
+FirstMaps first_maps(const TriMesh& T, domain::Domain D, const Options& options) {
     auto say = [&](const std::string& line) {
         if (options.progress) options.progress(line);
     };
-    Parameterization out;
+    FirstMaps m;
+    Parameterization& out = m.out;
 
     // §3: one geodesic per edge of D, T′, conditions (1) and (2), the patches.
     say("geodesic paths: " + std::to_string(D.mesh.n_edges()) + " domain edges");
@@ -316,32 +335,37 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
         std::to_string(P.patches.patch.size()) + " patches, " + std::to_string(P.retries) + " retries");
 
     // §4: each patch onto its triangle, certified.
-    const auto param = detail::Clock::now();
+    const auto mapping = detail::Clock::now();
     const std::size_t n_patches = P.patches.patch.size();
     out.disks = IdVector<DFaceId, param::Disk>(P.domain.mesh, {});
     out.maps = IdVector<DFaceId, param::PatchMap>(P.domain.mesh, {});
     out.certificates = IdVector<DFaceId, param::Certificate>(P.domain.mesh, {});
     FHR_DCHECK(out.disks.size() == n_patches);
-    std::vector<std::size_t> split(n_patches, 0);
-    std::vector<std::vector<std::uint32_t>> origin(n_patches);  // per patch: the triangle before the splits
-    std::vector<std::uint8_t> relaxed(n_patches, 0);
+    m.split.assign(n_patches, 0);
+    m.origin.assign(n_patches, {});
+    m.relaxed.assign(n_patches, 0);
     const TriMesh& Dm = P.domain.mesh;
-    auto keep = [&](std::size_t i, MappedPatch m) {
-        const DFaceId d(static_cast<DFaceId::Index>(i));
-        split[i] = m.split;
-        origin[i] = std::move(m.origin);
-        relaxed[i] = m.relaxed;
-        out.maps[d] = std::move(m.map);
-        out.certificates[d] = std::move(m.certificate);
-        out.disks[d] = std::move(m.disk);
-    };
     executor_or_default(options.executor).for_each(n_patches, 16, [&](std::size_t i) {
         const FaceId d(static_cast<FaceId::Index>(i));  // each task its own patch
-        keep(i, map_one(Dm, d, std::move(out.partition.patches.patch[d].disk), options));
+        keep_patch(m, i, map_one(Dm, d, std::move(out.partition.patches.patch[d].disk), options));
     });
-    if (options.relax) improve(T, out, options, relaxed, keep, std::tie(out, split, origin, relaxed));
-    for (std::size_t s : split) out.dividing_edges_split += s;
-    for (std::uint8_t r : relaxed) out.relaxed_patches += r;
+    m.mapping = detail::seconds_since(mapping);
+    return m;
+}
+
+// The default map improved (Options::relax), then the final T′ assembled.
+Parameterization completed(const TriMesh& T, FirstMaps m, const Options& options) {
+    auto say = [&](const std::string& line) {
+        if (options.progress) options.progress(line);
+    };
+    Parameterization& out = m.out;
+    const partition::Partition& P = out.partition;
+    const std::size_t n_patches = P.patches.patch.size();
+    const auto param = detail::Clock::now();
+    auto keep = [&](std::size_t i, MappedPatch mapped) { keep_patch(m, i, std::move(mapped)); };
+    if (options.relax) improve(T, out, options, m.relaxed, keep, std::tie(out, m.split, m.origin, m.relaxed));
+    for (std::size_t s : m.split) out.dividing_edges_split += s;
+    for (std::uint8_t r : m.relaxed) out.relaxed_patches += r;
     // The final T′: the vertices of T′ of §3, then each patch's dividing-edge midpoints; faces
     // patch by patch, each with the β of its corners.
     const TriMesh& M = P.network.mesh;
@@ -368,17 +392,23 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
             const auto& t = disk.triangles[i];
             out.refined_faces.push_back({global[t[0]], global[t[1]], global[t[2]]});
             out.face_patch.push_back(d);
-            out.face_t.push_back(P.network.t_face[patch.faces[origin[d.idx()][i]]]);
+            out.face_t.push_back(P.network.t_face[patch.faces[m.origin[d.idx()][i]]]);
             out.face_beta.push_back({out.maps[d].beta[t[0]], out.maps[d].beta[t[1]], out.maps[d].beta[t[2]]});
         }
     }
-    if (options.observer) options.observer->stage("parameterization", detail::seconds_since(param), true);
+    if (options.observer) options.observer->stage("parameterization", m.mapping + detail::seconds_since(param), true);
     const std::size_t failed = static_cast<std::size_t>(std::count_if(
         out.certificates.begin(), out.certificates.end(), [](const param::Certificate& c) { return !c.passed; }));
     say("parameterization: " + std::to_string(n_patches) + " patches, " + std::to_string(out.dividing_edges_split) +
         " dividing edges split, " + (options.relax ? std::to_string(out.relaxed_patches) + " relaxed, " : "") +
         (failed ? std::to_string(failed) + " NOT certified" : std::string("all certified")));
-    return out;
+    return std::move(out);
+}
+
+}  // namespace
+
+Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options& options) {
+    return completed(T, first_maps(T, std::move(D), options), options);
 }
 
 namespace {
@@ -417,52 +447,95 @@ Tail tail_of(const Parameterization& p, const Options& options) {
             l2_energy(scores)};
 }
 
+// The share of a map's image area above σ₁/σ₂ = 3 (what the 99th percentile's goal bounds by 1 %),
+// by its patches' scores; 1 where a patch is not certified (scores_of leaves it out).
+double share_above_tail(const Parameterization& p, const Options& options) {
+    double above = 0, area = 0;
+    for (const PatchScore& s : scores_of(p, options)) {
+        if (!s.certified) return 1;
+        above += s.above_tail;
+        area += s.image_area;
+    }
+    return area > 0 ? above / area : 1;
+}
+
 }  // namespace
 
 Parameterization another_domain(const TriMesh& T, Parameterization p, const domain::DecimateOptions& decimated_with,
                                 const Options& options) {
     if (!options.relax || p.partition.domain.mesh.n_faces() > coarse_domain_faces) return p;
-    const auto start = detail::Clock::now();
     Tail best = tail_of(p, options);
+    if (!best.missed) return p;
+    const auto start = detail::Clock::now();
     const Parameterization::Unmoved bound = p.unmoved;
     const double most_faces = (1 + StraightenOptions{}.thorough_growth) * static_cast<double>(bound.faces);
-    std::size_t tried = 1;
     Options quiet = options;
     quiet.observer = nullptr;  // the stages of the first domain are the ones timed; these are `other_domains`
+    quiet.progress = nullptr;  // one line per D mapped in full
     // The domains parameterized so far, by their vertices and faces: a rule that never bound gives
     // a D already tried, whose map would be the same.
     std::vector<std::pair<std::vector<VertexId>, std::vector<Triangle>>> seen{
         {{p.partition.domain.t_vertex.begin(), p.partition.domain.t_vertex.end()},
          p.partition.domain.mesh.triangles()}};
-    for (double rule : graded_rules) {
-        if (!best.missed) break;
+    // T decimated again under `rule`: its D, unless it has other faces or was tried already.
+    auto again = [&](const DomainRule& rule) -> std::optional<domain::Domain> {
         domain::DecimateOptions graded = decimated_with;
-        graded.first_normal_deviation_deg = rule;
+        graded.first_normal_deviation_deg = rule.normal;
+        graded.first_min_angle_deg = rule.min_angle;
         graded.best_effort = true;
         domain::Domain D = domain::decimate(T, graded);
-        if (D.mesh.n_faces() != p.partition.domain.mesh.n_faces()) continue;
+        if (D.mesh.n_faces() != p.partition.domain.mesh.n_faces()) return std::nullopt;
         std::pair<std::vector<VertexId>, std::vector<Triangle>> key{{D.t_vertex.begin(), D.t_vertex.end()},
                                                                     D.mesh.triangles()};
-        if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+        if (std::find(seen.begin(), seen.end(), key) != seen.end()) return std::nullopt;
         seen.push_back(std::move(key));
+        return D;
+    };
+    // The map on `rule`'s D made whole and judged; kept when it is a candidate and better.
+    auto judge = [&](const DomainRule& rule, FirstMaps maps) {
         if (options.progress)
-            options.progress("domain again, the normal rule from " + std::to_string(static_cast<int>(rule)) +
+            options.progress("domain again, the normal rule from " + std::to_string(static_cast<int>(rule.normal)) +
+                             "°, the angle rule from " + std::to_string(static_cast<int>(rule.min_angle)) +
                              "°: the map on D misses a goal");
-        Parameterization q = parameterize(T, std::move(D), quiet);
-        ++tried;
+        Parameterization q = completed(T, std::move(maps), quiet);
         const Tail tail = tail_of(q, options);
         if (!q.certified() || !(tail.l2 <= bound.l2_energy) || static_cast<double>(q.refined_faces.size()) > most_faces)
-            continue;
+            return;
         const bool better = !tail.missed || (tail.p99 < best.p99 && tail.p999 <= std::max(best.p999, p999_goal) &&
                                              tail.worst <= std::max(best.worst, worst_goal));
-        if (!better) continue;
-        q.graded_normal_rule = rule;
+        if (!better) return;
+        q.graded_normal_rule = rule.normal;
+        q.graded_min_angle = rule.min_angle;
         q.unmoved = bound;
         p = std::move(q);
         best = tail;
+    };
+    // The first rules' D's mapped in turn.
+    for (std::size_t r = 0; r < mapped_rules && best.missed; ++r)
+        if (std::optional<domain::Domain> D = again(domain_rules[r]))
+            judge(domain_rules[r], first_maps(T, std::move(*D), quiet));
+    // The other rules' D's screened by their first maps, the mapped_rules best (by their share of
+    // image area above σ₁/σ₂ = 3; ties: the earlier rule) then mapped in turn.
+    struct Screened {
+        double share;
+        DomainRule rule;
+        FirstMaps maps;
+    };
+    std::vector<Screened> ranked;
+    for (std::size_t r = mapped_rules; r < domain_rules.size() && best.missed; ++r) {
+        std::optional<domain::Domain> D = again(domain_rules[r]);
+        if (!D) continue;
+        FirstMaps maps = first_maps(T, std::move(*D), quiet);
+        const double share = share_above_tail(maps.out, options);
+        const auto at = std::find_if(ranked.begin(), ranked.end(), [&](const Screened& c) { return share < c.share; });
+        if (at - ranked.begin() < static_cast<std::ptrdiff_t>(mapped_rules))
+            ranked.insert(at, Screened{share, domain_rules[r], std::move(maps)});
+        if (ranked.size() > mapped_rules) ranked.pop_back();
     }
-    p.domains_tried = tried;
-    if (options.observer && tried > 1) options.observer->stage("other_domains", detail::seconds_since(start), true);
+    for (Screened& c : ranked)
+        if (best.missed) judge(c.rule, std::move(c.maps));
+    p.domains_tried = seen.size();
+    if (options.observer) options.observer->stage("other_domains", detail::seconds_since(start), true);
     return p;
 }
 

@@ -75,8 +75,9 @@ struct Parameterization {
         double l2_energy = 0;
         std::size_t faces = 0;
     } unmoved;
-    /// another_domain: the graded normal rule's first angle (degrees) of the D it chose; 0: §2's D
+    /// another_domain: the graded rules' first angles (degrees) of the D it chose; 0: §2's D
     double graded_normal_rule = 0;
+    double graded_min_angle = 0;
     std::size_t domains_tried = 1;  ///< the domains parameterized to choose this one (another_domain)
     // The final T′: T′ of §3 plus the dividing-edge midpoints, as plain arrays (for writers and numpy;
     // nothing reads its connectivity after §4, which a TriMesh would hold: paper_notes/library.md).
@@ -115,18 +116,29 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
 
 /// Beyond the paper, for the default map (Options::relax) on fhr's own coarse D (at most
 /// coarse_domain_faces faces), decimated from T with `decimated_with` (the plain normal rule):
-/// where p's map misses a goal of spec/distortion.md, T is decimated again under the graded normal
-/// rule (domain::DecimateOptions::first_normal_deviation_deg) from each angle of graded_rules in
-/// turn, and each D with p's faces and not yet tried is parameterized, until one's map meets the
-/// goals. Returned: the first that does, else the best, or p itself. A map is a candidate only
+/// where p's map misses a goal of spec/distortion.md, T is decimated again under the first
+/// mapped_rules of domain_rules (the graded normal rule, domain::DecimateOptions::
+/// first_normal_deviation_deg) in turn, and each D with p's faces and not yet tried is
+/// parameterized, until one's map meets the goals. While none does, the D's of the other rules
+/// (with the graded angle rule too, first_min_angle_deg) are screened by their first maps (§4's,
+/// relaxed, before any curve moves), and the mapped_rules with the least image area above
+/// σ₁/σ₂ = 3 there are parameterized in that order, until one meets the goals. Returned: the first that does, else the best, or p itself. A map is a candidate only
 /// when its L2 energy is at most p.unmoved's (so its L2 stretch is never above the paper map's on
 /// §2's D) and its faces at most 20 % more than p.unmoved's; it replaces the best so far when it meets all three goals, or when its σ₁/σ₂ 99th percentile
 /// (image-area weighted, measured by the map's own scores) is lower, its 99.9th no higher than the
 /// best's or 10, and its worst face no worse than the best's or 10³. Its seconds are the stage
 /// `other_domains` (Options::observer), reported when another D was tried.
-/// Each other domain costs a whole §3–§4; on the corpus only domains of at most 184 faces gained
-/// (paper_notes/distortion_causes.md, "Another domain"), and the cheese's 1,232 took over 30 min.
-inline constexpr std::array<double, 4> graded_rules{45, 60, 30, 20};
+/// Each other domain mapped costs a whole §3–§4, each screened one §3 and §4's first maps; on the
+/// corpus only domains of at most 184 faces gained (paper_notes/distortion_causes.md, "Another
+/// domain"), and the cheese's 1,232 took over 30 min.
+struct DomainRule {
+    double normal, min_angle;
+};
+inline constexpr std::array<DomainRule, 20> domain_rules{{{45, 0},  {60, 0},  {30, 0},  {20, 0},  // mapped in turn
+                                                          {75, 0},  {45, 10}, {60, 10}, {30, 10}, {20, 10}, {75, 10},
+                                                          {45, 15}, {60, 15}, {30, 15}, {20, 15}, {75, 15}, {45, 20},
+                                                          {60, 20}, {30, 20}, {20, 20}, {75, 20}}};
+inline constexpr std::size_t mapped_rules = 4;
 inline constexpr std::size_t coarse_domain_faces = 256;
 Parameterization another_domain(const TriMesh& T, Parameterization p, const domain::DecimateOptions& decimated_with,
                                 const Options& options);
