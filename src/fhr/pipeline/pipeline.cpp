@@ -535,7 +535,8 @@ Parameterization another_domain(const TriMesh& T, Parameterization p, const doma
     for (Screened& c : ranked)
         if (best.missed) judge(c.rule, std::move(c.maps));
     p.domains_tried = seen.size();
-    if (options.observer) options.observer->stage("other_domains", detail::seconds_since(start), true);
+    if (options.observer && seen.size() > 1)  // another D was tried (CLI-RUN-3)
+        options.observer->stage("other_domains", detail::seconds_since(start), true);
     return p;
 }
 
