@@ -359,24 +359,6 @@ TEST_CASE("PART-10: the elephant at 114 faces keeps its domain, conflicting edge
     CHECK(restricted_oracle_violation(T, P, true) == "");
 }
 
-TEST_CASE(
-    "PART-10: a restricted shortest curve through a vertex beside a separated curve snaps to it (the "
-    "couplingdown at 120 faces, D of the graded rules from 15° and 15°)",
-    "[partition][keep][real]") {
-    // Γ* passes the vertex 6·10⁻⁷ of its edge of T away, 10⁻⁵ of the piece of that edge between
-    // the vertex and a separated curve's crossing: snapped by the fraction of the piece, it stayed
-    // beside the vertex, on the far side of a curve through it, and the tightening's region refused
-    // it. By the fraction of T's edge it snaps to the vertex and is separated from the curve there.
-    const TriMesh T = cgal_mesh("couplingdown.off");
-    const domain::Domain D0 =
-        domain::decimate(T, {.target_faces = 120, .first_normal_deviation_deg = 15, .first_min_angle_deg = 15});
-    const partition::Partition P = partition::partition(T, D0);
-    CHECK(P.domain.mesh.triangles() == D0.mesh.triangles());
-    CHECK(test::keep_violation(T, D0, P) == "");
-    CHECK(test::partition_violation(T, P) == "");
-    CHECK(restricted_oracle_violation(T, P, true) == "");
-}
-
 TEST_CASE("PART-10: the direct start takes the cow's kept geodesics as they are, and embeds the elephant's first",
           "[partition][keep][real]") {
     // At 300 faces the cow's kept geodesics read in order (no shared node, first steps in D's

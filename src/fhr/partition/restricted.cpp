@@ -148,23 +148,11 @@ private:
         std::vector<SurfacePoint> pts;
         for (std::size_t i = 0; i < star.size(); ++i) {
             SurfacePoint p = star[i];
-            if (i > 0 && i + 1 < star.size() && p.kind == SurfacePoint::Kind::edge) {
-                // The fraction is of the edge of T the node lies on: a piece of it between a vertex
-                // and another curve's crossing may be far shorter (beside a separated curve, 5 % of
-                // the edge), and a path through that vertex reaches it a rounding error of the whole
-                // edge away (the couplingdown at 120 faces: 6·10⁻⁷ of the edge, 10⁻⁵ of the piece, on
-                // the far side of a curve through the vertex).
+            if (i > 0 && i + 1 < star.size() && p.kind == SurfacePoint::Kind::edge &&
+                (p.t <= snap_fraction || p.t >= 1 - snap_fraction)) {
                 const VertexId a = m.from(p.halfedge), b = m.to(p.halfedge);
-                const double piece = (m.position(b) - m.position(a)).norm(), near = std::min(p.t, 1 - p.t) * piece;
-                const std::optional<EdgeId> E = along(a, b);
-                const double edge =
-                    E ? (T_.position(T_.to(TriMesh::halfedge(*E, 0))) - T_.position(T_.from(TriMesh::halfedge(*E, 0))))
-                            .norm()
-                      : piece;
-                if (near <= snap_fraction * edge) {
-                    bound += 2 * near;
-                    p = SurfacePoint::at_vertex(p.t < 0.5 ? a : b);
-                }
+                bound += 2 * std::min(p.t, 1 - p.t) * (m.position(b) - m.position(a)).norm();
+                p = SurfacePoint::at_vertex(p.t <= snap_fraction ? a : b);
             }
             if (p.kind == SurfacePoint::Kind::vertex) {
                 const auto again = std::find_if(pts.begin(), pts.end(), [&](const SurfacePoint& q) {
