@@ -193,6 +193,7 @@ void write_partition(io::JsonWriter& j, const Parameterization& p) {
     }
     j.end_array();
     j.key("refined_vertices").value(p.refined_positions.size()).key("refined_faces").value(p.refined_faces.size());
+    j.key("corner_vertices").value(p.corner_vertices);
     j.key("dividing_edges_split").value(p.dividing_edges_split).end_object();
 }
 

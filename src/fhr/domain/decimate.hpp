@@ -16,6 +16,12 @@
 //       else queue the edge's other direction, unless it was found invalid too
 //   if the queue runs dry first: the target cannot be met under these rules (error)
 //
+// Beyond the paper, the graded rules (DOM-24, DOM-25): the normal and angle rules may start
+// tighter than their limits; when the queue runs dry, the normal rule is relaxed by a step (up to
+// max_normal_deviation), and once it is at its limit the angle rule is lowered by a step (down to
+// min_angle) and the normal rule starts again from its first angle; every edge is queued again
+// each time, so that D still has the faces asked wherever the plain rules reach them.
+//
 // Beyond the paper: when T has more than 2^17 faces and the target is at most a
 // quarter of them, the loop above is preceded by a pass over the cells — each vertex in the cell
 // of its first face, cells being blocks of 2^14 consecutive faces of T̂ — which runs the same

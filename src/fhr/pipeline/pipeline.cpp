@@ -14,6 +14,7 @@
 #include <fhr/core/errors.hpp>
 #include <fhr/param/detail/dividing_edges.hpp>
 #include <fhr/param/relax.hpp>
+#include <fhr/pipeline/detail/corners.hpp>
 #include <fhr/pipeline/detail/slide.hpp>
 #include <fhr/pipeline/detail/straighten.hpp>
 
@@ -491,13 +492,8 @@ Parameterization another_domain(const TriMesh& T, Parameterization p, const doma
         seen.push_back(std::move(key));
         return D;
     };
-    // The map on `rule`'s D made whole and judged; kept when it is a candidate and better.
-    auto judge = [&](const DomainRule& rule, FirstMaps maps) {
-        if (options.progress)
-            options.progress("domain again, the normal rule from " + std::to_string(static_cast<int>(rule.normal)) +
-                             "°, the angle rule from " + std::to_string(static_cast<int>(rule.min_angle)) +
-                             "°: the map on D misses a goal");
-        Parameterization q = completed(T, std::move(maps), quiet);
+    // A map made whole, of the D of `rule`: kept when it is a candidate and better.
+    auto consider = [&](Parameterization q, const DomainRule& rule) {
         const Tail tail = tail_of(q, options);
         if (!q.certified() || !(tail.l2 <= bound.l2_energy) || static_cast<double>(q.refined_faces.size()) > most_faces)
             return;
@@ -509,6 +505,14 @@ Parameterization another_domain(const TriMesh& T, Parameterization p, const doma
         q.unmoved = bound;
         p = std::move(q);
         best = tail;
+    };
+    // The map on `rule`'s D made whole and judged.
+    auto judge = [&](const DomainRule& rule, FirstMaps maps) {
+        if (options.progress)
+            options.progress("domain again, the normal rule from " + std::to_string(static_cast<int>(rule.normal)) +
+                             "°, the angle rule from " + std::to_string(static_cast<int>(rule.min_angle)) +
+                             "°: the map on D misses a goal");
+        consider(completed(T, std::move(maps), quiet), rule);
     };
     // The first rules' D's mapped in turn.
     for (std::size_t r = 0; r < mapped_rules && best.missed; ++r)
@@ -534,8 +538,19 @@ Parameterization another_domain(const TriMesh& T, Parameterization p, const doma
     }
     for (Screened& c : ranked)
         if (best.missed) judge(c.rule, std::move(c.maps));
+    // Last, the best D so far on T refined at its vertices.
+    std::optional<CornerRefinement> refined;
+    if (best.missed) refined = refine_corners(T, p.partition.domain);
+    if (refined) {
+        if (options.progress) options.progress("corners refined: the map on D misses a goal");
+        Parameterization q = completed(refined->mesh, first_maps(refined->mesh, refined->domain, quiet), quiet);
+        for (RefinedFaceId f : q.face_t.ids()) q.face_t[f] = refined->parent[q.face_t[f].idx()];
+        q.corner_vertices = refined->mesh.n_vertices() - T.n_vertices();
+        q.corner_refined_t = std::move(refined->mesh);
+        consider(std::move(q), {p.graded_normal_rule, p.graded_min_angle});
+    }
     p.domains_tried = seen.size();
-    if (options.observer && seen.size() > 1)  // another D was tried (CLI-RUN-3)
+    if (options.observer && (seen.size() > 1 || refined))  // another D or T was tried (CLI-RUN-3)
         options.observer->stage("other_domains", detail::seconds_since(start), true);
     return p;
 }

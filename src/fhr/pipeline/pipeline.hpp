@@ -79,6 +79,12 @@ struct Parameterization {
     double graded_normal_rule = 0;
     double graded_min_angle = 0;
     std::size_t domains_tried = 1;  ///< the domains parameterized to choose this one (another_domain)
+    /// another_domain: the vertices T was refined by at D's vertices for this map (detail/corners.hpp);
+    /// 0: none. Otherwise `partition` is of that refinement, `corner_refined_t` (T's vertices keep
+    /// their ids there, the cuts come after them; its faces are T's faces cut), and face_t still names
+    /// faces of T.
+    std::size_t corner_vertices = 0;
+    TriMesh corner_refined_t;
     // The final T′: T′ of §3 plus the dividing-edge midpoints, as plain arrays (for writers and numpy;
     // nothing reads its connectivity after §4, which a TriMesh would hold: paper_notes/library.md).
     std::vector<Vec3> refined_positions;
@@ -122,7 +128,9 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
 /// parameterized, until one's map meets the goals. While none does, the D's of the other rules
 /// (with the graded angle rule too, first_min_angle_deg) are screened by their first maps (§4's,
 /// relaxed, before any curve moves), and the mapped_rules with the least image area above
-/// σ₁/σ₂ = 3 there are parameterized in that order, until one meets the goals. Returned: the first that does, else the best, or p itself. A map is a candidate only
+/// σ₁/σ₂ = 3 there are parameterized in that order, until one meets the goals. While none does, last,
+/// T is refined at the vertices of the best D so far (detail/corners.hpp) and that D parameterized
+/// on it. Returned: the first that meets the goals, else the best, or p itself. A map is a candidate only
 /// when its L2 energy is at most p.unmoved's (so its L2 stretch is never above the paper map's on
 /// §2's D) and its faces at most 20 % more than p.unmoved's; it replaces the best so far when it meets all three goals, or when its σ₁/σ₂ 99th percentile
 /// (image-area weighted, measured by the map's own scores) is lower, its 99.9th no higher than the
