@@ -495,7 +495,9 @@ Parameterization another_domain(const TriMesh& T, Parameterization p, const doma
     // A map made whole, of the D of `rule`: kept when it is a candidate and better.
     auto consider = [&](Parameterization q, const DomainRule& rule) {
         const Tail tail = tail_of(q, options);
-        if (!q.certified() || !(tail.l2 <= bound.l2_energy) || static_cast<double>(q.refined_faces.size()) > most_faces)
+        if (!q.certified() || !(tail.l2 <= bound.l2_energy) ||
+            static_cast<double>(q.refined_faces.size()) > most_faces ||
+            q.partition.domain.mesh.n_faces() != p.partition.domain.mesh.n_faces())  // the domain asked for
             return;
         const bool better = !tail.missed || (tail.p99 < best.p99 && tail.p999 <= std::max(best.p999, p999_goal) &&
                                              tail.worst <= std::max(best.worst, worst_goal));

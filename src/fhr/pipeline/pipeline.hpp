@@ -132,7 +132,7 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
 /// T is refined at the vertices of the best D so far (detail/corners.hpp) and that D parameterized
 /// on it. Returned: the first that meets the goals, else the best, or p itself. A map is a candidate only
 /// when its L2 energy is at most p.unmoved's (so its L2 stretch is never above the paper map's on
-/// §2's D) and its faces at most 20 % more than p.unmoved's; it replaces the best so far when it meets all three goals, or when its σ₁/σ₂ 99th percentile
+/// §2's D), its faces at most 20 % more than p.unmoved's, and its D of p's faces (§3 kept it); it replaces the best so far when it meets all three goals, or when its σ₁/σ₂ 99th percentile
 /// (image-area weighted, measured by the map's own scores) is lower, its 99.9th no higher than the
 /// best's or 10, and its worst face no worse than the best's or 10³. Its seconds are the stage
 /// `other_domains` (Options::observer), reported when another D was tried.
