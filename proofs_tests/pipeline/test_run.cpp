@@ -365,8 +365,6 @@ TEST_CASE(
                        {.target_faces = 28, .first_normal_deviation_deg = 20, .first_min_angle_deg = 10});
 }
 
-namespace {}  // namespace
-
 TEST_CASE(
     "CLI-RUN-9, DIST-4, DIST-7: moving the curves of poor patches and sliding their vertices lowers the worst "
     "face, the 99th percentile and the L2 stretch, certified and continuous",

@@ -211,7 +211,7 @@ void write_parameterization(io::JsonWriter& j, const Parameterization& p, const 
     j.key("patches").value(p.disks.size());
     j.key("weights").value(param::name(options.map.weights)).key("solver").value(param::name(options.map.solver));
     j.key("map").value(options.relax ? "relaxed" : "paper").key("relaxed_patches").value(p.relaxed_patches);
-    j.key("slid_patches").value(p.slid_patches);
+    j.key("slid_patches").value(p.slid_patches).key("image_weighted_sliding").value(p.image_weighted_sliding);
     j.key("certified").value(p.certified() && oracle.valid());
     j.key("flipped_triangles").value(flipped).key("boundary_violations").value(boundary);
     j.key("min_image_angle_degrees").value(min_angle);

@@ -197,6 +197,7 @@ void slide_curves(Parameterization& out, const Options& options, bool missed, do
     SlideOptions slide_options;
     slide_options.missed = missed;
     slide_options.power = power;
+    slide_options.image_weighted = options.image_weighted_sliding;
     std::vector<std::pair<DFaceId, param::PatchMap>> slid =
         slide(out.partition.domain.mesh, out.partition.patches, out.disks, out.maps,
               executor_or_default(options.executor), slide_options);
@@ -365,6 +366,7 @@ Parameterization completed(const TriMesh& T, FirstMaps m, const Options& options
     const auto param = detail::Clock::now();
     auto keep = [&](std::size_t i, MappedPatch mapped) { keep_patch(m, i, std::move(mapped)); };
     if (options.relax) improve(T, out, options, m.relaxed, keep, std::tie(out, m.split, m.origin, m.relaxed));
+    out.image_weighted_sliding = options.relax && options.image_weighted_sliding;
     for (std::size_t s : m.split) out.dividing_edges_split += s;
     for (std::uint8_t r : m.relaxed) out.relaxed_patches += r;
     // The final T′: the vertices of T′ of §3, then each patch's dividing-edge midpoints; faces
@@ -460,6 +462,21 @@ double share_above_tail(const Parameterization& p, const Options& options) {
     return area > 0 ? above / area : 1;
 }
 
+// T refined at D's vertices (another_domain's last tries): the map on it, its faces named by T's.
+Parameterization mapped_refined(const TriMesh& T, CornerRefinement refined, const Options& options) {
+    Parameterization q = completed(refined.mesh, first_maps(refined.mesh, refined.domain, options), options);
+    for (RefinedFaceId f : q.face_t.ids()) q.face_t[f] = refined.parent[q.face_t[f].idx()];
+    q.corner_vertices = refined.mesh.n_vertices() - T.n_vertices();
+    q.corner_refined_t = std::move(refined.mesh);
+    return q;
+}
+
+// D mapped again with the sliding weighed by image area (another_domain's last tries).
+Parameterization mapped_by_image(const TriMesh& T, const domain::Domain& D, Options options) {
+    options.image_weighted_sliding = true;
+    return completed(T, first_maps(T, D, options), options);
+}
+
 }  // namespace
 
 Parameterization another_domain(const TriMesh& T, Parameterization p, const domain::DecimateOptions& decimated_with,
@@ -540,19 +557,21 @@ Parameterization another_domain(const TriMesh& T, Parameterization p, const doma
     }
     for (Screened& c : ranked)
         if (best.missed) judge(c.rule, std::move(c.maps));
-    // Last, the best D so far on T refined at its vertices.
+    // Last, the best D so far on T refined at its vertices, then (on T) with the sliding weighed by
+    // image area.
     std::optional<CornerRefinement> refined;
     if (best.missed) refined = refine_corners(T, p.partition.domain);
     if (refined) {
         if (options.progress) options.progress("corners refined: the map on D misses a goal");
-        Parameterization q = completed(refined->mesh, first_maps(refined->mesh, refined->domain, quiet), quiet);
-        for (RefinedFaceId f : q.face_t.ids()) q.face_t[f] = refined->parent[q.face_t[f].idx()];
-        q.corner_vertices = refined->mesh.n_vertices() - T.n_vertices();
-        q.corner_refined_t = std::move(refined->mesh);
-        consider(std::move(q), {p.graded_normal_rule, p.graded_min_angle});
+        consider(mapped_refined(T, std::move(*refined), quiet), {p.graded_normal_rule, p.graded_min_angle});
+    }
+    const bool weighted = best.missed && p.corner_vertices == 0;
+    if (weighted) {
+        if (options.progress) options.progress("sliding weighed by image area: the map on D misses a goal");
+        consider(mapped_by_image(T, p.partition.domain, quiet), {p.graded_normal_rule, p.graded_min_angle});
     }
     p.domains_tried = seen.size();
-    if (options.observer && (seen.size() > 1 || refined))  // another D or T was tried (CLI-RUN-3)
+    if (options.observer && (seen.size() > 1 || refined || weighted))  // another D or T was tried (CLI-RUN-3)
         options.observer->stage("other_domains", detail::seconds_since(start), true);
     return p;
 }

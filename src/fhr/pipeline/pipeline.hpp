@@ -50,6 +50,9 @@ struct Options {
     /// Beyond the paper: each patch map relaxed (param/relax.hpp) where that lowers its distortion
     /// and keeps its certificate; false: the paper's §4 map exactly (`fhr run --map paper`).
     bool relax = true;
+    /// Beyond the paper (Options::relax): the sliding's faces weighed by their image area's share
+    /// (detail/slide.hpp, SlideOptions::image_weighted); another_domain's last try.
+    bool image_weighted_sliding = false;
     bool keep_domain = true;  ///< §3: keep D (restricted paths where geodesics conflict), else change it
     std::function<void(const std::string&)> progress;  ///< optional: one line per step, on the calling thread
     StageObserver* observer = nullptr;                 ///< optional: the seconds of each stage
@@ -85,6 +88,7 @@ struct Parameterization {
     /// faces of T.
     std::size_t corner_vertices = 0;
     TriMesh corner_refined_t;
+    bool image_weighted_sliding = false;  ///< this map's sliding weighed its faces by image area (Options)
     // The final T′: T′ of §3 plus the dividing-edge midpoints, as plain arrays (for writers and numpy;
     // nothing reads its connectivity after §4, which a TriMesh would hold: paper_notes/library.md).
     std::vector<Vec3> refined_positions;
@@ -130,7 +134,9 @@ Parameterization parameterize(const TriMesh& T, domain::Domain D, const Options&
 /// relaxed, before any curve moves), and the mapped_rules with the least image area above
 /// σ₁/σ₂ = 3 there are parameterized in that order, until one meets the goals. While none does, last,
 /// T is refined at the vertices of the best D so far (detail/corners.hpp) and that D parameterized
-/// on it. Returned: the first that meets the goals, else the best, or p itself. A map is a candidate only
+/// on it; then, the same, the best D so far (on T) mapped again with the sliding's faces weighed by
+/// their image area (Options::image_weighted_sliding). Returned: the first that meets the goals,
+/// else the best, or p itself. A map is a candidate only
 /// when its L2 energy is at most p.unmoved's (so its L2 stretch is never above the paper map's on
 /// §2's D), its faces at most 20 % more than p.unmoved's, and its D of p's faces (§3 kept it); it replaces the best so far when it meets all three goals, or when its σ₁/σ₂ 99th percentile
 /// (image-area weighted, measured by the map's own scores) is lower, its 99.9th no higher than the

@@ -39,7 +39,9 @@ struct Flat {
     std::vector<std::vector<std::pair<std::uint32_t, int>>> ring;  // per vertex: (face, its place there)
     std::vector<std::uint8_t> on_boundary;
 
-    Flat(const param::Disk& disk, const param::PatchMap& psi, const std::array<Vec2, 3>& corners)
+    // image_weighted: each face's area weighed by its share of the patch's image area over its share
+    // of the patch's surface area, within [0.1, 10] (slide.hpp's SlideOptions::image_weighted).
+    Flat(const param::Disk& disk, const param::PatchMap& psi, const std::array<Vec2, 3>& corners, bool image_weighted)
         : corner(corners),
           uv(disk.positions.size()),
           ring(disk.positions.size()),
@@ -54,6 +56,21 @@ struct Flat {
             for (int k = 0; k < 3; ++k) ring[disk.triangles[f][k]].emplace_back(static_cast<std::uint32_t>(f), k);
         }
         for (std::uint32_t v : disk.boundary) on_boundary[v] = 1;
+        if (image_weighted) weigh_by_image(disk);
+    }
+
+    void weigh_by_image(const param::Disk& disk) {
+        std::vector<double> image(area.size());
+        double image_total = 0, total = 0;
+        for (std::size_t f = 0; f < area.size(); ++f) {
+            const auto& t = disk.triangles[f];
+            const Vec2 a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
+            image[f] = 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+            image_total += image[f];
+            total += area[f];
+        }
+        for (std::size_t f = 0; f < area.size(); ++f)
+            area[f] *= std::clamp((image[f] / image_total) / (area[f] / total), 0.1, 10.0);
     }
 
     Mat2 jacobian(const param::Disk& disk, std::size_t f) const {
@@ -140,7 +157,8 @@ public:
     std::vector<std::pair<DFaceId, param::PatchMap>> run() {
         if (!choose()) return {};
         flats_.reserve(moving_.size());
-        for (DFaceId d : moving_) flats_.emplace_back(disks_[d], maps_[d], flat_triangle(D_, FaceId(d)));
+        for (DFaceId d : moving_)
+            flats_.emplace_back(disks_[d], maps_[d], flat_triangle(D_, FaceId(d)), options_.image_weighted);
         find_sliding();
         for (const Flat& flat : flats_) start_uv_.push_back(flat.uv);
         for (const Sliding& v : sliding_) start_s_.push_back(v.s);

@@ -53,6 +53,10 @@ struct SlideOptions {
     double threshold = 0.1;  ///< see `active` in the pseudocode
     double worst = 10;       ///< see `active` in the pseudocode
     double power = 2;        ///< p of the steps' energy Σ_f A_f m_f^p (param/detail/mips.hpp)
+    /// Each face's A_f weighed by its share of its patch's image area over its share of the patch's
+    /// surface area (within [0.1, 10]), taken when the sliding starts: the percentiles of
+    /// spec/distortion.md weigh faces by image area (pipeline::Options::image_weighted_sliding).
+    bool image_weighted = false;
 };
 
 /// The maps of the patches (disks[d] split, maps[d] certified, patches.patch[d].vertices naming
